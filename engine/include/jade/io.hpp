@@ -1,0 +1,39 @@
+// jade/io.hpp - file formats. Part of the separate target jade::io (links tinygltf,
+// tinyobjloader, OpenImageIO); the core library jade::jade reads and writes no files.
+#pragma once
+
+#include <jade/mesh.hpp>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace jade {
+
+/// Loads a triangle mesh, choosing the reader by extension (case-insensitive):
+///   .gltf / .glb  glTF 2.0: every triangle primitive of the default scene (or scene 0), node
+///                 transforms applied, indexed or not; reads `_AO`/`_TM` if present.
+///   .off          OFF (polygons are fan-triangulated)
+///   .ply          PLY, ASCII or binary little-endian (faces fan-triangulated)
+///   .obj          Wavefront OBJ (via tinyobjloader)
+/// Throws jade::Error naming the file, the element and what is wrong; never returns a partly
+/// read mesh. Header counts are checked against the file size before anything is allocated.
+TriangleMesh load_mesh(const std::filesystem::path& path);
+
+/// What `jade bake` stores next to the mesh.
+struct BakedAttributes {
+    std::vector<float> ao;            ///< per render vertex, [0,1]
+    std::vector<glm::vec3> tm;        ///< per render vertex, linear RGB, unitless
+    std::string extras_json;          ///< a JSON object stored as the asset's `extras`
+};
+
+/// Writes `mesh` as binary glTF (.glb) or glTF with embedded buffer (.gltf) with the extra
+/// vertex attributes `_AO` (SCALAR float) and `_TM` (VEC3 float). Written to a temporary file
+/// in the same folder and renamed, so a failure never leaves a half-written file.
+void save_baked_gltf(const std::filesystem::path& path, const TriangleMesh& mesh, const BakedAttributes& baked);
+
+/// Writes a linear-RGB float image: .png (sRGB-encoded, 8 bit), .exr (linear half/float).
+/// `rgba` holds width*height*4 floats, rows top to bottom. Atomic like save_baked_gltf.
+void save_image(const std::filesystem::path& path, int width, int height, const std::vector<float>& rgba);
+
+}  // namespace jade

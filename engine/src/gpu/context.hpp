@@ -1,0 +1,79 @@
+// gpu/context.hpp - instance, device, queue, and the one-shot command submission.
+#pragma once
+
+#include "gpu/vk.hpp"
+
+#include <jade/context.hpp>
+
+#include <atomic>
+#include <functional>
+#include <string_view>
+
+namespace jade::gpu {
+
+class Context {
+public:
+    explicit Context(const ContextOptions& options);
+    ~Context();
+    Context(const Context&) = delete;
+    Context& operator=(const Context&) = delete;
+
+    VkInstance instance() const { return instance_; }
+    VkPhysicalDevice physical_device() const { return physical_; }
+    VkDevice device() const { return device_; }
+    VkQueue queue() const { return queue_; }
+    uint32_t queue_family() const { return queue_family_; }
+    const VkPhysicalDeviceLimits& limits() const { return properties_.limits; }
+    const VkPhysicalDeviceMemoryProperties& memory_properties() const { return memory_; }
+    const DeviceInfo& info() const { return info_; }
+    uint64_t validation_messages() const { return validation_messages_.load(); }
+
+    /// Records commands with `record` into a fresh primary command buffer, submits it and waits.
+    /// The simple path for bakes and tests; frame loops record into their own buffers.
+    void submit_and_wait(const std::function<void(VkCommandBuffer)>& record);
+
+    /// Names a Vulkan object for validation messages and debuggers (no-op without debug utils).
+    void set_name(VkObjectType type, uint64_t handle, const char* name) const;
+    template <class T> void set_name(T handle, VkObjectType type, const char* name) const
+    {
+        set_name(type, reinterpret_cast<uint64_t>(handle), name);
+    }
+
+    void log(std::string_view line) const;
+    bool verbose() const { return verbose_; }
+
+    // Extension entry points, loaded once.
+    PFN_vkCmdPushDescriptorSetKHR cmd_push_descriptor_set = nullptr;
+
+    static std::vector<std::string> list_devices();
+
+private:
+    static VKAPI_ATTR VkBool32 VKAPI_CALL on_debug_message(VkDebugUtilsMessageSeverityFlagBitsEXT,
+        VkDebugUtilsMessageTypeFlagsEXT, const VkDebugUtilsMessengerCallbackDataEXT*, void*);
+    void create_instance(const ContextOptions& options);
+    void choose_physical_device(const ContextOptions& options);
+    void create_device();
+    void fill_info();
+    void destroy();
+
+    std::function<void(std::string_view)> log_;
+    bool verbose_ = false;
+    std::atomic<uint64_t> validation_messages_{0};
+
+    VkInstance instance_ = VK_NULL_HANDLE;
+    VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+    VkPhysicalDevice physical_ = VK_NULL_HANDLE;
+    VkPhysicalDeviceProperties properties_{};
+    VkPhysicalDeviceMemoryProperties memory_{};
+    bool float64_ = false;
+    uint32_t queue_family_ = 0;
+    VkDevice device_ = VK_NULL_HANDLE;
+    VkQueue queue_ = VK_NULL_HANDLE;
+    DeviceInfo info_;
+    PFN_vkSetDebugUtilsObjectNameEXT set_object_name_ = nullptr;
+    // Owned objects last: destroyed first, before the device (see ~Context).
+    OwnedCommandPool command_pool_;
+    OwnedFence fence_;
+};
+
+}  // namespace jade::gpu

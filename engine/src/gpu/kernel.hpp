@@ -1,0 +1,92 @@
+// gpu/kernel.hpp - the one way to make and run a compute program (after zeux/niagara).
+//
+// A kernel is {SPIR-V, bindings, push-constant size, specialisation constants}. Bindings go
+// through push descriptors (no pools, no sets to manage). `dispatch` takes a thread count,
+// works out the group count, and spreads more than 65,535 groups over a 2-D grid: shaders get
+// their linear thread index from jade_thread_index() in shaders/include/common.glsl and compare
+// it with a count they receive in their push constants.
+#pragma once
+
+#include "gpu/vk.hpp"
+
+#include <cstdint>
+#include <initializer_list>
+#include <span>
+#include <vector>
+
+namespace jade::gpu {
+
+class Context;
+class Buffer;
+
+struct KernelDesc {
+    const char* name = "kernel";
+    std::span<const uint32_t> spirv;
+    std::vector<VkDescriptorType> bindings;  ///< binding i has type bindings[i]
+    uint32_t push_size = 0;                  ///< bytes, ≤ 128
+    uint32_t local_size = 64;                ///< threads per group: specialisation constant 0
+    std::vector<uint32_t> constants;         ///< specialisation constants 1, 2, ... (32-bit each)
+};
+
+/// A bound resource: a buffer range, or an image view (storage image or sampled with sampler).
+struct Binding {
+    VkBuffer buffer = VK_NULL_HANDLE;
+    VkDeviceSize offset = 0, range = VK_WHOLE_SIZE;
+    VkImageView view = VK_NULL_HANDLE;
+    VkImageLayout layout = VK_IMAGE_LAYOUT_GENERAL;
+    VkSampler sampler = VK_NULL_HANDLE;
+
+    Binding(const Buffer& b);  // NOLINT: implicit on purpose, dispatch(..., {a, b, c})
+    Binding(VkBuffer b, VkDeviceSize off = 0, VkDeviceSize r = VK_WHOLE_SIZE) : buffer(b), offset(off), range(r) {}
+    static Binding image(VkImageView v, VkImageLayout l, VkSampler s = VK_NULL_HANDLE)
+    {
+        Binding b(VK_NULL_HANDLE);
+        b.view = v, b.layout = l, b.sampler = s;
+        return b;
+    }
+};
+
+class Kernel {
+public:
+    Kernel() = default;
+    Kernel(Context& ctx, const KernelDesc& desc);
+
+    /// Records one dispatch of `threads` threads. Checks the push size and the number and
+    /// ranges of bindings (against maxStorageBufferRange) before recording.
+    void dispatch(VkCommandBuffer cmd, uint64_t threads, const void* push, std::initializer_list<Binding> bindings) const;
+    template <class Push>
+    void dispatch(VkCommandBuffer cmd, uint64_t threads, const Push& push, std::initializer_list<Binding> bindings) const
+    {
+        check_push(sizeof(Push));
+        dispatch(cmd, threads, static_cast<const void*>(&push), bindings);
+    }
+
+    const char* name() const { return name_; }
+    uint32_t local_size() const { return local_size_; }
+    VkPipelineLayout layout() const { return layout_; }
+
+private:
+    void check_push(size_t bytes) const;
+
+    Context* ctx_ = nullptr;
+    const char* name_ = "";
+    std::vector<VkDescriptorType> bindings_;
+    uint32_t push_size_ = 0, local_size_ = 1;
+    OwnedSetLayout set_layout_;   // destroyed after the layout and pipeline that use it
+    OwnedPipelineLayout layout_;
+    OwnedPipeline pipeline_;
+};
+
+/// Push-descriptor writes for `bindings` (shared by compute kernels and graphics pipelines).
+void push_bindings(const Context& ctx, VkCommandBuffer cmd, VkPipelineBindPoint point, VkPipelineLayout layout,
+                   std::span<const VkDescriptorType> types, std::initializer_list<Binding> bindings, const char* who);
+
+/// A push-descriptor set layout for `types` visible to `stages`.
+OwnedSetLayout make_push_set_layout(const Context& ctx, std::span<const VkDescriptorType> types, VkShaderStageFlags stages);
+
+OwnedShaderModule make_shader_module(const Context& ctx, std::span<const uint32_t> spirv, const char* name);
+
+/// Full memory barrier between compute passes (writes of one visible to reads of the next).
+void compute_barrier(VkCommandBuffer cmd);
+
+}  // namespace jade::gpu

@@ -1,0 +1,88 @@
+// jade info [MESH]: the device, or a mesh after preparation.
+#include "commands.hpp"
+
+#include <jade/io.hpp>
+
+#include <glm/common.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+namespace jade::cli {
+
+static void print_device(const DeviceInfo& d)
+{
+    std::printf("device            %s (%s)\n", d.name.c_str(), d.type.c_str());
+    std::printf("driver            %s\n", d.driver.c_str());
+    std::printf("Vulkan            %s\n", d.api_version_string().c_str());
+    std::printf("storage buffer    %llu MiB max range\n", (unsigned long long)(d.max_storage_buffer_range >> 20));
+    std::printf("work groups       %u x %u x %u max count, %u invocations\n", d.max_workgroup_count[0],
+                d.max_workgroup_count[1], d.max_workgroup_count[2], d.max_workgroup_invocations);
+    std::printf("subgroup size     %u\n", d.subgroup_size);
+    std::printf("float64           %s\n", d.float64 ? "yes" : "no");
+    std::printf("timestamp period  %.3g ns\n", d.timestamp_period_ns);
+    std::printf("device memory     %.1f GiB\n", double(d.device_local_heap_bytes) / (1u << 30));
+}
+
+static void print_mesh(const std::string& path)
+{
+    using Clock = std::chrono::steady_clock;
+    auto t0 = Clock::now();
+    TriangleMesh mesh = load_mesh_arg(path);
+    auto t1 = Clock::now();
+    PreparedMesh p = prepare_mesh(mesh);
+    auto t2 = Clock::now();
+    auto ms = [](auto a, auto b) { return std::chrono::duration<double, std::milli>(b - a).count(); };
+    std::printf("mesh              %s\n", mesh.name.c_str());
+    std::printf("input             %zu vertices, %zu triangles\n", p.input_vertices, p.input_triangles);
+    std::printf("prepared          %zu vertices, %zu triangles\n", p.vertex_count(), p.triangle_count());
+    std::printf("welded            %zu vertices\n", p.welded_vertices);
+    std::printf("dropped           %zu degenerate triangles, %zu unused vertices\n", p.dropped_triangles, p.unused_vertices);
+    std::printf("bounding box      (%g, %g, %g) .. (%g, %g, %g) mesh units\n", p.bbox_min.x, p.bbox_min.y, p.bbox_min.z,
+                p.bbox_max.x, p.bbox_max.y, p.bbox_max.z);
+    std::printf("diagonal          %g mesh units\n", p.diagonal);
+    std::printf("surface area      %g units^2\n", p.total_area());
+    if (!mesh.baked_ao.empty()) {
+        auto [lo, hi] = std::minmax_element(mesh.baked_ao.begin(), mesh.baked_ao.end());
+        std::printf("baked AO          %.4f .. %.4f\n", *lo, *hi);
+    }
+    if (!mesh.baked_tm.empty()) {
+        glm::vec3 lo(1e30f), hi(-1e30f);
+        for (auto& t : mesh.baked_tm) lo = glm::min(lo, t), hi = glm::max(hi, t);
+        std::printf("baked t_m         R %.4f..%.4f  G %.4f..%.4f  B %.4f..%.4f\n", lo.x, hi.x, lo.y, hi.y, lo.z, hi.z);
+    }
+    std::printf("timings           load %s, prepare %s\n", format_ms(ms(t0, t1)).c_str(), format_ms(ms(t1, t2)).c_str());
+}
+
+int cmd_info(int argc, char** argv)
+{
+    auto specs = device_options();
+    specs.push_back({"materials", "", "list the material presets"});
+    Args args("info", specs, argc, argv, 2);
+    if (args.flag("help")) {
+        std::printf("usage: jade info [MESH]\n\nWithout MESH: the Vulkan device Jade would use. With MESH: counts after\n"
+                    "preparation (welding, degenerate triangles), bounds and timings.\n\n%s", args.help().c_str());
+        return 0;
+    }
+    if (args.positional().size() > 1) args.fail("takes at most one mesh");
+    if (args.flag("materials")) {
+        for (const auto& n : material_preset_names()) std::printf("%s\n", n.c_str());
+        return 0;
+    }
+    if (!args.positional().empty()) {
+        print_mesh(args.positional()[0]);
+        return 0;
+    }
+    auto ctx = make_context(args);
+    print_device(ctx->device_info());
+    auto all = Context::list_devices();
+    if (all.size() > 1) {
+        std::printf("all devices      ");
+        for (auto& n : all) std::printf(" [%s]", n.c_str());
+        std::printf("\n");
+    }
+    return 0;
+}
+
+}  // namespace jade::cli

@@ -1,0 +1,106 @@
+#include "commands.hpp"
+
+#include <jade/io.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+namespace jade::cli {
+
+std::vector<OptionSpec> device_options()
+{
+    return {{"device", "NAME", "use the Vulkan device whose name contains NAME (or JADE_DEVICE)"},
+            {"validation", "", "enable the Khronos validation layer (or JADE_VALIDATION=1)"},
+            {"verbose", "", "say which device and passes run"}};
+}
+
+std::vector<OptionSpec> material_options()
+{
+    return {{"material", "NAME", "material preset (default jade); see jade info --materials"},
+            {"mm-per-unit", "X", "millimetres per mesh unit (default: the object is 100 mm across)"},
+            {"d", "F", "Burley profile: mean scattering distance d as a fraction of the diagonal"},
+            {"strength", "S", "Gaussian variance per unit t_m (rad^2; default 1, as in the paper)"}};
+}
+
+std::vector<OptionSpec> bake_options()
+{
+    return {{"quality", "Q", "draft | default | high (AO rays and t_m accuracy)"},
+            {"ao-rays", "N", "AO rays per vertex (overrides the quality's)"},
+            {"ao-iid", "", "i.i.d. rays instead of Hammersley + Cranley-Patterson rotation"},
+            {"ao-distance", "F", "AO max hit distance, fraction of the diagonal (default 0.1)"},
+            {"ao-epsilon", "F", "AO ray origin offset, fraction of the diagonal (default 1e-4)"},
+            {"seed", "N", "AO random seed (default 1)"},
+            {"method", "M", "t_m far field: auto | exact | clustered"},
+            {"epsilon", "E", "t_m far-field error bound, relative (overrides the quality's)"}};
+}
+
+std::unique_ptr<Context> make_context(const Args& args)
+{
+    ContextOptions o;
+    o.device = args.get_or("device", "");
+    o.validation = args.flag("validation");
+    o.verbose = args.flag("verbose");
+    return std::make_unique<Context>(o);
+}
+
+Material material_from_args(const Args& args, const PreparedMesh& mesh)
+{
+    double default_mm = mesh.diagonal > 0 ? 100.0 / mesh.diagonal : 1.0;
+    double mm_per_unit = args.number("mm-per-unit", default_mm, 1e-30, 1e30);
+    Material m = material_preset(args.get_or("material", "jade"), mm_per_unit);
+    if (auto d = args.get("d")) {
+        double rel = args.number("d", 0.05, 1e-9, 1e9);
+        // Keep the preset's colour ratios, scale so the channels' mean d is rel × diagonal.
+        double mean = 0;
+        for (auto& p : m.profile) mean += (p.kind == ProfileKind::Burley ? p.d : 1.0) / 3.0;
+        for (auto& p : m.profile)
+            p = ChannelProfile::burley((p.kind == ProfileKind::Burley ? p.d / mean : 1.0) * rel * mesh.diagonal);
+    }
+    m.strength = float(args.number("strength", m.strength, 0.0, 1e6));
+    return m;
+}
+
+BakeSettings bake_settings_from_args(const Args& args)
+{
+    std::string q = args.get_or("quality", "default");
+    Quality quality = Quality::Default;
+    if (q == "draft") quality = Quality::Draft;
+    else if (q == "high") quality = Quality::High;
+    else if (q != "default") args.fail("--quality: '" + q + "' is not one of draft, default, high");
+    BakeSettings s = BakeSettings::preset(quality);
+    s.ao.rays = args.count("ao-rays", s.ao.rays, 1, 65536);
+    s.ao.low_discrepancy = !args.flag("ao-iid");
+    s.ao.max_distance_rel = float(args.number("ao-distance", s.ao.max_distance_rel, 1e-6, 1e6));
+    s.ao.epsilon_rel = float(args.number("ao-epsilon", s.ao.epsilon_rel, 0.0, 1.0));
+    s.ao.seed = args.count("seed", s.ao.seed, 0, 0xffffffffu);
+    std::string method = args.get_or("method", "auto");
+    if (method == "exact") s.method = TmMethod::Exact;
+    else if (method == "clustered") s.method = TmMethod::Clustered;
+    else if (method != "auto") args.fail("--method: '" + method + "' is not one of auto, exact, clustered");
+    s.tm_epsilon = float(args.number("epsilon", s.tm_epsilon, 1e-7, 1.0));
+    return s;
+}
+
+TriangleMesh load_mesh_arg(const std::string& path)
+{
+    if (!path.empty() && path != "bunny") return load_mesh(path);
+    const char* assets = std::getenv("JADE_ASSETS");
+    std::filesystem::path bunny = std::filesystem::path(assets ? assets : "assets") / "bunny00.off";
+    if (std::filesystem::exists(bunny)) return load_mesh(bunny);
+    std::fprintf(stderr, "jade: %s not found (run third_party/fetch_assets.sh); using a procedural sphere\n",
+                 bunny.string().c_str());
+    return procedural::sphere(1.0f, 64, 128);
+}
+
+std::string format_ms(double ms)
+{
+    char buf[32];
+    if (ms < 1) std::snprintf(buf, sizeof buf, "%.3f ms", ms);
+    else if (ms < 1000) std::snprintf(buf, sizeof buf, "%.1f ms", ms);
+    else std::snprintf(buf, sizeof buf, "%.2f s", ms / 1000);
+    return buf;
+}
+
+}  // namespace jade::cli

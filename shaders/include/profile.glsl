@@ -1,0 +1,108 @@
+// profile.glsl - scattering profiles R(r) in float32, normalised to 1 over the plane
+// (engine/include/jade/material.hpp has the float64 originals and the formulas' sources).
+// Everything is written so that tiny and huge radii neither cancel nor overflow: expm1 forms
+// for the radial CDFs, and R(t)·t (finite at t = 0) where the integrals need it.
+#ifndef JADE_PROFILE_GLSL
+#define JADE_PROFILE_GLSL
+
+const uint PROFILE_BURLEY = 0u;
+const uint PROFILE_DIPOLE = 1u;
+const uint PROFILE_GAUSSIANS = 2u;
+
+struct Profile {
+    uint kind;
+    uint count;   // Gaussians: number of terms
+    float a;      // Burley: d.  Dipole: σ_tr
+    float b;      // Dipole: z_r
+    float c;      // Dipole: z_v
+    float w[6];   // Gaussians: weights (sum 1)
+    float v[6];   // Gaussians: variances, units²
+};
+
+// e^x − 1 without cancellation for small |x|.
+float expm1_accurate(float x)
+{
+    if (abs(x) < 1e-2) return x * (1.0 + x * (0.5 + x * (1.0 / 6.0 + x * (1.0 / 24.0))));
+    return exp(x) - 1.0;
+}
+
+// One dipole source at depth z: its R_d·t term (unnormalised by 1/(2π·total)).
+float dipole_source_rt(float sigma, float z, float t)
+{
+    float d = sqrt(t * t + z * z);
+    return t * z * (1.0 + sigma * d) * exp(-sigma * d) / (d * d * d);
+}
+
+// One dipole source's share of the radial CDF: e^{−σz} − z·e^{−σd}/d in a form stable for r ≪ z.
+float dipole_source_cdf(float sigma, float z, float r)
+{
+    float d = sqrt(r * r + z * z);
+    float delta = r * r / (d + z);  // d − z without cancellation
+    return exp(-sigma * z) * (delta - z * expm1_accurate(-sigma * delta)) / d;
+}
+
+float dipole_total(Profile p) { return exp(-p.a * p.b) + exp(-p.a * p.c); }
+
+// R(t)·t, finite at t = 0 for every profile.
+float profile_rt(Profile p, float t)
+{
+    if (p.kind == PROFILE_BURLEY) {
+        float d = p.a;
+        return (exp(-t / d) + exp(-t / (3.0 * d))) / (8.0 * JADE_PI * d);
+    }
+    if (p.kind == PROFILE_DIPOLE)
+        return (dipole_source_rt(p.a, p.b, t) + dipole_source_rt(p.a, p.c, t)) / (2.0 * JADE_PI * dipole_total(p));
+    float s = 0.0;
+    for (uint k = 0u; k < p.count; ++k) s += p.w[k] / (2.0 * JADE_PI * p.v[k]) * exp(-t * t / (2.0 * p.v[k]));
+    return s * t;
+}
+
+// R(t), t > 0.
+float profile_r(Profile p, float t)
+{
+    if (p.kind == PROFILE_GAUSSIANS) {
+        float s = 0.0;
+        for (uint k = 0u; k < p.count; ++k) s += p.w[k] / (2.0 * JADE_PI * p.v[k]) * exp(-t * t / (2.0 * p.v[k]));
+        return s;
+    }
+    return profile_rt(p, t) / t;
+}
+
+// 2π ∫_0^r R(ρ) ρ dρ, the share of the profile inside radius r.
+float profile_cdf(Profile p, float r)
+{
+    if (p.kind == PROFILE_BURLEY) {
+        float x = r / p.a;
+        return -0.25 * expm1_accurate(-x) - 0.75 * expm1_accurate(-x / 3.0);
+    }
+    if (p.kind == PROFILE_DIPOLE)
+        return (dipole_source_cdf(p.a, p.b, r) + dipole_source_cdf(p.a, p.c, r)) / dipole_total(p);
+    float s = 0.0;
+    for (uint k = 0u; k < p.count; ++k) s -= p.w[k] * expm1_accurate(-r * r / (2.0 * p.v[k]));
+    return s;
+}
+
+// ∫ R over a flat disk of radius rho whose centre lies at distance r (the vertex-disk rule of
+// jade/bake.hpp): cdf(max(ρ − r, 0)) + ∫_{|r−ρ|}^{r+ρ} R(t)·2t·α(t) dt, 8-point Gauss–Legendre
+// in φ with t = c − h·cos φ, which makes the integrand smooth at both ends.
+float disk_integral(Profile p, float r, float rho)
+{
+    const float x[8] = float[8](-0.9602898564975363, -0.7966664774136267, -0.5255324099163290, -0.1834346424956498,
+                                0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363);
+    const float w[8] = float[8](0.1012285362903763, 0.2223810344533745, 0.3137066458778873, 0.3626837833783620,
+                                0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763);
+    if (r <= 1e-6 * rho) return profile_cdf(p, rho);
+    float lo = abs(r - rho), hi = r + rho;
+    float c = 0.5 * (lo + hi), h = 0.5 * (hi - lo);
+    float sum = 0.0;
+    for (int k = 0; k < 8; ++k) {
+        float phi = (x[k] + 1.0) * (0.5 * JADE_PI);
+        float t = c - h * cos(phi);
+        float alpha = acos(clamp((t * t + r * r - rho * rho) / (2.0 * t * r), -1.0, 1.0));
+        sum += w[k] * profile_rt(p, t) * alpha * sin(phi);
+    }
+    // Σ w·(π/2)·R(t)·2t·α·h·sin φ
+    return profile_cdf(p, max(rho - r, 0.0)) + sum * JADE_PI * h;
+}
+
+#endif

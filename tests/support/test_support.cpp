@@ -1,0 +1,63 @@
+#include "test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <sys/wait.h>
+
+namespace jade::test {
+
+static std::filesystem::path env_path(const char* var)
+{
+    const char* v = std::getenv(var);
+    if (!v || !*v) {
+        ADD_FAILURE() << var << " is not set: run the tests through ctest";
+        return {};
+    }
+    return v;
+}
+
+std::filesystem::path asset(const std::string& name)
+{
+    auto p = env_path("JADE_ASSETS") / name;
+    if (!std::filesystem::exists(p))
+        ADD_FAILURE() << p << " is missing: run third_party/fetch_assets.sh";
+    return p;
+}
+
+std::filesystem::path data(const std::string& name) { return env_path("JADE_TEST_DATA") / name; }
+
+std::filesystem::path out(const std::string& name)
+{
+    auto p = env_path("JADE_TEST_OUT") / name;
+    std::filesystem::create_directories(p.parent_path());
+    std::filesystem::remove(p);
+    return p;
+}
+
+static std::string shell_quote(const std::string& s)
+{
+    std::string q = "'";
+    for (char c : s) q += (c == '\'') ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+}
+
+CliResult run_cli(const std::vector<std::string>& args)
+{
+    std::string cmd = shell_quote(env_path("JADE_CLI").string());
+    for (const auto& a : args) cmd += " " + shell_quote(a);
+    cmd += " 2>&1";
+    CliResult r;
+    FILE* pipe = popen(cmd.c_str(), "r");
+    if (!pipe) return r;
+    std::array<char, 4096> buf;
+    size_t n;
+    while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.output.append(buf.data(), n);
+    int status = pclose(pipe);
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    return r;
+}
+
+}  // namespace jade::test

@@ -1,0 +1,24 @@
+// Shared helpers for the test executables: where assets and outputs live, running the CLI.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace jade::test {
+
+/// A mesh fetched by third_party/fetch_assets.sh (JADE_ASSETS). Fails the test if missing.
+std::filesystem::path asset(const std::string& name);
+/// A file under tests/data (JADE_TEST_DATA).
+std::filesystem::path data(const std::string& name);
+/// A fresh path under the build's test output folder (JADE_TEST_OUT), parent created.
+std::filesystem::path out(const std::string& name);
+
+struct CliResult {
+    int exit_code = -1;
+    std::string output;  ///< stdout and stderr together
+};
+/// Runs the `jade` command-line sample with the given arguments (no shell quoting needed).
+CliResult run_cli(const std::vector<std::string>& args);
+
+}  // namespace jade::test

@@ -1,0 +1,193 @@
+// GPU bake against the float64 CPU reference and analytic limits (issue: GPU bake).
+#include "gpu_fixture.hpp"
+#include "test_support.hpp"
+
+#include <jade/bake.hpp>
+#include <jade/io.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+using namespace jade;
+using jade::test::GpuTest;
+
+namespace {
+
+const PreparedMesh& bunny()
+{
+    static PreparedMesh m = prepare_mesh(load_mesh(test::asset("bunny00.off")));
+    return m;
+}
+const PreparedMesh& dragon()
+{
+    static PreparedMesh m = prepare_mesh(load_mesh(test::asset("ChineseDragon-10kv.off")));
+    return m;
+}
+
+std::vector<uint32_t> sample_vertices(size_t n, size_t count)
+{
+    std::vector<uint32_t> v;
+    for (size_t k = 0; k < count; ++k) v.push_back(uint32_t((k * 2654435761ull) % n));
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+    return v;
+}
+
+struct RelError {
+    double max = 0, rms = 0;
+};
+RelError relative_error(const std::vector<glm::vec3>& gpu, const std::vector<glm::dvec3>& ref, std::span<const uint32_t> at)
+{
+    RelError e;
+    for (size_t k = 0; k < at.size(); ++k)
+        for (int c = 0; c < 3; ++c) {
+            double r = ref[k][c], g = gpu[at[k]][c];
+            double rel = std::abs(g - r) / std::max(std::abs(r), 1e-12);
+            e.max = std::max(e.max, rel);
+            e.rms += rel * rel;
+        }
+    e.rms = std::sqrt(e.rms / double(3 * at.size()));
+    return e;
+}
+
+void expect_finite_nonnegative(const std::vector<glm::vec3>& tm)
+{
+    for (size_t i = 0; i < tm.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            ASSERT_TRUE(std::isfinite(tm[i][c]) && tm[i][c] >= 0.0f) << "t_m[" << i << "][" << c << "] = " << tm[i][c];
+}
+
+void check_ao_against_reference(Context& ctx, const PreparedMesh& mesh, uint32_t rays)
+{
+    AoSettings s;
+    s.rays = rays;
+    Baker baker(ctx);
+    auto gpu = baker.bake_ao(mesh, s);
+    auto ref = reference_ao(mesh, s);
+    ASSERT_EQ(gpu.size(), ref.size());
+    size_t same = 0;
+    for (size_t i = 0; i < gpu.size(); ++i) {
+        if (gpu[i] == ref[i]) same++;
+        EXPECT_LE(std::abs(gpu[i] - ref[i]), 2.0f / float(rays) + 1e-6f) << "vertex " << i;
+    }
+    double fraction = double(same) / double(gpu.size());
+    EXPECT_GE(fraction, 0.999) << "identical AO on " << fraction * 100 << "% of vertices";
+    RecordProperty("identical_fraction", std::to_string(fraction));
+}
+
+}  // namespace
+
+TEST_F(GpuTest, DeviceIsCreatedWithValidation)
+{
+    const DeviceInfo& info = context().device_info();
+    EXPECT_FALSE(info.name.empty());
+    EXPECT_GE(info.api_version, VK_MAKE_API_VERSION(0, 1, 3, 0));
+    EXPECT_GT(info.max_storage_buffer_range, 0u);
+}
+
+TEST_F(GpuTest, AoMatchesReferenceOnBunny) { check_ao_against_reference(context(), bunny(), 32); }
+TEST_F(GpuTest, AoMatchesReferenceOnDragon) { check_ao_against_reference(context(), dragon(), 64); }
+
+// t_m on the dragon for d at 1 %, 5 % and 20 % of the diagonal: the all-pairs pass within
+// 1e-4 relative, the clustered default within 1 %, high within 0.1 % of the float64 reference.
+class TmAccuracy : public GpuTest, public ::testing::WithParamInterface<double> {};
+
+TEST_P(TmAccuracy, DragonAgainstFloat64)
+{
+    const PreparedMesh& mesh = dragon();
+    Material m = burley_material(glm::dvec3(GetParam() * mesh.diagonal), glm::vec3(0.8f));
+    m.profile[1] = ChannelProfile::burley(GetParam() * mesh.diagonal * 0.5);  // make it coloured
+    Baker baker(context());
+    AoSettings ao_settings;
+    ao_settings.rays = 32;
+    auto ao = baker.bake_ao(mesh, ao_settings);
+    auto at = sample_vertices(mesh.vertex_count(), 400);
+    auto ref = reference_tm(mesh, ao, m, at);
+
+    BakeSettings exact;
+    exact.method = TmMethod::Exact;
+    auto e = relative_error(baker.bake_tm(mesh, ao, m, exact).tm, ref, at);
+    EXPECT_LE(e.max, 1e-4) << "exact pass, rms " << e.rms;
+
+    auto def = baker.bake_tm(mesh, ao, m, BakeSettings::preset(Quality::Default));
+    EXPECT_EQ(def.method_used, TmMethod::Clustered);
+    expect_finite_nonnegative(def.tm);
+    e = relative_error(def.tm, ref, at);
+    EXPECT_LE(e.max, 1e-2) << "default quality, rms " << e.rms;
+
+    e = relative_error(baker.bake_tm(mesh, ao, m, BakeSettings::preset(Quality::High)).tm, ref, at);
+    EXPECT_LE(e.max, 1e-3) << "high quality, rms " << e.rms;
+}
+
+INSTANTIATE_TEST_SUITE_P(ProfileWidth, TmAccuracy, ::testing::Values(0.01, 0.05, 0.2));
+
+TEST_F(GpuTest, ClusteredMatchesReferenceOnBunny)
+{
+    const PreparedMesh& mesh = bunny();
+    Material m = burley_material(glm::dvec3(0.05 * mesh.diagonal), glm::vec3(0.8f));
+    Baker baker(context());
+    auto r = baker.bake(mesh, m, BakeSettings::preset(Quality::Default));
+    expect_finite_nonnegative(r.tm);
+    auto at = sample_vertices(mesh.vertex_count(), 300);
+    auto e = relative_error(r.tm, reference_tm(mesh, r.ao, m, at), at);
+    EXPECT_LE(e.max, 1e-2) << "rms " << e.rms;
+}
+
+// Stiff: the self disk holds all of the profile, t_m = 1 − A_o. Huge: t_m falls as 1/d.
+TEST_F(GpuTest, ExtremeProfileWidthsReachTheirLimits)
+{
+    const PreparedMesh& mesh = dragon();
+    Baker baker(context());
+    AoSettings ao_settings;
+    ao_settings.rays = 16;
+    auto ao = baker.bake_ao(mesh, ao_settings);
+    for (TmMethod method : {TmMethod::Exact, TmMethod::Clustered}) {
+        BakeSettings s;
+        s.method = method;
+        auto stiff = baker.bake_tm(mesh, ao, burley_material(glm::dvec3(1e-6 * mesh.diagonal), glm::vec3(1)), s).tm;
+        expect_finite_nonnegative(stiff);
+        for (size_t i = 0; i < mesh.vertex_count(); ++i)
+            ASSERT_NEAR(stiff[i].x, 1.0f - ao[i], 1e-5f) << "vertex " << i;
+
+        double d = 1e6 * mesh.diagonal;
+        auto huge = baker.bake_tm(mesh, ao, burley_material(glm::dvec3(d), glm::vec3(1)), s).tm;
+        auto huger = baker.bake_tm(mesh, ao, burley_material(glm::dvec3(10 * d), glm::vec3(1)), s).tm;
+        expect_finite_nonnegative(huge);
+        for (size_t i = 0; i < mesh.vertex_count(); i += 97) {
+            ASSERT_GT(huge[i].x, 0.0f);
+            EXPECT_NEAR(double(huge[i].x) * d / (double(huger[i].x) * 10 * d), 1.0, 1e-3) << "vertex " << i;
+        }
+    }
+}
+
+// An open flat grid of spacing d: t_m at the centre is the plane's 1 within 1 %.
+TEST_F(GpuTest, FlatGridIntegratesToOne)
+{
+    const float spacing = 1.0f;
+    PreparedMesh grid = prepare_mesh(procedural::grid(160, spacing));
+    std::vector<float> open(grid.vertex_count(), 0.0f);
+    Baker baker(context());
+    auto tm = baker.bake_tm(grid, open, burley_material(glm::dvec3(spacing), glm::vec3(1))).tm;
+    size_t centre = 0;
+    for (size_t i = 0; i < grid.vertex_count(); ++i)
+        if (glm::length(grid.positions[i]) < glm::length(grid.positions[centre])) centre = i;
+    EXPECT_NEAR(tm[centre].x, 1.0, 0.01);
+}
+
+// Thin things let more light through: a slab's top centre has a larger t_m than a block's.
+TEST_F(GpuTest, ThinSlabIsMoreTranslucentThanThickBlock)
+{
+    Baker baker(context());
+    Material m = burley_material(glm::dvec3(0.3), glm::vec3(1));
+    auto top_centre_tm = [&](float thickness) {
+        PreparedMesh box = prepare_mesh(procedural::box({-2, -2, -thickness}, {2, 2, 0}, 24));
+        auto r = baker.bake(box, m, BakeSettings::preset(Quality::Default));
+        size_t best = 0;
+        for (size_t i = 0; i < box.vertex_count(); ++i)
+            if (glm::length(box.positions[i]) < glm::length(box.positions[best])) best = i;
+        return r.tm[best].x;
+    };
+    float slab = top_centre_tm(0.1f), block = top_centre_tm(4.0f);
+    EXPECT_GT(slab, block * 1.2f) << "slab " << slab << " block " << block;
+}
