@@ -15,7 +15,11 @@ struct Cluster {
     vec3 center;
     float weight;   // Σ area·visibility, units²
     float radius;   // every source of the node lies within radius of center
+    float reach;    // largest NEAR_FACTOR·ρ_j (disk-pair distance) of the node's sources
+    float cov[6];   // Σ w·(p − center)(p − center)ᵀ: xx, yy, zz, xy, xz, yz (units⁴)
 };
+
+const float NEAR_FACTOR = 4.0;  // as in tm_common.glsl
 
 layout(binding = 0, scalar) buffer Nodes { BvhNode nodes[]; };
 layout(binding = 1, scalar) readonly buffer Counts { uint node_counts[]; };
@@ -30,7 +34,7 @@ void main()
     uint first = nodes[i].first_and_leaf & ~JADE_LEAF_BIT;
     uint end = first + node_counts[i];
     vec3 lo = vec3(3.0e38), hi = vec3(-3.0e38);
-    float weight = 0.0;
+    float weight = 0.0, max_area = 0.0;
     vec3 moment = vec3(0.0);
     for (uint j = first; j < end; ++j) {
         vec4 s = sources[j];
@@ -39,12 +43,28 @@ void main()
         hi = max(hi, s.xyz);
         weight += w;
         moment += w * s.xyz;
+        max_area = max(max_area, s.w);
     }
     vec3 c = weight > 0.0 ? moment / weight : 0.5 * (lo + hi);
     c = clamp(c, lo, hi);  // rounding must not put the center outside its box
+    // Second pass for the covariance about the centre (no cancellation, unlike Σw·p·pᵀ − W·c·cᵀ).
+    float cov[6] = float[6](0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    for (uint j = first; j < end; ++j) {
+        vec4 s = sources[j];
+        float w = s.w * visibility[j];
+        vec3 d = s.xyz - c;
+        cov[0] += w * d.x * d.x;
+        cov[1] += w * d.y * d.y;
+        cov[2] += w * d.z * d.z;
+        cov[3] += w * d.x * d.y;
+        cov[4] += w * d.x * d.z;
+        cov[5] += w * d.y * d.z;
+    }
+    clusters[i].cov = cov;
     nodes[i].lo = lo;
     nodes[i].hi = hi;
     clusters[i].center = c;
     clusters[i].weight = weight;
     clusters[i].radius = length(max(hi - c, c - lo));
+    clusters[i].reach = NEAR_FACTOR * sqrt(max_area / JADE_PI);
 }

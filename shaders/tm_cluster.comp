@@ -1,13 +1,24 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_vote : require
+#extension GL_KHR_shader_subgroup_ballot : require
 // t_m with an error-controlled far field (Barnes–Hut over the point tree).
 //
-// A node of total weight W, center c and radius s, seen from x at r = |x − c| > s, is
-// replaced by W·R(r) when W·(R(r − s) − R(r + s)) ≤ W·ε·τ/W_total for every channel. Since R
-// decreases, W·(R(r−s) − R(r+s)) bounds that node's error, and the budgets ε·τ·W/W_total of
-// all accepted nodes add up to at most ε·τ: the far field's absolute error is ≤ ε·τ.
-// τ is per vertex: 1 (absolute error ε) or an estimate of t_m itself (relative error ε).
-// Everything not accepted down to the leaves is summed exactly with the vertex-disk rule.
+// A node of total weight W, centroid c, radius s and weighted covariance C is replaced, seen
+// from x at distance r = |c − x| along u, by its monopole plus quadrupole term:
+//   W·R(r) + ½·[(R'' − R'/r)·uᵀCu + (R'/r)·tr C]        (the dipole term is 0 about the centroid)
+// with R' and R'' from R(r − s), R(r), R(r + s). What remains is third order in s. A node is
+// accepted when the size of its second-order terms, ½·[|R'' − R'/r|·uᵀCu + |R'/r|·tr C], is at
+// most ε·(W·R(r) + τ·W/W_total) for every channel: summed over the accepted nodes that is
+// ε·(t_m + τ), and the error left after the correction is a fraction of it (s/ℓ, ℓ the
+// profile's length scale). τ = 1 (an open plane's t_m) lets far, faint nodes be large; a
+// second pass with τ = the first pass's t_m bounds the error relative to t_m.
+// The lanes of a subgroup hold neighbouring targets (tree order) and walk the tree together: a
+// node is accepted only when every lane accepts it (subgroupAll), so control flow never
+// diverges - each loop iteration costs one node or one leaf for the whole subgroup.
+// Everything not accepted down to the leaves is summed as point pairs; the disk pairs and the
+// self disk come from the near pass (tm_near.comp), which started the partial sums. A node is
+// never accepted while it could hold a disk pair (r − s below its largest reach 4ρ_j).
 #include "common.glsl"
 #include "tm_common.glsl"
 #include "bvh.glsl"
@@ -15,13 +26,16 @@
 layout(push_constant, scalar) uniform Push {
     uint vertex_count;
     uint node_count;
-    float epsilon;           // the accuracy knob
+    float epsilon;    // the accuracy knob
+    uint work_budget; // node visits + leaf sources per dispatch (lavapipe's loop limit)
 } pc;
 
 struct Cluster {
     vec3 center;
     float weight;
     float radius;
+    float reach;  // largest NEAR_FACTOR·ρ_j of the node's sources
+    float cov[6]; // Σ w·(p − center)(p − center)ᵀ: xx, yy, zz, xy, xz, yz
 };
 
 layout(binding = 1, scalar) readonly buffer Sources { vec4 sources[]; };        // tree order
@@ -29,64 +43,76 @@ layout(binding = 2, scalar) readonly buffer Visibility { float visibility[]; }; 
 layout(binding = 3, scalar) readonly buffer Nodes { BvhNode nodes[]; };
 layout(binding = 4, scalar) readonly buffer Counts { uint node_counts[]; };
 layout(binding = 5, scalar) readonly buffer Clusters { Cluster clusters[]; };
-layout(binding = 6, scalar) readonly buffer Order { uint order[]; };       // tree → bake vertex
-layout(binding = 7, scalar) readonly buffer Tau { vec3 tau[]; };            // per bake vertex
-layout(binding = 8, scalar) writeonly buffer Tm { vec3 tm[]; };             // per bake vertex
+layout(binding = 6, scalar) readonly buffer Order { uint order[]; };        // tree → bake vertex
+layout(binding = 7, scalar) buffer Resume { uint resume_node[]; };          // per tree slot; 0 at start
+
+#define TM_STATE_BINDING 8
+#include "tm_state.glsl"
 
 void main()
 {
-    uint k = jade_thread_index();
-    if (k >= pc.vertex_count) return;
+    // Lanes past the end walk along with a copy of the last target (subgroup operations need
+    // every lane) and write nothing.
+    uint k_lane = jade_thread_index();
+    bool in_range = k_lane < pc.vertex_count;
+    uint k = min(k_lane, pc.vertex_count - 1u);
+    uint i = resume_node[k];
+    float total_weight = clusters[0].weight;  // the root holds W_total
+    if (i >= pc.node_count || total_weight == 0.0) return;  // done (uniform: the subgroup moves as one)
     uint vertex = order[k];
     vec3 x = sources[k].xyz;
-    float total_weight = clusters[0].weight;  // the root holds W_total
-    if (total_weight == 0.0) {                 // everything occluded
-        tm[vertex] = vec3(0.0);
-        return;
-    }
-    vec3 budget = pc.epsilon * tau[vertex] / total_weight;
-    vec3 sum = vec3(0.0), comp = vec3(0.0);
+    float floor_budget = 1.0 / total_weight;  // per unit weight: the share of t_m = 1
+    vec3 sum = partial_sum[k], comp = partial_comp[k];
+    Profile prof[3] = load_profiles();
 
-    uint i = 0u;
-    while (i < pc.node_count) {
+    uint work = 0u;
+    while (i < pc.node_count && work < pc.work_budget) {
+        i = subgroupBroadcastFirst(i);  // uniform in fact; saying so turns node loads into one load
         Cluster cl = clusters[i];
-        if (cl.weight == 0.0) {  // fully occluded or empty: contributes nothing
-            i = nodes[i].escape;
-            continue;
-        }
         uint first_and_leaf = nodes[i].first_and_leaf;
-        if ((first_and_leaf & JADE_LEAF_BIT) == 0u) {
-            float r = distance(x, cl.center);
-            bool accept = r > cl.radius;
+        uint escape = nodes[i].escape;
+        work += 1u;
+        if (cl.weight == 0.0) {  // fully occluded: contributes nothing
+            i = escape;
+        } else if ((first_and_leaf & JADE_LEAF_BIT) == 0u) {
+            vec3 to_node = cl.center - x;
+            float r = length(to_node);
+            float s = cl.radius;
+            bool accept = r - s >= cl.reach;
+            vec3 u = to_node / r;
+            float cuu = u.x * u.x * cl.cov[0] + u.y * u.y * cl.cov[1] + u.z * u.z * cl.cov[2] +
+                        2.0 * (u.x * u.y * cl.cov[3] + u.x * u.z * cl.cov[4] + u.y * u.z * cl.cov[5]);
+            float trace = cl.cov[0] + cl.cov[1] + cl.cov[2];
             vec3 far = vec3(0.0);
-            for (uint c = 0u; c < CHANNELS && accept; ++c) {
-                float spread = profile_r(profiles[c], r - cl.radius) - profile_r(profiles[c], r + cl.radius);
-                accept = spread <= budget[c];
-                far[c] = cl.weight * profile_r(profiles[c], r);
+            [[unroll]] for (uint c = 0u; c < CHANNELS; ++c) {
+                float inner = profile_r(prof[c], max(r - s, 1e-30)), mid = profile_r(prof[c], r),
+                      outer = profile_r(prof[c], r + s);
+                float second = (inner - 2.0 * mid + outer) / (s * s);  // R''
+                float tangential = (outer - inner) / (2.0 * s * r);    // R'/r
+                float quadrupole = 0.5 * ((second - tangential) * cuu + tangential * trace);
+                float size = 0.5 * (abs(second - tangential) * cuu + abs(tangential) * trace);
+                accept = accept && size <= pc.epsilon * cl.weight * (mid + floor_budget);
+                far[c] = cl.weight * mid + quadrupole;
             }
-            if (accept) {
-                compensated_add(sum, comp, far);
-                i = nodes[i].escape;
-            } else {
-                i += 1u;
+            accept = subgroupAll(accept);
+            if (accept) compensated_add(sum, comp, far);
+            i = accept ? escape : i + 1u;
+        } else {
+            uint begin = first_and_leaf & ~JADE_LEAF_BIT;
+            uint end = begin + node_counts[i];
+            vec3 leaf = vec3(0.0);
+            for (uint j = begin; j < end; ++j) {
+                float vis = visibility[j];
+                vec4 s = sources[j];
+                float r = distance(x, s.xyz);
+                [[unroll]] for (uint c = 0u; c < CHANNELS; ++c) leaf[c] += vis * far_pair(prof[c], r, s.w);
             }
-            continue;
+            work += end - begin;
+            compensated_add(sum, comp, leaf);
+            i = escape;
         }
-        uint first = first_and_leaf & ~JADE_LEAF_BIT;
-        uint end = first + node_counts[i];
-        vec3 leaf = vec3(0.0);
-        for (uint j = first; j < end; ++j) {
-            float vis = visibility[j];
-            if (vis == 0.0) continue;
-            vec4 s = sources[j];
-            float rho = sqrt(s.w / JADE_PI);
-            float r = distance(x, s.xyz);
-            for (uint c = 0u; c < CHANNELS; ++c)
-                leaf[c] += vis * (j == k ? self_kernel(profiles[c], rho) : pair_kernel(profiles[c], r, s.w, rho));
-        }
-        compensated_add(sum, comp, leaf);
-        i = nodes[i].escape;
     }
-    vec3 t = sum + comp;
-    tm[vertex] = CHANNELS == 1u ? vec3(t.x) : t;
+    if (!in_range) return;
+    resume_node[k] = i;
+    save_partial(k, vertex, sum, comp);
 }

@@ -35,6 +35,7 @@ Args::Args(std::string command, std::vector<OptionSpec> specs, int argc, char** 
             value = argv[++i];
         }
         values_[name] = value;
+        all_values_[name].push_back(value);
     }
 }
 
@@ -45,6 +46,12 @@ std::optional<std::string> Args::get(const std::string& name) const
     auto it = values_.find(name);
     if (it == values_.end()) return std::nullopt;
     return it->second;
+}
+
+std::vector<std::string> Args::all(const std::string& name) const
+{
+    auto it = all_values_.find(name);
+    return it == all_values_.end() ? std::vector<std::string>{} : it->second;
 }
 
 std::string Args::get_or(const std::string& name, const std::string& fallback) const

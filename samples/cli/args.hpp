@@ -24,7 +24,9 @@ public:
 
     const std::vector<std::string>& positional() const { return positional_; }
     bool flag(const std::string& name) const { return values_.count(name) > 0; }
-    std::optional<std::string> get(const std::string& name) const;
+    std::optional<std::string> get(const std::string& name) const;  ///< the last value given
+    /// Every value of a repeatable option, in command-line order (empty when not given).
+    std::vector<std::string> all(const std::string& name) const;
     std::string get_or(const std::string& name, const std::string& fallback) const;
     double number(const std::string& name, double fallback, double lo, double hi) const;
     uint32_t count(const std::string& name, uint32_t fallback, uint32_t lo, uint32_t hi) const;
@@ -38,6 +40,7 @@ private:
     std::vector<OptionSpec> specs_;
     std::vector<std::string> positional_;
     std::map<std::string, std::string> values_;
+    std::map<std::string, std::vector<std::string>> all_values_;
 };
 
 /// Raised for a wrong command line: the message goes with a hint to --help; exit code 2.

@@ -3,6 +3,7 @@
 #define JADE_COMMON_GLSL
 
 #extension GL_EXT_scalar_block_layout : require
+#extension GL_EXT_control_flow_attributes : require
 
 // Specialisation constant 0 is the group size, set by gpu::Kernel (see gpu/kernel.hpp).
 layout(local_size_x_id = 0) in;

@@ -85,21 +85,29 @@ float profile_cdf(Profile p, float r)
 // ∫ R over a flat disk of radius rho whose centre lies at distance r (the vertex-disk rule of
 // jade/bake.hpp): cdf(max(ρ − r, 0)) + ∫_{|r−ρ|}^{r+ρ} R(t)·2t·α(t) dt, 8-point Gauss–Legendre
 // in φ with t = c − h·cos φ, which makes the integrand smooth at both ends.
+// 8-point Gauss–Legendre nodes and weights on [−1, 1].
+const float GAUSS_LEGENDRE_8_X[8] = float[8](-0.9602898564975363, -0.7966664774136267, -0.5255324099163290, -0.1834346424956498,
+                                            0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363);
+const float GAUSS_LEGENDRE_8_W[8] = float[8](0.1012285362903763, 0.2223810344533745, 0.3137066458778873, 0.3626837833783620,
+                                            0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763);
+
 float disk_integral(Profile p, float r, float rho)
 {
-    const float x[8] = float[8](-0.9602898564975363, -0.7966664774136267, -0.5255324099163290, -0.1834346424956498,
-                                0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363);
-    const float w[8] = float[8](0.1012285362903763, 0.2223810344533745, 0.3137066458778873, 0.3626837833783620,
-                                0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763);
-    if (r <= 1e-6 * rho) return profile_cdf(p, rho);
+    // Seen from (almost) its own centre the disk integral tends to cdf(ρ) continuously; no
+    // early return: lavapipe mis-handles returns inside divergent loops.
+    r = max(r, 1e-6 * rho);
     float lo = abs(r - rho), hi = r + rho;
     float c = 0.5 * (lo + hi), h = 0.5 * (hi - lo);
     float sum = 0.0;
-    for (int k = 0; k < 8; ++k) {
-        float phi = (x[k] + 1.0) * (0.5 * JADE_PI);
+    [[unroll]] for (int k = 0; k < 8; ++k) {
+        float phi = (GAUSS_LEGENDRE_8_X[k] + 1.0) * (0.5 * JADE_PI);
         float t = c - h * cos(phi);
-        float alpha = acos(clamp((t * t + r * r - rho * rho) / (2.0 * t * r), -1.0, 1.0));
-        sum += w[k] * profile_rt(p, t) * alpha * sin(phi);
+        // α = acos((t² + r² − ρ²)/(2tr)), as 2·atan(√(1−cos α), √(1+cos α)) with both factored:
+        // no cancellation near α = 0 or π, where GPU acos approximations are poor.
+        float one_minus = max((rho - t + r) * (rho + t - r), 0.0);
+        float one_plus = max((t + r - rho) * (t + r + rho), 0.0);
+        float alpha = 2.0 * atan(sqrt(one_minus), sqrt(one_plus));
+        sum += GAUSS_LEGENDRE_8_W[k] * profile_rt(p, t) * alpha * sin(phi);
     }
     // Σ w·(π/2)·R(t)·2t·α·h·sin φ
     return profile_cdf(p, max(rho - r, 0.0)) + sum * JADE_PI * h;

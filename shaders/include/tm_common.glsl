@@ -14,14 +14,21 @@ const float NEAR_FACTOR = 4.0;
 
 layout(binding = 0, scalar) readonly buffer Profiles { Profile profiles[3]; };
 
-// Contribution of source j (position ps, area, visibility = 1 − A_o) to the target at pt,
-// excluding the visibility, for one channel. Self pairs are handled by the caller.
-float pair_kernel(Profile p, float r, float area, float rho)
+// The profiles in registers: read once per thread, not once per pair.
+Profile[3] load_profiles()
 {
-    return r < NEAR_FACTOR * rho ? disk_integral(p, r, rho) : area * profile_r(p, r);
+    return Profile[3](profiles[0], profiles[1], profiles[2]);
 }
 
-float self_kernel(Profile p, float rho) { return profile_cdf(p, rho); }
+// Point value A_j·R(r) of source j for a target at distance r, or 0 when the target lies
+// within NEAR_FACTOR disk radii (the near pass, tm_near.comp, integrates those pairs over the
+// disk, and the self disk). Also 0 for the target itself (r = 0).
+float far_pair(Profile p, float r, float area)
+{
+    bool far = r * r >= (NEAR_FACTOR * NEAR_FACTOR / JADE_PI) * area;
+    float value = area * profile_r(p, max(r, 1e-30));
+    return far ? value : 0.0;
+}
 
 // Kahan–Babuška (Neumaier) summation: `precise` keeps the compiler from re-associating it away.
 void compensated_add(inout vec3 sum, inout vec3 comp, vec3 x)

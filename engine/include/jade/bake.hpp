@@ -68,15 +68,18 @@ enum class TmMethod {
     Clustered,  ///< error-controlled Barnes–Hut far field, O(n log n)
 };
 
-/// Quality presets: the AO ray count and the t_m accuracy knob ε (a bound on the far field's
-/// relative error; see shaders/tm_cluster.comp).
+/// Quality presets: the AO ray count and the t_m accuracy knob ε (see shaders/tm_cluster.comp).
+///   Draft: 16 rays, ε = 0.4   Default: 64 rays, ε = 0.15   High: 256 rays, ε = 0.05
 enum class Quality { Draft, Default, High };
 
 struct BakeSettings {
     AoSettings ao;
     TmMethod method = TmMethod::Auto;
-    float tm_epsilon = 2e-3f;   ///< far-field error bound, relative to t_m
-    bool tm_refine = true;      ///< second pass with τ = first-pass t_m (relative, not absolute, bound)
+    /// The far field's accuracy knob: a node of the cluster tree is summed as one monopole +
+    /// quadrupole when its second-order term is at most ε·(its contribution + its share of 1).
+    /// The remaining error is third order; measured on the bunny and the dragon it is about
+    /// 0.1·ε² relative to t_m (max over vertices ≈ 0.3 % at ε = 0.15).
+    float tm_epsilon = 0.15f;
     static BakeSettings preset(Quality q);
 };
 

@@ -34,6 +34,7 @@ void save_baked_gltf(const std::filesystem::path& path, const TriangleMesh& mesh
 
 /// Writes a linear-RGB float image: .png (sRGB-encoded, 8 bit), .exr (linear half/float).
 /// `rgba` holds width*height*4 floats, rows top to bottom. Atomic like save_baked_gltf.
+/// Alpha is straight (not premultiplied) and stored linearly; PNG values are clamped to [0,1].
 void save_image(const std::filesystem::path& path, int width, int height, const std::vector<float>& rgba);
 
 }  // namespace jade

@@ -46,7 +46,9 @@ struct PreparedMesh {
     glm::vec3 bbox_min{0.0f}, bbox_max{0.0f};
     float diagonal = 0.0f;            ///< |bbox_max - bbox_min|, mesh units
 
-    // What preparation did, for `jade info` and tests.
+    // What preparation did, for `jade info` and tests. They add up:
+    // input_vertices = vertex_count() + welded_vertices + unused_vertices and
+    // input_triangles = triangle_count() + dropped_triangles.
     size_t input_vertices = 0, input_triangles = 0;
     size_t welded_vertices = 0;       ///< render vertices merged into another one
     size_t dropped_triangles = 0;     ///< zero-area or repeated-index triangles
@@ -56,6 +58,12 @@ struct PreparedMesh {
     size_t triangle_count() const { return indices.size() / 3; }
     float total_area() const;
 };
+
+/// Checks what every TriangleMesh must satisfy: an index count that is a multiple of 3, indices
+/// in range, finite positions, normals absent or one per position. Throws jade::Error naming
+/// mesh.name and the first offending element, e.g.
+/// "bunny.off: triangle 12 (vertex index 40912) out of range for 37706 vertices".
+void validate_mesh(const TriangleMesh& mesh);
 
 /// Welds, drops degenerate triangles, computes normals, vertex areas and bounds.
 /// Throws jade::Error (naming mesh.name) when the mesh is empty after preparation, an index is

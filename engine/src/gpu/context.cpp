@@ -107,6 +107,7 @@ std::string rejection(VkPhysicalDevice pd, const VkPhysicalDeviceProperties& pro
     vkGetPhysicalDeviceFeatures2(pd, &f);
     if (!f13.dynamicRendering) return "no dynamicRendering";
     if (!f13.synchronization2) return "no synchronization2";
+    if (!f13.maintenance4) return "no maintenance4 (LocalSizeId)";
     if (!f12.scalarBlockLayout) return "no scalarBlockLayout";
     if (!f12.hostQueryReset) return "no hostQueryReset";
     return "";
@@ -270,7 +271,7 @@ void Context::choose_physical_device(const ContextOptions& options)
     if (!wanted.empty()) msg += " matching '" + wanted + "' (from --device or JADE_DEVICE)";
     msg += ":";
     for (const auto& c : candidates) msg += std::string("\n  ") + c.props.deviceName + ": " + c.rejected;
-    msg += "\nJade needs Vulkan 1.3 with dynamicRendering, synchronization2, scalarBlockLayout and "
+    msg += "\nJade needs Vulkan 1.3 with dynamicRendering, synchronization2, maintenance4, scalarBlockLayout and "
            "VK_KHR_push_descriptor; lavapipe (apt-get install mesa-vulkan-drivers) has all of them";
     throw Error(msg);
 }
@@ -284,6 +285,7 @@ void Context::create_device()
     VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     f13.dynamicRendering = VK_TRUE;
     f13.synchronization2 = VK_TRUE;
+    f13.maintenance4 = VK_TRUE;  // group size from a specialisation constant (LocalSizeId)
     VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
     f12.scalarBlockLayout = VK_TRUE;
     f12.hostQueryReset = VK_TRUE;

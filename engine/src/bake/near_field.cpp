@@ -1,0 +1,64 @@
+#include "bake/near_field.hpp"
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <thread>
+
+namespace jade::bake {
+
+NearLists build_near_lists(const PreparedMesh& mesh, const Bvh& tree)
+{
+    const size_t n = mesh.vertex_count();
+    auto reach = [&](uint32_t j) { return kNearFactor * std::sqrt(mesh.areas[j] / std::numbers::pi_v<float>); };
+
+    // Largest reach inside each node: its range of tree-ordered vertices.
+    std::vector<float> node_reach(tree.nodes.size(), 0.0f);
+    for (size_t k = 0; k < tree.nodes.size(); ++k) {
+        uint32_t first = tree.nodes[k].first_and_leaf & ~kLeafBit;
+        for (uint32_t s = first; s < first + tree.counts[k]; ++s) node_reach[k] = std::max(node_reach[k], reach(tree.order[s]));
+    }
+
+    // Per-target rows, found in parallel, then concatenated.
+    std::vector<std::vector<uint32_t>> rows(n);
+    auto work = [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
+            const glm::vec3 x = mesh.positions[i];
+            uint32_t k = 0;
+            while (k < tree.nodes.size()) {
+                const BvhNode& node = tree.nodes[k];
+                glm::vec3 nearest = glm::clamp(x, node.lo, node.hi);
+                if (glm::distance(x, nearest) >= node_reach[k]) {
+                    k = node.escape;
+                    continue;
+                }
+                if (!(node.first_and_leaf & kLeafBit)) {
+                    ++k;
+                    continue;
+                }
+                uint32_t first = node.first_and_leaf & ~kLeafBit;
+                for (uint32_t s = first; s < first + tree.counts[k]; ++s) {
+                    uint32_t j = tree.order[s];
+                    if (j != i && glm::distance(x, mesh.positions[j]) < reach(j)) rows[i].push_back(j);
+                }
+                k = node.escape;
+            }
+        }
+    };
+    unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+    std::vector<std::thread> pool;
+    for (unsigned t = 0; t < threads; ++t) pool.emplace_back(work, n * t / threads, n * (t + 1) / threads);
+    for (auto& t : pool) t.join();
+
+    NearLists lists;
+    lists.offsets.resize(n + 1, 0);
+    for (size_t i = 0; i < n; ++i) lists.offsets[i + 1] = lists.offsets[i] + uint32_t(rows[i].size());
+    lists.indices.reserve(lists.offsets[n]);
+    for (auto& r : rows) lists.indices.insert(lists.indices.end(), r.begin(), r.end());
+    return lists;
+}
+
+}  // namespace jade::bake

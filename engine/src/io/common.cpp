@@ -1,0 +1,127 @@
+// io/common.cpp - helpers shared by the readers and writers; see common.hpp.
+#include "io/common.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <system_error>
+
+#include <unistd.h>
+
+namespace jade::io {
+
+std::string display_name(const std::filesystem::path& path)
+{
+    auto name = path.filename().string();
+    return name.empty() ? path.string() : name;
+}
+
+void fail(std::string_view file, std::string_view what)
+{
+    std::string message(file);
+    message += ": ";
+    message += what;
+    throw Error(message);
+}
+
+std::string read_file(const std::filesystem::path& path, uint64_t max_bytes)
+{
+    const auto name = display_name(path);
+    std::error_code ec;
+    auto status = std::filesystem::status(path, ec);
+    if (ec || !std::filesystem::exists(status)) fail(name, "cannot open: file not found (" + path.string() + ")");
+    if (!std::filesystem::is_regular_file(status)) fail(name, "cannot open: not a regular file");
+    const uint64_t size = std::filesystem::file_size(path, ec);
+    if (ec) fail(name, "cannot read the file size: " + ec.message());
+    if (size > max_bytes)
+        fail(name, "file is " + std::to_string(size) + " bytes, more than the limit of " + std::to_string(max_bytes));
+
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail(name, "cannot open for reading");
+    std::string bytes(size, '\0');
+    in.read(bytes.data(), static_cast<std::streamsize>(size));
+    // A file that shrank between file_size and read is a read error, not a short mesh.
+    if (static_cast<uint64_t>(in.gcount()) != size)
+        fail(name, "read " + std::to_string(in.gcount()) + " of " + std::to_string(size) + " bytes");
+    return bytes;
+}
+
+void check_count(std::string_view file, std::string_view what, uint64_t count, uint64_t min_bytes_each,
+                 uint64_t bytes_left)
+{
+    if (min_bytes_each == 0 || count <= bytes_left / min_bytes_each) return;
+    // Phrased with the count first: it is the number the user sees in the header.
+    fail(file, "header declares " + std::to_string(count) + " " + std::string(what) + ", which need at least " +
+                   std::to_string(min_bytes_each) + " bytes each, but only " + std::to_string(bytes_left) +
+                   " bytes follow");
+}
+
+void append_fan(std::span<const uint32_t> polygon, std::vector<uint32_t>& indices)
+{
+    for (size_t i = 1; i + 1 < polygon.size(); ++i) {
+        indices.push_back(polygon[0]);
+        indices.push_back(polygon[i]);
+        indices.push_back(polygon[i + 1]);
+    }
+}
+
+void validate_loaded(const TriangleMesh& mesh)
+{
+    validate_mesh(mesh);
+    if (mesh.indices.empty()) fail(mesh.name, "contains no triangles");
+}
+
+std::string printable(std::string_view text, size_t max)
+{
+    std::string out(text.substr(0, max));
+    for (auto& c : out)
+        if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e) c = '?';
+    if (text.size() > max) out += "...";
+    return out;
+}
+
+std::string one_line(const std::string& message)
+{
+    constexpr size_t kLongWord = 64;
+    std::string out, word;
+    auto flush = [&] {
+        out += printable(word, kLongWord);
+        word.clear();
+    };
+    for (char c : message) {
+        if (c == '\n' || c == '\r' || c == ' ') {
+            flush();
+            if (!out.empty() && out.back() != ' ') out += ' ';
+        } else {
+            word += c;
+        }
+    }
+    flush();
+    while (!out.empty() && out.back() == ' ') out.pop_back();
+    return out;
+}
+
+void write_atomically(const std::filesystem::path& path, const std::function<void(const std::filesystem::path&)>& write)
+{
+    const auto name = display_name(path);
+    auto tmp = path;
+    tmp += ".tmp-" + std::to_string(::getpid());
+    try {
+        write(tmp);
+        std::filesystem::rename(tmp, path);
+    } catch (const std::exception& e) {
+        std::error_code ignored;
+        std::filesystem::remove(tmp, ignored);
+        if (dynamic_cast<const Error*>(&e)) throw;
+        fail(name, std::string("cannot write: ") + e.what());
+    }
+}
+
+std::string lower_extension(const std::filesystem::path& path)
+{
+    auto ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
+}  // namespace jade::io

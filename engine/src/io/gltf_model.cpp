@@ -1,0 +1,164 @@
+// io/gltf_model.cpp - tinygltf set-up: restricted file access, the GLB container check, and
+// the required-extension check.
+#include "io/gltf_model.hpp"
+
+#include "io/common.hpp"
+
+#include <cstring>
+#include <string_view>
+
+namespace jade::io {
+
+namespace {
+
+/// tinygltf's file access, limited to the glTF's own folder (tinygltf would also search the
+/// current directory) and to files within the size limit; URIs are never shell-expanded.
+struct FsContext {
+    std::string folder;  ///< with a trailing separator
+};
+
+bool fs_exists(const std::string& path, void* user)
+{
+    const auto& ctx = *static_cast<const FsContext*>(user);
+    std::error_code ec;
+    return path.starts_with(ctx.folder) && std::filesystem::is_regular_file(path, ec);
+}
+
+std::string fs_expand(const std::string& path, void*) { return path; }
+
+bool fs_read(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*)
+{
+    try {
+        const auto bytes = read_file(path);
+        out->assign(bytes.begin(), bytes.end());
+        return true;
+    } catch (const std::exception& e) {
+        if (err) *err += e.what();
+        return false;
+    }
+}
+
+bool fs_write(std::string* err, const std::string&, const std::vector<unsigned char>&, void*)
+{
+    if (err) *err += "writing is not supported";
+    return false;
+}
+
+/// Images are not geometry: they are neither decoded nor required.
+bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*)
+{
+    return true;
+}
+
+uint32_t read_u32(const std::string& bytes, size_t offset)
+{
+    uint32_t v;
+    std::memcpy(&v, bytes.data() + offset, 4);
+    return v;
+}
+
+/// Checks the GLB container and returns the length to parse (the header's total length).
+uint32_t check_glb(const std::string& name, const std::string& bytes)
+{
+    if (bytes.size() < 20) fail(name, "too short for a binary glTF (" + std::to_string(bytes.size()) + " bytes)");
+    if (bytes.compare(0, 4, "glTF") != 0) fail(name, "not a binary glTF file (no 'glTF' magic)");
+    if (read_u32(bytes, 4) != 2) fail(name, "GLB version " + std::to_string(read_u32(bytes, 4)) + " is not supported (only 2)");
+    const uint32_t length = read_u32(bytes, 8);
+    if (length > bytes.size())
+        fail(name, "GLB header declares " + std::to_string(length) + " bytes but the file has " +
+                       std::to_string(bytes.size()) + " (truncated?)");
+    uint64_t offset = 12;
+    for (int chunk = 0; offset < length; ++chunk) {
+        if (length - offset < 8) fail(name, "byte " + std::to_string(offset) + ": truncated GLB chunk header");
+        const uint64_t chunk_length = read_u32(bytes, size_t(offset));
+        const uint32_t type = read_u32(bytes, size_t(offset) + 4);
+        if (chunk == 0 && type != 0x4E4F534Au) fail(name, "the first GLB chunk is not JSON");
+        if (chunk_length > length - offset - 8)
+            fail(name, "byte " + std::to_string(offset) + ": GLB chunk " + std::to_string(chunk) + " of " +
+                           std::to_string(chunk_length) + " bytes runs past the end of the file");
+        offset += 8 + chunk_length;
+    }
+    if (offset == 12) fail(name, "GLB has no JSON chunk");
+    return length;
+}
+
+/// tinygltf converts `extras` recursively and overflows the stack on deeply nested JSON (a
+/// crash at a few ten thousand levels), so nesting is limited before it parses anything.
+/// glTF itself nests less than ten levels; the limit leaves room for structured extras.
+void check_json_depth(const std::string& name, std::string_view json)
+{
+    constexpr int kMaxDepth = 128;
+    int depth = 0;
+    bool in_string = false, escaped = false;
+    for (size_t i = 0; i < json.size(); ++i) {
+        const char c = json[i];
+        if (in_string) {
+            if (escaped) escaped = false;
+            else if (c == '\\') escaped = true;
+            else if (c == '"') in_string = false;
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > kMaxDepth)
+                fail(name, "JSON nested more than " + std::to_string(kMaxDepth) + " levels deep (at byte " + std::to_string(i) + ")");
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+}
+
+/// Extensions that change only materials or textures, which the bake does not read.
+bool geometry_neutral(const std::string& ext)
+{
+    return ext.starts_with("KHR_materials_") || ext == "KHR_texture_transform" || ext == "KHR_texture_basisu" ||
+           ext == "EXT_texture_webp";
+}
+
+}  // namespace
+
+tinygltf::Model parse_gltf(const std::filesystem::path& path, const std::string& name, const std::string& bytes,
+                           bool binary)
+{
+    tinygltf::TinyGLTF loader;
+    FsContext ctx;
+    std::error_code ec;
+    auto folder = std::filesystem::absolute(path, ec).parent_path();
+    ctx.folder = (folder / "").string();
+    loader.SetFsCallbacks({&fs_exists, &fs_expand, &fs_read, &fs_write, &ctx});
+    loader.SetImageLoader(&skip_image, nullptr);
+
+    tinygltf::Model model;
+    std::string err, warn;
+    bool ok = false;
+    try {
+        if (binary) {
+            const uint32_t length = check_glb(name, bytes);
+            check_json_depth(name, std::string_view(bytes).substr(20, read_u32(bytes, 12)));
+            ok = loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                             length, folder.string());
+        } else {
+            check_json_depth(name, bytes);
+            ok = loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), static_cast<unsigned>(bytes.size()),
+                                            folder.string());
+        }
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        fail(name, std::string("tinygltf: ") + e.what());
+    }
+    if (!ok) fail(name, "tinygltf: " + one_line(err.empty() && warn.empty() ? "parse failed" : err + warn));
+    return model;
+}
+
+void check_required_extensions(const std::string& name, const tinygltf::Model& model)
+{
+    for (const auto& ext : model.extensionsRequired) {
+        if (geometry_neutral(ext)) continue;
+        std::string why;
+        if (ext == "KHR_draco_mesh_compression" || ext == "EXT_meshopt_compression")
+            why = " (compressed geometry: decompress it first, e.g. with gltf-transform)";
+        fail(name, "required extension " + ext + " is not supported" + why);
+    }
+}
+
+}  // namespace jade::io

@@ -1,0 +1,21 @@
+// io/gltf_model.hpp - parsing a glTF file into a tinygltf::Model (private to jade_io).
+#pragma once
+
+#include <tiny_gltf.h>
+
+#include <filesystem>
+#include <string>
+
+namespace jade::io {
+
+/// Parses a .gltf or .glb held in memory. The GLB container is checked first (tinygltf 2.7 lets
+/// a BIN chunk run 8 bytes past the end of the file); external buffers are read only from the
+/// folder of `path`, within the file size limit; images are neither read nor decoded.
+tinygltf::Model parse_gltf(const std::filesystem::path& path, const std::string& name, const std::string& bytes,
+                           bool binary);
+
+/// Rejects every required extension except those that only change materials or textures,
+/// naming it (compressed geometry, KHR_mesh_quantization, ...).
+void check_required_extensions(const std::string& name, const tinygltf::Model& model);
+
+}  // namespace jade::io

@@ -1,0 +1,213 @@
+// io/gltf_save.cpp - jade::save_baked_gltf: the mesh with its baked attributes as glTF 2.0.
+//
+// The document is written with nlohmann::json rather than tinygltf's serializer so that the
+// caller's `extras` JSON is stored exactly as given (tinygltf's Value drops nulls and narrows
+// integers). One buffer holds, in order: POSITION, NORMAL, _AO, _TM (all float, so every view
+// stays 4-byte aligned) and uint32 indices. .glb puts it in the BIN chunk, .gltf in a base64
+// data URI.
+#include <jade/io.hpp>
+
+#include "io/common.hpp"
+
+#include <glm/common.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+
+namespace jade {
+
+namespace {
+
+using nlohmann::json;
+
+constexpr int kFloat = 5126, kUnsignedInt = 5125;
+constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
+
+void check_input(const std::string& name, const TriangleMesh& mesh, const BakedAttributes& baked)
+{
+    try {
+        validate_mesh(mesh);
+    } catch (const Error& e) {
+        io::fail(name, std::string("cannot save: ") + e.what());  // the message names the mesh
+    }
+    if (mesh.indices.empty()) io::fail(name, "cannot save a mesh without triangles");
+    const size_t n = mesh.positions.size();
+    auto check_size = [&](size_t size, const char* what) {
+        if (size != 0 && size != n)
+            io::fail(name, std::to_string(size) + " " + what + " values for " + std::to_string(n) + " vertices");
+    };
+    check_size(baked.ao.size(), "_AO");
+    check_size(baked.tm.size(), "_TM");
+}
+
+json parse_extras(const std::string& name, const std::string& text)
+{
+    if (text.empty()) return json();
+    json extras;
+    try {
+        extras = json::parse(text);
+    } catch (const json::exception& e) {
+        io::fail(name, std::string("extras_json is not valid JSON: ") + e.what());
+    }
+    if (!extras.is_object()) io::fail(name, "extras_json must be a JSON object");
+    return extras;
+}
+
+/// Builds the buffer, its views and accessors as attributes are added.
+class Document {
+public:
+    /// Appends `count` elements of `components` floats; returns the accessor index.
+    int add_floats(const float* data, size_t count, int components)
+    {
+        static const char* const kTypes[] = {"", "SCALAR", "", "VEC3"};
+        json accessor = {{"componentType", kFloat}, {"count", count}, {"type", kTypes[components]}};
+        return add(data, count * size_t(components) * sizeof(float), kArrayBuffer, std::move(accessor));
+    }
+
+    int add_positions(const std::vector<glm::vec3>& p)
+    {
+        glm::vec3 lo = p[0], hi = p[0];
+        for (const auto& v : p) lo = glm::min(lo, v), hi = glm::max(hi, v);
+        const int index = add_floats(&p[0].x, p.size(), 3);
+        // Accessor bounds are required for POSITION; doubles print each float exactly.
+        accessors_[size_t(index)]["min"] = {double(lo.x), double(lo.y), double(lo.z)};
+        accessors_[size_t(index)]["max"] = {double(hi.x), double(hi.y), double(hi.z)};
+        return index;
+    }
+
+    int add_indices(const std::vector<uint32_t>& indices)
+    {
+        json accessor = {{"componentType", kUnsignedInt}, {"count", indices.size()}, {"type", "SCALAR"}};
+        return add(indices.data(), indices.size() * sizeof(uint32_t), kElementArrayBuffer, std::move(accessor));
+    }
+
+    const std::vector<unsigned char>& buffer() const { return buffer_; }
+    json views() const { return views_; }
+    json accessors() const { return accessors_; }
+
+private:
+    int add(const void* data, size_t bytes, int target, json accessor)
+    {
+        const size_t offset = buffer_.size();
+        buffer_.resize(offset + bytes);
+        std::memcpy(buffer_.data() + offset, data, bytes);
+        views_.push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bytes}, {"target", target}});
+        accessor["bufferView"] = views_.size() - 1;
+        accessors_.push_back(std::move(accessor));
+        return int(accessors_.size() - 1);
+    }
+
+    std::vector<unsigned char> buffer_;
+    json views_ = json::array();
+    json accessors_ = json::array();
+};
+
+json build_json(const TriangleMesh& mesh, const BakedAttributes& baked, json extras, Document& doc)
+{
+    json attributes;
+    attributes["POSITION"] = doc.add_positions(mesh.positions);
+    if (!mesh.normals.empty()) attributes["NORMAL"] = doc.add_floats(&mesh.normals[0].x, mesh.normals.size(), 3);
+    if (!baked.ao.empty()) attributes["_AO"] = doc.add_floats(baked.ao.data(), baked.ao.size(), 1);
+    if (!baked.tm.empty()) attributes["_TM"] = doc.add_floats(&baked.tm[0].x, baked.tm.size(), 3);
+    const int indices = doc.add_indices(mesh.indices);
+
+    json asset = {{"version", "2.0"}, {"generator", "Jade"}};
+    if (!extras.is_null()) asset["extras"] = std::move(extras);
+    json primitive = {{"attributes", attributes}, {"indices", indices}, {"mode", 4}};
+    return {
+        {"asset", asset},
+        {"scene", 0},
+        {"scenes", json::array({{{"nodes", {0}}}})},
+        {"nodes", json::array({{{"mesh", 0}, {"name", mesh.name}}})},
+        {"meshes", json::array({{{"name", mesh.name}, {"primitives", json::array({primitive})}}})},
+        {"bufferViews", doc.views()},
+        {"accessors", doc.accessors()},
+    };
+}
+
+std::string base64(const std::vector<unsigned char>& data)
+{
+    static constexpr char kDigits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    out.reserve((data.size() + 2) / 3 * 4);
+    for (size_t i = 0; i < data.size(); i += 3) {
+        const uint32_t a = data[i], b = i + 1 < data.size() ? data[i + 1] : 0, c = i + 2 < data.size() ? data[i + 2] : 0;
+        const uint32_t triple = (a << 16) | (b << 8) | c;
+        out += kDigits[(triple >> 18) & 63];
+        out += kDigits[(triple >> 12) & 63];
+        out += i + 1 < data.size() ? kDigits[(triple >> 6) & 63] : '=';
+        out += i + 2 < data.size() ? kDigits[triple & 63] : '=';
+    }
+    return out;
+}
+
+std::string dump(const json& j)
+{
+    // Mesh names come from file names: replace invalid UTF-8 rather than throw.
+    return j.dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
+void append_u32(std::string& out, uint32_t v)
+{
+    char raw[4];
+    std::memcpy(raw, &v, 4);
+    out.append(raw, 4);
+}
+
+/// GLB container: 12-byte header, JSON chunk padded with spaces, BIN chunk padded with zeros.
+std::string to_glb(const std::string& name, json document, const std::vector<unsigned char>& buffer)
+{
+    document["buffers"] = json::array({{{"byteLength", buffer.size()}}});
+    std::string text = dump(document);
+    text.resize((text.size() + 3) / 4 * 4, ' ');
+    const size_t bin = (buffer.size() + 3) / 4 * 4;
+    const uint64_t total = 12 + 8 + text.size() + 8 + bin;
+    if (total > 0xffffffffu) io::fail(name, "the GLB would exceed 4 GiB");
+    std::string out;
+    out.reserve(size_t(total));
+    out += "glTF";
+    append_u32(out, 2);
+    append_u32(out, uint32_t(total));
+    append_u32(out, uint32_t(text.size()));
+    append_u32(out, 0x4E4F534Au);  // "JSON"
+    out += text;
+    append_u32(out, uint32_t(bin));
+    append_u32(out, 0x004E4942u);  // "BIN\0"
+    out.append(reinterpret_cast<const char*>(buffer.data()), buffer.size());
+    out.append(bin - buffer.size(), '\0');
+    return out;
+}
+
+std::string to_gltf(json document, const std::vector<unsigned char>& buffer)
+{
+    document["buffers"] = json::array(
+        {{{"byteLength", buffer.size()}, {"uri", "data:application/octet-stream;base64," + base64(buffer)}}});
+    return dump(document);
+}
+
+void write_bytes(const std::string& name, const std::filesystem::path& tmp, const std::string& bytes)
+{
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) io::fail(name, "cannot open " + tmp.string() + " for writing");
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    out.close();
+    if (!out) io::fail(name, "writing " + tmp.string() + " failed");
+}
+
+}  // namespace
+
+void save_baked_gltf(const std::filesystem::path& path, const TriangleMesh& mesh, const BakedAttributes& baked)
+{
+    const auto name = io::display_name(path);
+    const auto ext = io::lower_extension(path);
+    if (ext != ".glb" && ext != ".gltf") io::fail(name, "unsupported glTF extension '" + ext + "' (supported: .glb, .gltf)");
+    check_input(name, mesh, baked);
+    Document doc;
+    const json document = build_json(mesh, baked, parse_extras(name, baked.extras_json), doc);
+    const std::string bytes = ext == ".glb" ? to_glb(name, document, doc.buffer()) : to_gltf(document, doc.buffer());
+    io::write_atomically(path, [&](const std::filesystem::path& tmp) { write_bytes(name, tmp, bytes); });
+}
+
+}  // namespace jade

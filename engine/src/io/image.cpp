@@ -1,0 +1,80 @@
+// io/image.cpp - jade::save_image through OpenImageIO: 8-bit sRGB PNG or half-float linear EXR.
+#include <jade/io.hpp>
+
+#include "io/common.hpp"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace jade {
+
+namespace {
+
+/// Clamps to [0, 1]; NaN becomes 0 so a bad pixel cannot turn into an arbitrary byte.
+float clamp01(float v) { return v > 0.0f ? std::min(v, 1.0f) : 0.0f; }
+
+/// The sRGB transfer function (IEC 61966-2-1), piecewise: linear toe, then a 1/2.4 power.
+float srgb_encode(float linear)
+{
+    const float v = clamp01(linear);
+    return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+}
+
+uint8_t to_byte(float unit) { return static_cast<uint8_t>(std::lround(unit * 255.0f)); }
+
+/// Opens, writes and closes one image with OIIO's writer for `format`, at `tmp`.
+void write_oiio(const std::string& name, const char* format, const std::filesystem::path& tmp, const OIIO::ImageSpec& spec,
+                OIIO::TypeDesc pixel_type, const void* pixels)
+{
+    auto out = OIIO::ImageOutput::create(format);
+    if (!out) io::fail(name, std::string("OpenImageIO has no ") + format + " writer: " + OIIO::geterror());
+    // The format is chosen above, not from the temporary file's extension.
+    if (!out->open(tmp.string(), spec)) io::fail(name, "cannot open " + tmp.string() + " for writing: " + out->geterror());
+    if (!out->write_image(pixel_type, pixels)) io::fail(name, "writing " + tmp.string() + " failed: " + out->geterror());
+    if (!out->close()) io::fail(name, "closing " + tmp.string() + " failed: " + out->geterror());
+}
+
+void write_png(const std::string& name, const std::filesystem::path& tmp, int width, int height, const std::vector<float>& rgba)
+{
+    std::vector<uint8_t> bytes(rgba.size());
+    for (size_t i = 0; i < rgba.size(); i += 4) {
+        for (size_t c = 0; c < 3; ++c) bytes[i + c] = to_byte(srgb_encode(rgba[i + c]));
+        bytes[i + 3] = to_byte(clamp01(rgba[i + 3]));  // alpha is coverage, never gamma-encoded
+    }
+    OIIO::ImageSpec spec(width, height, 4, OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:ColorSpace", "sRGB");
+    // The colours are straight (not premultiplied): stop OIIO from un-premultiplying them.
+    spec.attribute("oiio:UnassociatedAlpha", 1);
+    write_oiio(name, "png", tmp, spec, OIIO::TypeDesc::UINT8, bytes.data());
+}
+
+void write_exr(const std::string& name, const std::filesystem::path& tmp, int width, int height, const std::vector<float>& rgba)
+{
+    OIIO::ImageSpec spec(width, height, 4, OIIO::TypeDesc::HALF);
+    spec.attribute("oiio:ColorSpace", "Linear");
+    spec.attribute("compression", "zip");
+    write_oiio(name, "openexr", tmp, spec, OIIO::TypeDesc::FLOAT, rgba.data());
+}
+
+}  // namespace
+
+void save_image(const std::filesystem::path& path, int width, int height, const std::vector<float>& rgba)
+{
+    const auto name = io::display_name(path);
+    const auto ext = io::lower_extension(path);
+    if (ext != ".png" && ext != ".exr") io::fail(name, "unsupported image format '" + ext + "' (supported: .png, .exr)");
+    if (width <= 0 || height <= 0)
+        io::fail(name, "image size " + std::to_string(width) + "x" + std::to_string(height) + " is empty");
+    const uint64_t expected = uint64_t(width) * uint64_t(height) * 4;
+    if (rgba.size() != expected)
+        io::fail(name, std::to_string(rgba.size()) + " floats for a " + std::to_string(width) + "x" + std::to_string(height) +
+                           " RGBA image (expected " + std::to_string(expected) + ")");
+    io::write_atomically(path, [&](const std::filesystem::path& tmp) {
+        if (ext == ".png") write_png(name, tmp, width, height, rgba);
+        else write_exr(name, tmp, width, height, rgba);
+    });
+}
+
+}  // namespace jade

@@ -1,0 +1,47 @@
+// io/load.cpp - jade::load_mesh: reads the file, picks the reader by extension, and turns every
+// failure into a jade::Error that names the file.
+#include <jade/io.hpp>
+
+#include "io/common.hpp"
+#include "io/loaders.hpp"
+
+#include <new>
+#include <string>
+
+namespace jade {
+
+namespace {
+
+TriangleMesh read_by_extension(const std::filesystem::path& path, const std::string& name)
+{
+    const auto ext = io::lower_extension(path);
+    const bool gltf = ext == ".gltf" || ext == ".glb";
+    if (!gltf && ext != ".off" && ext != ".ply" && ext != ".obj")
+        io::fail(name, "unsupported mesh format '" + ext + "' (supported: .gltf, .glb, .off, .ply, .obj)");
+    const std::string bytes = io::read_file(path);
+    if (ext == ".off") return io::read_off(name, bytes);
+    if (ext == ".ply") return io::read_ply(name, bytes);
+    if (ext == ".obj") return io::read_obj(name, bytes);
+    return io::read_gltf(path, name, bytes, ext == ".glb");
+}
+
+}  // namespace
+
+TriangleMesh load_mesh(const std::filesystem::path& path)
+{
+    const auto name = io::display_name(path);
+    try {
+        TriangleMesh mesh = read_by_extension(path, name);
+        io::validate_loaded(mesh);
+        return mesh;
+    } catch (const Error&) {
+        throw;
+    } catch (const std::bad_alloc&) {
+        io::fail(name, "out of memory while loading");
+    } catch (const std::exception& e) {
+        // The third-party parsers may throw their own exception types (nlohmann::json, std::).
+        io::fail(name, std::string("cannot load: ") + e.what());
+    }
+}
+
+}  // namespace jade

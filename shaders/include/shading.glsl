@@ -1,0 +1,33 @@
+// shading.glsl - what mesh.vert and mesh.frag share with shading/renderer.cpp. Keep the
+// layouts in step with FramePush and FrameData there (scalar block layout, all vec4s).
+#ifndef JADE_SHADING_GLSL
+#define JADE_SHADING_GLSL
+
+#extension GL_EXT_scalar_block_layout : require
+
+const float JADE_PI = 3.14159265358979323846;
+
+layout(push_constant, scalar) uniform FramePush {
+    mat4 view_proj;     // world (mesh units) to clip space, y already flipped for Vulkan
+    vec3 eye;           // camera position, mesh units
+    uint light_count;
+} frame;
+
+struct GpuLight {
+    vec4 vector;        // xyz: towards the light (w = 0) or its position (w = 1)
+    vec4 color;         // rgb: irradiance (directional) or intensity (point)
+};
+
+const uint kColorMapStops = 9;
+
+layout(binding = 0, scalar) readonly buffer FrameData {
+    vec4 albedo_strength;   // k_d (linear RGB), strength (variance per unit t_m)
+    vec4 specular;          // F0, α = roughness², weight, unused
+    vec4 lut_map;           // translucency LUT: u = cos θ · x + y, v = (t / t_max)^¼ · z + w
+    vec4 curvature_map;     // curvature LUT:    u = cos θ · x + y, v = s / (1 + s) · z + w
+    vec4 params;            // 1 / t_max, d̄ (curvature length, mesh units), false-colour min, 1 / range
+    vec4 color_map[kColorMapStops];  // false-colour stops, linear RGB
+    GpuLight lights[];
+} data;
+
+#endif

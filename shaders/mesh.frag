@@ -1,0 +1,96 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// mesh.frag - diffuse from the translucency LUT (or Lambert, or the curvature LUT) plus a
+// GGX specular lobe, summed over the lights. Mode and channel count are specialisation
+// constants: the pipeline for one (mode, channels) holds only that path, with no branch.
+#include "shading.glsl"
+
+layout(constant_id = 0) const uint MODE = 2;      // 0 Lambert, 1 curvature, 2 t_m, 3 t_m false colour
+layout(constant_id = 1) const uint CHANNELS = 3;  // 1: grey material, one LUT fetch per light
+
+const uint kLambert = 0, kCurvature = 1, kTm = 2, kFalseColor = 3;
+
+layout(binding = 1) uniform sampler2D translucency_lut;  // R32F, f(cos θ, t)
+layout(binding = 2) uniform sampler2D curvature_lut;     // RGBA32F, D_c(cos θ, κ) per channel
+
+layout(location = 0) in vec3 in_position;
+layout(location = 1) in vec3 in_normal;
+layout(location = 2) in vec3 in_tm;
+layout(location = 3) in float in_curvature;
+
+layout(location = 0) out vec4 out_color;
+
+// f(θ, t) for cos θ = c and the LUT row coordinate v of t: no acos, the LUT's u axis is
+// cos θ itself.
+float translucency(float c, float v)
+{
+    return textureLod(translucency_lut, vec2(c * data.lut_map.x + data.lut_map.y, v), 0.0).r;
+}
+
+// The diffuse response per channel, F in (k_d/π) F E. `lut_v` is the translucency LUT's
+// texture coordinate v per channel (the same for every light).
+vec3 diffuse_response(float c, vec3 lut_v, float kappa_scaled)
+{
+    if (MODE == kCurvature) {
+        vec4 m = data.curvature_map;
+        float v = kappa_scaled / (1.0 + kappa_scaled);
+        return textureLod(curvature_lut, vec2(c * m.x + m.y, v * m.z + m.w), 0.0).rgb;
+    }
+    if (MODE == kTm) {
+        if (CHANNELS == 1) return vec3(translucency(c, lut_v.r));
+        return vec3(translucency(c, lut_v.r), translucency(c, lut_v.g), translucency(c, lut_v.b));
+    }
+    return vec3(max(c, 0.0));
+}
+
+// GGX (Trowbridge–Reitz) D · Smith height-correlated V · Schlick F, times cos θ_l.
+float specular_lobe(vec3 n, vec3 v, vec3 l, float n_dot_l)
+{
+    float alpha = data.specular.y, f0 = data.specular.x;
+    vec3 h = normalize(v + l);
+    float n_dot_v = max(dot(n, v), 1e-4), n_dot_h = max(dot(n, h), 0.0), v_dot_h = max(dot(v, h), 0.0);
+    float a2 = alpha * alpha;
+    float denom = n_dot_h * n_dot_h * (a2 - 1.0) + 1.0;
+    float d = a2 / (JADE_PI * denom * denom);
+    float vis = 0.5 / (n_dot_l * sqrt(n_dot_v * n_dot_v * (1.0 - a2) + a2) + n_dot_v * sqrt(n_dot_l * n_dot_l * (1.0 - a2) + a2));
+    float f = f0 + (1.0 - f0) * pow(1.0 - v_dot_h, 5.0);
+    return d * vis * f * n_dot_l;
+}
+
+vec3 false_color(float x)
+{
+    float s = clamp(x, 0.0, 1.0) * float(kColorMapStops - 1);
+    uint i = min(uint(s), kColorMapStops - 2);
+    return mix(data.color_map[i].rgb, data.color_map[i + 1].rgb, s - float(i));
+}
+
+void main()
+{
+    if (MODE == kFalseColor) {
+        out_color = vec4(false_color((dot(in_tm, vec3(1.0 / 3.0)) - data.params.z) * data.params.w), 1.0);
+        return;
+    }
+    vec3 n = normalize(in_normal);
+    vec3 v = normalize(frame.eye - in_position);
+    vec3 albedo = data.albedo_strength.rgb;
+    // (t / t_max)^¼ with t = strength · t_m, on the LUT's texel centres; past 1 the sampler clamps.
+    vec3 lut_v = sqrt(sqrt(data.albedo_strength.w * max(in_tm, vec3(0.0)) * data.params.x)) * data.lut_map.z + data.lut_map.w;
+    float kappa_scaled = max(in_curvature, 0.0) * data.params.y;  // concave: treated as flat
+
+    vec3 color = vec3(0.0);
+    for (uint k = 0; k < frame.light_count; ++k) {
+        GpuLight light = data.lights[k];
+        vec3 l = light.vector.xyz;
+        vec3 e = light.color.rgb;
+        if (light.vector.w != 0.0) {  // point light: inverse-square falloff
+            l -= in_position;
+            float d2 = max(dot(l, l), 1e-20);
+            e /= d2;
+        }
+        l = normalize(l);
+        float c = dot(n, l);
+        color += albedo * (1.0 / JADE_PI) * diffuse_response(c, lut_v, kappa_scaled) * e;
+        if (c > 0.0 && data.specular.z > 0.0) color += data.specular.z * specular_lobe(n, v, l, c) * e;
+    }
+    out_color = vec4(color, 1.0);
+}

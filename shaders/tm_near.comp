@@ -1,0 +1,40 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// The near field of t_m: the self disk, (1 − A_o(i))·cdf(ρ_i), plus every disk pair of the
+// target's near list (bake/near_field.hpp), integrated exactly over the source's disk. Starts
+// the partial sums that the far passes (tm_exact, tm_cluster) add to. One thread per tree slot.
+#include "common.glsl"
+#include "tm_common.glsl"
+
+layout(push_constant, scalar) uniform Push {
+    uint vertex_count;
+} pc;
+
+layout(binding = 1, scalar) readonly buffer Positions { vec3 positions[]; };  // bake order
+layout(binding = 2, scalar) readonly buffer Areas { float areas[]; };
+layout(binding = 3, scalar) readonly buffer Ao { float ao[]; };
+layout(binding = 4, scalar) readonly buffer NearOffsets { uint near_offsets[]; };
+layout(binding = 5, scalar) readonly buffer NearIndices { uint near_indices[]; };
+layout(binding = 6, scalar) readonly buffer Order { uint order[]; };  // slot → bake vertex
+
+#define TM_STATE_BINDING 7
+#include "tm_state.glsl"
+
+void main()
+{
+    uint k = jade_thread_index();
+    if (k >= pc.vertex_count) return;
+    uint v = order[k];
+    Profile prof[3] = load_profiles();
+    vec3 x = positions[v];
+    vec3 sum = vec3(0.0);
+    float own_rho = sqrt(areas[v] / JADE_PI);
+    [[unroll]] for (uint c = 0u; c < CHANNELS; ++c) sum[c] = (1.0 - ao[v]) * profile_cdf(prof[c], own_rho);
+    for (uint e = near_offsets[v]; e < near_offsets[v + 1u]; ++e) {
+        uint j = near_indices[e];
+        float rho = sqrt(areas[j] / JADE_PI);
+        float r = distance(x, positions[j]);
+        [[unroll]] for (uint c = 0u; c < CHANNELS; ++c) sum[c] += (1.0 - ao[j]) * disk_integral(prof[c], r, rho);
+    }
+    save_partial(k, v, sum, vec3(0.0));
+}
