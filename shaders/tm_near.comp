@@ -17,6 +17,8 @@ layout(binding = 4, scalar) readonly buffer NearOffsets { uint near_offsets[]; }
 layout(binding = 5, scalar) readonly buffer NearIndices { uint near_indices[]; };
 layout(binding = 6, scalar) readonly buffer Order { uint order[]; };  // slot → bake vertex
 
+const float DISK_CAP = 0.6;
+
 #define TM_STATE_BINDING 7
 #include "tm_state.glsl"
 
@@ -34,7 +36,13 @@ void main()
         uint j = near_indices[e];
         float rho = sqrt(areas[j] / JADE_PI);
         float r = distance(x, positions[j]);
-        [[unroll]] for (uint c = 0u; c < CHANNELS; ++c) sum[c] += (1.0 - ao[j]) * disk_integral(prof[c], r, rho);
+        // The disk reaches at most DISK_CAP·r towards the target; the rest of the area stays a
+        // point (kDiskCap in bake/disk_integral.hpp): irregular meshes must not count a second
+        // self term for stiff profiles.
+        float capped = min(rho, DISK_CAP * r);
+        float rest = max(areas[j] - JADE_PI * capped * capped, 0.0);
+        [[unroll]] for (uint c = 0u; c < CHANNELS; ++c)
+            sum[c] += (1.0 - ao[j]) * (disk_integral(prof[c], r, capped) + rest * profile_r(prof[c], max(r, 1e-30)));
     }
     save_partial(k, v, sum, vec3(0.0));
 }

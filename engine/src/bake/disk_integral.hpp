@@ -56,16 +56,25 @@ inline double disk_integral(const ChannelProfile& p, double r, double rho)
 /// The vertex-disk rule's neighbour term for a vertex j of area A_j (ρ_j = √(A_j/π)) at
 /// distance r: the disk integral in the near field r < 4ρ_j (tested as r² < 16·A_j/π), A_j·R(r)
 /// beyond. 0 for a zero area.
+/// A neighbour's disk never reaches past kDiskCap·r towards the target: on irregular meshes a
+/// large neighbour's disk would otherwise cover the target and, for a stiff profile, count a
+/// second self term. The area beyond the capped disk stays a point at the vertex, so the
+/// neighbour's total area is kept. Regular meshes (ρ ≈ 0.56 r) are not affected.
+inline constexpr double kDiskCap = 0.6;
+
 inline double vertex_disk_term(const ChannelProfile& p, double r, double area)
 {
     if (!(area > 0.0)) return 0.0;
-    if (r * r < 16.0 / std::numbers::pi * area) return disk_integral(p, r, std::sqrt(area / std::numbers::pi));
+    if (r * r < 16.0 / std::numbers::pi * area) {
+        const double rho = std::sqrt(area / std::numbers::pi);
+        const double capped = std::min(rho, kDiskCap * r);
+        if (!(capped > 0.0)) return p.cdf(rho);  // coincident vertices (prepare_mesh welds them)
+        const double rest = area - std::numbers::pi * capped * capped;
+        return disk_integral(p, r, capped) + (rest > 0.0 ? rest * p.R(r) : 0.0);
+    }
     return area * p.R(r);
 }
 
-/// Globally adaptive Gauss–Kronrod (7, 15) quadrature of f over [a, b] (finite): bisects the
-/// interval with the largest error estimate |K15 − G7| until the summed estimate is at most
-/// max(abs_tol, rel_tol·|I|) or max_intervals is reached. Nodes never touch the endpoints.
 template <class F>
 double integrate(F&& f, double a, double b, double rel_tol = 1e-13, double abs_tol = 0.0,
                  int max_intervals = 4000)
