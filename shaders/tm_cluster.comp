@@ -7,12 +7,12 @@
 // A node of total weight W, centroid c, radius s and weighted covariance C is replaced, seen
 // from x at distance r = |c − x| along u, by its monopole plus quadrupole term:
 //   W·R(r) + ½·[(R'' − R'/r)·uᵀCu + (R'/r)·tr C]        (the dipole term is 0 about the centroid)
-// with R' and R'' from R(r − s), R(r), R(r + s). What remains is third order in s. A node is
-// accepted when the size of its second-order terms, ½·[|R'' − R'/r|·uᵀCu + |R'/r|·tr C], is at
-// most ε·(W·R(r) + τ·W/W_total) for every channel: summed over the accepted nodes that is
-// ε·(t_m + τ), and the error left after the correction is a fraction of it (s/ℓ, ℓ the
-// profile's length scale). τ = 1 (an open plane's t_m) lets far, faint nodes be large; a
-// second pass with τ = the first pass's t_m bounds the error relative to t_m.
+// with R', R'' analytic (Burley, Gaussians; finite differences for the dipole). What remains is
+// third order in s/r and s/ℓ, ℓ = R/|R'| the length over which the profile changes at r. A
+// node is accepted when s ≤ θ·min(r, ℓ) for every channel (θ = the push constant `epsilon`,
+// BakeSettings::tm_epsilon): the classic Barnes–Hut opening angle, tightened by the profile's
+// own length scale - or when the node is faint (its nearest point adds less than θ³/1000 of
+// its share of an open plane's t_m). The error against θ is measured, not assumed.
 // The lanes of a subgroup hold neighbouring targets (tree order) and walk the tree together: a
 // node is accepted only when every lane accepts it (subgroupAll), so control flow never
 // diverges - each loop iteration costs one node or one leaf for the whole subgroup.
@@ -26,7 +26,7 @@
 layout(push_constant, scalar) uniform Push {
     uint vertex_count;
     uint node_count;
-    float epsilon;    // the accuracy knob
+    float epsilon;    // θ, the opening ratio
     uint work_budget; // node visits + leaf sources per dispatch (lavapipe's loop limit)
 } pc;
 
@@ -61,7 +61,6 @@ void main()
     if (i >= pc.node_count || total_weight == 0.0) return;  // done (uniform: the subgroup moves as one)
     uint vertex = order[k];
     vec3 x = sources[k].xyz;
-    float floor_budget = 1.0 / total_weight;  // per unit weight: the share of t_m = 1
     vec3 sum = partial_sum[k], comp = partial_comp[k];
     Profile prof[3] = load_profiles();
 
@@ -85,14 +84,27 @@ void main()
             float trace = cl.cov[0] + cl.cov[1] + cl.cov[2];
             vec3 far = vec3(0.0);
             [[unroll]] for (uint c = 0u; c < CHANNELS; ++c) {
-                float inner = profile_r(prof[c], max(r - s, 1e-30)), mid = profile_r(prof[c], r),
-                      outer = profile_r(prof[c], r + s);
-                float second = (inner - 2.0 * mid + outer) / (s * s);  // R''
-                float tangential = (outer - inner) / (2.0 * s * r);    // R'/r
+                ProfileDerivatives at = profile_derivatives(prof[c], r);
+                float second, tangential, decay_length;
+                if (at.has_derivatives) {
+                    second = at.r2;
+                    tangential = at.r1 / r;
+                    decay_length = at.r0 / max(abs(at.r1), 1e-30);
+                } else {
+                    // Dipole: finite differences over the node.
+                    float inner = profile_r(prof[c], max(r - s, 1e-30)), outer = profile_r(prof[c], r + s);
+                    second = (inner - 2.0 * at.r0 + outer) / (s * s);
+                    tangential = (outer - inner) / (2.0 * s * r);
+                    decay_length = 2.0 * s * at.r0 / max(inner - outer, 1e-30);
+                }
+                // Opening criterion: the node is small against both its distance and the length
+                // over which R changes there; the quadrupole's remainder is O((s/r)³, (s/ℓ)³).
+                // Or the node is faint: even its nearest point contributes less than θ³/1000 of
+                // its share of an open plane's t_m = 1 (what far nodes of a narrow channel are).
+                bool faint = profile_r(prof[c], max(r - s, 1e-30)) * total_weight <= 1e-3 * pc.epsilon * pc.epsilon * pc.epsilon;
+                accept = accept && (s <= pc.epsilon * min(r, decay_length) || faint);
                 float quadrupole = 0.5 * ((second - tangential) * cuu + tangential * trace);
-                float size = 0.5 * (abs(second - tangential) * cuu + abs(tangential) * trace);
-                accept = accept && size <= pc.epsilon * cl.weight * (mid + floor_budget);
-                far[c] = cl.weight * mid + quadrupole;
+                far[c] = cl.weight * at.r0 + quadrupole;
             }
             accept = subgroupAll(accept);
             if (accept) compensated_add(sum, comp, far);

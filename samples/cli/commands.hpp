@@ -17,6 +17,10 @@ namespace jade::cli {
 int cmd_info(int argc, char** argv);
 int cmd_bake(int argc, char** argv);
 int cmd_bench(int argc, char** argv);
+int cmd_render(int argc, char** argv);
+int cmd_figure1(int argc, char** argv);
+int cmd_bench_render(int argc, char** argv);
+int cmd_report(int argc, char** argv);
 
 // Options most commands take.
 std::vector<OptionSpec> device_options();

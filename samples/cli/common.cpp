@@ -33,7 +33,7 @@ std::vector<OptionSpec> bake_options()
             {"ao-epsilon", "F", "AO ray origin offset, fraction of the diagonal (default 1e-4)"},
             {"seed", "N", "AO random seed (default 1)"},
             {"method", "M", "t_m far field: auto | exact | clustered"},
-            {"epsilon", "E", "t_m far-field error bound, relative (overrides the quality's)"}};
+            {"epsilon", "T", "t_m far-field opening ratio theta (0.3: ~2e-5 error, 1: ~2e-3)"}};
 }
 
 std::unique_ptr<Context> make_context(const Args& args)
@@ -49,7 +49,13 @@ Material material_from_args(const Args& args, const PreparedMesh& mesh)
 {
     double default_mm = mesh.diagonal > 0 ? 100.0 / mesh.diagonal : 1.0;
     double mm_per_unit = args.number("mm-per-unit", default_mm, 1e-30, 1e30);
-    Material m = material_preset(args.get_or("material", "jade"), mm_per_unit);
+    Material m;
+    try {
+        m = material_preset(args.get_or("material", "jade"), mm_per_unit);
+    } catch (const Error& e) {
+        // An unknown --material is a command-line mistake: exit code 2, naming the flag.
+        args.fail(std::string("--material: ") + e.what());
+    }
     if (auto d = args.get("d")) {
         double rel = args.number("d", 0.05, 1e-9, 1e9);
         // Keep the preset's colour ratios, scale so the channels' mean d is rel × diagonal.
@@ -79,7 +85,7 @@ BakeSettings bake_settings_from_args(const Args& args)
     if (method == "exact") s.method = TmMethod::Exact;
     else if (method == "clustered") s.method = TmMethod::Clustered;
     else if (method != "auto") args.fail("--method: '" + method + "' is not one of auto, exact, clustered");
-    s.tm_epsilon = float(args.number("epsilon", s.tm_epsilon, 1e-7, 1.0));
+    s.tm_epsilon = float(args.number("epsilon", s.tm_epsilon, 1e-6, 4.0));
     return s;
 }
 

@@ -17,6 +17,10 @@ const char* kUsage =
     "  info [MESH]        the Vulkan device (or a mesh after preparation)\n"
     "  bake MESH --out F  AO and t_m on the GPU, written as glTF with _AO and _TM attributes\n"
     "  bench bake MESH    GPU bake timings against the float64 CPU reference and the all-pairs pass\n"
+    "  render MESH        image with t_m shading (or lambert, curvature, false colour) as PNG/EXR\n"
+    "  figure1            the poster's Figure 1: the blue-jewel bunny in four shading modes\n"
+    "  bench render MESH  frame time of t_m shading against Lambert at 512^2 and 1024^2\n"
+    "  report [MESH...]   error of every approximation against GPU and wall time (--out DIR)\n"
     "\n"
     "Environment: JADE_DEVICE (device name), JADE_VALIDATION=1 (Khronos validation layer).\n";
 
@@ -32,7 +36,11 @@ int main(int argc, char** argv)
     try {
         if (command == "info") return jade::cli::cmd_info(argc, argv);
         if (command == "bake") return jade::cli::cmd_bake(argc, argv);
+        if (command == "bench" && argc > 2 && !std::strcmp(argv[2], "render")) return jade::cli::cmd_bench_render(argc, argv);
         if (command == "bench") return jade::cli::cmd_bench(argc, argv);
+        if (command == "render") return jade::cli::cmd_render(argc, argv);
+        if (command == "figure1") return jade::cli::cmd_figure1(argc, argv);
+        if (command == "report") return jade::cli::cmd_report(argc, argv);
         std::fprintf(stderr, "jade: unknown command '%s'\n\n%s", command.c_str(), kUsage);
         return 2;
     } catch (const jade::cli::UsageError& e) {

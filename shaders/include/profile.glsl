@@ -69,6 +69,40 @@ float profile_r(Profile p, float t)
     return profile_rt(p, t) / t;
 }
 
+// R and its first three derivatives at t > 0, analytic for Burley and Gaussians. The dipole
+// returns has_derivatives = false: callers fall back to finite differences.
+struct ProfileDerivatives {
+    float r0, r1, r2, r3;
+    bool has_derivatives;
+};
+
+ProfileDerivatives profile_derivatives(Profile p, float t)
+{
+    ProfileDerivatives o;
+    o.has_derivatives = p.kind != PROFILE_DIPOLE;
+    o.r0 = profile_r(p, t);
+    o.r1 = 0.0, o.r2 = 0.0, o.r3 = 0.0;
+    if (p.kind == PROFILE_BURLEY) {
+        // R = k·f·g with f = e^{-t/d} + e^{-t/3d}, g = 1/t, k = 1/(8πd)
+        float d = p.a, k = 1.0 / (8.0 * JADE_PI * d);
+        float e3 = exp(-t / (3.0 * d)), e1 = e3 * e3 * e3;
+        float f0 = e1 + e3, f1 = -(e1 + e3 / 3.0) / d, f2 = (e1 + e3 / 9.0) / (d * d), f3 = -(e1 + e3 / 27.0) / (d * d * d);
+        float g0 = 1.0 / t, g1 = -g0 * g0, g2 = 2.0 * g0 * g0 * g0, g3 = -6.0 * g0 * g0 * g0 * g0;
+        o.r1 = k * (f1 * g0 + f0 * g1);
+        o.r2 = k * (f2 * g0 + 2.0 * f1 * g1 + f0 * g2);
+        o.r3 = k * (f3 * g0 + 3.0 * f2 * g1 + 3.0 * f1 * g2 + f0 * g3);
+    } else if (p.kind == PROFILE_GAUSSIANS) {
+        for (uint k = 0u; k < p.count; ++k) {
+            float v = p.v[k];
+            float g = p.w[k] / (2.0 * JADE_PI * v) * exp(-t * t / (2.0 * v));
+            o.r1 -= t / v * g;
+            o.r2 += (t * t / (v * v) - 1.0 / v) * g;
+            o.r3 += (3.0 * t / (v * v) - t * t * t / (v * v * v)) * g;
+        }
+    }
+    return o;
+}
+
 // 2π ∫_0^r R(ρ) ρ dρ, the share of the profile inside radius r.
 float profile_cdf(Profile p, float r)
 {

@@ -72,9 +72,9 @@ BakeSettings BakeSettings::preset(Quality q)
 {
     BakeSettings s;
     switch (q) {
-    case Quality::Draft: s.ao.rays = 16, s.tm_epsilon = 0.25f; break;
-    case Quality::Default: s.ao.rays = 64, s.tm_epsilon = 0.08f; break;
-    case Quality::High: s.ao.rays = 256, s.tm_epsilon = 0.015f; break;
+    case Quality::Draft: s.ao.rays = 16, s.tm_epsilon = 1.2f; break;
+    case Quality::Default: s.ao.rays = 64, s.tm_epsilon = 0.8f; break;
+    case Quality::High: s.ao.rays = 256, s.tm_epsilon = 0.4f; break;
     }
     return s;
 }

@@ -157,7 +157,7 @@ void check_required_extensions(const std::string& name, const tinygltf::Model& m
         std::string why;
         if (ext == "KHR_draco_mesh_compression" || ext == "EXT_meshopt_compression")
             why = " (compressed geometry: decompress it first, e.g. with gltf-transform)";
-        fail(name, "required extension " + ext + " is not supported" + why);
+        fail(name, "required extension " + printable(ext, 64) + " is not supported" + why);
     }
 }
 

@@ -1,0 +1,221 @@
+// jade/render.hpp - shading with the translucency magnitude (the poster's f_r), on the GPU.
+//
+// What is drawn: a mesh with per-vertex t_m (RGB), lit by directional and point lights, with
+//   diffuse_c = (k_d,c / π) · F(cos θ, strength · t_m,c) · E_c     per light and colour channel c
+// where F is the look-up table of jade/lut.hpp's f(θ, t) (F = max(cos θ, 0) for t = 0, i.e.
+// exactly Lambert), plus a GGX specular lobe (Smith height-correlated visibility, Schlick
+// Fresnel with F0 from Material::ior, α = Material::roughness², weight Material::specular).
+// Modes: Lambert; Curvature (Kubo et al. 2010 / pre-integrated: F replaced by the curvature
+// LUT D(cos θ, 1/κ) of jade/lut.hpp, κ the vertex's mean curvature); Tm (ours); TmFalseColor.
+//
+// Units: positions, camera and point lights in mesh units (no normalisation anywhere);
+// directional light irradiance E and point light intensity I (E = I / d²) are linear RGB in
+// arbitrary but consistent units; images are linear RGB (HDR, unclamped) unless tone mapped.
+//
+// Threading and lifetime: a Renderer uses its Context's queue and is not thread-safe; use it
+// from the thread that uses the Context, and destroy it before the Context. Errors are
+// jade::Error naming the setting or element at fault.
+#pragma once
+
+#include <jade/error.hpp>
+#include <jade/material.hpp>
+#include <jade/mesh.hpp>
+
+#include <glm/vec3.hpp>
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace jade {
+
+class Context;
+
+enum class ShadingMode : uint32_t {
+    Lambert = 0,       ///< (k_d/π) max(cos θ, 0) E
+    Curvature = 1,     ///< curvature-dependent reflectance (Kubo et al. 2010), needs no bake
+    Tm = 2,            ///< translucency magnitude (Kubo, Tokoi, Mukaigawa 2015)
+    TmFalseColor = 3,  ///< t_m (mean of the channels) as the viridis colour map, unlit
+};
+/// "lambert", "curvature", "tm", "tm-false-color".
+std::string_view shading_mode_name(ShadingMode mode);
+/// The inverse of shading_mode_name; throws jade::Error listing the names.
+ShadingMode parse_shading_mode(std::string_view name);
+
+enum class ToneMap : uint32_t {
+    None = 0,        ///< linear HDR, as rendered
+    Reinhard = 1,    ///< x / (1 + x) per channel
+    AcesFitted = 2,  ///< Narkowicz's fit of the ACES filmic curve, clamped to [0, 1]
+};
+/// "none", "reinhard", "aces"; throws jade::Error listing the names.
+ToneMap parse_tone_map(std::string_view name);
+
+/// A pinhole camera. Right-handed; looks from `eye` at `target`; `up` need not be orthogonal
+/// to the view direction but not parallel to it. Near and far planes are fitted to the mesh.
+struct Camera {
+    glm::vec3 eye{0.0f, 0.0f, 5.0f};
+    glm::vec3 target{0.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    float fov_y_degrees = 30.0f;  ///< vertical field of view, (0, 180)
+
+    /// The camera looking at the centre of the box [lo, hi] from `direction` (from the target
+    /// towards the eye), at the distance where the box's bounding sphere fills the smaller of
+    /// the two fields of view with a 5 % margin.
+    static Camera framing(glm::vec3 lo, glm::vec3 hi, float aspect = 1.0f, glm::vec3 direction = {0.0f, 0.0f, 1.0f},
+                          glm::vec3 up = {0.0f, 1.0f, 0.0f}, float fov_y_degrees = 30.0f);
+};
+
+struct Light {
+    enum class Type : uint32_t { Directional = 0, Point = 1 };
+    Type type = Type::Directional;
+    glm::vec3 vector{0.0f, 0.0f, 1.0f};  ///< Directional: towards the light (any length); Point: position
+    glm::vec3 color{1.0f};               ///< Directional: irradiance E; Point: intensity I (E = I/d²)
+
+    static Light directional(glm::vec3 towards_light, glm::vec3 irradiance) { return {Type::Directional, towards_light, irradiance}; }
+    static Light point(glm::vec3 position, glm::vec3 intensity) { return {Type::Point, position, intensity}; }
+};
+
+/// A key light from the upper front-left of the camera (E = 2.5) and a dim fill from the
+/// lower right (E = 0.4), both directional.
+std::vector<Light> default_lights(const Camera& camera);
+/// Figure 1 of the poster: a strong back light from behind the object, slightly above and to
+/// the left (E = 6), a dim front key from the upper left (E = 0.6) and a faint fill (0.15):
+/// with t_m shading, light from behind wraps around and thin parts such as the ears glow.
+std::vector<Light> figure1_lights(const Camera& camera);
+
+/// An RGBA float image, rows top to bottom, 4 floats per pixel.
+struct RenderedImage {
+    uint32_t width = 0, height = 0;
+    std::vector<float> rgba;
+    double gpu_ms = 0;   ///< GPU time of the draw (timestamps around the rendering)
+    double wall_ms = 0;  ///< host time of the whole render() call, read-back included
+    float* pixel(uint32_t x, uint32_t y) { return rgba.data() + (size_t(y) * width + x) * 4; }
+    const float* pixel(uint32_t x, uint32_t y) const { return rgba.data() + (size_t(y) * width + x) * 4; }
+};
+
+struct RenderSettings {
+    uint32_t width = 512, height = 512;
+    ShadingMode mode = ShadingMode::Tm;
+    uint32_t samples = 4;             ///< MSAA samples: 1, 2, 4 or 8 (as the device supports)
+    bool float32 = false;             ///< render in RGBA32F instead of RGBA16F
+    glm::vec3 background{0.0f};       ///< linear RGB
+    bool transparent_background = false; ///< alpha 0 where no surface is drawn (else alpha is 1)
+    ToneMap tone_map = ToneMap::None; ///< applied on the host after read-back (render() only)
+    float exposure = 1.0f;            ///< multiplies the linear colour before tone mapping
+    /// TmFalseColor: the colour map spans mean(t_m) ∈ [false_color_min, false_color_max]; when
+    /// max ≤ min (the default 0, 0) it spans the mesh's range. render() draws a colour bar.
+    float false_color_min = 0.0f, false_color_max = 0.0f;
+    bool legend = true;               ///< TmFalseColor: draw the colour bar (render() only)
+};
+
+/// The translucency LUT's parameterisation (texel i, j of a W × H R32_SFLOAT texture):
+///   cos θ_i = −1 + 2i/(W − 1)                 (cos θ = 0 exactly on texel (W − 1)/2)
+///   t_j     = t_max · (j/(H − 1))⁴            (t = 0 exactly on row 0; t > t_max clamps)
+/// sampled with linear filtering and clamp-to-edge at x = (cos θ + 1)/2 · (W − 1),
+/// y = (t/t_max)^¼ · (H − 1), texture coordinates ((x + ½)/W, (y + ½)/H). The fourth root
+/// (rather than √t) spaces rows like the Gaussian's σ² ∝ v⁴, i.e. σ ∝ v²: near t = 0, f(θ, t)
+/// has a kink whose smoothing scales with σ, and the interpolation error of a uniform σ grid
+/// stays above 1e-4 up to thousands of rows (see docs/shading.md for the measured table).
+struct LutLayout {
+    static constexpr double kMaxVariance = 25.0;  ///< t_max, rad²: f(θ, 25) is within 2e-6 of 1/π
+    uint32_t width = 1537, height = 161;
+    double cos_theta(uint32_t i) const { return -1.0 + 2.0 * double(i) / double(width - 1); }
+    double variance(uint32_t j) const;
+    /// Continuous texel coordinates (x, y) of (cos θ, t) before the +½ and division.
+    double x(double cos_theta) const;
+    double y(double t) const;
+};
+
+struct RendererOptions {
+    LutLayout lut;                                      ///< translucency LUT size (odd width, ≥ 3 × 2)
+    uint32_t curvature_lut_width = 129, curvature_lut_height = 64;
+    /// Mean curvature smoothing: iterations of 1-ring averaging after the cotangent Laplacian.
+    uint32_t curvature_smoothing = 2;
+};
+
+/// Where record() draws: the caller's images, described by views.
+///   color    samples × colour format, layout COLOR_ATTACHMENT_OPTIMAL (cleared, then discarded
+///            when `resolve` is set, else stored)
+///   resolve  1 sample, same format, COLOR_ATTACHMENT_OPTIMAL, or VK_NULL_HANDLE when samples = 1
+///   depth    samples × D32_SFLOAT, DEPTH_ATTACHMENT_OPTIMAL (cleared to 1, not stored)
+struct RenderTarget {
+    VkImageView color = VK_NULL_HANDLE, resolve = VK_NULL_HANDLE, depth = VK_NULL_HANDLE;
+    uint32_t width = 0, height = 0;
+};
+
+class Renderer {
+public:
+    explicit Renderer(Context& context, const RendererOptions& options = {});
+    ~Renderer();
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+
+    /// The mesh to draw, with t_m per bake vertex (empty: zero, i.e. Lambert in every mode but
+    /// Curvature). Shading uses the prepared mesh's area-weighted vertex normals (so normal
+    /// seams of the input are smoothed over). Computes the mean curvature. Waits for the GPU to be idle first, so command
+    /// buffers recorded earlier must have completed or not be submitted again.
+    void set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm = {});
+    /// A mesh as loaded, with t_m per render vertex (e.g. TriangleMesh::baked_tm). It is
+    /// prepared (welded) and t_m is averaged over the render vertices of each bake vertex.
+    void set_mesh(const TriangleMesh& mesh, std::span<const glm::vec3> tm_per_render_vertex);
+    /// Albedo, strength, specular parameters and profiles (the curvature LUT is rebuilt, on
+    /// the CPU in float64, when the profiles change). Waits for the GPU like set_mesh.
+    void set_material(const Material& material);
+
+    /// Renders one image: draws into MSAA targets it owns (kept for the next call of the same
+    /// size), resolves, reads back, then tone maps and draws the legend on the host. Needs
+    /// set_mesh and set_material first.
+    RenderedImage render(const Camera& camera, std::span<const Light> lights, const RenderSettings& settings);
+
+    /// Records the draw into the caller's command buffer (outside any rendering scope; at most
+    /// 64 lights). `settings` gives mode, samples, format (float32) and background; tone
+    /// mapping and the legend are not applied. Synchronisation, all in the command buffer:
+    /// - before: the caller makes previous uses of the target images available to
+    ///   COLOR_ATTACHMENT_OUTPUT (color, resolve) and EARLY/LATE_FRAGMENT_TESTS (depth) and puts
+    ///   them in the layouts of RenderTarget.
+    /// - inside: a vkCmdUpdateBuffer of the renderer's frame constants (TRANSFER stage), guarded
+    ///   by barriers against the previous record()'s shader reads, then one dynamic rendering.
+    /// - after: the resolve (or color) image was written at COLOR_ATTACHMENT_OUTPUT with
+    ///   COLOR_ATTACHMENT_WRITE; the caller adds the barrier for its next use.
+    /// The mesh, material and pipelines are the renderer's: set_mesh, set_material and the
+    /// destructor wait for the device to be idle before they release anything.
+    void record(VkCommandBuffer cmd, const RenderTarget& target, const Camera& camera, std::span<const Light> lights,
+                const RenderSettings& settings);
+
+    const LutLayout& lut_layout() const;
+    /// The translucency LUT as the GPU built it, width × height floats, row j = variance(j).
+    std::vector<float> read_lut();
+    /// Signed mean curvature per bake vertex of the current mesh (1/mesh units, > 0 convex).
+    const std::vector<float>& curvature() const;
+    /// The curvature LUT's length scale d̄ (mesh units): rows are at κ·d̄ = v/(1 − v), v = j/(H − 1).
+    double curvature_scale() const;
+
+    struct Impl;
+private:
+    std::unique_ptr<Impl> impl_;
+};
+
+/// Mean curvature per bake vertex from the cotangent Laplacian: H = −(Δx · n)/2 with
+/// Δx_i = 1/(2A_i) Σ_j (cot α_ij + cot β_ij)(x_j − x_i), A_i the vertex area. 1/mesh units,
+/// positive where convex (1/R on a sphere of radius R), then `smoothing` iterations of
+/// area-weighted 1-ring averaging (scanned meshes are noisy at the scale of one edge).
+std::vector<float> mean_curvature(const PreparedMesh& mesh, uint32_t smoothing = 2);
+
+/// Host-side image helpers (the CLI's figure and the false-colour legend use them).
+void apply_tone_map(RenderedImage& image, ToneMap tone_map, float exposure = 1.0f);
+/// Draws ASCII text (a built-in 5×7 pixel font, scaled by `scale`) with its top-left corner at
+/// (x, y), clipped to the image. Unknown characters draw as a box.
+void draw_text(RenderedImage& image, int x, int y, std::string_view text, glm::vec3 color, int scale = 1);
+/// Width in pixels of `text` drawn by draw_text.
+int text_width(std::string_view text, int scale = 1);
+/// The colour map of TmFalseColor (viridis), linear RGB, for x in [0, 1].
+glm::vec3 false_color(float x);
+/// Draws the TmFalseColor colour bar, labelled `min_value` at the bottom and `max_value` at the
+/// top, at the right edge of the image.
+void draw_color_bar(RenderedImage& image, float min_value, float max_value, std::string_view title = "t_m");
+
+}  // namespace jade

@@ -1,0 +1,71 @@
+// shading/lut.hpp - the two shading look-up tables as GPU textures.
+//
+//   TranslucencyLut  f(cos θ, t) of jade/lut.hpp, R32_SFLOAT, built on the GPU by
+//                    shaders/lut_build.comp (parameterisation: jade::LutLayout).
+//   CurvatureLut     D_c(cos θ, κ) per colour channel, RGBA32F (A = 1), built on the CPU in
+//                    float64 with jade::curvature_lut_reference and uploaded.
+// Both are sampled with linear filtering and clamp-to-edge (make_lut_sampler), and both put
+// cos θ = 0 on a texel centre, so at t = 0 (κ = 0) the kink of max(cos θ, 0) is exact.
+#pragma once
+
+#include "gpu/image.hpp"
+
+#include <jade/material.hpp>
+#include <jade/render.hpp>
+
+#include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
+
+#include <vector>
+
+namespace jade::gpu { class Context; }
+
+namespace jade::shading {
+
+/// Scale and bias that turn a coordinate s ∈ [0, 1] sitting on texel centres 0 … n − 1 into a
+/// texture coordinate: (s·(n − 1) + ½)/n = s·scale + bias.
+inline glm::vec2 texel_centre_map(uint32_t n) { return {float(n - 1) / float(n), 0.5f / float(n)}; }
+
+class TranslucencyLut {
+public:
+    /// Builds the LUT on the GPU (one submission) and leaves it in use::kSampled. Throws
+    /// jade::Error for a bad size or a device that cannot filter R32_SFLOAT linearly.
+    TranslucencyLut(gpu::Context& ctx, const LutLayout& layout);
+
+    const LutLayout& layout() const { return layout_; }
+    const gpu::Image& image() const { return image_; }
+    /// u = cos θ·x + y, v = (t/t_max)^¼·z + w (what mesh.frag's translucency() computes).
+    glm::vec4 shader_map() const;
+    /// Reads the texels back (width × height floats, row-major, row j = variance j).
+    std::vector<float> read(gpu::Context& ctx);
+
+private:
+    LutLayout layout_;
+    gpu::Image image_;
+};
+
+class CurvatureLut {
+public:
+    /// Evaluates D for every texel on all CPU threads, uploads it, leaves it in use::kSampled.
+    CurvatureLut(gpu::Context& ctx, const Material& material, uint32_t width, uint32_t height);
+
+    /// The length d̄ (mesh units) the curvature axis is scaled by: the mean over the channels of
+    /// the profile's median radius (cdf = ½). Rows are at κ·d̄ = v/(1 − v), v = j/(H − 1).
+    static double length_scale(const Material& material);
+    /// Texel values, width × height RGBA, row j at κ·d̄ = v_j/(1 − v_j).
+    static std::vector<glm::vec4> evaluate(const Material& material, uint32_t width, uint32_t height);
+
+    double scale() const { return scale_; }
+    const gpu::Image& image() const { return image_; }
+    /// u = cos θ·x + y, v = (κd̄ / (1 + κd̄))·z + w.
+    glm::vec4 shader_map() const;
+
+private:
+    double scale_ = 1.0;
+    gpu::Image image_;
+};
+
+/// Linear filtering, clamp-to-edge: what both LUTs are sampled with.
+gpu::OwnedSampler make_lut_sampler(const gpu::Context& ctx);
+
+}  // namespace jade::shading

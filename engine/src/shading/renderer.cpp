@@ -1,0 +1,449 @@
+// shading/renderer.cpp - jade::Renderer: one draw of the mesh with mesh.vert/mesh.frag into
+// MSAA colour + depth, resolved, read back (render) or left to the caller (record).
+//
+// Per draw the GPU sees: the vertex buffer {position, normal, t_m, curvature} (40 bytes a
+// vertex), the index buffer, push constants {view-projection, eye, light count}, and one
+// storage buffer FrameData {material, LUT mappings, colour map, lights} written with
+// vkCmdUpdateBuffer inside the command buffer (so record() needs no per-frame buffers).
+#include "gpu/buffer.hpp"
+#include "gpu/context.hpp"
+#include "gpu/image.hpp"
+#include "gpu/pipeline.hpp"
+#include "gpu/timer.hpp"
+#include "shading/lut.hpp"
+
+#include <jade/context.hpp>
+#include <jade/render.hpp>
+
+#include "jade_shaders.hpp"
+
+#include <glm/ext/matrix_clip_space.hpp>
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+#include <glm/mat4x4.hpp>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <optional>
+
+namespace jade {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr uint32_t kMaxLights = 64;
+constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+
+// Mirrors of shaders/include/shading.glsl.
+struct FramePush {
+    glm::mat4 view_proj;
+    glm::vec3 eye;
+    uint32_t light_count;
+};
+struct GpuLight {
+    glm::vec4 vector, color;
+};
+struct FrameData {
+    glm::vec4 albedo_strength, specular, lut_map, curvature_map, params;
+    glm::vec4 color_map[9];
+    GpuLight lights[kMaxLights];
+};
+static_assert(sizeof(FramePush) == 80 && sizeof(GpuLight) == 32);
+
+struct Vertex {
+    glm::vec3 position, normal, tm;
+    float curvature;
+};
+static_assert(sizeof(Vertex) == 40);
+
+VkFormat color_format(const RenderSettings& s) { return s.float32 ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT; }
+
+float half_to_float(uint16_t h)
+{
+    const uint32_t sign = uint32_t(h >> 15) << 31, exponent = (h >> 10) & 0x1f, mantissa = h & 0x3ff;
+    uint32_t bits;
+    if (exponent == 0x1f) bits = sign | 0x7f800000u | (mantissa << 13);       // inf, NaN
+    else if (exponent != 0) bits = sign | ((exponent + 112) << 23) | (mantissa << 13);
+    else if (mantissa == 0) bits = sign;                                         // ±0
+    else {                                                                       // subnormal
+        float f = std::ldexp(float(mantissa), -24);
+        return sign ? -f : f;
+    }
+    float f;
+    std::memcpy(&f, &bits, 4);
+    return f;
+}
+
+}  // namespace
+
+// Members are destroyed in reverse order: targets and pipelines first, the LUTs and sampler
+// last; ~Impl waits for the GPU first, as draws recorded with record() may still be running.
+struct Renderer::Impl {
+    gpu::Context& ctx;
+    RendererOptions options;
+    gpu::OwnedSampler sampler;
+    shading::TranslucencyLut lut;
+    std::optional<shading::CurvatureLut> curvature_lut;    // made on demand: curvature_image()
+    std::array<ChannelProfile, 3> curvature_lut_profiles;  // what curvature_lut was built for
+    gpu::Image placeholder;                                // 1×1, bound when curvature_lut is not
+
+    // Mesh.
+    gpu::Buffer vertices, indices;
+    uint32_t index_count = 0;
+    glm::vec3 bbox_min{0.0f}, bbox_max{0.0f};
+    std::vector<float> curvature;
+    float tm_min_mean = 0.0f, tm_max_mean = 0.0f;  // range of mean(t_m) over the vertices
+    bool has_mesh = false;
+
+    std::optional<Material> material;
+    gpu::Buffer frame_data;
+    std::map<uint64_t, gpu::GraphicsPipeline> pipelines;  // key: pipeline_key()
+
+    // render()'s own targets, kept while the size and format stay the same.
+    struct Targets {
+        uint32_t width = 0, height = 0, samples = 0;
+        VkFormat format = VK_FORMAT_UNDEFINED;
+        gpu::Image color, resolve, depth;
+        gpu::Buffer readback;
+    } targets;
+    std::optional<gpu::GpuTimer> timer;
+
+    Impl(gpu::Context& c, const RendererOptions& o)
+        : ctx(c), options(o), sampler(shading::make_lut_sampler(c)), lut(c, o.lut),
+          placeholder(c, {"curvature LUT placeholder", 1, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_SAMPLED_BIT}),
+          frame_data(c, sizeof(FrameData), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "frame data")
+    {
+        // Sampled-image descriptors need the image in its layout even if never read.
+        c.submit_and_wait([&](VkCommandBuffer cmd) { placeholder.transition(cmd, gpu::use::kSampled); });
+    }
+    ~Impl() { vkDeviceWaitIdle(ctx.device()); }
+    Impl(const Impl&) = delete;
+    Impl& operator=(const Impl&) = delete;
+
+    static uint64_t pipeline_key(ShadingMode mode, uint32_t channels, VkFormat format, uint32_t samples)
+    {
+        return uint64_t(mode) | uint64_t(channels) << 8 | uint64_t(samples) << 16 | uint64_t(format) << 32;
+    }
+
+    const gpu::GraphicsPipeline& pipeline(ShadingMode mode, uint32_t channels, VkFormat format, uint32_t samples)
+    {
+        if (mode != ShadingMode::Tm) channels = 3;  // only the t_m path reads the channel count
+        auto [it, inserted] = pipelines.try_emplace(pipeline_key(mode, channels, format, samples));
+        if (inserted) {
+            try {
+                gpu::GraphicsPipelineDesc d;
+                d.name = "mesh";
+                d.vertex_spirv = shaders::mesh_vert();
+                d.fragment_spirv = shaders::mesh_frag();
+                d.color_formats = {format};
+                d.depth_format = kDepthFormat;
+                d.samples = VkSampleCountFlagBits(samples);
+                d.vertex_stride = sizeof(Vertex);
+                d.attributes = {{0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
+                                {1, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
+                                {2, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, tm)},
+                                {3, VK_FORMAT_R32_SFLOAT, offsetof(Vertex, curvature)}};
+                d.bindings = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                              VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
+                d.push_size = sizeof(FramePush);
+                d.constants = {uint32_t(mode), channels};
+                it->second = gpu::GraphicsPipeline(ctx, d);
+            } catch (...) {
+                pipelines.erase(it);
+                throw;
+            }
+        }
+        return it->second;
+    }
+
+    void check_ready(const RenderSettings& s, std::span<const Light> lights) const
+    {
+        if (!has_mesh) throw Error("Renderer: no mesh (call set_mesh first)");
+        if (!material) throw Error("Renderer: no material (call set_material first)");
+        if (s.width == 0 || s.height == 0 || s.width > 16384 || s.height > 16384)
+            throw Error("render settings: size " + std::to_string(s.width) + "x" + std::to_string(s.height) +
+                        " is outside 1..16384");
+        if (uint32_t(s.mode) > 3) throw Error("render settings: unknown shading mode " + std::to_string(uint32_t(s.mode)));
+        if (lights.size() > kMaxLights)
+            throw Error("render: " + std::to_string(lights.size()) + " lights, at most " + std::to_string(kMaxLights));
+        for (size_t k = 0; k < lights.size(); ++k) {
+            const Light& l = lights[k];
+            bool ok = std::isfinite(l.vector.x + l.vector.y + l.vector.z) && std::isfinite(l.color.r + l.color.g + l.color.b) &&
+                      (l.type == Light::Type::Point || glm::length(l.vector) > 0.0f);
+            if (!ok) throw Error("render: light " + std::to_string(k) + " has a non-finite value or a zero direction");
+        }
+        const VkSampleCountFlags supported = ctx.limits().framebufferColorSampleCounts &
+                                             ctx.limits().framebufferDepthSampleCounts;
+        if ((s.samples != 1 && s.samples != 2 && s.samples != 4 && s.samples != 8) || !(supported & s.samples))
+            throw Error("render settings: " + std::to_string(s.samples) + " MSAA samples are not supported by " +
+                        ctx.info().name + " (supported mask " + std::to_string(supported) + ")");
+    }
+
+    FramePush push_constants(const Camera& cam, uint32_t width, uint32_t height, uint32_t light_count) const
+    {
+        const glm::vec3 back = cam.eye - cam.target;
+        if (!(glm::length(back) > 0.0f)) throw Error("camera: eye and target are the same point");
+        if (!(glm::length(glm::cross(cam.up, back)) > 1e-6f * glm::length(back) * glm::length(cam.up)))
+            throw Error("camera: up is zero or parallel to the view direction");
+        if (!(cam.fov_y_degrees > 0.0f && cam.fov_y_degrees < 180.0f))
+            throw Error("camera: fov " + std::to_string(cam.fov_y_degrees) + " degrees is outside (0, 180)");
+        // Near and far hug the mesh's bounding sphere; when the eye is inside it, near is a
+        // small fraction of far (D32 keeps enough precision at 1e-4).
+        const glm::vec3 centre = 0.5f * (bbox_min + bbox_max);
+        const float radius = std::max(0.5f * glm::length(bbox_max - bbox_min), 1e-30f) * 1.01f;
+        const float distance = glm::length(cam.eye - centre);
+        const float far_plane = distance + radius;
+        const float near_plane = std::max(distance - radius, far_plane * 1e-4f);
+        glm::mat4 proj = glm::perspectiveRH_ZO(glm::radians(cam.fov_y_degrees), float(width) / float(height), near_plane, far_plane);
+        proj[1][1] *= -1.0f;  // Vulkan's framebuffer y points down: rows come out top to bottom
+        return {proj * glm::lookAtRH(cam.eye, cam.target, cam.up), cam.eye, light_count};
+    }
+
+    std::pair<float, float> false_color_range(const RenderSettings& s) const
+    {
+        if (s.false_color_max > s.false_color_min) return {s.false_color_min, s.false_color_max};
+        if (tm_max_mean > tm_min_mean) return {tm_min_mean, tm_max_mean};
+        return {tm_min_mean, tm_min_mean + 1.0f};  // constant t_m: any non-empty range
+    }
+
+    // The curvature LUT is built on the first curvature-mode draw after set_material (it costs
+    // CPU time); until then binding 2 holds a 1×1 placeholder, never read by the other modes.
+    const gpu::Image& curvature_image()
+    {
+        if (!curvature_lut && material) {
+            curvature_lut.emplace(ctx, *material, options.curvature_lut_width, options.curvature_lut_height);
+            curvature_lut_profiles = material->profile;
+        }
+        return curvature_lut ? curvature_lut->image() : placeholder;
+    }
+
+    FrameData frame_constants(std::span<const Light> lights, const RenderSettings& s) const
+    {
+        const Material& m = *material;
+        FrameData d{};
+        d.albedo_strength = glm::vec4(m.albedo, m.strength);
+        const float f0 = std::pow((m.ior - 1.0f) / (m.ior + 1.0f), 2.0f);
+        d.specular = glm::vec4(f0, std::max(m.roughness * m.roughness, 1e-3f), m.specular, 0.0f);
+        d.lut_map = lut.shader_map();
+        const auto [lo, hi] = false_color_range(s);
+        d.curvature_map = curvature_lut ? curvature_lut->shader_map() : glm::vec4(0.0f);
+        d.params = glm::vec4(float(1.0 / LutLayout::kMaxVariance), curvature_lut ? float(curvature_lut->scale()) : 0.0f, lo,
+                             1.0f / (hi - lo));
+        for (int i = 0; i < 9; ++i) d.color_map[i] = glm::vec4(false_color(float(i) / 8.0f), 1.0f);
+        for (size_t k = 0; k < lights.size(); ++k)
+            d.lights[k] = {glm::vec4(lights[k].vector, lights[k].type == Light::Type::Point ? 1.0f : 0.0f),
+                           glm::vec4(lights[k].color, 0.0f)};
+        return d;
+    }
+
+    void record(VkCommandBuffer cmd, const RenderTarget& t, const Camera& cam, std::span<const Light> lights,
+                const RenderSettings& s)
+    {
+        check_ready(s, lights);
+        if (t.width != s.width || t.height != s.height || !t.color || !t.depth || (s.samples > 1) != bool(t.resolve))
+            throw Error("render target: size or views do not match the settings (" + std::to_string(s.width) + "x" +
+                        std::to_string(s.height) + ", " + std::to_string(s.samples) + " samples)");
+        const FramePush push = push_constants(cam, s.width, s.height, uint32_t(lights.size()));
+        const gpu::Image& curvature =
+            s.mode == ShadingMode::Curvature ? curvature_image() : curvature_lut ? curvature_lut->image() : placeholder;
+        const FrameData data = frame_constants(lights, s);
+        const auto& pipe = pipeline(s.mode, material->grey() ? 1 : 3, color_format(s), s.samples);
+
+        // The frame constants are rewritten in the command stream: wait for the previous draw's
+        // shader reads (write-after-read), then make the new values visible to this draw.
+        const size_t bytes = offsetof(FrameData, lights) + lights.size() * sizeof(GpuLight);
+        VkMemoryBarrier2 b{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+        b.srcStageMask = VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+        b.dstStageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
+        b.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dep.memoryBarrierCount = 1;
+        dep.pMemoryBarriers = &b;
+        vkCmdPipelineBarrier2(cmd, &dep);
+        vkCmdUpdateBuffer(cmd, frame_data.handle(), 0, (bytes + 3) & ~size_t(3), &data);
+        b.srcStageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
+        b.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+        b.dstStageMask = VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+        b.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
+        vkCmdPipelineBarrier2(cmd, &dep);
+
+        VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        color.imageView = t.color;
+        color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        color.storeOp = t.resolve ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
+        color.clearValue.color = {{s.background.r, s.background.g, s.background.b, s.transparent_background ? 0.0f : 1.0f}};
+        if (t.resolve) {
+            color.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
+            color.resolveImageView = t.resolve;
+            color.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        }
+        VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        depth.imageView = t.depth;
+        depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+        depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+        depth.clearValue.depthStencil = {1.0f, 0};
+        VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+        ri.renderArea = {{0, 0}, {s.width, s.height}};
+        ri.layerCount = 1;
+        ri.colorAttachmentCount = 1;
+        ri.pColorAttachments = &color;
+        ri.pDepthAttachment = &depth;
+        vkCmdBeginRendering(cmd, &ri);
+        pipe.bind(cmd, {s.width, s.height}, push,
+                  {frame_data, gpu::Binding::image(lut.image().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler),
+                   gpu::Binding::image(curvature.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler)});
+        VkBuffer vb = vertices.handle();
+        VkDeviceSize offset = 0;
+        vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+        vkCmdBindIndexBuffer(cmd, indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+        vkCmdDrawIndexed(cmd, index_count, 1, 0, 0, 0);
+        vkCmdEndRendering(cmd);
+    }
+
+    void ensure_targets(const RenderSettings& s)
+    {
+        Targets& t = targets;
+        const VkFormat format = color_format(s);
+        if (t.width == s.width && t.height == s.height && t.samples == s.samples && t.format == format) return;
+        t = Targets{};
+        const auto msaa = VkSampleCountFlagBits(s.samples);
+        const VkImageUsageFlags attachment = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+        t.color = gpu::Image(ctx, {"render colour", s.width, s.height, format,
+                                   attachment | (s.samples == 1 ? VkImageUsageFlags(VK_IMAGE_USAGE_TRANSFER_SRC_BIT) : 0u), msaa});
+        if (s.samples > 1)
+            t.resolve = gpu::Image(ctx, {"render resolve", s.width, s.height, format, attachment | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+        t.depth = gpu::Image(ctx, {"render depth", s.width, s.height, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, msaa});
+        t.readback = gpu::Buffer(ctx, t.color.bytes(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, "render read-back", true);
+        t.width = s.width, t.height = s.height, t.samples = s.samples, t.format = format;
+    }
+
+    RenderedImage render(const Camera& cam, std::span<const Light> lights, const RenderSettings& s)
+    {
+        const auto t0 = Clock::now();
+        check_ready(s, lights);
+        ensure_targets(s);
+        Targets& t = targets;
+        gpu::Image& result = s.samples > 1 ? t.resolve : t.color;
+        if (!timer) timer.emplace(ctx, 4);
+        ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+            timer->begin(cmd);
+            // Old contents do not matter (cleared on load): discard them, but still after the
+            // previous frame's read-back copy.
+            t.color.transition(cmd, gpu::use::kColorAttachment, true);
+            t.depth.transition(cmd, gpu::use::kDepthAttachment, true);
+            if (t.resolve) t.resolve.transition(cmd, gpu::use::kColorAttachment, true);
+            record(cmd, {t.color.view(), t.resolve ? t.resolve.view() : VK_NULL_HANDLE, t.depth.view(), s.width, s.height},
+                   cam, lights, s);
+            timer->mark(cmd, "draw");
+            result.transition(cmd, gpu::use::kTransferSrc);
+            result.copy_to_buffer(cmd, t.readback.handle());
+        });
+
+        RenderedImage img;
+        img.width = s.width, img.height = s.height;
+        const size_t n = size_t(s.width) * s.height * 4;
+        img.rgba.resize(n);
+        if (s.float32) t.readback.download(img.rgba.data(), n * sizeof(float));
+        else {
+            std::vector<uint16_t> half = t.readback.read<uint16_t>(n);
+            for (size_t i = 0; i < n; ++i) img.rgba[i] = half_to_float(half[i]);
+        }
+        img.gpu_ms = timer->total_ms();
+        if (s.tone_map != ToneMap::None || s.exposure != 1.0f) apply_tone_map(img, s.tone_map, s.exposure);
+        if (s.mode == ShadingMode::TmFalseColor && s.legend)
+            draw_color_bar(img, false_color_range(s).first, false_color_range(s).second);
+        img.wall_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+        return img;
+    }
+};
+
+Renderer::Renderer(Context& context, const RendererOptions& options) : impl_(std::make_unique<Impl>(context.gpu(), options)) {}
+Renderer::~Renderer() = default;
+
+void Renderer::set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm)
+{
+    const size_t n = mesh.vertex_count();
+    if (!tm.empty() && tm.size() != n)
+        throw Error("Renderer::set_mesh: " + std::to_string(tm.size()) + " t_m values for " + std::to_string(n) + " vertices");
+    if (mesh.normals.size() != n || mesh.indices.empty())
+        throw Error("Renderer::set_mesh: the mesh is empty or not prepared (use prepare_mesh)");
+    std::vector<float> curvature = mean_curvature(mesh, impl_->options.curvature_smoothing);
+    std::vector<Vertex> vertices(n);
+    float tm_min = INFINITY, tm_max = 0.0f;
+    for (size_t i = 0; i < n; ++i) {
+        glm::vec3 t = tm.empty() ? glm::vec3(0.0f) : tm[i];
+        if (!std::isfinite(t.x + t.y + t.z) || t.x < 0 || t.y < 0 || t.z < 0)
+            throw Error("Renderer::set_mesh: t_m of vertex " + std::to_string(i) + " is negative or not finite");
+        vertices[i] = {mesh.positions[i], mesh.normals[i], t, curvature[i]};
+        tm_min = std::min(tm_min, (t.x + t.y + t.z) / 3.0f);
+        tm_max = std::max(tm_max, (t.x + t.y + t.z) / 3.0f);
+    }
+    Impl& m = *impl_;
+    vkDeviceWaitIdle(m.ctx.device());  // the old buffers may still be read by recorded draws
+    m.vertices = gpu::Buffer::from(m.ctx, vertices, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "mesh vertices");
+    m.indices = gpu::Buffer::from(m.ctx, mesh.indices, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "mesh indices");
+    m.index_count = uint32_t(mesh.indices.size());
+    m.bbox_min = mesh.bbox_min, m.bbox_max = mesh.bbox_max;
+    m.curvature = std::move(curvature);
+    m.tm_min_mean = tm_min, m.tm_max_mean = tm_max;
+    m.has_mesh = true;
+}
+
+void Renderer::set_mesh(const TriangleMesh& mesh, std::span<const glm::vec3> tm_per_render_vertex)
+{
+    if (!tm_per_render_vertex.empty() && tm_per_render_vertex.size() != mesh.positions.size())
+        throw Error("Renderer::set_mesh: " + mesh.name + ": " + std::to_string(tm_per_render_vertex.size()) +
+                    " t_m values for " + std::to_string(mesh.positions.size()) + " render vertices");
+    PreparedMesh prepared = prepare_mesh(mesh);
+    std::vector<glm::vec3> tm;
+    if (!tm_per_render_vertex.empty()) {
+        // Render vertices welded into one bake vertex carry the same baked value up to rounding.
+        tm.assign(prepared.vertex_count(), glm::vec3(0.0f));
+        std::vector<uint32_t> count(prepared.vertex_count(), 0);
+        for (size_t i = 0; i < prepared.render_to_bake.size(); ++i)
+            if (uint32_t b = prepared.render_to_bake[i]; b != PreparedMesh::kUnused) tm[b] += tm_per_render_vertex[i], ++count[b];
+        for (size_t b = 0; b < tm.size(); ++b)
+            if (count[b]) tm[b] /= float(count[b]);
+    }
+    set_mesh(prepared, tm);
+}
+
+void Renderer::set_material(const Material& material)
+{
+    if (!(material.strength >= 0.0f) || !std::isfinite(material.strength))
+        throw Error("material " + material.name + ": strength must be finite and >= 0");
+    if (!(material.ior > 0.0f) || !(material.roughness >= 0.0f) || !(material.specular >= 0.0f))
+        throw Error("material " + material.name + ": ior must be > 0, roughness and specular >= 0");
+    Impl& m = *impl_;
+    vkDeviceWaitIdle(m.ctx.device());
+    if (m.curvature_lut && m.curvature_lut_profiles != material.profile) m.curvature_lut.reset();  // rebuilt on demand
+    m.material = material;
+}
+
+RenderedImage Renderer::render(const Camera& camera, std::span<const Light> lights, const RenderSettings& settings)
+{
+    return impl_->render(camera, lights, settings);
+}
+
+void Renderer::record(VkCommandBuffer cmd, const RenderTarget& target, const Camera& camera, std::span<const Light> lights,
+                      const RenderSettings& settings)
+{
+    impl_->record(cmd, target, camera, lights, settings);
+}
+
+const LutLayout& Renderer::lut_layout() const { return impl_->lut.layout(); }
+std::vector<float> Renderer::read_lut() { return impl_->lut.read(impl_->ctx); }
+const std::vector<float>& Renderer::curvature() const { return impl_->curvature; }
+double Renderer::curvature_scale() const
+{
+    if (!impl_->material) throw Error("Renderer::curvature_scale: no material (call set_material first)");
+    return shading::CurvatureLut::length_scale(*impl_->material);
+}
+
+}  // namespace jade

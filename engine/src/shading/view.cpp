@@ -1,0 +1,79 @@
+// shading/view.cpp - cameras, light presets and the names of modes and tone maps.
+#include <jade/error.hpp>
+#include <jade/render.hpp>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace jade {
+
+namespace {
+constexpr std::string_view kModeNames[] = {"lambert", "curvature", "tm", "tm-false-color"};
+constexpr std::string_view kToneMapNames[] = {"none", "reinhard", "aces"};
+
+// The camera's right, up and backward (towards the eye) unit vectors.
+struct Frame {
+    glm::vec3 right, up, back;
+};
+Frame camera_frame(const Camera& c)
+{
+    glm::vec3 back = glm::normalize(c.eye - c.target);
+    glm::vec3 right = glm::normalize(glm::cross(c.up, back));
+    return {right, glm::cross(back, right), back};
+}
+}  // namespace
+
+std::string_view shading_mode_name(ShadingMode mode) { return kModeNames[uint32_t(mode)]; }
+
+ShadingMode parse_shading_mode(std::string_view name)
+{
+    for (uint32_t i = 0; i < 4; ++i)
+        if (name == kModeNames[i]) return ShadingMode(i);
+    throw Error("shading mode '" + std::string(name) + "' is not one of lambert, curvature, tm, tm-false-color");
+}
+
+ToneMap parse_tone_map(std::string_view name)
+{
+    for (uint32_t i = 0; i < 3; ++i)
+        if (name == kToneMapNames[i]) return ToneMap(i);
+    throw Error("tone map '" + std::string(name) + "' is not one of none, reinhard, aces");
+}
+
+Camera Camera::framing(glm::vec3 lo, glm::vec3 hi, float aspect, glm::vec3 direction, glm::vec3 up, float fov_y_degrees)
+{
+    if (!(aspect > 0.0f) || !(fov_y_degrees > 0.0f && fov_y_degrees < 180.0f) || !(glm::length(direction) > 0.0f))
+        throw Error("Camera::framing: needs aspect > 0, a field of view in (0, 180) degrees and a direction");
+    const glm::vec3 centre = 0.5f * (lo + hi);
+    const float radius = std::max(0.5f * glm::length(hi - lo), 1e-30f);
+    const float half_y = 0.5f * glm::radians(fov_y_degrees);
+    const float half_x = std::atan(std::tan(half_y) * aspect);
+    // The sphere fills the smaller half-angle: distance = r / sin(half angle), plus 5 %.
+    const float distance = 1.05f * radius / std::sin(std::min(half_x, half_y));
+    Camera c;
+    c.target = centre;
+    c.eye = centre + glm::normalize(direction) * distance;
+    c.up = up;
+    c.fov_y_degrees = fov_y_degrees;
+    return c;
+}
+
+std::vector<Light> default_lights(const Camera& camera)
+{
+    Frame f = camera_frame(camera);
+    return {Light::directional(-0.6f * f.right + 0.7f * f.up + 0.8f * f.back, glm::vec3(2.5f)),
+            Light::directional(0.7f * f.right - 0.3f * f.up + 0.5f * f.back, glm::vec3(0.4f))};
+}
+
+std::vector<Light> figure1_lights(const Camera& camera)
+{
+    Frame f = camera_frame(camera);
+    return {Light::directional(-0.3f * f.right + 0.35f * f.up - 1.0f * f.back, glm::vec3(6.0f)),
+            Light::directional(-0.6f * f.right + 0.7f * f.up + 0.8f * f.back, glm::vec3(0.6f)),
+            Light::directional(0.7f * f.right - 0.3f * f.up + 0.5f * f.back, glm::vec3(0.15f))};
+}
+
+}  // namespace jade

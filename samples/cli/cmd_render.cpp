@@ -1,0 +1,297 @@
+// jade render | figure1 | bench render: images of a mesh with the translucency magnitude
+// (or Lambert, curvature-based, false colour), the poster's Figure 1, and the frame-time
+// comparison of t_m shading against Lambert.
+#include "commands.hpp"
+
+#include <jade/io.hpp>
+#include <jade/render.hpp>
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <tuple>
+
+namespace jade::cli {
+namespace {
+
+std::vector<OptionSpec> render_options()
+{
+    return {{"mode", "M", "lambert | curvature | tm | tm-false-color (default tm)"},
+            {"out", "FILE", "output .png (sRGB, 8 bit) or .exr (linear half float); default render.png"},
+            {"size", "WxH", "image size in pixels (default 512x512)"},
+            {"eye", "X,Y,Z", "camera position, mesh units (default: framed, see --frame)"},
+            {"target", "X,Y,Z", "point looked at (default: the centre of the mesh's bounds)"},
+            {"up", "X,Y,Z", "camera up (default 0,1,0)"},
+            {"fov", "DEG", "vertical field of view in degrees (default 30)"},
+            {"frame", "", "move the eye so the mesh fills the view, seen from --eye's direction (default +z)"},
+            {"light", "SPEC", "dir:X,Y,Z:R,G,B (towards the light, irradiance) or point:X,Y,Z:R,G,B "
+                              "(position, intensity); repeatable; replaces --lights"},
+            {"lights", "PRESET", "default (key upper front-left + fill) | figure1 (back light: ears glow)"},
+            {"tonemap", "", "tone map with the ACES fit (default: linear HDR, clipped by the PNG)"},
+            {"tonemap-curve", "C", "aces | reinhard (with --tonemap)"},
+            {"exposure", "X", "scale the linear colour before tone mapping (default 1)"},
+            {"samples", "N", "MSAA samples 1, 2, 4, 8 (default 4)"}};
+}
+
+std::pair<uint32_t, uint32_t> parse_size(const Args& args, const std::string& fallback)
+{
+    std::string s = args.get_or("size", fallback);
+    unsigned w = 0, h = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(s.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || x != 'x' || w == 0 || h == 0 || w > 16384 || h > 16384)
+        args.fail("--size: expected WxH with 1..16384 pixels each, got '" + s + "'");
+    return {w, h};
+}
+
+glm::vec3 to_vec3(const std::array<double, 3>& a) { return glm::vec3(float(a[0]), float(a[1]), float(a[2])); }
+
+Light parse_light(const Args& args, const std::string& spec)
+{
+    auto fail = [&] { args.fail("--light: expected dir:X,Y,Z:R,G,B or point:X,Y,Z:R,G,B, got '" + spec + "'"); };
+    std::vector<std::string> parts;
+    std::stringstream ss(spec);
+    for (std::string p; std::getline(ss, p, ':');) parts.push_back(p);
+    if (parts.size() != 3 || (parts[0] != "dir" && parts[0] != "point")) fail();
+    glm::vec3 v[2];
+    for (int k = 0; k < 2; ++k) {
+        std::stringstream cs(parts[k + 1]);
+        std::string n;
+        int i = 0;
+        for (; i < 3 && std::getline(cs, n, ','); ++i) {
+            char* end = nullptr;
+            v[k][i] = std::strtof(n.c_str(), &end);
+            if (n.empty() || *end || !std::isfinite(v[k][i])) fail();
+        }
+        if (i != 3 || std::getline(cs, n, ',')) fail();
+    }
+    if (parts[0] == "dir" && v[0] == glm::vec3(0.0f)) args.fail("--light " + spec + ": the direction is zero");
+    return parts[0] == "dir" ? Light::directional(v[0], v[1]) : Light::point(v[0], v[1]);
+}
+
+Camera camera_from_args(const Args& args, const PreparedMesh& mesh, float aspect)
+{
+    const glm::vec3 centre = 0.5f * (mesh.bbox_min + mesh.bbox_max);
+    const glm::vec3 target = args.vec3("target") ? to_vec3(*args.vec3("target")) : centre;
+    const glm::vec3 up = args.vec3("up") ? to_vec3(*args.vec3("up")) : glm::vec3(0, 1, 0);
+    const float fov = float(args.number("fov", 30.0, 1e-3, 179.0));
+    const auto eye = args.vec3("eye");
+    if (eye && !args.flag("frame")) return Camera{to_vec3(*eye), target, up, fov};
+    glm::vec3 direction = eye ? to_vec3(*eye) - target : glm::vec3(0, 0, 1);
+    if (glm::length(direction) == 0.0f) args.fail("--frame: --eye equals --target, no direction to frame from");
+    // Frame the bounds as seen from the direction, around --target when given.
+    const glm::vec3 half = 0.5f * (mesh.bbox_max - mesh.bbox_min);
+    Camera c = Camera::framing(target - half, target + half, aspect, direction, up, fov);
+    return c;
+}
+
+std::vector<Light> lights_from_args(const Args& args, const Camera& camera)
+{
+    std::vector<Light> lights;
+    for (const auto& spec : args.all("light")) lights.push_back(parse_light(args, spec));
+    if (!lights.empty()) return lights;
+    std::string preset = args.get_or("lights", "default");
+    if (preset == "figure1") return figure1_lights(camera);
+    if (preset != "default") args.fail("--lights: '" + preset + "' is not one of default, figure1");
+    return default_lights(camera);
+}
+
+// The mesh with its t_m per bake vertex: read from a baked file, or baked now (only for the
+// modes that use it).
+struct Scene {
+    TriangleMesh mesh;
+    PreparedMesh prepared;
+    Material material;
+    std::vector<glm::vec3> tm;  ///< per bake vertex when baked here, else empty
+};
+
+void set_scene(Renderer& renderer, const Scene& s)
+{
+    if (!s.mesh.baked_tm.empty()) renderer.set_mesh(s.mesh, s.mesh.baked_tm);  // per render vertex
+    else renderer.set_mesh(s.prepared, s.tm);
+    renderer.set_material(s.material);
+}
+
+Scene load_scene(const Args& args, Context& ctx, const std::string& path, bool need_tm)
+{
+    Scene s;
+    s.mesh = load_mesh_arg(path);
+    s.prepared = prepare_mesh(s.mesh);
+    s.material = material_from_args(args, s.prepared);
+    if (!s.mesh.baked_tm.empty()) {
+        std::fprintf(stderr, "jade: t_m read from %s\n", s.mesh.name.c_str());    } else if (need_tm && !s.material.opaque) {
+        BakeSettings settings = bake_settings_from_args(args);
+        std::fprintf(stderr, "jade: baking t_m of %s (%zu vertices, material %s) ...\n", s.mesh.name.c_str(),
+                     s.prepared.vertex_count(), s.material.name.c_str());
+        Baker baker(ctx);
+        BakeResult r = baker.bake(s.prepared, s.material, settings);
+        std::fprintf(stderr, "jade: baked in %s\n", format_ms(r.timings.wall_ms).c_str());
+        s.tm = std::move(r.tm);
+    }
+    return s;
+}
+
+std::vector<OptionSpec> all_options(std::initializer_list<std::vector<OptionSpec>> groups)
+{
+    std::vector<OptionSpec> out;
+    for (const auto& g : groups) out.insert(out.end(), g.begin(), g.end());
+    return out;
+}
+
+// Copies `panel` into `figure` with its top-left corner at (x0, y0).
+void blit(RenderedImage& figure, const RenderedImage& panel, uint32_t x0, uint32_t y0)
+{
+    for (uint32_t y = 0; y < panel.height; ++y)
+        std::copy_n(panel.pixel(0, y), panel.width * 4, figure.pixel(x0, y0 + y));
+}
+
+}  // namespace
+
+int cmd_render(int argc, char** argv)
+{
+    Args args("render", all_options({device_options(), material_options(), bake_options(), render_options()}), argc, argv, 2);
+    if (args.flag("help")) {
+        std::printf("usage: jade render MESH|BAKED.glb [options]\n\nRenders the mesh with translucency-magnitude shading "
+                    "(Kubo et al. 2015). A file written by\n`jade bake` (with _TM) renders at once; any other mesh is baked "
+                    "first (with --material).\n\n%s", args.help().c_str());
+        return 0;
+    }
+    if (args.positional().size() > 1) args.fail("expects one MESH");
+    RenderSettings settings;
+    std::tie(settings.width, settings.height) = parse_size(args, "512x512");
+    try {
+        settings.mode = parse_shading_mode(args.get_or("mode", "tm"));
+    } catch (const Error& e) {
+        args.fail(std::string("--mode: ") + e.what());
+    }
+    try {
+        if (args.flag("tonemap")) settings.tone_map = parse_tone_map(args.get_or("tonemap-curve", "aces"));
+    } catch (const Error& e) {
+        args.fail(std::string("--tonemap-curve: ") + e.what());
+    }
+    settings.exposure = float(args.number("exposure", 1.0, 0.0, 1e6));
+    settings.samples = args.count("samples", 4, 1, 8);
+    const std::string out = args.get_or("out", "render.png");
+
+    auto ctx = make_context(args);
+    const bool need_tm = settings.mode == ShadingMode::Tm || settings.mode == ShadingMode::TmFalseColor;
+    Scene scene = load_scene(args, *ctx, args.positional().empty() ? "bunny" : args.positional()[0], need_tm);
+    Camera camera = camera_from_args(args, scene.prepared, float(settings.width) / float(settings.height));
+    std::vector<Light> lights = lights_from_args(args, camera);
+
+    Renderer renderer(*ctx);
+    set_scene(renderer, scene);
+    RenderedImage image = renderer.render(camera, lights, settings);
+    save_image(out, int(image.width), int(image.height), image.rgba);
+    std::printf("%s: %ux%u, %s, material %s, lights: %zu; GPU %s, wall %s\n", out.c_str(), image.width, image.height,
+                std::string(shading_mode_name(settings.mode)).c_str(), scene.material.name.c_str(), lights.size(),
+                format_ms(image.gpu_ms).c_str(), format_ms(image.wall_ms).c_str());
+    return 0;
+}
+
+int cmd_figure1(int argc, char** argv)
+{
+    const auto specs = all_options({device_options(), material_options(), bake_options(),
+                                    {{"out", "FILE", "output image (default figure1.png)"},
+                                     {"size", "WxH", "size of each of the four panels (default 512x512)"},
+                                     {"mesh", "MESH", "mesh or baked .glb (default: the Stanford bunny)"},
+                                     {"tonemap", "", "tone map the shaded panels with the ACES fit"}}});
+    Args first("figure1", specs, argc, argv, 2);
+    if (first.flag("help")) {
+        std::printf("usage: jade figure1 [options]\n\nThe poster's Figure 1: the bunny made of blue jewel under a back "
+                    "light, (a) Lambert,\n(b) curvature-based, (c) translucency magnitude (ours), (d) t_m in false colour."
+                    "\n(--material defaults to blue-jewel here.)\n\n%s", first.help().c_str());
+        return 0;
+    }
+    if (!first.positional().empty()) first.fail("takes no positional arguments (use --mesh)");
+    // The poster's material unless --material is given: parse again with it appended.
+    std::vector<std::string> words(argv, argv + argc);
+    if (!first.get("material")) words.insert(words.end(), {"--material", "blue-jewel"});
+    std::vector<char*> word_ptrs;
+    for (auto& w : words) word_ptrs.push_back(w.data());
+    Args args("figure1", specs, int(word_ptrs.size()), word_ptrs.data(), 2);
+    auto [w, h] = parse_size(args, "512x512");
+
+    auto ctx = make_context(args);
+    Scene scene = load_scene(args, *ctx, args.get_or("mesh", "bunny"), true);
+    Camera camera = Camera::framing(scene.prepared.bbox_min, scene.prepared.bbox_max, float(w) / float(h));
+    std::vector<Light> lights = figure1_lights(camera);
+    Renderer renderer(*ctx);
+    set_scene(renderer, scene);
+
+    const int scale = std::max(1, int(h) / 160);
+    const uint32_t label_h = uint32_t(14 * scale);
+    RenderedImage figure;
+    figure.width = 4 * w, figure.height = h + label_h;
+    figure.rgba.assign(size_t(figure.width) * figure.height * 4, 0.0f);
+    for (size_t i = 3; i < figure.rgba.size(); i += 4) figure.rgba[i] = 1.0f;
+    const ShadingMode modes[] = {ShadingMode::Lambert, ShadingMode::Curvature, ShadingMode::Tm, ShadingMode::TmFalseColor};
+    const char* labels[] = {"(a) Lambert", "(b) Curvature-based", "(c) Our method", "(d) Trans. Magnitude"};
+    for (int k = 0; k < 4; ++k) {
+        RenderSettings s;
+        s.width = w, s.height = h, s.mode = modes[k];
+        if (args.flag("tonemap") && modes[k] != ShadingMode::TmFalseColor) s.tone_map = ToneMap::AcesFitted;
+        RenderedImage panel = renderer.render(camera, lights, s);
+        blit(figure, panel, uint32_t(k) * w, 0);
+        const int x = int(k * w) + (int(w) - text_width(labels[k], scale)) / 2;
+        draw_text(figure, x, int(h) + 3 * scale, labels[k], glm::vec3(1.0f), scale);
+        std::printf("(%c) %-16s GPU %s\n", 'a' + k, std::string(shading_mode_name(modes[k])).c_str(), format_ms(panel.gpu_ms).c_str());
+    }
+    const std::string out = args.get_or("out", "figure1.png");
+    save_image(out, int(figure.width), int(figure.height), figure.rgba);
+    std::printf("%s: %ux%u, material %s\n", out.c_str(), figure.width, figure.height, scene.material.name.c_str());
+    return 0;
+}
+
+int cmd_bench_render(int argc, char** argv)
+{
+    Args args("bench render", all_options({device_options(), material_options(), bake_options(),
+                                           {{"repeat", "N", "frames per mode and size, alternating (default 20)"}}}),
+              argc, argv, 3);
+    if (args.flag("help")) {
+        std::printf("usage: jade bench render [MESH] [options]\n\nFrame time of tm against lambert shading at 512x512 and "
+                    "1024x1024, the same scene,\nmeasured alternately in one run (GPU timestamps and wall time).\n\n%s",
+                    args.help().c_str());
+        return 0;
+    }
+    const uint32_t repeat = args.count("repeat", 20, 1, 10000);
+    auto ctx = make_context(args);
+    Scene scene = load_scene(args, *ctx, args.positional().empty() ? "bunny" : args.positional()[0], true);
+    Camera camera = Camera::framing(scene.prepared.bbox_min, scene.prepared.bbox_max);
+    std::vector<Light> lights = default_lights(camera);
+    Renderer renderer(*ctx);
+    set_scene(renderer, scene);
+    std::printf("mesh %s: %zu vertices, %zu triangles; material %s (%s); device %s\n", scene.mesh.name.c_str(),
+                scene.prepared.vertex_count(), scene.prepared.triangle_count(), scene.material.name.c_str(),
+                scene.material.grey() ? "grey: 1 LUT fetch" : "RGB: 3 LUT fetches", ctx->device_info().name.c_str());
+    std::printf("%-10s %-8s %12s %12s %12s %12s\n", "size", "mode", "GPU median", "GPU min", "wall median", "wall min");
+    auto median = [](std::vector<double> v) { std::sort(v.begin(), v.end()); return v[v.size() / 2]; };
+    for (uint32_t size : {512u, 1024u}) {
+        RenderSettings s;
+        s.width = s.height = size;
+        std::vector<double> gpu[2], wall[2];
+        for (int warm = 0; warm < 2; ++warm)  // pipelines, targets, caches
+            for (ShadingMode m : {ShadingMode::Lambert, ShadingMode::Tm}) s.mode = m, renderer.render(camera, lights, s);
+        for (uint32_t i = 0; i < repeat; ++i)
+            for (int k = 0; k < 2; ++k) {
+                s.mode = k == 0 ? ShadingMode::Lambert : ShadingMode::Tm;
+                RenderedImage img = renderer.render(camera, lights, s);
+                gpu[k].push_back(img.gpu_ms);
+                wall[k].push_back(img.wall_ms);
+            }
+        for (int k = 0; k < 2; ++k)
+            std::printf("%4ux%-5u %-8s %12s %12s %12s %12s\n", size, size, k == 0 ? "lambert" : "tm",
+                        format_ms(median(gpu[k])).c_str(), format_ms(*std::min_element(gpu[k].begin(), gpu[k].end())).c_str(),
+                        format_ms(median(wall[k])).c_str(), format_ms(*std::min_element(wall[k].begin(), wall[k].end())).c_str());
+        std::printf("%4ux%-5u tm / lambert: GPU %.3fx (median), %.3fx (min); wall %.3fx (median)\n", size, size,
+                    median(gpu[1]) / median(gpu[0]),
+                    *std::min_element(gpu[1].begin(), gpu[1].end()) / *std::min_element(gpu[0].begin(), gpu[0].end()),
+                    median(wall[1]) / median(wall[0]));
+    }
+    return 0;
+}
+
+}  // namespace jade::cli

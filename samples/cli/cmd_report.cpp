@@ -1,0 +1,181 @@
+// jade report MESH... --out DIR: the error of every approximation (AO rays and sampling, t_m
+// far field ε, presets, LUT size, final image) against its GPU and wall time, in one run.
+// Writes DIR/report.csv (rewritten after every configuration, atomically), DIR/summary.md and,
+// through samples/report/plot_report.py, DIR/*.png.
+#include "report.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+namespace jade::cli {
+
+namespace report {
+
+Plan make_plan(const std::string& name, uint32_t tm_sample)
+{
+    Plan p;
+    p.name = name;
+    p.tm_sample = tm_sample;
+    if (name == "tiny") {  // seconds on a ~1k-vertex mesh: for tests
+        p.ao_rays = {4, 16, 64};
+        p.ao_reference_rays = 1024;
+        p.ao_distances = {0.1f};
+        p.ao_agreement_rays = 16;
+        p.tm_epsilons = {0.4f, 0.15f, 0.04f};
+        p.tm_jade = false;
+        p.tm_grey_d = {0.05};
+        p.lut_sizes = {16, 64};
+        p.image_size = 64;
+        return p;
+    }
+    p.ao_rays = {4, 8, 16, 32, 64, 128, 256, 512, 1024};
+    p.ao_distances = {0.05f, 0.1f, 0.2f};
+    p.tm_epsilons = {0.4f, 0.25f, 0.15f, 0.08f, 0.04f, 0.015f};
+    p.tm_grey_d = {0.01, 0.05, 0.2};
+    p.lut_sizes = {16, 32, 64, 128, 256, 512, 1024};
+    if (name == "quick") {  // no 1024 rays, i.i.d. only at the default distance
+        p.ao_rays.pop_back();
+        p.iid_every_distance = false;
+    }
+    return p;
+}
+
+}  // namespace report
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace report;
+using Clock = std::chrono::steady_clock;
+
+std::vector<std::string> default_meshes()
+{
+    std::vector<std::string> out{"bunny"};
+    const char* assets = std::getenv("JADE_ASSETS");
+    fs::path dragon = fs::path(assets ? assets : "assets") / "ChineseDragon-10kv.off";
+    if (fs::exists(dragon)) out.push_back(dragon.string());
+    return out;
+}
+
+/// samples/report/plot_report.py: $JADE_REPORT_PLOT, else searched upwards from the
+/// executable's folder (a build folder inside the source tree) and from the working folder.
+fs::path find_plot_script()
+{
+    if (const char* env = std::getenv("JADE_REPORT_PLOT"); env && *env) return env;
+    std::error_code ec;
+    for (fs::path start : {fs::read_symlink("/proc/self/exe", ec).parent_path(), fs::current_path(ec)})
+        for (fs::path dir = start; !dir.empty(); dir = dir.parent_path()) {
+            fs::path candidate = dir / "samples" / "report" / "plot_report.py";
+            if (fs::exists(candidate, ec)) return candidate;
+            if (dir == dir.parent_path()) break;
+        }
+    return {};
+}
+
+std::string shell_quote(const std::string& s)
+{
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+}
+
+void run_plots(const fs::path& dir)
+{
+    const fs::path script = find_plot_script();
+    const std::string manual = "python3 " + shell_quote(script.empty() ? "samples/report/plot_report.py" : script.string()) +
+                               " " + shell_quote(dir.string());
+    if (script.empty() || std::system("command -v python3 > /dev/null 2>&1") != 0) {
+        std::fprintf(stderr, "plots: %s; draw them with: %s\n",
+                     script.empty() ? "samples/report/plot_report.py not found" : "python3 not found", manual.c_str());
+        return;
+    }
+    std::fprintf(stderr, "plots: %s\n", manual.c_str());
+    if (std::system(manual.c_str()) != 0) std::fprintf(stderr, "plots: the script failed; run it again with: %s\n", manual.c_str());
+}
+
+std::string describe(const Row& r)
+{
+    if (r.knob.empty()) return r.notes;
+    std::string s = std::isnan(r.err.max) ? r.notes : "rms " + num(r.err.rms) + ", p99 " + num(r.err.p99) + ", max " + num(r.err.max);
+    if (!std::isnan(r.gpu_ms)) s += " | GPU " + format_ms(r.gpu_ms);
+    if (!std::isnan(r.wall_ms)) s += " | wall " + format_ms(r.wall_ms);
+    return s;
+}
+
+}  // namespace
+
+int cmd_report(int argc, char** argv)
+{
+    auto specs = device_options();
+    specs.push_back({"out", "DIR", "output folder (created): report.csv, summary.md, *.png"});
+    specs.push_back({"quick", "", "skip 1024 rays and i.i.d. rays at max distances other than 0.1"});
+    specs.push_back({"tiny", "", "a few configurations with a 1024-ray AO reference (tests, small meshes)"});
+    specs.push_back({"sample", "N", "vertices the float64 t_m reference runs on (default 300)"});
+    specs.push_back({"no-plot", "", "do not run samples/report/plot_report.py"});
+    specs.push_back({"summary-only", "", "measure nothing: rewrite summary.md and the plots from DIR/report.csv"});
+    Args args("report", specs, argc, argv, 2);
+    if (args.flag("help")) {
+        std::printf("usage: jade report [MESH...] --out DIR [--quick | --tiny]\n\n"
+                    "Measures each approximation's error against its GPU and wall time. MESH defaults to the\n"
+                    "bunny and assets/ChineseDragon-10kv.off (when present). Progress goes to stderr.\n\n%s",
+                    args.help().c_str());
+        return 0;
+    }
+    const auto out = args.get("out");
+    if (!out || out->empty()) args.fail("--out DIR is required (the folder for report.csv, summary.md and the plots)");
+    if (args.flag("quick") && args.flag("tiny")) args.fail("--quick and --tiny exclude each other");
+    const Plan plan = make_plan(args.flag("tiny") ? "tiny" : args.flag("quick") ? "quick" : "full",
+                                args.count("sample", 300, 1, 1u << 24));
+    const fs::path dir = *out;
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec || !fs::is_directory(dir)) throw Error("--out " + dir.string() + ": cannot create the folder: " + ec.message());
+
+    if (args.flag("summary-only")) {
+        auto ctx = make_context(args);
+        write_atomically(dir / "summary.md", summary_markdown(read_csv(dir / "report.csv"), plan, ctx->device_info().name));
+        if (!args.flag("no-plot")) run_plots(dir);
+        return 0;
+    }
+    const std::vector<std::string> sources = args.positional().empty() ? default_meshes() : args.positional();
+    for (const auto& m : sources)  // before any measuring: a typo must not cost a half-hour run
+        if (m != "bunny" && !fs::is_regular_file(m, ec)) throw Error(m + ": no such mesh file");
+    auto ctx = make_context(args);
+    Baker baker(*ctx);
+    Session session{*ctx, baker, plan};
+    std::vector<MeshState> states(sources.size());  // never resized: steps hold references
+    std::vector<Step> steps;                        // destroyed before the context
+    for (size_t m = 0; m < sources.size(); ++m) {
+        states[m].source = sources[m];
+        const size_t first = steps.size();
+        add_bake_steps(session, states[m], steps);
+        add_image_steps(session, states[m], steps);
+        for (size_t k = first; k < steps.size(); ++k) steps[k].what = fs::path(sources[m]).stem().string() + ": " + steps[k].what;
+    }
+    add_lut_steps(session, steps);
+
+    std::fprintf(stderr, "jade report: %zu steps (plan %s) on %s; writing %s\n", steps.size(), plan.name.c_str(),
+                 ctx->device_info().name.c_str(), dir.string().c_str());
+    warm_up(session);
+    std::vector<Row> rows;
+    const auto t0 = Clock::now();
+    for (size_t k = 0; k < steps.size(); ++k) {
+        Row r = steps[k].run();
+        std::fprintf(stderr, "[%zu/%zu] %s: %s\n", k + 1, steps.size(), steps[k].what.c_str(), describe(r).c_str());
+        if (r.knob.empty()) continue;
+        rows.push_back(std::move(r));
+        write_atomically(dir / "report.csv", csv(rows));
+    }
+    steps.clear();
+    write_atomically(dir / "summary.md", summary_markdown(rows, plan, ctx->device_info().name));
+    std::fprintf(stderr, "jade report: %zu configurations in %s: %s, %s\n", rows.size(),
+                 format_ms(std::chrono::duration<double, std::milli>(Clock::now() - t0).count()).c_str(),
+                 (dir / "report.csv").string().c_str(), (dir / "summary.md").string().c_str());
+    if (!args.flag("no-plot")) run_plots(dir);
+    return 0;
+}
+
+}  // namespace jade::cli

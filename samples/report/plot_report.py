@@ -1,0 +1,268 @@
+#!/usr/bin/env python3
+"""Plots of `jade report`: error against cost, log-log, Pareto front marked.
+
+usage: python3 samples/report/plot_report.py DIR
+
+Reads DIR/report.csv (written by `jade report MESH... --out DIR`) and writes into DIR:
+  ao.png       AO: RMS error (vs the 4096-ray low-discrepancy GPU AO) against GPU time,
+               per mesh; one line per sampling and max distance, labels = rays per vertex
+  tm.png       t_m: max relative error (vs float64) against GPU time, per mesh; one line per
+               material through the clustered eps, the exact pass and the auto presets
+  presets.png  today's presets end to end: t_m max relative error and final-image error
+               (99th percentile, 8-bit sRGB levels) against the bake's GPU time
+  lut.png      translucency LUT: error of f and of the final image against the LUT's memory
+The Pareto front (no other configuration both cheaper and more accurate) uses the same axes
+and groups as summary.md: ringed in black. Files are written atomically (temp + rename).
+Needs matplotlib: installed on first use (apt-get python3-matplotlib on Debian/Ubuntu when
+root, else pip --user), or run the script with a python3 that has it.
+"""
+import csv
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+from collections import OrderedDict, defaultdict
+
+SYSTEM_PYTHON = "/usr/bin/python3"
+
+
+def have_matplotlib(python):
+    return subprocess.call([python, "-c", "import matplotlib"], stdout=subprocess.DEVNULL,
+                           stderr=subprocess.DEVNULL) == 0
+
+
+def ensure_matplotlib():
+    """Import matplotlib, installing it if needed; may re-run this script under /usr/bin/python3."""
+    try:
+        import matplotlib  # noqa: F401
+        return
+    except ImportError:
+        pass
+    reexec = os.path.exists(SYSTEM_PYTHON) and os.path.realpath(sys.executable) != os.path.realpath(SYSTEM_PYTHON)
+    if reexec and have_matplotlib(SYSTEM_PYTHON):
+        os.execv(SYSTEM_PYTHON, [SYSTEM_PYTHON] + sys.argv)
+    if shutil.which("apt-get") and os.path.exists(SYSTEM_PYTHON) and hasattr(os, "geteuid") and os.geteuid() == 0:
+        print("plot_report: installing python3-matplotlib with apt-get", file=sys.stderr)
+        env = dict(os.environ, DEBIAN_FRONTEND="noninteractive")
+        cmd = ["apt-get", "install", "-y", "-q", "python3-matplotlib"]
+        if subprocess.call(cmd, env=env) != 0:
+            subprocess.call(["apt-get", "update", "-q"], env=env)
+            subprocess.call(cmd, env=env)
+        if have_matplotlib(SYSTEM_PYTHON):
+            if reexec:
+                os.execv(SYSTEM_PYTHON, [SYSTEM_PYTHON] + sys.argv)
+            return
+    print("plot_report: installing matplotlib with pip --user", file=sys.stderr)
+    if subprocess.call([sys.executable, "-m", "pip", "install", "--user", "-q", "matplotlib"]) == 0:
+        import site
+        import importlib
+        sys.path.append(site.getusersitepackages())
+        importlib.invalidate_caches()
+        return
+    sys.exit("plot_report: matplotlib is missing and could not be installed; "
+             "install python3-matplotlib (apt) or matplotlib (pip) and run again")
+
+
+def number(s):
+    try:
+        return float(s)
+    except ValueError:
+        return math.nan
+
+
+def split_method(method):
+    m = re.match(r"^(.*) \((.*)\)$", method)
+    return (m.group(1), m.group(2)) if m else (method, "")
+
+
+def texels(value):
+    m = re.match(r"^(\d+)x(\d+)$", value)
+    return float(m.group(1)) * float(m.group(2)) if m else math.nan
+
+
+def load(path):
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    for r in rows:
+        for k in ("gpu_ms", "wall_ms", "err_rms", "err_p99", "err_max"):
+            r[k] = number(r[k])
+        r["algorithm"], r["case"] = split_method(r["method"])
+    return rows
+
+
+def axes_of(r):
+    """(group, x, y) of the Pareto front, as in summary.md; None for rows without one."""
+    knob = r["knob"]
+    if knob == "ao_rays":
+        return (r["mesh"] + "|ao|" + r["case"], r["gpu_ms"], r["err_rms"])
+    if knob in ("tm_exact", "tm_epsilon", "tm_auto"):
+        return (r["mesh"] + "|tm|" + r["case"], r["gpu_ms"], r["err_max"])
+    if knob == "quality":
+        return (r["mesh"] + "|quality", r["gpu_ms"], r["err_max"])
+    if knob in ("lut_size", "image_lut"):
+        return (r["mesh"] + "|" + knob, texels(r["value"]), r["err_max"])
+    return None
+
+
+def mark_pareto(rows):
+    pts = [axes_of(r) for r in rows]
+    for i, r in enumerate(rows):
+        a = pts[i]
+        r["pareto"] = bool(a) and not (math.isnan(a[1]) or math.isnan(a[2])) and not any(
+            b and j != i and b[0] == a[0] and b[1] <= a[1] and b[2] <= a[2] and (b[1] < a[1] or b[2] < a[2])
+            for j, b in enumerate(pts))
+
+
+def positive(x):
+    return x if x > 0 and not math.isnan(x) else math.nan
+
+
+class Plotter:
+    def __init__(self, rows, out):
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        self.plt, self.rows, self.out = plt, rows, out
+        self.meshes = list(OrderedDict.fromkeys(r["mesh"] for r in rows if r["mesh"] != "(any)"))
+
+    def figure(self, ncols, title):
+        fig, axes = self.plt.subplots(1, max(ncols, 1), figsize=(5.2 * max(ncols, 1) + 0.6, 4.6), squeeze=False)
+        fig.suptitle(title, fontsize=11)
+        return fig, axes[0]
+
+    def save(self, fig, name):
+        fig.tight_layout()
+        path = os.path.join(self.out, name)
+        tmp = path + ".tmp"
+        fig.savefig(tmp, dpi=90, format="png")
+        self.plt.close(fig)
+        os.replace(tmp, path)
+        print("plot_report: wrote %s (%d KB)" % (path, os.path.getsize(path) // 1024), file=sys.stderr)
+
+    def series(self, ax, pts, label, color, marker, x_scale=1.0, y_scale=1.0, annotate=None, line=True):
+        """pts: rows in plot order. Rings the Pareto-front points."""
+        xs = [r["_x"] * x_scale for r in pts]
+        ys = [positive(r["_y"]) * y_scale for r in pts]
+        ax.plot(xs, ys, ("-" if line else "") + marker, color=color, label=label, markersize=10 if marker == "*" else 5,
+                linewidth=1.2)
+        px = [x for x, y, r in zip(xs, ys, pts) if r["pareto"]]
+        py = [y for x, y, r in zip(xs, ys, pts) if r["pareto"]]
+        ax.plot(px, py, "o", markersize=10, markerfacecolor="none", markeredgecolor="black", markeredgewidth=1.0)
+        if annotate:
+            for x, y, r in zip(xs, ys, pts):
+                if not math.isnan(y):
+                    ax.annotate(annotate(r), (x, y), textcoords="offset points", xytext=(4, 3), fontsize=7, color=color)
+
+    def pareto_legend(self, ax, pareto=True):
+        from matplotlib.ticker import FuncFormatter
+        if pareto:
+            ax.plot([], [], "o", markersize=10, markerfacecolor="none", markeredgecolor="black", label="Pareto front")
+        ax.legend(fontsize=7, loc="best")
+        ax.grid(True, which="both", alpha=0.3)
+        plain = FuncFormatter(lambda v, _: "%g" % v)
+        ax.xaxis.set_major_formatter(plain)
+
+        def minor(v, _):  # every minor tick on a short axis, else 2 and 5 of each decade
+            lo, hi = ax.get_xlim()
+            return "%g" % v if math.log10(hi / lo) < 1.2 or ("%g" % v)[0] in "25" else ""
+        ax.xaxis.set_minor_formatter(FuncFormatter(minor))
+
+    def select(self, **keys):
+        out = [r for r in self.rows if all((r[k] in v) if isinstance(v, tuple) else r[k] == v for k, v in keys.items())]
+        return out
+
+    def ao(self):
+        fig, axes = self.figure(len(self.meshes), "AO: error against GPU time (labels: rays per vertex)")
+        colors = {}
+        for ax, mesh in zip(axes, self.meshes):
+            groups = defaultdict(list)
+            for r in self.select(mesh=mesh, knob="ao_rays"):
+                r["_x"], r["_y"] = r["gpu_ms"], r["err_rms"]
+                groups[(r["case"], r["algorithm"])].append(r)
+            for (case, algorithm), pts in sorted(groups.items()):
+                color = colors.setdefault(case, "C%d" % len(colors))
+                ld = algorithm.startswith("low")
+                self.series(ax, pts, "%s, %s" % (algorithm, case.replace("d=", "max dist ")), color, "o" if ld else "x",
+                            x_scale=1e-3, annotate=(lambda r: r["value"]) if ld else None)
+            ax.set(xscale="log", yscale="log", title=mesh, xlabel="GPU time (s)",
+                   ylabel="AO error, RMS over vertices (absolute, AO in [0,1])")
+            self.pareto_legend(ax)
+        self.save(fig, "ao.png")
+
+    def tm(self):
+        fig, axes = self.figure(len(self.meshes), "t_m: error against GPU time (clustered eps, exact, auto presets)")
+        for ax, mesh in zip(axes, self.meshes):
+            rows = self.select(mesh=mesh, knob=("tm_exact", "tm_epsilon", "tm_auto"))
+            for r in rows:
+                r["_x"], r["_y"] = r["gpu_ms"], r["err_max"]
+            for k, case in enumerate(OrderedDict.fromkeys(r["case"] for r in rows)):
+                color = "C%d" % k
+                eps = [r for r in rows if r["case"] == case and r["knob"] == "tm_epsilon"]
+                self.series(ax, eps, case + ": clustered", color, "o", x_scale=1e-3,
+                            annotate=lambda r: "eps " + r["value"])
+                exact = [r for r in rows if r["case"] == case and r["knob"] == "tm_exact"]
+                self.series(ax, exact, None, color, "*", x_scale=1e-3, line=False)
+                auto = [r for r in rows if r["case"] == case and r["knob"] == "tm_auto"]
+                self.series(ax, auto, None, color, "^", x_scale=1e-3, line=False, annotate=lambda r: r["value"])
+            ax.plot([], [], "*", color="grey", label="exact (all pairs, float32)")
+            ax.plot([], [], "^", color="grey", label="auto: quality presets")
+            ax.set(xscale="log", yscale="log", title=mesh, xlabel="GPU time (s)",
+                   ylabel="t_m error, max over sampled vertices (relative)")
+            self.pareto_legend(ax)
+        self.save(fig, "tm.png")
+
+    def presets(self):
+        fig, axes = self.figure(2, "Today's presets end to end: error against the bake's GPU time")
+        for k, mesh in enumerate(self.meshes):
+            color = "C%d" % k
+            for ax, knob, y in ((axes[0], "quality", "err_max"), (axes[1], "image", "err_p99")):
+                pts = self.select(mesh=mesh, knob=knob)
+                for r in pts:
+                    r["_x"], r["_y"] = r["gpu_ms"], r[y]
+                self.series(ax, pts, mesh, color, "o", x_scale=1e-3, annotate=lambda r: r["value"])
+        axes[0].set(xscale="log", yscale="log", xlabel="bake GPU time (s)",
+                    ylabel="t_m error, max over sampled vertices (relative)", title="t_m vs float64 (own AO + t_m)")
+        axes[1].set(xscale="log", yscale="log", xlabel="bake GPU time (s)",
+                    ylabel="image error, 99th percentile (8-bit sRGB levels)", title="final image vs reference image")
+        self.pareto_legend(axes[0])
+        self.pareto_legend(axes[1], pareto=False)  # the image error has no front of its own: same points
+        self.save(fig, "presets.png")
+
+    def lut(self):
+        fig, axes = self.figure(2, "Translucency LUT: error against memory ((N+1) x N texels, float32)")
+        for ax, knob, ylabel in ((axes[0], "lut_size", "error of f(cos, t), max (absolute)"),
+                                 (axes[1], "image_lut", "image error, max over pixels (8-bit sRGB levels)")):
+            for k, mesh in enumerate(OrderedDict.fromkeys(r["mesh"] for r in self.select(knob=knob))):
+                pts = sorted(self.select(knob=knob, mesh=mesh), key=lambda r: texels(r["value"]))
+                for r in pts:
+                    r["_x"], r["_y"] = texels(r["value"]), r["err_max"]
+                self.series(ax, pts, "f(cos, t)" if mesh == "(any)" else mesh, "C%d" % k, "o", x_scale=4.0 / 1024,
+                            annotate=lambda r: r["value"])
+            ax.set(xscale="log", yscale="log", xlabel="LUT memory (KB)", ylabel=ylabel)
+            self.pareto_legend(ax)
+        self.save(fig, "lut.png")
+
+
+def main():
+    if len(sys.argv) != 2 or sys.argv[1] in ("-h", "--help"):
+        print(__doc__, file=sys.stderr)
+        return 2
+    out = sys.argv[1]
+    path = os.path.join(out, "report.csv")
+    if not os.path.exists(path):
+        print("plot_report: %s: no such file (run `jade report ... --out %s` first)" % (path, out), file=sys.stderr)
+        return 1
+    ensure_matplotlib()
+    rows = load(path)
+    mark_pareto(rows)
+    p = Plotter(rows, out)
+    for knob, draw in (("ao_rays", p.ao), ("tm_epsilon", p.tm), ("quality", p.presets), ("lut_size", p.lut)):
+        if p.select(knob=knob):
+            draw()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

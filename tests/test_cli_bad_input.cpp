@@ -1,0 +1,204 @@
+// Bad input through the command line: every malformed file in tests/data/bad must make
+// `jade info` and `jade bake` fail cleanly (exit code 1, an error naming the file, no output
+// and no temporary file left behind), and every malformed command line must be a usage error
+// (exit code 2, a message naming the flag). Never a crash: an exit code of 128 or more is a
+// signal (test_support.cpp maps it so), and sanitizer reports in the output are failures too.
+// No test here touches the GPU except WriteFailureAfterTheBake, which bakes a 4-vertex mesh.
+#include "test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+using jade::test::data;
+using jade::test::out;
+using jade::test::run_cli;
+
+constexpr int kError = 1;  // main.cpp: jade::Error
+constexpr int kUsage = 2;  // main.cpp: jade::cli::UsageError
+
+/// A valid mesh that loads in microseconds, for the flag tests (mesh flags are checked after
+/// the mesh is loaded, so the mesh must be good for the flag error to be the one reported).
+fs::path tiny_mesh() { return data("tetra_normals.off"); }
+
+std::string describe(const std::vector<std::string>& args, const jade::test::CliResult& r)
+{
+    std::string cmd = "jade";
+    for (const auto& a : args) cmd += " " + a;
+    return cmd + "\n  exit code " + std::to_string(r.exit_code) + "\n  output: " + r.output;
+}
+
+/// Signs that the process died or a sanitizer complained, whatever the exit code says.
+void expect_no_crash(const std::vector<std::string>& args, const jade::test::CliResult& r)
+{
+    EXPECT_GE(r.exit_code, 0) << "could not run: " << describe(args, r);
+    EXPECT_LT(r.exit_code, 128) << "killed by signal " << r.exit_code - 128 << ": " << describe(args, r);
+    for (const char* marker : {"Sanitizer", "runtime error:", "internal error", "terminate called", "Segmentation fault"})
+        EXPECT_EQ(r.output.find(marker), std::string::npos) << "'" << marker << "' in output: " << describe(args, r);
+}
+
+/// Entries of `folder` whose name contains ".tmp-" (write_atomically's temporary files).
+std::vector<std::string> temporaries(const fs::path& folder)
+{
+    std::vector<std::string> found;
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(folder, ec))
+        if (e.path().filename().string().find(".tmp-") != std::string::npos) found.push_back(e.path().string());
+    return found;
+}
+
+std::vector<fs::path> bad_files()
+{
+    std::vector<fs::path> files;
+    for (const auto& e : fs::directory_iterator(data("bad")))
+        if (e.is_regular_file()) files.push_back(e.path());
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
+// ------------------------------------------------------------------------ malformed files --
+
+TEST(cli_bad_input, InfoFailsCleanlyOnEveryMalformedFile)
+{
+    const auto files = bad_files();
+    ASSERT_GE(files.size(), 60u) << "tests/data/bad looks incomplete";
+    for (const auto& path : files) {
+        const std::vector<std::string> args = {"info", path.string()};
+        const auto r = run_cli(args);
+        expect_no_crash(args, r);
+        EXPECT_EQ(r.exit_code, kError) << describe(args, r);
+        EXPECT_NE(r.output.find("jade info: error: "), std::string::npos) << describe(args, r);
+        EXPECT_NE(r.output.find(path.filename().string()), std::string::npos) << "the file is not named: " << describe(args, r);
+    }
+}
+
+TEST(cli_bad_input, BakeFailsCleanlyOnEveryMalformedFileAndWritesNothing)
+{
+    for (const auto& path : bad_files()) {
+        const auto output = out("cli_bad_input/bake/" + path.filename().string() + ".glb");
+        const std::vector<std::string> args = {"bake", path.string(), "--out", output.string(), "--quality", "draft"};
+        const auto r = run_cli(args);
+        expect_no_crash(args, r);
+        EXPECT_EQ(r.exit_code, kError) << describe(args, r);
+        EXPECT_NE(r.output.find("jade bake: error: "), std::string::npos) << describe(args, r);
+        EXPECT_NE(r.output.find(path.filename().string()), std::string::npos) << "the file is not named: " << describe(args, r);
+        EXPECT_FALSE(fs::exists(output)) << "output written: " << describe(args, r);
+        EXPECT_EQ(temporaries(output.parent_path()), std::vector<std::string>{}) << describe(args, r);
+    }
+}
+
+TEST(cli_bad_input, MissingFilesAndFoldersAreErrorsNamingThem)
+{
+    const auto folder = out("cli_bad_input/folder.off/x").parent_path();
+    fs::create_directories(folder);
+    const auto output = out("cli_bad_input/missing.glb");
+    for (const auto& path : {data("no_such_mesh.off"), folder}) {
+        for (const auto& args : {std::vector<std::string>{"info", path.string()},
+                                 std::vector<std::string>{"bake", path.string(), "--out", output.string()}}) {
+            const auto r = run_cli(args);
+            expect_no_crash(args, r);
+            EXPECT_EQ(r.exit_code, kError) << describe(args, r);
+            EXPECT_NE(r.output.find(path.filename().string()), std::string::npos) << describe(args, r);
+        }
+    }
+    EXPECT_FALSE(fs::exists(output));
+}
+
+// ----------------------------------------------------------------------- bad command lines --
+
+struct BadCommandLine {
+    std::vector<std::string> args;  ///< "MESH" and "OUT" are replaced by a tiny mesh and an output path
+    std::string expected;           ///< a phrase of the message, naming the flag
+};
+
+class cli_bad_flags : public ::testing::TestWithParam<BadCommandLine> {};
+
+TEST_P(cli_bad_flags, AreUsageErrorsNamingTheFlag)
+{
+    // One folder per case: ctest runs the cases in parallel, and each folder must stay empty.
+    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string id = std::string(test->test_suite_name()) + "." + test->name();
+    std::replace(id.begin(), id.end(), '/', '_');
+    const auto output = out("cli_bad_input/flags/" + id + "/out.glb");
+    std::vector<std::string> args = GetParam().args;
+    for (auto& a : args) {
+        if (a == "MESH") a = tiny_mesh().string();
+        if (a == "OUT") a = output.string();
+    }
+    const auto r = run_cli(args);
+    expect_no_crash(args, r);
+    EXPECT_EQ(r.exit_code, kUsage) << describe(args, r);
+    EXPECT_NE(r.output.find(GetParam().expected), std::string::npos) << "expected '" << GetParam().expected << "': " << describe(args, r);
+    EXPECT_FALSE(fs::exists(output)) << describe(args, r);
+    EXPECT_EQ(temporaries(output.parent_path()), std::vector<std::string>{}) << describe(args, r);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Bake, cli_bad_flags,
+    ::testing::Values(
+        BadCommandLine{{"bake", "MESH", "--out", "OUT", "--bogus"}, "unknown option --bogus"},
+        BadCommandLine{{"bake", "MESH", "--out", "OUT", "--bogus=3"}, "unknown option --bogus"},
+        BadCommandLine{{"bake", "MESH", "--out"}, "option --out needs a value"},
+        BadCommandLine{{"bake", "MESH", "--out", "OUT", "--ao-rays"}, "option --ao-rays needs a value"},
+        BadCommandLine{{"bake", "MESH", "--out", "OUT", "--validation=1"}, "option --validation takes no value"},
+        BadCommandLine{{"bake", "MESH", "--out", "OUT", "--ao-rays", "0"}, "--ao-rays: 0 is out of range"},
+        BadCommandLine{{"bake", "MESH", "--out", "OUT", "--ao-rays", "abc"}, "--ao-rays: 'abc' is not a number"},
+        BadCommandLine{{"bake", "MESH", "--out", "OUT", "--ao-rays", "1e9"}, "--ao-rays: 1e+09 is out of range"},
+        BadCommandLine{{"bake", "MESH", "--out", "OUT", "--ao-rays", "2.5"}, "--ao-rays: expected a whole number"},
+        BadCommandLine{{"bake", "MESH", "--out", "OUT", "--ao-rays", "nan"}, "--ao-rays: 'nan' is not a number"},
+        BadCommandLine{{"bake", "MESH", "--out", "OUT", "--ao-rays="}, "--ao-rays: '' is not a number"},
+        BadCommandLine{{"bake", "MESH", "--out", "OUT", "--seed", "-1"}, "--seed: -1 is out of range"},
+        BadCommandLine{{"bake", "MESH", "--out", "OUT", "--quality", "ultra"}, "--quality: 'ultra' is not one of"},
+        BadCommandLine{{"bake", "MESH", "--out", "OUT", "--method", "x"}, "--method: 'x' is not one of"},
+        BadCommandLine{{"bake", "MESH", "--out", "OUT", "--epsilon", "-1"}, "--epsilon: -1 is out of range"},
+        BadCommandLine{{"bake", "MESH", "--out", "OUT", "--epsilon", "inf"}, "--epsilon: 'inf' is not a number"},
+        BadCommandLine{{"bake", "MESH", "--out", "OUT", "--ao-distance", "0"}, "--ao-distance: 0 is out of range"},
+        BadCommandLine{{"bake", "MESH", "--out", "OUT", "--d", "0"}, "--d: 0 is out of range"},
+        BadCommandLine{{"bake", "MESH", "--out", "OUT", "--mm-per-unit", "-2"}, "--mm-per-unit: -2 is out of range"},
+        BadCommandLine{{"bake", "MESH", "--out", "OUT", "--strength", "x1"}, "--strength: 'x1' is not a number"},
+        BadCommandLine{{"bake", "MESH", "--out", "OUT", "--material", "unobtainium"}, "--material: "},
+        BadCommandLine{{"bake", "MESH"}, "--out FILE is required"},
+        BadCommandLine{{"bake", "--out", "OUT"}, "expects exactly one MESH"},
+        BadCommandLine{{"bake", "MESH", "MESH", "--out", "OUT"}, "expects exactly one MESH"},
+        BadCommandLine{{"bake"}, "expects exactly one MESH"}),
+    [](const auto& info) { return "case" + std::to_string(info.index); });
+
+INSTANTIATE_TEST_SUITE_P(
+    Info, cli_bad_flags,
+    ::testing::Values(BadCommandLine{{"info", "MESH", "--ao-rays", "4"}, "unknown option --ao-rays"},
+                      BadCommandLine{{"info", "--device"}, "option --device needs a value"},
+                      BadCommandLine{{"info", "--materials=yes"}, "option --materials takes no value"},
+                      BadCommandLine{{"info", "MESH", "MESH"}, "takes at most one mesh"}),
+    [](const auto& info) { return "case" + std::to_string(info.index); });
+
+INSTANTIATE_TEST_SUITE_P(
+    Main, cli_bad_flags,
+    ::testing::Values(BadCommandLine{{}, "usage: jade COMMAND"},
+                      BadCommandLine{{"frobnicate", "MESH"}, "unknown command 'frobnicate'"}),
+    [](const auto& info) { return "case" + std::to_string(info.index); });
+
+// ------------------------------------------------------------------ failing after the bake --
+
+TEST(cli_bad_input, WriteFailureAfterTheBakeIsAnErrorAndLeavesNothing)
+{
+    // The only test here that bakes: a 4-vertex mesh at draft quality, into a folder that does
+    // not exist, so the error comes from the atomic write at the very end.
+    const auto folder = out("cli_bad_input/no_such_folder/x").parent_path();
+    fs::remove_all(folder);
+    const auto output = folder / "tetra.glb";
+    const std::vector<std::string> args = {"bake", tiny_mesh().string(), "--out", output.string(), "--quality", "draft"};
+    const auto r = run_cli(args);
+    expect_no_crash(args, r);
+    EXPECT_EQ(r.exit_code, kError) << describe(args, r);
+    EXPECT_NE(r.output.find("tetra.glb"), std::string::npos) << describe(args, r);
+    EXPECT_FALSE(fs::exists(folder)) << describe(args, r);
+    EXPECT_EQ(temporaries(folder.parent_path()), std::vector<std::string>{}) << describe(args, r);
+}
+
+}  // namespace

@@ -1,0 +1,148 @@
+// The translucency LUT built on the GPU against the float64 reference jade::lut_reference
+// (issue: Shading - the LUT): every texel, and the error of the linearly filtered LUT over the
+// whole domain, for the default size and a table of others.
+#include "gpu_fixture.hpp"
+
+#include <jade/lut.hpp>
+#include <jade/render.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+using namespace jade;
+using jade::test::GpuTest;
+
+namespace {
+
+class Lut : public GpuTest {};
+
+struct Query {
+    double cos_theta, t, reference;
+};
+
+// ~100k points over the whole domain: uniform in t ∈ [0, 40], uniform in the LUT's own axis
+// (most of them at small t, where f changes fastest), and packed around the kink cos θ = 0 at
+// t < 2.5e-3, where bilinear interpolation is worst. Reference values are computed once.
+const std::vector<Query>& queries()
+{
+    static const std::vector<Query> q = [] {
+        std::mt19937_64 rng(42);
+        std::uniform_real_distribution<double> unit(0.0, 1.0);
+        std::vector<Query> out;
+        const double v_max = std::pow(40.0 / LutLayout::kMaxVariance, 0.25);
+        for (int k = 0; k < 100000; ++k) {
+            double c = 2.0 * unit(rng) - 1.0, t;
+            if (k % 3 == 0) t = 40.0 * unit(rng);
+            else if (k % 3 == 1) t = LutLayout::kMaxVariance * std::pow(v_max * unit(rng), 4.0);
+            else c *= 0.02, t = LutLayout::kMaxVariance * std::pow(0.1 * unit(rng), 4.0);
+            if (k == 0) t = 40.0, c = -1.0;  // the corners and the clamped region
+            if (k == 1) t = 0.0, c = 1.0;
+            out.push_back({c, t, lut_reference(c, t)});
+        }
+        return out;
+    }();
+    return q;
+}
+
+// What the sampler does: mesh.frag's coordinates in float32, then linear filtering with
+// texel centres at (i + ½)/W and clamp-to-edge, weights in full precision (lavapipe's 8-bit
+// sub-texel weights add at most 2⁻⁹ of a texel-to-texel step, < 3e-6 here).
+double sample(const std::vector<float>& lut, const LutLayout& layout, double cos_theta, double t)
+{
+    const float W = float(layout.width), H = float(layout.height);
+    const float u = float(cos_theta) * ((W - 1.0f) / (2.0f * W)) + 0.5f;
+    const float s = std::sqrt(std::sqrt(float(t) * float(1.0 / LutLayout::kMaxVariance)));
+    const float v = s * ((H - 1.0f) / H) + 0.5f / H;
+    const double x = double(u) * W - 0.5, y = double(v) * H - 0.5;
+    const double x0 = std::floor(x), y0 = std::floor(y), a = x - x0, b = y - y0;
+    auto texel = [&](double i, double j) {
+        const int ii = std::clamp(int(i), 0, int(layout.width) - 1), jj = std::clamp(int(j), 0, int(layout.height) - 1);
+        return double(lut[size_t(jj) * layout.width + ii]);
+    };
+    return (1 - b) * ((1 - a) * texel(x0, y0) + a * texel(x0 + 1, y0)) + b * ((1 - a) * texel(x0, y0 + 1) + a * texel(x0 + 1, y0 + 1));
+}
+
+struct MaxError {
+    double error = 0, cos_theta = 0, t = 0;
+};
+MaxError interpolation_error(const std::vector<float>& lut, const LutLayout& layout)
+{
+    MaxError e;
+    for (const Query& q : queries()) {
+        const double d = std::abs(sample(lut, layout, q.cos_theta, q.t) - q.reference);
+        if (d > e.error) e = {d, q.cos_theta, q.t};
+    }
+    return e;
+}
+
+}  // namespace
+
+TEST_F(Lut, EveryTexelMatchesFloat64Reference)
+{
+    Renderer renderer(context());
+    const LutLayout& layout = renderer.lut_layout();
+    const std::vector<float> lut = renderer.read_lut();
+    ASSERT_EQ(lut.size(), size_t(layout.width) * layout.height);
+    double worst = 0;
+    uint32_t wi = 0, wj = 0;
+    for (uint32_t j = 0; j < layout.height; ++j)
+        for (uint32_t i = 0; i < layout.width; ++i) {
+            const double d = std::abs(double(lut[size_t(j) * layout.width + i]) - lut_reference(layout.cos_theta(i), layout.variance(j)));
+            if (d > worst) worst = d, wi = i, wj = j;
+        }
+    std::printf("LUT %ux%u: max texel error vs float64 %.3g at cos θ = %.6f, t = %.6g\n", layout.width, layout.height,
+                worst, layout.cos_theta(wi), layout.variance(wj));
+    EXPECT_LE(worst, 2e-6);
+    // Row 0 is Lambert exactly, and the kink sits on the centre texel.
+    for (uint32_t i = 0; i < layout.width; ++i) ASSERT_EQ(lut[i], float(std::max(layout.cos_theta(i), 0.0))) << "texel " << i;
+    EXPECT_EQ(layout.cos_theta((layout.width - 1) / 2), 0.0);
+}
+
+TEST_F(Lut, DefaultSizeInterpolatesWithin1e4)
+{
+    Renderer renderer(context());
+    const LutLayout& layout = renderer.lut_layout();
+    MaxError e = interpolation_error(renderer.read_lut(), layout);
+    std::printf("LUT %ux%u: max error of the filtered LUT over %zu points %.3g (at cos θ = %.5f, t = %.3g)\n",
+                layout.width, layout.height, queries().size(), e.error, e.cos_theta, e.t);
+    EXPECT_LE(e.error, 1e-4);
+}
+
+TEST_F(Lut, ZeroVarianceIsLambertUnderLinearFiltering)
+{
+    Renderer renderer(context());
+    const LutLayout& layout = renderer.lut_layout();
+    const std::vector<float> lut = renderer.read_lut();
+    double worst = 0;
+    for (int k = 0; k <= 20000; ++k) {
+        const double c = -1.0 + 2.0 * k / 20000.0;
+        worst = std::max(worst, std::abs(sample(lut, layout, c, 0.0) - std::max(c, 0.0)));
+    }
+    EXPECT_LE(worst, 1e-6);  // max(cos θ, 0) is linear in cos θ between texels, kink on a texel
+}
+
+// The table docs/shading.md quotes: error against size (the first row is the default).
+TEST_F(Lut, ErrorTableBySize)
+{
+    const LutLayout sizes[] = {{}, {1025, 257}, {1281, 257}, {1409, 193}, {1409, 257}, {1537, 129}, {1537, 193}, {1537, 257}, {2049, 129}};
+    std::printf("%-12s %-14s %s\n", "LUT size", "max error", "at (cos θ, t)");
+    for (const LutLayout& size : sizes) {
+        RendererOptions o;
+        o.lut = size;
+        Renderer renderer(context(), o);
+        MaxError e = interpolation_error(renderer.read_lut(), size);
+        std::printf("%4ux%-7u %-14.3g (%.4f, %.3g)\n", size.width, size.height, e.error, e.cos_theta, e.t);
+        EXPECT_LT(e.error, 1e-3);
+    }
+}
+
+TEST_F(Lut, BadSizeIsAnError)
+{
+    RendererOptions o;
+    o.lut = {1024, 257};  // even width: cos θ = 0 would fall between texels
+    EXPECT_THROW({ Renderer r(context(), o); }, Error);
+    o.lut = {1025, 1};
+    EXPECT_THROW({ Renderer r(context(), o); }, Error);
+}
