@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -116,6 +117,13 @@ struct BadCommandLine {
     std::vector<std::string> args;  ///< "MESH" and "OUT" are replaced by a tiny mesh and an output path
     std::string expected;           ///< a phrase of the message, naming the flag
 };
+
+/// Test names and failure messages show the command line ("jade bake MESH --out OUT --d 0").
+void PrintTo(const BadCommandLine& c, std::ostream* os)
+{
+    *os << "jade";
+    for (const auto& a : c.args) *os << " " << a;
+}
 
 class cli_bad_flags : public ::testing::TestWithParam<BadCommandLine> {};
 

@@ -4,17 +4,20 @@
 // through samples/report/plot_report.py, DIR/*.png.
 #include "report.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
+#include <sstream>
 
 namespace jade::cli {
 
 namespace report {
 
-Plan make_plan(const std::string& name, uint32_t tm_sample)
+Plan make_plan(const std::string& name, uint32_t tm_sample, std::vector<float> epsilons)
 {
     Plan p;
     p.name = name;
@@ -24,7 +27,7 @@ Plan make_plan(const std::string& name, uint32_t tm_sample)
         p.ao_reference_rays = 1024;
         p.ao_distances = {0.1f};
         p.ao_agreement_rays = 16;
-        p.tm_epsilons = {0.4f, 0.15f, 0.04f};
+        p.tm_epsilons = epsilons.empty() ? std::vector<float>{1.6f, 0.8f, 0.4f} : epsilons;
         p.tm_jade = false;
         p.tm_grey_d = {0.05};
         p.lut_sizes = {16, 64};
@@ -33,7 +36,12 @@ Plan make_plan(const std::string& name, uint32_t tm_sample)
     }
     p.ao_rays = {4, 8, 16, 32, 64, 128, 256, 512, 1024};
     p.ao_distances = {0.05f, 0.1f, 0.2f};
-    p.tm_epsilons = {0.4f, 0.25f, 0.15f, 0.08f, 0.04f, 0.015f};
+    // ε is the far field's opening ratio (shaders/tm_cluster.comp): below ~0.25 the clustered
+    // pass costs more than the all-pairs one. The presets' own values are always included.
+    p.tm_epsilons = epsilons.empty() ? std::vector<float>{1.6f, 1.2f, 0.8f, 0.6f, 0.4f, 0.25f} : epsilons;
+    for (Quality q : {Quality::Draft, Quality::Default, Quality::High}) p.tm_epsilons.push_back(BakeSettings::preset(q).tm_epsilon);
+    std::sort(p.tm_epsilons.begin(), p.tm_epsilons.end(), std::greater<>());
+    p.tm_epsilons.erase(std::unique(p.tm_epsilons.begin(), p.tm_epsilons.end()), p.tm_epsilons.end());
     p.tm_grey_d = {0.01, 0.05, 0.2};
     p.lut_sizes = {16, 32, 64, 128, 256, 512, 1024};
     if (name == "quick") {  // no 1024 rays, i.i.d. only at the default distance
@@ -96,6 +104,24 @@ void run_plots(const fs::path& dir)
     if (std::system(manual.c_str()) != 0) std::fprintf(stderr, "plots: the script failed; run it again with: %s\n", manual.c_str());
 }
 
+/// "a,b,c" → numbers in (0, 100]; empty when the option is not given.
+std::vector<float> epsilon_list(const Args& args)
+{
+    std::vector<float> out;
+    const auto v = args.get("epsilons");
+    if (!v) return out;
+    std::stringstream ss(*v);
+    for (std::string part; std::getline(ss, part, ',');) {
+        char* end = nullptr;
+        const double x = std::strtod(part.c_str(), &end);
+        if (part.empty() || end != part.c_str() + part.size() || !(x > 0 && x <= 100))
+            args.fail("--epsilons: '" + part + "' is not a number in (0, 100] (expected a list such as 1.2,0.8,0.4)");
+        out.push_back(float(x));
+    }
+    if (out.empty()) args.fail("--epsilons: empty list");
+    return out;
+}
+
 std::string describe(const Row& r)
 {
     if (r.knob.empty()) return r.notes;
@@ -114,6 +140,7 @@ int cmd_report(int argc, char** argv)
     specs.push_back({"quick", "", "skip 1024 rays and i.i.d. rays at max distances other than 0.1"});
     specs.push_back({"tiny", "", "a few configurations with a 1024-ray AO reference (tests, small meshes)"});
     specs.push_back({"sample", "N", "vertices the float64 t_m reference runs on (default 300)"});
+    specs.push_back({"epsilons", "LIST", "clustered t_m epsilons, e.g. 1.2,0.8,0.4 (default 1.6..0.25 and the presets')"});
     specs.push_back({"no-plot", "", "do not run samples/report/plot_report.py"});
     specs.push_back({"summary-only", "", "measure nothing: rewrite summary.md and the plots from DIR/report.csv"});
     Args args("report", specs, argc, argv, 2);
@@ -128,7 +155,7 @@ int cmd_report(int argc, char** argv)
     if (!out || out->empty()) args.fail("--out DIR is required (the folder for report.csv, summary.md and the plots)");
     if (args.flag("quick") && args.flag("tiny")) args.fail("--quick and --tiny exclude each other");
     const Plan plan = make_plan(args.flag("tiny") ? "tiny" : args.flag("quick") ? "quick" : "full",
-                                args.count("sample", 300, 1, 1u << 24));
+                                args.count("sample", 300, 1, 1u << 24), epsilon_list(args));
     const fs::path dir = *out;
     std::error_code ec;
     fs::create_directories(dir, ec);

@@ -11,6 +11,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <regex>
 #include <sstream>
 
 namespace jade::cli::report {
@@ -231,13 +232,15 @@ bool is_tm(const Row& r) { return r.knob == "tm_exact" || r.knob == "tm_epsilon"
 
 struct Target {
     const char* quality;
+    Quality level;
     double ao_rms, tm_max;  ///< AO RMS (absolute), t_m max relative error
 };
-constexpr Target kTargets[] = {{"draft", 0.05, 0.05}, {"default", 0.02, 0.01}, {"high", 0.01, 0.001}};
+constexpr Target kTargets[] = {
+    {"draft", Quality::Draft, 0.05, 0.05}, {"default", Quality::Default, 0.02, 0.01}, {"high", Quality::High, 0.01, 0.001}};
 
-/// The cheapest configuration (summed GPU time over meshes) among those of `knob` whose error
-/// (`err`, the worst over meshes and cases) meets `bound` on every mesh. Returns the
-/// (value, algorithm) key, or empty.
+/// The cheapest configuration (GPU time summed over meshes and cases) among the rows `pick`
+/// whose error (`err`, the worst over meshes and cases) meets `bound`. A configuration is the
+/// row's value (and algorithm, when `per_algorithm`). Returns its key, or empty.
 std::pair<std::string, std::string> cheapest(const std::vector<Row>& rows, const std::vector<size_t>& pick,
                                              double ErrorStats::*err, double bound, bool per_algorithm)
 {
@@ -269,45 +272,54 @@ std::string recommended(const std::vector<Row>& rows, const Plan& plan)
                     target.quality, target.ao_rms, 100 * target.tm_max);
         Table t{{"part", "setting"}, {}};
         for (const auto& m : meshes) t.head.insert(t.head.end(), {m + ": error", m + ": GPU"});
-        auto add = [&](std::string part, std::string setting, const std::function<bool(const Row&)>& match, bool percent,
-                       const std::string& what) {
+        // One line: per mesh, the errors of the matching row with the largest max (the worst
+        // material) and the GPU time of the first material's row.
+        auto add = [&](std::string part, std::string setting, const std::function<bool(const Row&)>& match, bool percent) {
             std::vector<std::string> cells{part, setting};
             for (const auto& m : meshes) {
-                double worst = kNaN, p99 = kNaN, gpu = kNaN;
+                const Row* worst = nullptr;
+                double gpu = kNaN;
                 for (const Row& r : rows)
                     if (r.mesh == m && match(r)) {
-                        if (std::isnan(worst) || r.err.max > worst) worst = r.err.max, p99 = r.err.p99;
+                        if (!worst || r.err.max > worst->err.max) worst = &r;
                         if (first_material.empty() || split_method(r.method).second == first_material[0] || r.knob == "ao_rays")
                             gpu = r.gpu_ms;
                     }
                 auto f = [&](double x) { return percent ? pct(x) : num(x); };
-                cells.push_back(std::isnan(worst) ? "not measured" : what + "p99 " + f(p99) + ", max " + f(worst));
+                cells.push_back(!worst ? "not measured"
+                                       : "RMS " + f(worst->err.rms) + ", p99 " + f(worst->err.p99) + ", max " + f(worst->err.max));
                 cells.push_back(ms(gpu));
             }
             t.body.push_back(cells);
         };
         auto [rays, sampling] = cheapest(rows, ao_rows, &ErrorStats::rms, target.ao_rms, true);
         if (rays.empty()) t.body.push_back({"AO", "no measured ray count meets the target"});
-        else {
-            double rms_worst = 0;
-            for (size_t i : ao_rows)
-                if (rows[i].value == rays && split_method(rows[i].method).first == sampling) rms_worst = std::max(rms_worst, rows[i].err.rms);
+        else
             add("AO", rays + " rays, " + sampling + " (" + ao_case + ")", [&](const Row& r) {
                 return r.knob == "ao_rays" && r.value == rays && r.method == sampling + " (" + ao_case + ")";
-            }, false, "RMS ≤ " + num(rms_worst) + ", ");
-        }
-        auto [eps, unused] = cheapest(rows, eps_rows, &ErrorStats::max, target.tm_max, false);
-        (void)unused;
+            }, false);
+        const std::string eps = cheapest(rows, eps_rows, &ErrorStats::max, target.tm_max, false).first;
         if (eps.empty())
-            add("t_m", "exact (all pairs): no measured ε meets the target", [](const Row& r) { return r.knob == "tm_exact"; },
-                true, "worst material: ");
+            add("t_m (worst material)", "exact (all pairs): no measured ε meets the target",
+                [](const Row& r) { return r.knob == "tm_exact"; }, true);
         else
-            add("t_m far field", "clustered, ε = " + eps, [&](const Row& r) { return r.knob == "tm_epsilon" && r.value == eps; },
-                true, "worst material: ");
-        add("today's preset, end to end", std::string("BakeSettings::preset(") + target.quality + ")",
-            [&](const Row& r) { return r.knob == "quality" && r.value == target.quality; }, true, "t_m vs float64: ");
-        add("final image, today's preset", "t_m shading, 8-bit levels",
-            [&](const Row& r) { return r.knob == "image" && r.value == target.quality; }, false, "");
+            add("t_m (worst material)", "clustered, ε = " + eps, [&](const Row& r) { return r.knob == "tm_epsilon" && r.value == eps; },
+                true);
+        // The preset as measured (its row's notes), else as compiled in.
+        const BakeSettings preset = BakeSettings::preset(target.level);
+        std::string today = strf("%u rays, ε = %g", preset.ao.rays, double(preset.tm_epsilon));
+        for (const Row& r : rows) {
+            std::smatch m;
+            static const std::regex measured("(\\d+) AO rays.*eps=([0-9.eE+-]+)");
+            if (r.knob == "quality" && r.value == target.quality && std::regex_search(r.notes, m, measured)) {
+                today = m[1].str() + " rays, ε = " + m[2].str();
+                break;
+            }
+        }
+        add("today's preset end to end: t_m vs float64", today, [&](const Row& r) { return r.knob == "quality" && r.value == target.quality; },
+            true);
+        add("today's preset: final image (8-bit levels)", today,
+            [&](const Row& r) { return r.knob == "image" && r.value == target.quality; }, false);
         out += t.markdown();
     }
     return out;

@@ -82,6 +82,11 @@ def texels(value):
     return float(m.group(1)) * float(m.group(2)) if m else math.nan
 
 
+def is_square_lut(value):
+    m = re.match(r"^(\d+)x(\d+)$", value)
+    return bool(m) and int(m.group(1)) == int(m.group(2)) + 1
+
+
 def load(path):
     with open(path, newline="") as f:
         rows = list(csv.DictReader(f))
@@ -155,26 +160,40 @@ class Plotter:
                 if not math.isnan(y):
                     ax.annotate(annotate(r), (x, y), textcoords="offset points", xytext=(4, 3), fontsize=7, color=color)
 
-    def pareto_legend(self, ax, pareto=True):
+    def pareto_legend(self, ax, pareto=True, below=False):
         from matplotlib.ticker import FuncFormatter
         if pareto:
             ax.plot([], [], "o", markersize=10, markerfacecolor="none", markeredgecolor="black", label="Pareto front")
-        ax.legend(fontsize=7, loc="best")
+        if below:  # many series: under the axes, where it hides no point
+            ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=3, frameon=False)
+        else:
+            ax.legend(fontsize=7, loc="best")
         ax.grid(True, which="both", alpha=0.3)
         plain = FuncFormatter(lambda v, _: "%g" % v)
         ax.xaxis.set_major_formatter(plain)
 
-        def minor(v, _):  # every minor tick on a short axis, else 2 and 5 of each decade
+        def minor(v, _):  # every minor tick on a short axis, 2 and 5 on a medium one, none on a long one
             lo, hi = ax.get_xlim()
-            return "%g" % v if math.log10(hi / lo) < 1.2 or ("%g" % v)[0] in "25" else ""
+            span = math.log10(hi / lo)
+            return "%g" % v if span < 1.2 or (span < 2.5 and ("%g" % v)[0] in "25") else ""
         ax.xaxis.set_minor_formatter(FuncFormatter(minor))
 
     def select(self, **keys):
         out = [r for r in self.rows if all((r[k] in v) if isinstance(v, tuple) else r[k] == v for k, v in keys.items())]
         return out
 
+    def reference_note(self, knob, pattern, fallback):
+        """A phrase from the notes of the first `knob` row (e.g. the reference's ray count)."""
+        for r in self.select(knob=knob):
+            m = re.search(pattern, r["notes"])
+            if m:
+                return m.group(1)
+        return fallback
+
     def ao(self):
-        fig, axes = self.figure(len(self.meshes), "AO: error against GPU time (labels: rays per vertex)")
+        ref = self.reference_note("ao_rays", r"vs (\d+)-ray", "4096")
+        fig, axes = self.figure(len(self.meshes), "AO: RMS error against a %s-ray low-discrepancy GPU AO, "
+                                                  "against GPU time (labels: rays per vertex)" % ref)
         colors = {}
         for ax, mesh in zip(axes, self.meshes):
             groups = defaultdict(list)
@@ -192,7 +211,10 @@ class Plotter:
         self.save(fig, "ao.png")
 
     def tm(self):
-        fig, axes = self.figure(len(self.meshes), "t_m: error against GPU time (clustered eps, exact, auto presets)")
+        sample = self.reference_note("tm_epsilon", r"on (\d+) vertices", "?")
+        fig, axes = self.figure(len(self.meshes), "t_m: max relative error against float64 (%s sampled vertices), "
+                                                  "against GPU time; labels: eps of the first material" % sample)
+        fig.set_size_inches(fig.get_size_inches()[0], 5.4)
         for ax, mesh in zip(axes, self.meshes):
             rows = self.select(mesh=mesh, knob=("tm_exact", "tm_epsilon", "tm_auto"))
             for r in rows:
@@ -201,16 +223,16 @@ class Plotter:
                 color = "C%d" % k
                 eps = [r for r in rows if r["case"] == case and r["knob"] == "tm_epsilon"]
                 self.series(ax, eps, case + ": clustered", color, "o", x_scale=1e-3,
-                            annotate=lambda r: "eps " + r["value"])
+                            annotate=(lambda r: r["value"]) if k == 0 else None)
                 exact = [r for r in rows if r["case"] == case and r["knob"] == "tm_exact"]
                 self.series(ax, exact, None, color, "*", x_scale=1e-3, line=False)
                 auto = [r for r in rows if r["case"] == case and r["knob"] == "tm_auto"]
-                self.series(ax, auto, None, color, "^", x_scale=1e-3, line=False, annotate=lambda r: r["value"])
-            ax.plot([], [], "*", color="grey", label="exact (all pairs, float32)")
-            ax.plot([], [], "^", color="grey", label="auto: quality presets")
+                self.series(ax, auto, None, color, "^", x_scale=1e-3, line=False)
+            ax.plot([], [], "*", color="grey", markersize=10, label="exact (all pairs, float32)")
+            ax.plot([], [], "^", color="grey", label="auto with the quality presets")
             ax.set(xscale="log", yscale="log", title=mesh, xlabel="GPU time (s)",
                    ylabel="t_m error, max over sampled vertices (relative)")
-            self.pareto_legend(ax)
+            self.pareto_legend(ax, below=True)
         self.save(fig, "tm.png")
 
     def presets(self):
@@ -238,8 +260,13 @@ class Plotter:
                 pts = sorted(self.select(knob=knob, mesh=mesh), key=lambda r: texels(r["value"]))
                 for r in pts:
                     r["_x"], r["_y"] = texels(r["value"]), r["err_max"]
-                self.series(ax, pts, "f(cos, t)" if mesh == "(any)" else mesh, "C%d" % k, "o", x_scale=4.0 / 1024,
-                            annotate=lambda r: r["value"])
+                square = [r for r in pts if is_square_lut(r["value"])]  # the (N+1) x N sweep
+                other = [r for r in pts if not is_square_lut(r["value"])]  # the renderer's default
+                label = "f(cos, t)" if mesh == "(any)" else mesh
+                note = (lambda r: r["value"]) if k == 0 else None
+                self.series(ax, square, label + ": (N+1) x N", "C%d" % k, "o", x_scale=4.0 / 1024, annotate=note)
+                self.series(ax, other, label + ": default size", "C%d" % k, "*", x_scale=4.0 / 1024, line=False,
+                            annotate=note)
             ax.set(xscale="log", yscale="log", xlabel="LUT memory (KB)", ylabel=ylabel)
             self.pareto_legend(ax)
         self.save(fig, "lut.png")
