@@ -34,25 +34,30 @@ OwnedSetLayout make_push_set_layout(const Context& ctx, std::span<const VkDescri
     return OwnedSetLayout(ctx.device(), l);
 }
 
-Kernel::Kernel(Context& ctx, const KernelDesc& desc)
-    : ctx_(&ctx), name_(desc.name), bindings_(desc.bindings), push_size_(desc.push_size), local_size_(desc.local_size)
+OwnedPipelineLayout make_pipeline_layout(const Context& ctx, VkDescriptorSetLayout set_layout, VkShaderStageFlags stages,
+                                         uint32_t push_size, const char* name)
 {
-    if (desc.push_size > ctx.limits().maxPushConstantsSize)
-        throw Error(std::string("kernel ") + desc.name + ": push constants of " + std::to_string(desc.push_size) +
+    if (push_size > ctx.limits().maxPushConstantsSize)
+        throw Error(std::string(name) + ": push constants of " + std::to_string(push_size) +
                     " bytes exceed the device's " + std::to_string(ctx.limits().maxPushConstantsSize));
-    local_size_ = std::min(local_size_, ctx.limits().maxComputeWorkGroupSize[0]);
-    set_layout_ = make_push_set_layout(ctx, bindings_, VK_SHADER_STAGE_COMPUTE_BIT);
-
-    VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, desc.push_size};
-    VkDescriptorSetLayout sl = set_layout_;
+    VkPushConstantRange range{stages, 0, push_size};
     VkPipelineLayoutCreateInfo lci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
     lci.setLayoutCount = 1;
-    lci.pSetLayouts = &sl;
-    lci.pushConstantRangeCount = desc.push_size ? 1 : 0;
+    lci.pSetLayouts = &set_layout;
+    lci.pushConstantRangeCount = push_size ? 1 : 0;
     lci.pPushConstantRanges = &range;
     VkPipelineLayout pl;
     check(vkCreatePipelineLayout(ctx.device(), &lci, nullptr, &pl), "vkCreatePipelineLayout");
-    layout_ = OwnedPipelineLayout(ctx.device(), pl);
+    ctx.set_name(pl, VK_OBJECT_TYPE_PIPELINE_LAYOUT, name);
+    return OwnedPipelineLayout(ctx.device(), pl);
+}
+
+Kernel::Kernel(Context& ctx, const KernelDesc& desc)
+    : ctx_(&ctx), name_(desc.name), bindings_(desc.bindings), push_size_(desc.push_size), local_size_(desc.local_size)
+{
+    local_size_ = std::min(local_size_, ctx.limits().maxComputeWorkGroupSize[0]);
+    set_layout_ = make_push_set_layout(ctx, bindings_, VK_SHADER_STAGE_COMPUTE_BIT);
+    layout_ = make_pipeline_layout(ctx, set_layout_, VK_SHADER_STAGE_COMPUTE_BIT, desc.push_size, desc.name);
 
     // Constant 0 is the group size; the kernel's own constants follow as 1, 2, ...
     std::vector<uint32_t> values{local_size_};

@@ -84,6 +84,11 @@ void push_bindings(const Context& ctx, VkCommandBuffer cmd, VkPipelineBindPoint 
 /// A push-descriptor set layout for `types` visible to `stages`.
 OwnedSetLayout make_push_set_layout(const Context& ctx, std::span<const VkDescriptorType> types, VkShaderStageFlags stages);
 
+/// The pipeline layout every Jade pipeline has: one push-descriptor set and push constants
+/// (`push_size` bytes, checked against the device limit) for `stages`.
+OwnedPipelineLayout make_pipeline_layout(const Context& ctx, VkDescriptorSetLayout set_layout, VkShaderStageFlags stages,
+                                         uint32_t push_size, const char* name);
+
 OwnedShaderModule make_shader_module(const Context& ctx, std::span<const uint32_t> spirv, const char* name);
 
 /// Full memory barrier between compute passes (writes of one visible to reads of the next).

@@ -13,22 +13,8 @@ constexpr VkShaderStageFlags kStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_ST
 GraphicsPipeline::GraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& desc)
     : ctx_(&ctx), name_(desc.name), bindings_(desc.bindings), push_size_(desc.push_size)
 {
-    if (desc.push_size > ctx.limits().maxPushConstantsSize)
-        throw Error(std::string("pipeline ") + desc.name + ": push constants of " + std::to_string(desc.push_size) +
-                    " bytes exceed the device's " + std::to_string(ctx.limits().maxPushConstantsSize));
     set_layout_ = make_push_set_layout(ctx, bindings_, kStages);
-
-    VkPushConstantRange range{kStages, 0, desc.push_size};
-    VkDescriptorSetLayout sl = set_layout_;
-    VkPipelineLayoutCreateInfo lci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    lci.setLayoutCount = 1;
-    lci.pSetLayouts = &sl;
-    lci.pushConstantRangeCount = desc.push_size ? 1 : 0;
-    lci.pPushConstantRanges = &range;
-    VkPipelineLayout pl;
-    check(vkCreatePipelineLayout(ctx.device(), &lci, nullptr, &pl), "vkCreatePipelineLayout");
-    layout_ = OwnedPipelineLayout(ctx.device(), pl);
-    ctx.set_name(pl, VK_OBJECT_TYPE_PIPELINE_LAYOUT, desc.name);
+    layout_ = make_pipeline_layout(ctx, set_layout_, kStages, desc.push_size, desc.name);
 
     std::vector<VkSpecializationMapEntry> entries(desc.constants.size());
     for (uint32_t i = 0; i < entries.size(); ++i) entries[i] = {i, i * 4u, 4};
