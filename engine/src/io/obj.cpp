@@ -70,6 +70,28 @@ void add_normals(const tinyobj::attrib_t& attrib, const std::vector<tinyobj::sha
     }
 }
 
+/// tinyobjloader's "vw" extension (skin weights) converts each joint id to int unchecked, which is
+/// undefined behaviour for ids like 1e39 (found by fuzz_obj). Jade reads no skin weights, so such
+/// lines are turned into comments (same length, same line numbers) before parsing.
+std::string without_skin_weights(const std::string& bytes)
+{
+    std::string out;
+    bool line_start = true;
+    for (size_t i = 0; i < bytes.size(); ++i) {
+        const char c = bytes[i];
+        if (c == '\n' || c == '\r') {
+            line_start = true;
+        } else if (line_start && c != ' ' && c != '\t') {
+            line_start = false;
+            if (c == 'v' && i + 2 < bytes.size() && bytes[i + 1] == 'w' && (bytes[i + 2] == ' ' || bytes[i + 2] == '\t')) {
+                if (out.empty()) out = bytes;  // copied only when the file has such a line
+                out[i] = '#';
+            }
+        }
+    }
+    return out;
+}
+
 }  // namespace
 
 TriangleMesh read_obj(const std::string& name, const std::string& bytes)
@@ -80,7 +102,8 @@ TriangleMesh read_obj(const std::string& name, const std::string& bytes)
     config.triangulate = false;
     config.vertex_color = false;
     tinyobj::ObjReader reader;
-    if (!reader.ParseFromString(bytes, std::string(), config))
+    const std::string cleaned = without_skin_weights(bytes);
+    if (!reader.ParseFromString(cleaned.empty() ? bytes : cleaned, std::string(), config))
         fail(name, "tinyobjloader: " + one_line(reader.Error().empty() ? "parse failed" : reader.Error()));
 
     TriangleMesh mesh;
