@@ -345,7 +345,7 @@ std::string summary_markdown(const std::vector<Row>& rows, const Plan& plan, con
           "float32 are measured. The exact row is the float32 (compensated) against float64 error.\n"
        << "* **Times**: GPU = timestamp queries (`BakeTimings::gpu_stages`, summed), wall = the whole call "
           "(CPU tree and BVH builds, upload, read-back). One run each (AO passes under 300 ms: best of 3); "
-          "other processes on the machine make them noisy by ±20 %.\n"
+          "other processes on the machine (parallel builds) make them noisy: compare within a table, not across runs.\n"
        << "* **Bold** rows are on the Pareto front of their table (no other row is both faster and more "
           "accurate): GPU time against RMS for AO, against max for t_m; texels against max for the LUT.\n\n";
 
