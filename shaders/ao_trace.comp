@@ -7,7 +7,7 @@
 // 65,535 loop iterations per invocation (docs/lavapipe.md).
 #include "common.glsl"
 #include "rays.glsl"
-#include "bvh.glsl"
+#include "bvh.glsl"  // ray_hits_box
 
 layout(push_constant, scalar) uniform Push {
     uint vertex_count;
@@ -16,20 +16,18 @@ layout(push_constant, scalar) uniform Push {
     uint low_discrepancy;
     float epsilon;       // origin offset along the normal, mesh units
     float max_distance;  // mesh units
-    uint node_count;
+    uint item_count;
 } pc;
 
 layout(binding = 0, scalar) readonly buffer Positions { vec3 positions[]; };
 layout(binding = 1, scalar) readonly buffer Normals { vec3 normals[]; };
-layout(binding = 2, scalar) readonly buffer Triangles { vec3 triangle_corners[]; }; // 3 per triangle, BVH order
-layout(binding = 3, scalar) readonly buffer Nodes { BvhNode nodes[]; };
-layout(binding = 4, scalar) readonly buffer Counts { uint node_counts[]; };
-layout(binding = 5, scalar) buffer Hits { uint hits[]; };
+// The BVH flattened into items, nodes and triangles in pre-order (engine/src/bake/ray_items.hpp).
+layout(binding = 2) uniform usamplerBuffer items;
+layout(binding = 3, scalar) buffer Hits { uint hits[]; };
 
-// Möller–Trumbore, both faces; true when the hit lies in (0, tmax].
-bool hits_triangle(vec3 o, vec3 d, float tmax, vec3 a, vec3 b, vec3 c)
+// Möller–Trumbore, both faces; true when the hit lies in (0, tmax]. e1 = b − a, e2 = c − a.
+bool hits_triangle(vec3 o, vec3 d, float tmax, vec3 a, vec3 e1, vec3 e2)
 {
-    vec3 e1 = b - a, e2 = c - a;
     vec3 p = cross(d, e2);
     float det = dot(e1, p);
     float inv = 1.0 / det;
@@ -46,19 +44,18 @@ bool occluded(vec3 o, vec3 d)
     vec3 inv_d = 1.0 / d;
     uint i = 0u;
     bool hit = false;
-    // No early return from inside the loop: lavapipe mis-handles returns in divergent loops.
-    while (i < pc.node_count && !hit) {
-        BvhNode node = nodes[i];
-        bool enter = ray_hits_box(o, inv_d, pc.max_distance, node.lo, node.hi);
-        bool leaf = (node.first_and_leaf & JADE_LEAF_BIT) != 0u;
-        if (enter && leaf) {
-            uint first = node.first_and_leaf & ~JADE_LEAF_BIT;
-            uint end = first + node_counts[i];
-            for (uint t = first; t < end && !hit; ++t)
-                hit = hits_triangle(o, d, pc.max_distance, triangle_corners[3u * t], triangle_corners[3u * t + 1u],
-                                    triangle_corners[3u * t + 2u]);
-        }
-        i = (enter && !leaf) ? i + 1u : node.escape;  // first child, or skip the subtree
+    // One item per iteration; both tests run on its texels and its kind picks the answer
+    // (lavapipe would run both anyway). No early return from inside the loop: lavapipe
+    // mis-handles returns in divergent loops.
+    while (i < pc.item_count && !hit) {
+        uvec4 t0 = texelFetch(items, int(3u * i));
+        uvec4 t1 = texelFetch(items, int(3u * i + 1u));
+        uvec4 t2 = texelFetch(items, int(3u * i + 2u));
+        vec3 p0 = uintBitsToFloat(t0.xyz), p1 = uintBitsToFloat(t1.xyz), p2 = uintBitsToFloat(t2.xyz);
+        bool triangle = t1.w != 0u;
+        bool enter = ray_hits_box(o, inv_d, pc.max_distance, p0, p1);
+        hit = triangle && hits_triangle(o, d, pc.max_distance, p0, p1, p2);
+        i = (triangle || enter) ? i + 1u : t0.w;
     }
     return hit;
 }

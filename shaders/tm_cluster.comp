@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_vote : require
 #extension GL_KHR_shader_subgroup_ballot : require
 // t_m with an error-controlled far field (Barnes–Hut over the point tree).
@@ -19,6 +20,10 @@
 // Everything not accepted down to the leaves is summed as point pairs; the disk pairs and the
 // self disk come from the near pass (tm_near.comp), which started the partial sums. A node is
 // never accepted while it could hold a disk pair (r − s below its largest reach 4ρ_j).
+//
+// Lavapipe (docs/lavapipe.md): a memory load is a loop over the lanes and both sides of every
+// branch run, so each iteration makes one texel fetch per lane and shares the results across
+// the subgroup (8 lanes at least), and one evaluation serves nodes and sources alike.
 #include "common.glsl"
 #include "tm_common.glsl"
 #include "bvh.glsl"
@@ -27,26 +32,17 @@ layout(push_constant, scalar) uniform Push {
     uint vertex_count;
     uint node_count;
     float epsilon;    // θ, the opening ratio
-    uint work_budget; // node visits + leaf sources per dispatch (lavapipe's loop limit)
+    uint work_budget; // loop iterations per dispatch (lavapipe's loop limit)
 } pc;
 
-struct Cluster {
-    vec3 center;
-    float weight;
-    float radius;
-    float reach;  // largest NEAR_FACTOR·ρ_j of the node's sources
-    float cov[6]; // Σ w·(p − center)(p − center)ᵀ: xx, yy, zz, xy, xz, yz
-};
+// Nodes (cluster_refit.comp: 4 texels each), then the sources in tree order (tm_common.glsl:
+// 2 texels each), as RGBA32UI.
+layout(binding = 1) uniform usamplerBuffer tree;
+layout(binding = 2, scalar) readonly buffer Order { uint order[]; };  // tree → bake vertex
+// Per tree slot: the node to resume from, and the cursor over an opened leaf's sources.
+layout(binding = 3, scalar) buffer Resume { uvec3 resume[]; };        // zero at start
 
-layout(binding = 1, scalar) readonly buffer Sources { vec4 sources[]; };        // tree order
-layout(binding = 2, scalar) readonly buffer Visibility { float visibility[]; }; // tree order
-layout(binding = 3, scalar) readonly buffer Nodes { BvhNode nodes[]; };
-layout(binding = 4, scalar) readonly buffer Counts { uint node_counts[]; };
-layout(binding = 5, scalar) readonly buffer Clusters { Cluster clusters[]; };
-layout(binding = 6, scalar) readonly buffer Order { uint order[]; };        // tree → bake vertex
-layout(binding = 7, scalar) buffer Resume { uint resume_node[]; };          // per tree slot; 0 at start
-
-#define TM_STATE_BINDING 8
+#define TM_STATE_BINDING 4
 #include "tm_state.glsl"
 
 void main()
@@ -56,75 +52,98 @@ void main()
     uint k_lane = jade_thread_index();
     bool in_range = k_lane < pc.vertex_count;
     uint k = min(k_lane, pc.vertex_count - 1u);
-    uint i = resume_node[k];
-    float total_weight = clusters[0].weight;  // the root holds W_total
-    if (i >= pc.node_count || total_weight == 0.0) return;  // done (uniform: the subgroup moves as one)
+    uint lane = gl_SubgroupInvocationID & 7u;
+    uvec3 state = subgroupBroadcastFirst(resume[k]);
+    uint i = state.x, j = state.y, j_end = state.z;  // node; source cursor [j, j_end)
+    float total_weight = uintBitsToFloat(texelFetch(tree, 0).w);  // the root holds W_total
+    if ((i >= pc.node_count && j >= j_end) || total_weight == 0.0) return;  // done (uniform)
+    uint first_point = 4u * pc.node_count;
     uint vertex = order[k];
-    vec3 x = sources[k].xyz;
+    vec3 x = uintBitsToFloat(texelFetch(tree, int(first_point + 2u * k)).xyz);
     vec3 sum = partial_sum[k], comp = partial_comp[k];
     Profile prof[3] = load_profiles();
 
+    // One loop iteration is one node, or one source of an opened leaf (a cluster of radius 0):
+    // lavapipe runs every instruction of the loop body on every iteration, so the body is one
+    // evaluation that serves both, and no branch holds arithmetic of its own.
     uint work = 0u;
-    while (i < pc.node_count && work < pc.work_budget) {
-        i = subgroupBroadcastFirst(i);  // uniform in fact; saying so turns node loads into one load
-        Cluster cl = clusters[i];
-        uint first_and_leaf = nodes[i].first_and_leaf;
-        uint escape = nodes[i].escape;
+    while ((i < pc.node_count || j < j_end) && work < pc.work_budget) {
+        bool in_leaf = j < j_end;  // uniform
+        // One fetch per lane: lanes 0..3 the node's texels, lanes 4..5 the source's.
+        uint node_texel = 4u * min(i, pc.node_count - 1u) + (lane & 3u);
+        uint source_texel = first_point + 2u * min(j, pc.vertex_count - 1u) + (lane & 1u);
+        uvec4 mine = texelFetch(tree, int(lane < 4u ? node_texel : source_texel));
+        vec4 node_cw = uintBitsToFloat(subgroupBroadcast(mine, 0u));
+        uvec4 shape = subgroupBroadcast(mine, 1u);
+        vec4 cov_a = uintBitsToFloat(subgroupBroadcast(mine, 2u));
+        vec2 cov_b = uintBitsToFloat(subgroupBroadcast(mine, 3u).xy);
+        vec4 source_pw = uintBitsToFloat(subgroupBroadcast(mine, 4u));
+        float source_near_r2 = uintBitsToFloat(subgroupBroadcast(mine, 5u).x);
         work += 1u;
-        if (cl.weight == 0.0) {  // fully occluded: contributes nothing
-            i = escape;
-        } else if ((first_and_leaf & JADE_LEAF_BIT) == 0u) {
-            vec3 to_node = cl.center - x;
-            float r = length(to_node);
-            float s = cl.radius;
-            bool accept = r - s >= cl.reach;
-            vec3 u = to_node / r;
-            float cuu = u.x * u.x * cl.cov[0] + u.y * u.y * cl.cov[1] + u.z * u.z * cl.cov[2] +
-                        2.0 * (u.x * u.y * cl.cov[3] + u.x * u.z * cl.cov[4] + u.y * u.z * cl.cov[5]);
-            float trace = cl.cov[0] + cl.cov[1] + cl.cov[2];
-            vec3 far = vec3(0.0);
-            [[unroll]] for (uint c = 0u; c < CHANNELS; ++c) {
-                ProfileDerivatives at = profile_derivatives(prof[c], r);
-                float second, tangential, decay_length;
-                if (at.has_derivatives) {
-                    second = at.r2;
-                    tangential = at.r1 / r;
-                    decay_length = at.r0 / max(abs(at.r1), 1e-30);
-                } else {
-                    // Dipole: finite differences over the node.
-                    float inner = profile_r(prof[c], max(r - s, 1e-30)), outer = profile_r(prof[c], r + s);
-                    second = (inner - 2.0 * at.r0 + outer) / (s * s);
-                    tangential = (outer - inner) / (2.0 * s * r);
-                    decay_length = 2.0 * s * at.r0 / max(inner - outer, 1e-30);
-                }
-                // Opening criterion: the node is small against both its distance and the length
-                // over which R changes there; the quadrupole's remainder is O((s/r)³, (s/ℓ)³).
-                // Or the node is faint: even its nearest point contributes less than θ³/1000 of
-                // its share of an open plane's t_m = 1 (what far nodes of a narrow channel are).
-                bool faint = profile_r(prof[c], max(r - s, 1e-30)) * total_weight <= 1e-3 * pc.epsilon * pc.epsilon * pc.epsilon;
-                accept = accept && (s <= pc.epsilon * min(r, decay_length) || faint);
-                float quadrupole = 0.5 * ((second - tangential) * cuu + tangential * trace);
-                far[c] = cl.weight * at.r0 + quadrupole;
+        if (in_leaf) {
+            node_cw = source_pw;
+            cov_a = vec4(0.0);
+            cov_b = vec2(0.0);
+        }
+        float weight = node_cw.w;
+        float s = in_leaf ? 0.0 : uintBitsToFloat(shape.x);
+        float reach = uintBitsToFloat(shape.y);
+        uint escape = shape.z, range = shape.w;
+
+        vec3 to_node = node_cw.xyz - x;
+        float r = length(to_node);
+        vec3 u = to_node / max(r, 1e-30);
+        float cuu = u.x * u.x * cov_a.x + u.y * u.y * cov_a.y + u.z * u.z * cov_a.z +
+                    2.0 * (u.x * u.y * cov_a.w + u.x * u.z * cov_b.x + u.y * u.z * cov_b.y);
+        float trace = cov_a.x + cov_a.y + cov_a.z;
+        float r_safe = max(r, 1e-30);
+        bool accept = r - s >= reach;
+        vec3 far = vec3(0.0);
+        [[unroll]] for (uint c = 0u; c < CHANNELS; ++c) {
+            ProfileDerivatives at = profile_derivatives(prof[c], r_safe);
+            float second, tangential, decay_length;
+            if (at.has_derivatives) {
+                second = at.r2;
+                tangential = at.r1 / r_safe;
+                decay_length = at.r0 / max(abs(at.r1), 1e-30);
+            } else {
+                // Dipole: finite differences over the node.
+                float h = max(s, 1e-30);
+                float inner = profile_r(prof[c], max(r - h, 1e-30)), outer = profile_r(prof[c], r + h);
+                second = (inner - 2.0 * at.r0 + outer) / (h * h);
+                tangential = (outer - inner) / (2.0 * h * r_safe);
+                decay_length = 2.0 * h * at.r0 / max(inner - outer, 1e-30);
             }
-            accept = subgroupAll(accept);
-            if (accept) compensated_add(sum, comp, far);
-            i = accept ? escape : i + 1u;
+            // Opening criterion: the node is small against both its distance and the length
+            // over which R changes there (the quadrupole's remainder is O((s/r)³, (s/ℓ)³)), or
+            // it is faint: even its nearest point adds less than θ³/1000 of its share of an
+            // open plane's t_m = 1, R(r − s)·A_total ≤ θ³/1000, a distance precomputed per
+            // channel (Profile.faint_radius, bake/gpu_profile.hpp).
+            bool is_faint = r - s >= prof[c].faint_radius;
+            accept = accept && (s <= pc.epsilon * min(r, decay_length) || is_faint);
+            // (A point - a source, or a node of radius 0 - has no quadrupole; the dipole's finite
+            // differences would divide by zero.)
+            float quadrupole = s > 0.0 ? 0.5 * ((second - tangential) * cuu + tangential * trace) : 0.0;
+            far[c] = weight * at.r0 + quadrupole;
+        }
+        if (in_leaf) {
+            // A source within its near radius is the near pass's, and the target is not its own source.
+            bool counts = r * r >= source_near_r2 && r > 0.0;
+            compensated_add(sum, comp, counts ? far : vec3(0.0));
+            j += 1u;
         } else {
-            uint begin = first_and_leaf & ~JADE_LEAF_BIT;
-            uint end = begin + node_counts[i];
-            vec3 leaf = vec3(0.0);
-            for (uint j = begin; j < end; ++j) {
-                float vis = visibility[j];
-                vec4 s = sources[j];
-                float r = distance(x, s.xyz);
-                [[unroll]] for (uint c = 0u; c < CHANNELS; ++c) leaf[c] += vis * far_pair(prof[c], r, s.w);
+            accept = subgroupAll(accept) && weight > 0.0;  // uniform: the subgroup walks as one
+            if (accept) compensated_add(sum, comp, far);
+            bool open_leaf = !accept && weight > 0.0 && jade_range_is_leaf(range);
+            if (open_leaf) {
+                j = jade_range_first(range);
+                j_end = j + jade_range_count(range);
             }
-            work += end - begin;
-            compensated_add(sum, comp, leaf);
-            i = escape;
+            // Accepted, empty or an opened leaf: skip the subtree; else descend.
+            i = (accept || weight == 0.0 || open_leaf) ? escape : i + 1u;
         }
     }
     if (!in_range) return;
-    resume_node[k] = i;
+    resume[k] = uvec3(i, j, j_end);
     save_partial(k, vertex, sum, comp);
 }

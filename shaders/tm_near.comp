@@ -1,5 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_ballot : require
 // The near field of t_m: the self disk, (1 − A_o(i))·cdf(ρ_i), plus every disk pair of the
 // target's near list (bake/near_field.hpp), integrated exactly over the source's disk. Starts
 // the partial sums that the far passes (tm_exact, tm_cluster) add to. One thread per tree slot.

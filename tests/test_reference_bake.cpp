@@ -110,7 +110,7 @@ TEST(Bvh, StructureOrderAndEscapePointers)
             std::vector<int> seen(n, 0);
             for (uint32_t i = 0; i < count; ++i) {
                 const bake::BvhNode& node = bvh.nodes[i];
-                const uint32_t first = node.first_and_leaf & ~bake::kLeafBit, c = bvh.counts[i];
+                const uint32_t first = node.first(), c = bvh.counts[i];
                 ASSERT_LE(first + c, n);
                 ASSERT_GE(c, 1u);
                 glm::vec3 ulo = lo[bvh.order[first]], uhi = hi[bvh.order[first]];
@@ -122,16 +122,17 @@ TEST(Bvh, StructureOrderAndEscapePointers)
                 EXPECT_EQ(node.hi, uhi) << "node " << i;
                 ASSERT_GT(node.escape, i);
                 ASSERT_LE(node.escape, count);
-                if (node.first_and_leaf & bake::kLeafBit) {
+                if (node.leaf()) {
                     EXPECT_LE(c, leaf);
+                    EXPECT_EQ(node.leaf_count(), c) << "leaf count packed in the range";
                     EXPECT_EQ(node.escape, i + 1);
                     for (uint32_t k = first; k < first + c; ++k) ++seen[bvh.order[k]];
                 } else {
                     EXPECT_GT(c, leaf);
                     const uint32_t a = i + 1, b = bvh.nodes[a].escape;  // the two children
                     ASSERT_LT(b, count);
-                    EXPECT_EQ(bvh.nodes[a].first_and_leaf & ~bake::kLeafBit, first);
-                    EXPECT_EQ(bvh.nodes[b].first_and_leaf & ~bake::kLeafBit, first + bvh.counts[a]);
+                    EXPECT_EQ(bvh.nodes[a].first(), first);
+                    EXPECT_EQ(bvh.nodes[b].first(), first + bvh.counts[a]);
                     EXPECT_EQ(bvh.counts[a] + bvh.counts[b], c);
                     EXPECT_LE(bvh.counts[b] - bvh.counts[a], 1u) << "median split";
                     EXPECT_EQ(bvh.nodes[b].escape, node.escape);
@@ -144,13 +145,13 @@ TEST(Bvh, StructureOrderAndEscapePointers)
             auto skip = [](uint32_t i) { return bake::pcg_hash(i) % 5 == 0; };
             std::vector<uint32_t> stackless, recursive;
             for (uint32_t i = 0; i < count;) {
-                const bool leaf_node = bvh.nodes[i].first_and_leaf & bake::kLeafBit;
+                const bool leaf_node = bvh.nodes[i].leaf();
                 if (!skip(i) && leaf_node) stackless.push_back(i);
                 i = (skip(i) || leaf_node) ? bvh.nodes[i].escape : i + 1;
             }
             std::function<void(uint32_t)> visit = [&](uint32_t i) {
                 if (skip(i)) return;
-                if (bvh.nodes[i].first_and_leaf & bake::kLeafBit) return recursive.push_back(i);
+                if (bvh.nodes[i].leaf()) return recursive.push_back(i);
                 visit(i + 1);
                 visit(bvh.nodes[i + 1].escape);
             };

@@ -1,15 +1,29 @@
-// bvh.glsl - the node layout of engine/src/bake/bvh.hpp (pre-order, escape pointers).
+// bvh.glsl - BVH nodes as texels (engine/src/bake/bvh.hpp: pre-order, escape pointers).
+//
+// Node i is texels 2i and 2i + 1 of an RGBA32UI texel buffer: (lo.xyz, escape), (hi.xyz, range)
+// with the floats as bit patterns and range = first | (count − 1) << 27 | leaf << 31.
 #ifndef JADE_BVH_GLSL
 #define JADE_BVH_GLSL
 
 struct BvhNode {
     vec3 lo;
-    uint escape;          // next node after this subtree
+    uint escape;  // next node after this subtree
     vec3 hi;
-    uint first_and_leaf;  // bit 31: leaf; bits 0..30: first primitive of the node's range
+    uint range;   // see jade_range_* below
 };
 
 const uint JADE_LEAF_BIT = 0x80000000u;
+
+bool jade_range_is_leaf(uint range) { return (range & JADE_LEAF_BIT) != 0u; }
+uint jade_range_first(uint range) { return range & 0x07FFFFFFu; }
+uint jade_range_count(uint range) { return ((range >> 27u) & 15u) + 1u; }
+
+BvhNode jade_fetch_node(usamplerBuffer nodes, uint i)
+{
+    uvec4 a = texelFetch(nodes, int(2u * i));
+    uvec4 b = texelFetch(nodes, int(2u * i + 1u));
+    return BvhNode(uintBitsToFloat(a.xyz), a.w, uintBitsToFloat(b.xyz), b.w);
+}
 
 // Does the ray o + t·d, t ∈ [0, tmax], touch the box? (slab test, inv_d = 1/d)
 bool ray_hits_box(vec3 o, vec3 inv_d, float tmax, vec3 lo, vec3 hi)

@@ -8,6 +8,14 @@
 const uint PROFILE_BURLEY = 0u;
 const uint PROFILE_DIPOLE = 1u;
 const uint PROFILE_GAUSSIANS = 2u;
+const uint PROFILE_MIXED = 3u;
+
+// The kind of every channel's profile, a specialisation constant (PROFILE_MIXED: read each
+// profile's own kind at run time). Lavapipe executes both sides of every branch (docs/
+// lavapipe.md), so a shader compiled for one kind skips the other kinds' arithmetic.
+layout(constant_id = 2) const uint PROFILE_KIND = PROFILE_MIXED;
+
+uint profile_kind(uint runtime_kind) { return PROFILE_KIND == PROFILE_MIXED ? runtime_kind : PROFILE_KIND; }
 
 struct Profile {
     uint kind;
@@ -17,6 +25,7 @@ struct Profile {
     float c;      // Dipole: z_v
     float w[6];   // Gaussians: weights (sum 1)
     float v[6];   // Gaussians: variances, units²
+    float faint_radius;  // tm_cluster.comp: clusters farther than this are faint
 };
 
 // e^x − 1 without cancellation for small |x|.
@@ -46,12 +55,12 @@ float dipole_total(Profile p) { return exp(-p.a * p.b) + exp(-p.a * p.c); }
 // R(t)·t, finite at t = 0 for every profile.
 float profile_rt(Profile p, float t)
 {
-    if (p.kind == PROFILE_BURLEY) {
+    if (profile_kind(p.kind) == PROFILE_BURLEY) {
         float d = p.a;
         float slow = exp(-t / (3.0 * d));  // e^{-t/d} = (e^{-t/3d})³: one exp instead of two
         return (slow * slow * slow + slow) / (8.0 * JADE_PI * d);
     }
-    if (p.kind == PROFILE_DIPOLE)
+    if (profile_kind(p.kind) == PROFILE_DIPOLE)
         return (dipole_source_rt(p.a, p.b, t) + dipole_source_rt(p.a, p.c, t)) / (2.0 * JADE_PI * dipole_total(p));
     float s = 0.0;
     for (uint k = 0u; k < p.count; ++k) s += p.w[k] / (2.0 * JADE_PI * p.v[k]) * exp(-t * t / (2.0 * p.v[k]));
@@ -61,7 +70,7 @@ float profile_rt(Profile p, float t)
 // R(t), t > 0.
 float profile_r(Profile p, float t)
 {
-    if (p.kind == PROFILE_GAUSSIANS) {
+    if (profile_kind(p.kind) == PROFILE_GAUSSIANS) {
         float s = 0.0;
         for (uint k = 0u; k < p.count; ++k) s += p.w[k] / (2.0 * JADE_PI * p.v[k]) * exp(-t * t / (2.0 * p.v[k]));
         return s;
@@ -79,10 +88,10 @@ struct ProfileDerivatives {
 ProfileDerivatives profile_derivatives(Profile p, float t)
 {
     ProfileDerivatives o;
-    o.has_derivatives = p.kind != PROFILE_DIPOLE;
+    o.has_derivatives = profile_kind(p.kind) != PROFILE_DIPOLE;
     o.r0 = profile_r(p, t);
     o.r1 = 0.0, o.r2 = 0.0, o.r3 = 0.0;
-    if (p.kind == PROFILE_BURLEY) {
+    if (profile_kind(p.kind) == PROFILE_BURLEY) {
         // R = k·f·g with f = e^{-t/d} + e^{-t/3d}, g = 1/t, k = 1/(8πd)
         float d = p.a, k = 1.0 / (8.0 * JADE_PI * d);
         float e3 = exp(-t / (3.0 * d)), e1 = e3 * e3 * e3;
@@ -91,7 +100,7 @@ ProfileDerivatives profile_derivatives(Profile p, float t)
         o.r1 = k * (f1 * g0 + f0 * g1);
         o.r2 = k * (f2 * g0 + 2.0 * f1 * g1 + f0 * g2);
         o.r3 = k * (f3 * g0 + 3.0 * f2 * g1 + 3.0 * f1 * g2 + f0 * g3);
-    } else if (p.kind == PROFILE_GAUSSIANS) {
+    } else if (profile_kind(p.kind) == PROFILE_GAUSSIANS) {
         for (uint k = 0u; k < p.count; ++k) {
             float v = p.v[k];
             float g = p.w[k] / (2.0 * JADE_PI * v) * exp(-t * t / (2.0 * v));
@@ -106,11 +115,11 @@ ProfileDerivatives profile_derivatives(Profile p, float t)
 // 2π ∫_0^r R(ρ) ρ dρ, the share of the profile inside radius r.
 float profile_cdf(Profile p, float r)
 {
-    if (p.kind == PROFILE_BURLEY) {
+    if (profile_kind(p.kind) == PROFILE_BURLEY) {
         float x = r / p.a;
         return -0.25 * expm1_accurate(-x) - 0.75 * expm1_accurate(-x / 3.0);
     }
-    if (p.kind == PROFILE_DIPOLE)
+    if (profile_kind(p.kind) == PROFILE_DIPOLE)
         return (dipole_source_cdf(p.a, p.b, r) + dipole_source_cdf(p.a, p.c, r)) / dipole_total(p);
     float s = 0.0;
     for (uint k = 0u; k < p.count; ++k) s -= p.w[k] * expm1_accurate(-r * r / (2.0 * p.v[k]));

@@ -20,14 +20,38 @@ Profile[3] load_profiles()
     return Profile[3](profiles[0], profiles[1], profiles[2]);
 }
 
-// Point value A_j·R(r) of source j for a target at distance r, or 0 when the target lies
-// within NEAR_FACTOR disk radii (the near pass, tm_near.comp, integrates those pairs over the
-// disk, and the self disk). Also 0 for the target itself (r = 0).
-float far_pair(Profile p, float r, float area)
+// The far passes read the sources in tree order (exact pass: bake order) from a texel buffer
+// written by gather_sources.comp, two RGBA32F texels per source:
+//   2j:     position.xyz, weight = area·(1 − A_o)
+//   2j + 1: near radius² = NEAR_FACTOR²·area/π, area, 1 − A_o, 0
+// Within the near radius a pair is the near pass's (tm_near.comp, integrated over the disk).
+const float NEAR_RADIUS2_PER_AREA = NEAR_FACTOR * NEAR_FACTOR / JADE_PI;
+
+// Point value weight·R(r) of a source at squared distance r2 from the target with near radius²
+// near_r2, or 0 when the pair is the near pass's, or the target itself (r2 = 0).
+float far_pair(Profile p, float r2, float near_r2, float weight)
 {
-    bool far = r * r >= (NEAR_FACTOR * NEAR_FACTOR / JADE_PI) * area;
-    float value = area * profile_r(p, max(r, 1e-30));
-    return far ? value : 0.0;
+    float value = weight * profile_r(p, sqrt(max(r2, 1e-30)));
+    return (r2 >= near_r2 && r2 > 0.0) ? value : 0.0;
+}
+
+// The point sums of a group of up to 8 sources, fetched cooperatively: lane m of the subgroup
+// has fetched source m's texels (pw, extra); each lane adds the first `count` sources to its
+// own target x. One texel fetch per lane serves 8 targets × 8 sources: lavapipe's loads cost
+// far more than its arithmetic (docs/lavapipe.md). Needs a subgroup of at least 8 lanes with
+// all lanes active.
+vec3 far_group(Profile prof[3], vec3 x, vec4 pw, float near_r2, uint count)
+{
+    vec3 total = vec3(0.0);
+    [[unroll]] for (uint m = 0u; m < 8u; ++m) {
+        vec4 s = subgroupBroadcast(pw, m);
+        float s_near_r2 = subgroupBroadcast(near_r2, m);
+        vec3 d = s.xyz - x;
+        float r2 = dot(d, d);
+        float w = m < count ? s.w : 0.0;
+        [[unroll]] for (uint c = 0u; c < CHANNELS; ++c) total[c] += far_pair(prof[c], r2, s_near_r2, w);
+    }
+    return total;
 }
 
 // Kahan–Babuška (Neumaier) summation: `precise` keeps the compiler from re-associating it away.

@@ -1,10 +1,13 @@
 // bake/bvh.cpp - median-split BVH in pre-order with escape pointers (see bvh.hpp).
 #include "bvh.hpp"
 
+#include <jade/error.hpp>
+
 #include <glm/common.hpp>
 
 #include <algorithm>
 #include <cassert>
+#include <string>
 
 namespace jade::bake {
 namespace {
@@ -48,7 +51,7 @@ struct Builder {
         node.lo = box_lo;
         node.hi = box_hi;
         node.escape = uint32_t(bvh.nodes.size());  // the node after this subtree in pre-order
-        node.first_and_leaf = first | (leaf ? kLeafBit : 0u);
+        node.range = BvhNode::pack_range(first, count, leaf);
     }
 };
 
@@ -56,7 +59,9 @@ struct Builder {
 
 Bvh build_bvh(std::span<const glm::vec3> lo, std::span<const glm::vec3> hi, uint32_t leaf_size)
 {
-    assert(lo.size() == hi.size() && leaf_size >= 1 && lo.size() < kLeafBit);
+    assert(lo.size() == hi.size() && leaf_size >= 1 && leaf_size <= kMaxLeafSize);
+    if (lo.size() >= kMaxPrimitives)
+        throw Error("BVH: " + std::to_string(lo.size()) + " primitives exceed the limit of " + std::to_string(kMaxPrimitives));
     Builder b{lo, hi, {}, std::max(leaf_size, 1u), {}};
     const uint32_t n = uint32_t(lo.size());
     b.centroid.resize(n);

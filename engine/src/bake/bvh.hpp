@@ -15,12 +15,24 @@
 
 namespace jade::bake {
 
-/// GPU layout (std430, 32 bytes); mirrored by `BvhNode` in shaders/include/bvh.glsl.
+constexpr uint32_t kLeafBit = 0x80000000u;
+constexpr uint32_t kMaxLeafSize = 16;            ///< leaf counts are stored in 4 bits
+constexpr uint32_t kMaxPrimitives = 1u << 27;    ///< first primitives are stored in 27 bits
+
+/// GPU layout: two RGBA32UI texels (32 bytes), read by shaders/include/bvh.glsl.
 struct BvhNode {
     glm::vec3 lo;       ///< bounds, mesh units
     uint32_t escape;    ///< next node in pre-order after this subtree
     glm::vec3 hi;
-    uint32_t first_and_leaf; ///< bit 31: leaf; bits 0..30: first primitive of the range
+    uint32_t range;     ///< first primitive | (count − 1) << 27 (leaves only) | leaf << 31
+
+    bool leaf() const { return (range & kLeafBit) != 0; }
+    uint32_t first() const { return range & (kMaxPrimitives - 1); }
+    uint32_t leaf_count() const { return ((range >> 27) & 15u) + 1; }
+    static uint32_t pack_range(uint32_t first, uint32_t count, bool leaf)
+    {
+        return leaf ? first | ((count - 1) << 27) | kLeafBit : first;
+    }
 };
 static_assert(sizeof(BvhNode) == 32);
 
@@ -31,10 +43,8 @@ struct Bvh {
     uint32_t depth = 0;
 };
 
-constexpr uint32_t kLeafBit = 0x80000000u;
-
 /// Builds over primitives given by their bounds (lo[i], hi[i]); leaves hold at most
-/// `leaf_size` primitives. Splits at the median of the centroids along the widest axis of the
+/// `leaf_size` (≤ kMaxLeafSize) primitives; at most kMaxPrimitives primitives. Splits at the median of the centroids along the widest axis of the
 /// centroid bounds (balanced: depth ≤ ⌈log2(n / leaf_size)⌉ + 1).
 Bvh build_bvh(std::span<const glm::vec3> lo, std::span<const glm::vec3> hi, uint32_t leaf_size);
 

@@ -14,8 +14,25 @@ struct GpuProfile {
     uint32_t kind = 0, count = 0;
     float a = 0, b = 0, c = 0;
     float w[6] = {}, v[6] = {};
+    /// Beyond this distance a cluster is faint (tm_cluster.comp); set by the far pass's setup.
+    float faint_radius = 3.0e38f;
 };
-static_assert(sizeof(GpuProfile) == 68);
+static_assert(sizeof(GpuProfile) == 72);
+
+/// The smallest r with R(r)·total_weight ≤ threshold (R decreases with r for every kind), by
+/// bisection in float64: the clustered pass then tests distances instead of evaluating R.
+inline float faint_radius(const ChannelProfile& p, double total_weight, double threshold, double scale)
+{
+    auto faint = [&](double r) { return p.R(r) * total_weight <= threshold; };
+    double lo = 1e-12 * scale, hi = 1e12 * scale;
+    if (faint(lo)) return 0.0f;
+    if (!faint(hi)) return 3.0e38f;
+    for (int k = 0; k < 200 && hi > lo * (1 + 1e-7); ++k) {
+        const double mid = std::sqrt(lo * hi);  // bisection in log r: the bracket spans 24 decades
+        (faint(mid) ? hi : lo) = mid;
+    }
+    return float(hi);
+}
 
 inline GpuProfile to_gpu(const ChannelProfile& p)
 {

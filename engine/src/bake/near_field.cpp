@@ -18,7 +18,7 @@ NearLists build_near_lists(const PreparedMesh& mesh, const Bvh& tree)
     // Largest reach inside each node: its range of tree-ordered vertices.
     std::vector<float> node_reach(tree.nodes.size(), 0.0f);
     for (size_t k = 0; k < tree.nodes.size(); ++k) {
-        uint32_t first = tree.nodes[k].first_and_leaf & ~kLeafBit;
+        uint32_t first = tree.nodes[k].first();
         for (uint32_t s = first; s < first + tree.counts[k]; ++s) node_reach[k] = std::max(node_reach[k], reach(tree.order[s]));
     }
 
@@ -35,11 +35,11 @@ NearLists build_near_lists(const PreparedMesh& mesh, const Bvh& tree)
                     k = node.escape;
                     continue;
                 }
-                if (!(node.first_and_leaf & kLeafBit)) {
+                if (!node.leaf()) {
                     ++k;
                     continue;
                 }
-                uint32_t first = node.first_and_leaf & ~kLeafBit;
+                uint32_t first = node.first();
                 for (uint32_t s = first; s < first + tree.counts[k]; ++s) {
                     uint32_t j = tree.order[s];
                     if (j != i && glm::distance(x, mesh.positions[j]) < reach(j)) rows[i].push_back(j);

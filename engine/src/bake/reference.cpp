@@ -142,8 +142,8 @@ struct TriangleScene {
                 i = node.escape;
                 continue;
             }
-            if (node.first_and_leaf & bake::kLeafBit) {
-                const uint32_t first = node.first_and_leaf & ~bake::kLeafBit;
+            if (node.leaf()) {
+                const uint32_t first = node.first();
                 for (uint32_t k = first; k < first + bvh.counts[i]; ++k) {
                     const double t = intersect(k, o, d);
                     if (t > 0.0 && t <= t_max) return true;

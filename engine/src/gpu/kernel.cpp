@@ -2,6 +2,7 @@
 
 #include "gpu/buffer.hpp"
 #include "gpu/context.hpp"
+#include "gpu/texel_view.hpp"
 
 #include <algorithm>
 #include <string>
@@ -9,6 +10,7 @@
 namespace jade::gpu {
 
 Binding::Binding(const Buffer& b) : buffer(b.handle()) {}
+Binding::Binding(const TexelView& v) : texel_view(v.handle()) {}
 
 OwnedShaderModule make_shader_module(const Context& ctx, std::span<const uint32_t> spirv, const char* name)
 {
@@ -111,6 +113,9 @@ void push_bindings(const Context& ctx, VkCommandBuffer cmd, VkPipelineBindPoint 
                             " bytes exceeds maxStorageBufferRange " + std::to_string(ctx.limits().maxStorageBufferRange));
             buffers[i] = {b.buffer, b.offset, b.range};
             w.pBufferInfo = &buffers[i];
+        } else if (types[i] == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER || types[i] == VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER) {
+            if (!b.texel_view) throw Error(std::string(who) + ": binding " + std::to_string(i) + " needs a texel-buffer view");
+            w.pTexelBufferView = &b.texel_view;
         } else {
             if (!b.view) throw Error(std::string(who) + ": binding " + std::to_string(i) + " needs an image");
             images[i] = {b.sampler, b.view, b.layout};

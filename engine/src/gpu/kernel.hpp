@@ -18,6 +18,7 @@ namespace jade::gpu {
 
 class Context;
 class Buffer;
+class TexelView;
 
 struct KernelDesc {
     const char* name = "kernel";
@@ -28,15 +29,18 @@ struct KernelDesc {
     std::vector<uint32_t> constants;         ///< specialisation constants 1, 2, ... (32-bit each)
 };
 
-/// A bound resource: a buffer range, or an image view (storage image or sampled with sampler).
+/// A bound resource: a buffer range, a texel-buffer view, or an image view (storage image or
+/// sampled with sampler).
 struct Binding {
     VkBuffer buffer = VK_NULL_HANDLE;
     VkDeviceSize offset = 0, range = VK_WHOLE_SIZE;
+    VkBufferView texel_view = VK_NULL_HANDLE;
     VkImageView view = VK_NULL_HANDLE;
     VkImageLayout layout = VK_IMAGE_LAYOUT_GENERAL;
     VkSampler sampler = VK_NULL_HANDLE;
 
     Binding(const Buffer& b);  // NOLINT: implicit on purpose, dispatch(..., {a, b, c})
+    Binding(const TexelView& v);  // NOLINT: as above
     Binding(VkBuffer b, VkDeviceSize off = 0, VkDeviceSize r = VK_WHOLE_SIZE) : buffer(b), offset(off), range(r) {}
     static Binding image(VkImageView v, VkImageLayout l, VkSampler s = VK_NULL_HANDLE)
     {

@@ -53,6 +53,7 @@ private:
 };
 
 using OwnedBuffer = Owned<VkBuffer, vkDestroyBuffer>;
+using OwnedBufferView = Owned<VkBufferView, vkDestroyBufferView>;
 using OwnedImage = Owned<VkImage, vkDestroyImage>;
 using OwnedImageView = Owned<VkImageView, vkDestroyImageView>;
 using OwnedSampler = Owned<VkSampler, vkDestroySampler>;
