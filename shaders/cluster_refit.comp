@@ -1,73 +1,112 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Refits the point tree of the t_m pass after positions or AO changed: one thread per node
-// scans the node's contiguous range of sources (tree order) for its weight
-// W = Σ area·(1 − A_o), weighted centre, bounding radius and covariance. No bottom-up
-// dependencies, so one dispatch refits the whole tree (n·depth loads).
+// Refits the point tree of the t_m pass after positions or AO changed, bottom-up: one dispatch
+// per tree level, deepest first. A leaf scans its (at most 8) sources; an inner node combines
+// its two children. Per node: bounds, weight W = Σ area·(1 − A_o), weighted centre c, bounding
+// radius about c, covariance Σ w·(p − c)(p − c)ᵀ (parallel-axis sum of the children's), reach.
 //
 // Output: four RGBA32UI texels per node, fetched by tm_cluster.comp (floats as bit patterns),
 // in the buffer that holds the sources after the nodes:
 //   4i:     centre.xyz, W
 //   4i + 1: radius, reach (largest NEAR_FACTOR·ρ_j of its sources), escape, range (bvh.glsl)
-//   4i + 2: covariance xx, yy, zz, xy      Σ w·(p − c)(p − c)ᵀ, units⁴
+//   4i + 2: covariance xx, yy, zz, xy      units⁴
 //   4i + 3: covariance xz, yz, 0, 0
 #include "common.glsl"
 #include "bvh.glsl"
 
 layout(push_constant, scalar) uniform Push {
-    uint node_count;
+    uint count;        // nodes in this level
+    uint first;        // first entry of this level in `level_nodes`
     uint first_point;  // texel of source 0 (tm_common.glsl), after the nodes in the same buffer
 } pc;
 
-struct TopologyNode {  // bake::BvhNode: the tree's shape, fixed while the mesh deforms
+struct TopologyNode {  // bake::BvhNode: the shape is fixed, the bounds are refitted here
     vec3 lo;
     uint escape;
     vec3 hi;
     uint range;
 };
 
-layout(binding = 0, scalar) readonly buffer Topology { TopologyNode topology[]; };
-layout(binding = 1, scalar) readonly buffer Counts { uint node_counts[]; };
-layout(binding = 2, scalar) readonly buffer Points { vec4 points[]; };  // the tree buffer: sources from first_point
-layout(binding = 3, scalar) writeonly buffer Tree { uvec4 tree[]; };   // the same buffer: nodes
+layout(binding = 0, scalar) buffer Topology { TopologyNode topology[]; };
+layout(binding = 1, scalar) readonly buffer Levels { uint level_nodes[]; };
+layout(binding = 2, scalar) buffer Tree { uvec4 tree[]; };  // nodes, then sources
 
 const float NEAR_FACTOR = 4.0;  // as in tm_common.glsl
 
+struct Cluster {
+    vec3 c;
+    float w;
+    float reach;
+    float cov[6];
+};
+
+Cluster read_cluster(uint i)
+{
+    vec4 a = uintBitsToFloat(tree[4u * i]);
+    float reach = uintBitsToFloat(tree[4u * i + 1u].y);
+    vec4 b = uintBitsToFloat(tree[4u * i + 2u]);
+    vec4 d = uintBitsToFloat(tree[4u * i + 3u]);
+    return Cluster(a.xyz, a.w, reach, float[6](b.x, b.y, b.z, b.w, d.x, d.y));
+}
+
+// Adds a point mass or a child cluster of weight w at p (covariance `cov` about p) to the
+// covariance about c.
+void add_covariance(inout float cov[6], float w, vec3 p, vec3 c, float own[6])
+{
+    vec3 d = p - c;
+    cov[0] += own[0] + w * d.x * d.x;
+    cov[1] += own[1] + w * d.y * d.y;
+    cov[2] += own[2] + w * d.z * d.z;
+    cov[3] += own[3] + w * d.x * d.y;
+    cov[4] += own[4] + w * d.x * d.z;
+    cov[5] += own[5] + w * d.y * d.z;
+}
+
 void main()
 {
-    uint i = jade_thread_index();
-    if (i >= pc.node_count) return;
-    uint first = jade_range_first(topology[i].range);
-    uint end = first + node_counts[i];
-    vec3 lo = vec3(3.0e38), hi = vec3(-3.0e38);
-    float weight = 0.0, max_area = 0.0;
-    vec3 moment = vec3(0.0);
-    for (uint j = first; j < end; ++j) {
-        vec4 s = points[pc.first_point + 2u * j];
-        lo = min(lo, s.xyz);
-        hi = max(hi, s.xyz);
-        weight += s.w;
-        moment += s.w * s.xyz;
-        max_area = max(max_area, points[pc.first_point + 2u * j + 1u].y);
+    uint e = jade_thread_index();
+    if (e >= pc.count) return;
+    uint i = level_nodes[pc.first + e];
+    uint range = topology[i].range;
+    const float none[6] = float[6](0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    vec3 lo = vec3(3.0e38), hi = vec3(-3.0e38), c;
+    float weight = 0.0, reach = 0.0;
+    float cov[6] = none;
+    if (jade_range_is_leaf(range)) {
+        uint first = jade_range_first(range), count = jade_range_count(range);
+        vec3 moment = vec3(0.0);
+        vec4 p[8];
+        [[unroll]] for (uint k = 0u; k < 8u; ++k) {
+            uint j = pc.first_point + 2u * (first + min(k, count - 1u));
+            p[k] = uintBitsToFloat(tree[j]);
+            float area = uintBitsToFloat(tree[j + 1u].y);
+            if (k >= count) p[k].w = 0.0;
+            lo = k < count ? min(lo, p[k].xyz) : lo;
+            hi = k < count ? max(hi, p[k].xyz) : hi;
+            weight += p[k].w;
+            moment += p[k].w * p[k].xyz;
+            reach = k < count ? max(reach, NEAR_FACTOR * sqrt(area / JADE_PI)) : reach;
+        }
+        c = weight > 0.0 ? moment / weight : 0.5 * (lo + hi);
+        c = clamp(c, lo, hi);  // rounding must not put the centre outside its box
+        [[unroll]] for (uint k = 0u; k < 8u; ++k) add_covariance(cov, p[k].w, p[k].xyz, c, none);
+    } else {
+        uint a = i + 1u, b = topology[a].escape;
+        Cluster ca = read_cluster(a), cb = read_cluster(b);
+        lo = min(topology[a].lo, topology[b].lo);
+        hi = max(topology[a].hi, topology[b].hi);
+        weight = ca.w + cb.w;
+        c = weight > 0.0 ? (ca.w * ca.c + cb.w * cb.c) / weight : 0.5 * (lo + hi);
+        c = clamp(c, lo, hi);
+        add_covariance(cov, ca.w, ca.c, c, ca.cov);
+        add_covariance(cov, cb.w, cb.c, c, cb.cov);
+        reach = max(ca.reach, cb.reach);
     }
-    vec3 c = weight > 0.0 ? moment / weight : 0.5 * (lo + hi);
-    c = clamp(c, lo, hi);  // rounding must not put the center outside its box
-    // Second pass for the covariance about the centre (no cancellation, unlike Σw·p·pᵀ − W·c·cᵀ).
-    float cov[6] = float[6](0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
-    for (uint j = first; j < end; ++j) {
-        vec4 s = points[pc.first_point + 2u * j];
-        vec3 d = s.xyz - c;
-        cov[0] += s.w * d.x * d.x;
-        cov[1] += s.w * d.y * d.y;
-        cov[2] += s.w * d.z * d.z;
-        cov[3] += s.w * d.x * d.y;
-        cov[4] += s.w * d.x * d.z;
-        cov[5] += s.w * d.y * d.z;
-    }
+    topology[i].lo = lo;
+    topology[i].hi = hi;
     float radius = length(max(hi - c, c - lo));
-    float reach = NEAR_FACTOR * sqrt(max_area / JADE_PI);
     tree[4u * i] = floatBitsToUint(vec4(c, weight));
-    tree[4u * i + 1u] = uvec4(floatBitsToUint(radius), floatBitsToUint(reach), topology[i].escape, topology[i].range);
+    tree[4u * i + 1u] = uvec4(floatBitsToUint(radius), floatBitsToUint(reach), topology[i].escape, range);
     tree[4u * i + 2u] = floatBitsToUint(vec4(cov[0], cov[1], cov[2], cov[3]));
     tree[4u * i + 3u] = floatBitsToUint(vec4(cov[4], cov[5], 0.0, 0.0));
 }

@@ -37,14 +37,19 @@ void main()
     for (uint e = near_offsets[v]; e < near_offsets[v + 1u]; ++e) {
         uint j = near_indices[e];
         float rho = sqrt(areas[j] / JADE_PI);
-        float r = distance(x, positions[j]);
+        vec3 to_source = positions[j] - x;
+        float r2 = dot(to_source, to_source);
+        float r = sqrt(r2);
+        // A disk pair now, by the far passes' own test (tm_common.glsl): the list holds a
+        // margin of candidates (bake/near_field.hpp), the others are the far passes' points.
+        float weight = r2 < NEAR_RADIUS2_PER_AREA * areas[j] ? 1.0 - ao[j] : 0.0;
         // The disk reaches at most DISK_CAP·r towards the target; the rest of the area stays a
         // point (kDiskCap in bake/disk_integral.hpp): irregular meshes must not count a second
         // self term for stiff profiles.
         float capped = min(rho, DISK_CAP * r);
         float rest = max(areas[j] - JADE_PI * capped * capped, 0.0);
         [[unroll]] for (uint c = 0u; c < CHANNELS; ++c)
-            sum[c] += (1.0 - ao[j]) * (disk_integral(prof[c], r, capped) + rest * profile_r(prof[c], max(r, 1e-30)));
+            sum[c] += weight * (disk_integral(prof[c], r, capped) + rest * profile_r(prof[c], max(r, 1e-30)));
     }
     save_partial(k, v, sum, vec3(0.0));
 }

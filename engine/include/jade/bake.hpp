@@ -26,6 +26,7 @@
 #include <jade/mesh.hpp>
 
 #include <glm/vec3.hpp>
+#include <vulkan/vulkan.h>
 
 #include <cstdint>
 #include <memory>
@@ -121,7 +122,49 @@ public:
 
     struct Impl;
 private:
+    friend class DynamicBake;
     std::unique_ptr<Impl> impl_;
+};
+
+/// The per-frame re-bake of a deforming mesh, all on the GPU (the poster's future work).
+///
+/// Built once from the rest pose: the triangle BVH's and the cluster tree's shapes, the
+/// near-field candidate lists (with a margin: vertices may come up to 1.5× closer than at rest
+/// before a disk pair is missed). Each frame, from the current positions, normals and areas
+/// (same vertices and triangles), `record` refits both trees bottom-up and reruns AO and t_m;
+/// no mesh data goes through the CPU. A refit keeps the tree's shape: for large deformations
+/// build a new DynamicBake (a rebuild) now and then. AO distances stay fractions of the rest
+/// pose's diagonal. Not thread-safe; uses the Baker's pipelines, so the Baker must outlive it.
+class DynamicBake {
+public:
+    DynamicBake(Baker& baker, const PreparedMesh& rest, const Material& material, const BakeSettings& settings = {});
+    ~DynamicBake();
+    DynamicBake(const DynamicBake&) = delete;
+    DynamicBake& operator=(const DynamicBake&) = delete;
+
+    /// The GPU buffers, one entry per bake vertex, tightly packed: positions and normals
+    /// (float3, mesh units, unit normals), areas (float, units²) - written by a deformer (usage:
+    /// storage, transfer destination) - and the results ao (float) and t_m (float3).
+    struct Buffers {
+        VkBuffer positions, normals, areas, ao, tm;
+        uint32_t vertex_count;
+    };
+    Buffers buffers() const;
+
+    /// Records the re-bake into `cmd` (a compute-capable queue of the Baker's device). It begins
+    /// with a barrier that makes earlier compute-shader and transfer writes to the inputs
+    /// visible; when the command buffer has executed, ao and tm hold the results (written by
+    /// compute shaders: make them visible to their next reader with a barrier).
+    void record(VkCommandBuffer cmd);
+
+    /// Convenience: uploads the inputs, records, submits, waits and reads back. Throws
+    /// jade::Error on sizes that do not match the rest pose or non-finite input.
+    BakeResult bake(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals, std::span<const float> areas);
+
+private:
+    void record_timed(VkCommandBuffer cmd, void* timer);
+    struct State;
+    std::unique_ptr<State> state_;
 };
 
 }  // namespace jade

@@ -1,13 +1,15 @@
-// bake/baker.cpp - the GPU bake: AO, then t_m, in one submission.
+// bake/baker.cpp - the GPU bake: AO, then t_m, in one submission; and the per-frame re-bake
+// of a deforming mesh (DynamicBake), which records the same passes after refitting both trees.
 //
 // Data flow (all on the GPU after one upload):
-//   positions, normals, triangle corners (BVH order), BVH   -> ao_trace       -> hit counts
+//   positions, indices                                      -> ray_refit      -> ray items (dynamic only)
+//   positions, normals, ray items (BVH nodes + triangles)   -> ao_trace       -> hit counts
 //   hit counts                                              -> ao_resolve     -> ao
-//   positions, areas, ao, point-tree order                  -> gather_sources -> sources, visibility (tree order)
+//   positions, areas, ao, point-tree order                  -> gather_sources -> sources (tree order)
+//   sources                                                 -> cluster_refit  -> cluster nodes (per level)
 //   positions, areas, ao, near lists                        -> tm_near        -> partial sums (disk pairs, self)
-//   sources, visibility                                     -> cluster_refit  -> node bounds, clusters
-//   sources, visibility, clusters, partial sums             -> tm_cluster ×K  -> t_m
-// The exact method replaces the last three steps by tm_exact over chunks of sources.
+//   cluster nodes, sources, partial sums                    -> tm_cluster ×K  -> t_m
+// The exact method replaces the refit and tm_cluster by tm_exact over chunks of sources.
 // Long sums are split over several dispatches that resume from saved partial sums: lavapipe
 // ends an invocation after 65,535 loop iterations in total (docs/lavapipe.md), and desktop
 // drivers reset a GPU that runs one dispatch for seconds.
@@ -27,6 +29,7 @@
 #include "jade_shaders.hpp"
 
 #include <glm/common.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
 #include <chrono>
@@ -46,6 +49,10 @@ constexpr VkBufferUsageFlags kStorageUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
 constexpr VkBufferUsageFlags kTexelUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
 constexpr uint32_t kTriangleLeafSize = 4;
 constexpr uint32_t kPointLeafSize = 8;
+// Near-field list margins (bake/near_field.hpp): a static bake only needs to cover rounding;
+// a deforming mesh's lists, made at rest, must hold every pair that may come within 4ρ.
+constexpr float kStaticNearMargin = 1.05f;
+constexpr float kDynamicNearMargin = 1.5f;
 // Below this many vertices the all-pairs pass is as fast as building and walking the tree.
 constexpr size_t kExactBelow = 2048;
 
@@ -58,7 +65,8 @@ constexpr uint32_t kClusterWorkPerDispatch = 32768;
 struct AoPush { uint32_t vertex_count, rays, seed, low_discrepancy; float epsilon, max_distance; uint32_t item_count; };
 struct AoResolvePush { uint32_t vertex_count, rays; };
 struct GatherPush { uint32_t vertex_count, first_texel; };
-struct RefitPush { uint32_t node_count, first_point; };
+struct RefitPush { uint32_t count, first, first_point; };
+struct RayRefitPush { uint32_t count, first, mode; };
 struct NearPush { uint32_t vertex_count; };
 struct ExactPush { uint32_t vertex_count, source_begin, source_end; };
 struct ClusterPush { uint32_t vertex_count, node_count; float epsilon; uint32_t work_budget; };
@@ -86,6 +94,11 @@ void validate_ao_settings(const AoSettings& s)
     if (!(s.epsilon_rel >= 0) || !std::isfinite(s.epsilon_rel)) throw Error("AO: epsilon must be ≥ 0");
 }
 
+void validate_tm_settings(const BakeSettings& s)
+{
+    if (!(s.tm_epsilon > 0) || !std::isfinite(s.tm_epsilon)) throw Error("t_m: epsilon must be > 0");
+}
+
 }  // namespace
 
 BakeSettings BakeSettings::preset(Quality q)
@@ -102,7 +115,7 @@ BakeSettings BakeSettings::preset(Quality q)
 struct Baker::Impl {
     gpu::Context& ctx;
     // Pipelines are made on first use: a scene that never needs one never creates it.
-    std::optional<gpu::Kernel> ao_trace, ao_resolve, gather, refit;
+    std::optional<gpu::Kernel> ao_trace, ao_resolve, gather, refit, ray_refit;
     // t_m kernels per [grey (1 channel) or RGB][profile kind: Burley, dipole, Gaussians, mixed].
     std::optional<gpu::Kernel> tm_near[2][4], tm_exact[2][4], tm_cluster[2][4];
 
@@ -128,7 +141,11 @@ struct Baker::Impl {
     }
     const gpu::Kernel& refit_kernel()
     {
-        return kernel(refit, {"cluster_refit", shaders::cluster_refit_comp(), storage_bindings(4), sizeof(RefitPush), 64, {}});
+        return kernel(refit, {"cluster_refit", shaders::cluster_refit_comp(), storage_bindings(3), sizeof(RefitPush), 64, {}});
+    }
+    const gpu::Kernel& ray_refit_kernel()
+    {
+        return kernel(ray_refit, {"ray_refit", shaders::ray_refit_comp(), storage_bindings(5), sizeof(RayRefitPush), 64, {}});
     }
     // Specialisation constants of the t_m kernels: channel count and profile kind.
     static std::vector<uint32_t> tm_constants(const TmVariant& v) { return {v.grey ? 1u : 3u, v.kind}; }
@@ -166,22 +183,39 @@ struct Baker::Impl {
                         " lanes) lack what the far passes need: 8 or more lanes with basic, vote and ballot operations");
     }
 
-    // Buffers of one bake, alive until its submission has finished.
-    struct Frame {
-        gpu::Buffer positions, normals, areas, ray_items, hits, ao;
-        gpu::Buffer profiles, point_order, points, nodes, node_counts, tm;
+
+    // GPU state of one mesh's bake: uploaded inputs, both trees, the passes' buffers. A static
+    // bake builds it, records once and drops it; a DynamicBake keeps it and records every frame.
+    struct MeshState {
+        uint32_t vertex_count = 0;
+        float diagonal = 0;
+        gpu::Buffer positions, normals, areas;
+        // AO: the BVH as ray items; refit data when the mesh deforms.
+        uint32_t item_count = 0;
+        gpu::Buffer ray_items, hits, ao;
+        gpu::TexelView ray_item_texels;
+        gpu::Buffer indices, item_origin, ray_work;  // dynamic only
+        std::vector<uint32_t> ray_work_offsets;     // [0, triangles) then one range per level
+        // t_m.
+        bool exact = false;
+        TmVariant variant{};
+        uint32_t node_count = 0;
+        gpu::Buffer profiles, point_order, points, nodes, node_levels, tm;
         gpu::Buffer partial_sum, partial_comp, resume, near_offsets, near_indices;
-        gpu::TexelView ray_item_texels, point_texels, tree_texels;
+        gpu::TexelView point_texels, tree_texels;
+        std::vector<uint32_t> level_offsets;
     };
 
-    void upload_mesh(Frame& f, const PreparedMesh& mesh)
+    void upload_mesh(MeshState& m, const PreparedMesh& mesh, VkBufferUsageFlags extra_usage = 0)
     {
-        f.positions = gpu::Buffer::from(ctx, mesh.positions, kStorageUsage, "positions");
-        f.normals = gpu::Buffer::from(ctx, mesh.normals, kStorageUsage, "normals");
-        f.areas = gpu::Buffer::from(ctx, mesh.areas, kStorageUsage, "areas");
+        m.vertex_count = uint32_t(mesh.vertex_count());
+        m.diagonal = mesh.diagonal;
+        m.positions = gpu::Buffer::from(ctx, mesh.positions, kStorageUsage | extra_usage, "positions");
+        m.normals = gpu::Buffer::from(ctx, mesh.normals, kStorageUsage | extra_usage, "normals");
+        m.areas = gpu::Buffer::from(ctx, mesh.areas, kStorageUsage | extra_usage, "areas");
     }
 
-    uint32_t prepare_ao(Frame& f, const PreparedMesh& mesh)
+    void prepare_ao(MeshState& m, const PreparedMesh& mesh, bool refittable)
     {
         const size_t tris = mesh.triangle_count();
         std::vector<glm::vec3> lo(tris), hi(tris);
@@ -193,25 +227,161 @@ struct Baker::Impl {
         }
         bake::Bvh bvh = bake::build_bvh(lo, hi, kTriangleLeafSize);
         bake::RayItems items = bake::flatten_ray_items(bvh, mesh);
-        f.ray_items = gpu::Buffer::from(ctx, items.texels, kTexelUsage, "ray items (BVH nodes and triangles)");
-        f.ray_item_texels = gpu::TexelView(ctx, f.ray_items, VK_FORMAT_R32G32B32A32_UINT, 16, "ray items (texels)");
-        f.hits = gpu::Buffer(ctx, mesh.vertex_count() * sizeof(uint32_t), kStorageUsage, "ao hit counts");
-        f.ao = gpu::Buffer(ctx, mesh.vertex_count() * sizeof(float), kStorageUsage, "ao");
-        return items.count();
+        m.item_count = items.count();
+        m.ray_items = gpu::Buffer::from(ctx, items.texels, kTexelUsage, "ray items (BVH nodes and triangles)");
+        m.ray_item_texels = gpu::TexelView(ctx, m.ray_items, VK_FORMAT_R32G32B32A32_UINT, 16, "ray items (texels)");
+        m.hits = gpu::Buffer(ctx, mesh.vertex_count() * sizeof(uint32_t), kStorageUsage, "ao hit counts");
+        m.ao = gpu::Buffer(ctx, mesh.vertex_count() * sizeof(float), kStorageUsage, "ao");
+        if (!refittable) return;
+        // Work for ray_refit.comp: every triangle item, then the node items level by level,
+        // deepest first, each with its leaf's triangle count (0: inner node).
+        std::vector<uint32_t> item_of_node(bvh.nodes.size());
+        std::vector<glm::uvec2> work;
+        for (uint32_t k = 0; k < items.count(); ++k) {
+            if (items.origin[k] & bake::kItemTriangleBit) work.push_back({k, 0});
+            else item_of_node[items.origin[k]] = k;
+        }
+        m.ray_work_offsets = {0, uint32_t(work.size())};
+        bake::BvhLevels levels = bake::bvh_levels(bvh);
+        for (size_t l = 0; l < levels.count(); ++l) {
+            for (uint32_t k = levels.offsets[l]; k < levels.offsets[l + 1]; ++k) {
+                const bake::BvhNode& node = bvh.nodes[levels.nodes[k]];
+                work.push_back({item_of_node[levels.nodes[k]], node.leaf() ? node.leaf_count() : 0});
+            }
+            m.ray_work_offsets.push_back(uint32_t(work.size()));
+        }
+        m.indices = gpu::Buffer::from(ctx, mesh.indices, kStorageUsage, "triangle indices");
+        m.item_origin = gpu::Buffer::from(ctx, items.origin, kStorageUsage, "ray item origins");
+        m.ray_work = gpu::Buffer::from(ctx, work, kStorageUsage, "ray refit work");
     }
 
-    void record_ao(VkCommandBuffer cmd, Frame& f, const PreparedMesh& mesh, const AoSettings& s, uint32_t item_count)
+    // Ray items follow the current positions: triangles, then node boxes bottom-up.
+    void record_ray_refit(VkCommandBuffer cmd, MeshState& m)
     {
-        AoPush push{uint32_t(mesh.vertex_count()), s.rays, s.seed, s.low_discrepancy ? 1u : 0u,
-                    s.epsilon_rel * mesh.diagonal, s.max_distance_rel * mesh.diagonal, item_count};
-        vkCmdFillBuffer(cmd, f.hits.handle(), 0, VK_WHOLE_SIZE, 0);
+        const auto& k = ray_refit_kernel();
+        for (size_t r = 0; r + 1 < m.ray_work_offsets.size(); ++r) {
+            const uint32_t first = m.ray_work_offsets[r], count = m.ray_work_offsets[r + 1] - first;
+            k.dispatch(cmd, count, RayRefitPush{count, first, r == 0 ? 0u : 1u},
+                       {m.positions, m.indices, m.item_origin, m.ray_work, m.ray_items});
+            gpu::compute_barrier(cmd);
+        }
+    }
+
+    void record_ao(VkCommandBuffer cmd, MeshState& m, const AoSettings& s)
+    {
+        AoPush push{m.vertex_count, s.rays, s.seed, s.low_discrepancy ? 1u : 0u, s.epsilon_rel * m.diagonal,
+                    s.max_distance_rel * m.diagonal, m.item_count};
+        vkCmdFillBuffer(cmd, m.hits.handle(), 0, VK_WHOLE_SIZE, 0);
         gpu::compute_barrier(cmd);
-        ao_kernel().dispatch(cmd, uint64_t(mesh.vertex_count()) * s.rays, push, {f.positions, f.normals, f.ray_item_texels, f.hits});
+        ao_kernel().dispatch(cmd, uint64_t(m.vertex_count) * s.rays, push, {m.positions, m.normals, m.ray_item_texels, m.hits});
         gpu::compute_barrier(cmd);
-        ao_resolve_kernel().dispatch(cmd, mesh.vertex_count(), AoResolvePush{uint32_t(mesh.vertex_count()), s.rays},
-                                     {f.hits, f.ao});
+        ao_resolve_kernel().dispatch(cmd, m.vertex_count, AoResolvePush{m.vertex_count, s.rays}, {m.hits, m.ao});
+    }
+
+    // Sets up gather → near field → (all pairs | refit → clustered), reading m.ao, writing
+    // m.tm. `near_margin` (bake/near_field.hpp) covers how much closer vertices may come.
+    void prepare_tm(MeshState& m, const PreparedMesh& mesh, const Material& material, const BakeSettings& s, float near_margin)
+    {
+        validate_tm_settings(s);
+        const size_t n = mesh.vertex_count();
+        m.variant = tm_variant(material);
+        m.exact = s.method == TmMethod::Exact || (s.method == TmMethod::Auto && n < kExactBelow);
+        auto profiles = bake::to_gpu(material);
+        if (!m.exact) {
+            // The faint test of tm_cluster.comp against the total area (≥ the total weight, so
+            // never laxer than against the weight).
+            double area = 0;
+            for (float a : mesh.areas) area += a;
+            const double threshold = 1e-3 * std::pow(double(s.tm_epsilon), 3);
+            for (int c = 0; c < 3; ++c)
+                profiles[c].faint_radius = bake::faint_radius(material.profile[c], area, threshold, mesh.diagonal);
+        }
+        m.profiles = gpu::Buffer::from(ctx, std::span<const bake::GpuProfile>(profiles), kStorageUsage, "profiles");
+        m.tm = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m");
+        m.partial_sum = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m partial sums");
+        m.partial_comp = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m partial compensation");
+        bake::Bvh tree = bake::build_bvh(mesh.positions, mesh.positions, kPointLeafSize);
+        bake::NearLists near = bake::build_near_lists(mesh, tree, near_margin);
+        m.near_offsets = gpu::Buffer::from(ctx, near.offsets, kStorageUsage, "near-field offsets");
+        m.near_indices = gpu::Buffer::from(ctx, near.indices, kStorageUsage, "near-field sources");
+        if (m.exact) {
+            std::vector<uint32_t> identity(n);
+            std::iota(identity.begin(), identity.end(), 0u);
+            m.point_order = gpu::Buffer::from(ctx, identity, kStorageUsage, "identity order");
+            m.points = gpu::Buffer(ctx, n * 32, kTexelUsage, "t_m sources");
+            m.point_texels = gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "t_m sources (texels)");
+            return;
+        }
+        m.node_count = uint32_t(tree.nodes.size());
+        m.point_order = gpu::Buffer::from(ctx, tree.order, kStorageUsage, "point tree order");
+        m.nodes = gpu::Buffer::from(ctx, tree.nodes, kStorageUsage, "point tree nodes");
+        bake::BvhLevels levels = bake::bvh_levels(tree);
+        m.node_levels = gpu::Buffer::from(ctx, levels.nodes, kStorageUsage, "point tree levels");
+        m.level_offsets = levels.offsets;
+        // One buffer holds the nodes (4 texels each) and then the sources (2 texels each), so one
+        // fetch per lane brings a node and a source (tm_cluster.comp).
+        m.points = gpu::Buffer(ctx, tree.nodes.size() * 64 + n * 32, kTexelUsage, "t_m cluster tree and sources");
+        m.tree_texels = gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_UINT, 16, "t_m cluster tree and sources (texels)");
+        m.resume = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m traversal resume state");
+    }
+
+    void record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSettings& s, gpu::GpuTimer* timer)
+    {
+        auto mark = [&](const char* stage) {
+            if (timer) timer->mark(cmd, stage);
+        };
+        const uint32_t n = m.vertex_count;
+        const uint32_t first_point = 4 * m.node_count;  // texel of source 0
+        gather_kernel().dispatch(cmd, n, GatherPush{n, first_point}, {m.positions, m.areas, m.ao, m.point_order, m.points});
+        gpu::compute_barrier(cmd);
+        mark("gather");
+        if (!m.exact) {
+            for (size_t l = 0; l + 1 < m.level_offsets.size(); ++l) {
+                const uint32_t first = m.level_offsets[l], count = m.level_offsets[l + 1] - first;
+                refit_kernel().dispatch(cmd, count, RefitPush{count, first, first_point}, {m.nodes, m.node_levels, m.points});
+                gpu::compute_barrier(cmd);
+            }
+            mark("refit");
+            vkCmdFillBuffer(cmd, m.resume.handle(), 0, VK_WHOLE_SIZE, 0);
+        }
+        near_kernel(m.variant).dispatch(cmd, n, NearPush{n}, {m.profiles, m.positions, m.areas, m.ao, m.near_offsets,
+                                                              m.near_indices, m.point_order, m.partial_sum, m.partial_comp, m.tm});
+        gpu::compute_barrier(cmd);
+        mark("t_m near field");
+        if (m.exact) {
+            const auto& kernel = exact_kernel(m.variant);
+            for (uint32_t begin = 0; begin < n; begin += kExactSourcesPerDispatch) {
+                ExactPush push{n, begin, std::min(n, begin + kExactSourcesPerDispatch)};
+                kernel.dispatch(cmd, n, push, {m.profiles, m.point_texels, m.partial_sum, m.partial_comp, m.tm});
+                gpu::compute_barrier(cmd);
+            }
+            mark("t_m far field (all pairs)");
+            return;
+        }
+        const auto& kernel = cluster_kernel(m.variant);
+        // Every thread visits each node and each source at most once: this many dispatches finish
+        // every traversal; threads that are done return at once.
+        const uint32_t dispatches = (m.node_count + n) / kClusterWorkPerDispatch + 1;
+        ClusterPush push{n, m.node_count, s.tm_epsilon, kClusterWorkPerDispatch};
+        for (uint32_t d = 0; d < dispatches; ++d) {
+            kernel.dispatch(cmd, n, push, {m.profiles, m.tree_texels, m.point_order, m.resume, m.partial_sum, m.partial_comp, m.tm});
+            gpu::compute_barrier(cmd);
+        }
+        mark("t_m far field (clustered)");
     }
 };
+
+namespace {
+
+void finish_timings(BakeTimings& t, const gpu::GpuTimer& timer, double setup, Clock::time_point t0)
+{
+    t.gpu_stages = timer.stages();
+    t.gpu_total_ms = timer.total_ms();
+    t.setup_ms = setup;
+    t.wall_ms = ms_since(t0);
+}
+
+}  // namespace
 
 Baker::Baker(Context& context) : impl_(std::make_unique<Impl>(context.gpu())) {}
 Baker::~Baker() = default;
@@ -220,143 +390,19 @@ std::vector<float> Baker::bake_ao(const PreparedMesh& mesh, const AoSettings& se
 {
     validate_ao_settings(settings);
     auto t0 = Clock::now();
-    Impl::Frame f;
-    impl_->upload_mesh(f, mesh);
-    uint32_t nodes = impl_->prepare_ao(f, mesh);
+    Impl::MeshState m;
+    impl_->upload_mesh(m, mesh);
+    impl_->prepare_ao(m, mesh, false);
     double setup = ms_since(t0);
     gpu::GpuTimer timer(impl_->ctx);
     impl_->ctx.submit_and_wait([&](VkCommandBuffer cmd) {
         timer.begin(cmd);
-        impl_->record_ao(cmd, f, mesh, settings, nodes);
+        impl_->record_ao(cmd, m, settings);
         timer.mark(cmd, "ao");
     });
-    auto ao = f.ao.read<float>(mesh.vertex_count());
-    if (timings) {
-        timings->gpu_stages = timer.stages();
-        timings->gpu_total_ms = timer.total_ms();
-        timings->setup_ms = setup;
-        timings->wall_ms = ms_since(t0);
-    }
+    auto ao = m.ao.read<float>(mesh.vertex_count());
+    if (timings) finish_timings(*timings, timer, setup, t0);
     return ao;
-}
-
-}  // namespace jade
-
-namespace jade {
-
-namespace {
-
-bake::Bvh build_point_tree(const PreparedMesh& mesh)
-{
-    return bake::build_bvh(mesh.positions, mesh.positions, kPointLeafSize);
-}
-
-}  // namespace
-
-struct TmPlan {
-    bool exact;
-    TmVariant variant;
-    uint32_t node_count = 0;
-};
-
-// Records gather → near field → (all pairs | refit → clustered) reading f.ao, writing f.tm.
-static TmPlan prepare_tm(Baker::Impl& impl, Baker::Impl::Frame& f, const PreparedMesh& mesh, const Material& material,
-                         const BakeSettings& s)
-{
-    gpu::Context& ctx = impl.ctx;
-    const size_t n = mesh.vertex_count();
-    TmPlan plan;
-    plan.variant = tm_variant(material);
-    plan.exact = s.method == TmMethod::Exact || (s.method == TmMethod::Auto && n < kExactBelow);
-    if (!(s.tm_epsilon > 0) || !std::isfinite(s.tm_epsilon)) throw Error("t_m: epsilon must be > 0");
-    auto profiles = bake::to_gpu(material);
-    if (!plan.exact) {
-        // The faint test of tm_cluster.comp against the total area (≥ the total weight, so
-        // never laxer than against the weight).
-        double area = 0;
-        for (float a : mesh.areas) area += a;
-        const double threshold = 1e-3 * std::pow(double(s.tm_epsilon), 3);
-        for (int c = 0; c < 3; ++c)
-            profiles[c].faint_radius = bake::faint_radius(material.profile[c], area, threshold, mesh.diagonal);
-    }
-    f.profiles = gpu::Buffer::from(ctx, std::span<const bake::GpuProfile>(profiles), kStorageUsage, "profiles");
-    f.tm = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m");
-    f.partial_sum = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m partial sums");
-    f.partial_comp = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m partial compensation");
-    bake::Bvh tree = build_point_tree(mesh);
-    bake::NearLists near = bake::build_near_lists(mesh, tree);
-    f.near_offsets = gpu::Buffer::from(ctx, near.offsets, kStorageUsage, "near-field offsets");
-    f.near_indices = gpu::Buffer::from(ctx, near.indices, kStorageUsage, "near-field sources");
-    if (plan.exact) {
-        std::vector<uint32_t> identity(n);
-        std::iota(identity.begin(), identity.end(), 0u);
-        f.point_order = gpu::Buffer::from(ctx, identity, kStorageUsage, "identity order");
-        f.points = gpu::Buffer(ctx, n * 32, kTexelUsage, "t_m sources");
-        f.point_texels = gpu::TexelView(ctx, f.points, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "t_m sources (texels)");
-        return plan;
-    }
-    plan.node_count = uint32_t(tree.nodes.size());
-    f.point_order = gpu::Buffer::from(ctx, tree.order, kStorageUsage, "point tree order");
-    f.nodes = gpu::Buffer::from(ctx, tree.nodes, kStorageUsage, "point tree nodes");
-    f.node_counts = gpu::Buffer::from(ctx, tree.counts, kStorageUsage, "point tree counts");
-    // One buffer holds the nodes (4 texels each) and then the sources (2 texels each), so one
-    // fetch per lane brings a node and a source (tm_cluster.comp).
-    f.points = gpu::Buffer(ctx, tree.nodes.size() * 64 + n * 32, kTexelUsage, "t_m cluster tree and sources");
-    f.tree_texels = gpu::TexelView(ctx, f.points, VK_FORMAT_R32G32B32A32_UINT, 16, "t_m cluster tree and sources (texels)");
-    f.resume = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m traversal resume state");
-    return plan;
-}
-
-static void record_tm(Baker::Impl& impl, VkCommandBuffer cmd, Baker::Impl::Frame& f, const PreparedMesh& mesh,
-                      const BakeSettings& s, const TmPlan& plan, gpu::GpuTimer& timer)
-{
-    const uint32_t n = uint32_t(mesh.vertex_count());
-    const uint32_t first_point = 4 * plan.node_count;  // texel of source 0
-    impl.gather_kernel().dispatch(cmd, n, GatherPush{n, first_point}, {f.positions, f.areas, f.ao, f.point_order, f.points});
-    gpu::compute_barrier(cmd);
-    timer.mark(cmd, "gather");
-    auto near_pass = [&](gpu::Buffer& out) {
-        impl.near_kernel(plan.variant).dispatch(cmd, n, NearPush{n}, {f.profiles, f.positions, f.areas, f.ao, f.near_offsets,
-                                                                   f.near_indices, f.point_order, f.partial_sum, f.partial_comp, out});
-        gpu::compute_barrier(cmd);
-    };
-    if (plan.exact) {
-        near_pass(f.tm);
-        timer.mark(cmd, "t_m near field");
-        const auto& kernel = impl.exact_kernel(plan.variant);
-        for (uint32_t begin = 0; begin < n; begin += kExactSourcesPerDispatch) {
-            ExactPush push{n, begin, std::min(n, begin + kExactSourcesPerDispatch)};
-            kernel.dispatch(cmd, n, push, {f.profiles, f.point_texels, f.partial_sum, f.partial_comp, f.tm});
-            gpu::compute_barrier(cmd);
-        }
-        timer.mark(cmd, "t_m far field (all pairs)");
-        return;
-    }
-    impl.refit_kernel().dispatch(cmd, plan.node_count, RefitPush{plan.node_count, first_point},
-                                 {f.nodes, f.node_counts, f.points, f.points});
-    gpu::compute_barrier(cmd);
-    timer.mark(cmd, "refit");
-    const auto& kernel = impl.cluster_kernel(plan.variant);
-    // Every thread visits each node and each source at most once: this many dispatches finish
-    // every traversal; threads that are done return at once.
-    const uint32_t dispatches = (plan.node_count + n) / kClusterWorkPerDispatch + 1;
-    vkCmdFillBuffer(cmd, f.resume.handle(), 0, VK_WHOLE_SIZE, 0);
-    near_pass(f.tm);
-    timer.mark(cmd, "t_m near field");
-    ClusterPush push{n, plan.node_count, s.tm_epsilon, kClusterWorkPerDispatch};
-    for (uint32_t d = 0; d < dispatches; ++d) {
-        kernel.dispatch(cmd, n, push, {f.profiles, f.tree_texels, f.point_order, f.resume, f.partial_sum, f.partial_comp, f.tm});
-        gpu::compute_barrier(cmd);
-    }
-    timer.mark(cmd, "t_m far field (clustered)");
-}
-
-static void finish_timings(BakeTimings& t, const gpu::GpuTimer& timer, double setup, Clock::time_point t0)
-{
-    t.gpu_stages = timer.stages();
-    t.gpu_total_ms = timer.total_ms();
-    t.setup_ms = setup;
-    t.wall_ms = ms_since(t0);
 }
 
 BakeResult Baker::bake_tm(const PreparedMesh& mesh, std::span<const float> ao, const Material& material,
@@ -365,20 +411,20 @@ BakeResult Baker::bake_tm(const PreparedMesh& mesh, std::span<const float> ao, c
     if (ao.size() != mesh.vertex_count())
         throw Error("bake_tm: " + std::to_string(ao.size()) + " AO values for " + std::to_string(mesh.vertex_count()) + " vertices");
     auto t0 = Clock::now();
-    Impl::Frame f;
-    impl_->upload_mesh(f, mesh);
-    f.ao = gpu::Buffer::from(impl_->ctx, ao, kStorageUsage, "ao (given)");
-    TmPlan plan = prepare_tm(*impl_, f, mesh, material, settings);
+    Impl::MeshState m;
+    impl_->upload_mesh(m, mesh);
+    m.ao = gpu::Buffer::from(impl_->ctx, ao, kStorageUsage, "ao (given)");
+    impl_->prepare_tm(m, mesh, material, settings, kStaticNearMargin);
     double setup = ms_since(t0);
     gpu::GpuTimer timer(impl_->ctx);
     impl_->ctx.submit_and_wait([&](VkCommandBuffer cmd) {
         timer.begin(cmd);
-        record_tm(*impl_, cmd, f, mesh, settings, plan, timer);
+        impl_->record_tm(cmd, m, settings, &timer);
     });
     BakeResult r;
     r.ao.assign(ao.begin(), ao.end());
-    r.tm = f.tm.read<glm::vec3>(mesh.vertex_count());
-    r.method_used = plan.exact ? TmMethod::Exact : TmMethod::Clustered;
+    r.tm = m.tm.read<glm::vec3>(mesh.vertex_count());
+    r.method_used = m.exact ? TmMethod::Exact : TmMethod::Clustered;
     finish_timings(r.timings, timer, setup, t0);
     return r;
 }
@@ -387,24 +433,97 @@ BakeResult Baker::bake(const PreparedMesh& mesh, const Material& material, const
 {
     validate_ao_settings(settings.ao);
     auto t0 = Clock::now();
-    Impl::Frame f;
-    impl_->upload_mesh(f, mesh);
-    uint32_t tri_nodes = impl_->prepare_ao(f, mesh);
-    TmPlan plan = prepare_tm(*impl_, f, mesh, material, settings);
+    Impl::MeshState m;
+    impl_->upload_mesh(m, mesh);
+    impl_->prepare_ao(m, mesh, false);
+    impl_->prepare_tm(m, mesh, material, settings, kStaticNearMargin);
     double setup = ms_since(t0);
     gpu::GpuTimer timer(impl_->ctx);
     impl_->ctx.submit_and_wait([&](VkCommandBuffer cmd) {
         timer.begin(cmd);
-        impl_->record_ao(cmd, f, mesh, settings.ao, tri_nodes);
+        impl_->record_ao(cmd, m, settings.ao);
         gpu::compute_barrier(cmd);
         timer.mark(cmd, "ao");
-        record_tm(*impl_, cmd, f, mesh, settings, plan, timer);
+        impl_->record_tm(cmd, m, settings, &timer);
     });
     BakeResult r;
-    r.ao = f.ao.read<float>(mesh.vertex_count());
-    r.tm = f.tm.read<glm::vec3>(mesh.vertex_count());
-    r.method_used = plan.exact ? TmMethod::Exact : TmMethod::Clustered;
+    r.ao = m.ao.read<float>(mesh.vertex_count());
+    r.tm = m.tm.read<glm::vec3>(mesh.vertex_count());
+    r.method_used = m.exact ? TmMethod::Exact : TmMethod::Clustered;
     finish_timings(r.timings, timer, setup, t0);
+    return r;
+}
+
+// ---- DynamicBake ----
+
+struct DynamicBake::State {
+    Baker::Impl& impl;
+    BakeSettings settings;
+    Baker::Impl::MeshState mesh;
+    State(Baker::Impl& i, const BakeSettings& s) : impl(i), settings(s) {}
+};
+
+DynamicBake::DynamicBake(Baker& baker, const PreparedMesh& rest, const Material& material, const BakeSettings& settings)
+    : state_(std::make_unique<State>(*baker.impl_, settings))
+{
+    validate_ao_settings(settings.ao);
+    auto& impl = state_->impl;
+    // Deformers write the inputs on the GPU (or the host uploads them): transfer and storage.
+    impl.upload_mesh(state_->mesh, rest, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    impl.prepare_ao(state_->mesh, rest, true);
+    impl.prepare_tm(state_->mesh, rest, material, settings, kDynamicNearMargin);
+}
+
+DynamicBake::~DynamicBake() = default;
+
+DynamicBake::Buffers DynamicBake::buffers() const
+{
+    const auto& m = state_->mesh;
+    return {m.positions.handle(), m.normals.handle(), m.areas.handle(), m.ao.handle(), m.tm.handle(), m.vertex_count};
+}
+
+void DynamicBake::record(VkCommandBuffer cmd) { record_timed(cmd, nullptr); }
+
+void DynamicBake::record_timed(VkCommandBuffer cmd, void* timer_ptr)
+{
+    auto* timer = static_cast<gpu::GpuTimer*>(timer_ptr);
+    auto& impl = state_->impl;
+    auto& m = state_->mesh;
+    gpu::compute_barrier(cmd);  // the inputs' writes (transfer or compute) before the refit reads them
+    impl.record_ray_refit(cmd, m);
+    if (timer) timer->mark(cmd, "BVH refit");
+    impl.record_ao(cmd, m, state_->settings.ao);
+    gpu::compute_barrier(cmd);
+    if (timer) timer->mark(cmd, "ao");
+    impl.record_tm(cmd, m, state_->settings, timer);
+}
+
+BakeResult DynamicBake::bake(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
+                             std::span<const float> areas)
+{
+    auto& m = state_->mesh;
+    if (positions.size() != m.vertex_count || normals.size() != m.vertex_count || areas.size() != m.vertex_count)
+        throw Error("DynamicBake::bake: " + std::to_string(positions.size()) + " positions, " + std::to_string(normals.size()) +
+                    " normals and " + std::to_string(areas.size()) + " areas for a mesh of " + std::to_string(m.vertex_count) +
+                    " vertices");
+    for (size_t i = 0; i < positions.size(); ++i)
+        if (!std::isfinite(positions[i].x) || !std::isfinite(positions[i].y) || !std::isfinite(positions[i].z) ||
+            !std::isfinite(areas[i]) || areas[i] < 0)
+            throw Error("DynamicBake::bake: vertex " + std::to_string(i) + " has a non-finite position or a negative area");
+    auto t0 = Clock::now();
+    m.positions.upload(positions.data(), positions.size_bytes());
+    m.normals.upload(normals.data(), normals.size_bytes());
+    m.areas.upload(areas.data(), areas.size_bytes());
+    gpu::GpuTimer timer(state_->impl.ctx);
+    state_->impl.ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+        timer.begin(cmd);
+        record_timed(cmd, &timer);
+    });
+    BakeResult r;
+    r.ao = m.ao.read<float>(m.vertex_count);
+    r.tm = m.tm.read<glm::vec3>(m.vertex_count);
+    r.method_used = m.exact ? TmMethod::Exact : TmMethod::Clustered;
+    finish_timings(r.timings, timer, 0, t0);
     return r;
 }
 

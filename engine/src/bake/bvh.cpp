@@ -57,6 +57,28 @@ struct Builder {
 
 }  // namespace
 
+BvhLevels bvh_levels(const Bvh& bvh)
+{
+    // Depth of every node: pre-order, so a node's children (i + 1 and its escape) follow it.
+    const uint32_t n = uint32_t(bvh.nodes.size());
+    std::vector<uint32_t> depth(n, 0);
+    uint32_t deepest = 0;
+    for (uint32_t i = 0; i < n; ++i) {
+        deepest = std::max(deepest, depth[i]);
+        if (bvh.nodes[i].leaf()) continue;
+        depth[i + 1] = depth[i] + 1;
+        depth[bvh.nodes[i + 1].escape] = depth[i] + 1;
+    }
+    BvhLevels levels;
+    levels.offsets.push_back(0);
+    for (uint32_t level = deepest + 1; n > 0 && level-- > 0;) {
+        for (uint32_t i = 0; i < n; ++i)
+            if (depth[i] == level) levels.nodes.push_back(i);
+        levels.offsets.push_back(uint32_t(levels.nodes.size()));
+    }
+    return levels;
+}
+
 Bvh build_bvh(std::span<const glm::vec3> lo, std::span<const glm::vec3> hi, uint32_t leaf_size)
 {
     assert(lo.size() == hi.size() && leaf_size >= 1 && leaf_size <= kMaxLeafSize);

@@ -43,6 +43,15 @@ struct Bvh {
     uint32_t depth = 0;
 };
 
+/// The nodes grouped by depth, deepest level first: a bottom-up refit processes level by level
+/// (one dispatch each), every node after its children.
+struct BvhLevels {
+    std::vector<uint32_t> nodes;    ///< node indices, level after level
+    std::vector<uint32_t> offsets;  ///< level k is nodes[offsets[k] .. offsets[k + 1])
+    size_t count() const { return offsets.empty() ? 0 : offsets.size() - 1; }
+};
+BvhLevels bvh_levels(const Bvh& bvh);
+
 /// Builds over primitives given by their bounds (lo[i], hi[i]); leaves hold at most
 /// `leaf_size` (≤ kMaxLeafSize) primitives; at most kMaxPrimitives primitives. Splits at the median of the centroids along the widest axis of the
 /// centroid bounds (balanced: depth ≤ ⌈log2(n / leaf_size)⌉ + 1).

@@ -10,10 +10,10 @@
 
 namespace jade::bake {
 
-NearLists build_near_lists(const PreparedMesh& mesh, const Bvh& tree)
+NearLists build_near_lists(const PreparedMesh& mesh, const Bvh& tree, float margin)
 {
     const size_t n = mesh.vertex_count();
-    auto reach = [&](uint32_t j) { return kNearFactor * std::sqrt(mesh.areas[j] / std::numbers::pi_v<float>); };
+    auto reach = [&](uint32_t j) { return margin * kNearFactor * std::sqrt(mesh.areas[j] / std::numbers::pi_v<float>); };
 
     // Largest reach inside each node: its range of tree-ordered vertices.
     std::vector<float> node_reach(tree.nodes.size(), 0.0f);

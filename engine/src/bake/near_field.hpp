@@ -23,8 +23,11 @@ struct NearLists {
     std::vector<uint32_t> indices;
 };
 
-/// Finds, for every vertex i, all j ≠ i with |x_i − x_j| < kNearFactor·√(A_j/π), walking
-/// `point_tree` (built over the vertex positions) with each node's largest disk radius.
-NearLists build_near_lists(const PreparedMesh& mesh, const Bvh& point_tree);
+/// Finds, for every vertex i, all j ≠ i with |x_i − x_j| < margin·kNearFactor·√(A_j/π),
+/// walking `point_tree` (built over the vertex positions) with each node's largest disk radius.
+/// The near pass decides with the current positions which entries are disk pairs, so the
+/// margin (> 1) covers float rounding at the boundary and, for a deforming mesh, how much
+/// closer vertices may come than at rest.
+NearLists build_near_lists(const PreparedMesh& mesh, const Bvh& point_tree, float margin);
 
 }  // namespace jade::bake
