@@ -156,6 +156,10 @@ public:
     /// visible; when the command buffer has executed, ao and tm hold the results (written by
     /// compute shaders: make them visible to their next reader with a barrier).
     void record(VkCommandBuffer cmd);
+    /// As record(cmd), taking the inputs from the caller's buffers of the same layout (e.g. a
+    /// MeshDeformer's, jade/deform.hpp): they are copied in first, after a barrier for earlier
+    /// compute-shader or transfer writes to them.
+    void record(VkCommandBuffer cmd, VkBuffer positions, VkBuffer normals, VkBuffer areas);
 
     /// Convenience: uploads the inputs, records, submits, waits and reads back. Throws
     /// jade::Error on sizes that do not match the rest pose or non-finite input.

@@ -484,6 +484,18 @@ DynamicBake::Buffers DynamicBake::buffers() const
 
 void DynamicBake::record(VkCommandBuffer cmd) { record_timed(cmd, nullptr); }
 
+void DynamicBake::record(VkCommandBuffer cmd, VkBuffer positions, VkBuffer normals, VkBuffer areas)
+{
+    auto& m = state_->mesh;
+    gpu::compute_barrier(cmd);  // the caller's writes before the copies read them
+    const VkDeviceSize n = m.vertex_count;
+    const VkBufferCopy vec3s{0, 0, n * 12}, floats{0, 0, n * 4};
+    vkCmdCopyBuffer(cmd, positions, m.positions.handle(), 1, &vec3s);
+    vkCmdCopyBuffer(cmd, normals, m.normals.handle(), 1, &vec3s);
+    vkCmdCopyBuffer(cmd, areas, m.areas.handle(), 1, &floats);
+    record_timed(cmd, nullptr);  // begins with the barrier that orders the copies before the refit
+}
+
 void DynamicBake::record_timed(VkCommandBuffer cmd, void* timer_ptr)
 {
     auto* timer = static_cast<gpu::GpuTimer*>(timer_ptr);
