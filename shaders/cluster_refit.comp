@@ -17,7 +17,6 @@
 layout(push_constant, scalar) uniform Push {
     uint count;        // nodes in this level
     uint first;        // first entry of this level in `level_nodes`
-    uint first_point;  // texel of source 0 (tm_common.glsl), after the nodes in the same buffer
 } pc;
 
 struct TopologyNode {  // bake::BvhNode: the shape is fixed, the bounds are refitted here
@@ -29,7 +28,9 @@ struct TopologyNode {  // bake::BvhNode: the shape is fixed, the bounds are refi
 
 layout(binding = 0, scalar) buffer Topology { TopologyNode topology[]; };
 layout(binding = 1, scalar) readonly buffer Levels { uint level_nodes[]; };
-layout(binding = 2, scalar) buffer Tree { uvec4 tree[]; };  // nodes, then sources
+// The node and the source windows of one buffer (bound separately: each fits a binding).
+layout(binding = 2, scalar) buffer Tree { uvec4 tree[]; };
+layout(binding = 3, scalar) readonly buffer Points { uvec4 points[]; };  // tm_common.glsl
 
 const float NEAR_FACTOR = 4.0;  // as in tm_common.glsl
 
@@ -77,9 +78,9 @@ void main()
         vec3 moment = vec3(0.0);
         vec4 p[8];
         [[unroll]] for (uint k = 0u; k < 8u; ++k) {
-            uint j = pc.first_point + 2u * (first + min(k, count - 1u));
-            p[k] = uintBitsToFloat(tree[j]);
-            float area = uintBitsToFloat(tree[j + 1u].y);
+            uint j = 2u * (first + min(k, count - 1u));
+            p[k] = uintBitsToFloat(points[j]);
+            float area = uintBitsToFloat(points[j + 1u].y);
             if (k >= count) p[k].w = 0.0;
             lo = k < count ? min(lo, p[k].xyz) : lo;
             hi = k < count ? max(hi, p[k].xyz) : hi;

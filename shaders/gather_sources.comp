@@ -6,13 +6,13 @@
 
 layout(push_constant, scalar) uniform Push {
     uint vertex_count;
-    uint first_texel;  // where source 0 goes: after the cluster nodes when they share the buffer
 } pc;
 
 layout(binding = 0, scalar) readonly buffer Positions { vec3 positions[]; };
 layout(binding = 1, scalar) readonly buffer Areas { float areas[]; };
 layout(binding = 2, scalar) readonly buffer Ao { float ao[]; };
 layout(binding = 3, scalar) readonly buffer PointOrder { uint point_order[]; };
+// The sources' window of the buffer (after the cluster nodes when they share it).
 layout(binding = 4, scalar) writeonly buffer Points { vec4 points[]; };
 
 const float NEAR_FACTOR = 4.0;  // as in tm_common.glsl
@@ -23,6 +23,6 @@ void main()
     if (k >= pc.vertex_count) return;
     uint v = point_order[k];
     float area = areas[v], visibility = 1.0 - ao[v];
-    points[pc.first_texel + 2u * k] = vec4(positions[v], area * visibility);
-    points[pc.first_texel + 2u * k + 1u] = vec4(NEAR_FACTOR * NEAR_FACTOR / JADE_PI * area, area, visibility, 0.0);
+    points[2u * k] = vec4(positions[v], area * visibility);
+    points[2u * k + 1u] = vec4(NEAR_FACTOR * NEAR_FACTOR / JADE_PI * area, area, visibility, 0.0);
 }

@@ -33,6 +33,7 @@ layout(push_constant, scalar) uniform Push {
     uint node_count;
     float epsilon;    // θ, the opening ratio
     uint work_budget; // loop iterations per dispatch (lavapipe's loop limit)
+    uint first_point; // texel of source 0, after the nodes
 } pc;
 
 // Nodes (cluster_refit.comp: 4 texels each), then the sources in tree order (tm_common.glsl:
@@ -57,7 +58,7 @@ void main()
     uint i = state.x, j = state.y, j_end = state.z;  // node; source cursor [j, j_end)
     float total_weight = uintBitsToFloat(texelFetch(tree, 0).w);  // the root holds W_total
     if ((i >= pc.node_count && j >= j_end) || total_weight == 0.0) return;  // done (uniform)
-    uint first_point = 4u * pc.node_count;
+    uint first_point = pc.first_point;
     uint vertex = order[k];
     vec3 x = uintBitsToFloat(texelFetch(tree, int(first_point + 2u * k)).xyz);
     vec3 sum = partial_sum[k], comp = partial_comp[k];

@@ -90,6 +90,11 @@ TriangleMesh box(glm::vec3 lo, glm::vec3 hi, uint32_t n);
 /// Flat square grid in the z = 0 plane, centred at the origin, `n`×`n` quads of side `spacing`,
 /// normal +z. n ≥ 1.
 TriangleMesh grid(uint32_t n, float spacing);
+/// Midpoint subdivision, `levels` times: every triangle becomes four, each edge gets one new
+/// vertex at its midpoint (shared by both sides), the surface stays where it was. Vertices grow
+/// about 4× per level (the 37,706-vertex bunny: 150,776, 603,062, 2,412,206). Normals are
+/// dropped. Throws jade::Error past 2^27 triangles.
+TriangleMesh subdivide(const TriangleMesh& mesh, uint32_t levels);
 }  // namespace procedural
 
 }  // namespace jade

@@ -64,12 +64,12 @@ constexpr uint32_t kClusterWorkPerDispatch = 32768;
 
 struct AoPush { uint32_t vertex_count, rays, seed, low_discrepancy; float epsilon, max_distance; uint32_t item_count; };
 struct AoResolvePush { uint32_t vertex_count, rays; };
-struct GatherPush { uint32_t vertex_count, first_texel; };
-struct RefitPush { uint32_t count, first, first_point; };
+struct GatherPush { uint32_t vertex_count; };
+struct RefitPush { uint32_t count, first; };
 struct RayRefitPush { uint32_t count, first, mode; };
-struct NearPush { uint32_t vertex_count; };
+struct NearPush { uint32_t first_slot, slot_count, index_base; };
 struct ExactPush { uint32_t vertex_count, source_begin, source_end; };
-struct ClusterPush { uint32_t vertex_count, node_count; float epsilon; uint32_t work_budget; };
+struct ClusterPush { uint32_t vertex_count, node_count; float epsilon; uint32_t work_budget, first_point; };
 
 std::vector<VkDescriptorType> storage_bindings(size_t n) { return std::vector<VkDescriptorType>(n, kStorage); }
 
@@ -141,7 +141,7 @@ struct Baker::Impl {
     }
     const gpu::Kernel& refit_kernel()
     {
-        return kernel(refit, {"cluster_refit", shaders::cluster_refit_comp(), storage_bindings(3), sizeof(RefitPush), 64, {}});
+        return kernel(refit, {"cluster_refit", shaders::cluster_refit_comp(), storage_bindings(4), sizeof(RefitPush), 64, {}});
     }
     const gpu::Kernel& ray_refit_kernel()
     {
@@ -199,12 +199,53 @@ struct Baker::Impl {
         // t_m.
         bool exact = false;
         TmVariant variant{};
-        uint32_t node_count = 0;
+        uint32_t node_count = 0, first_point = 0;  // first_point: texel of source 0 in `points`
         gpu::Buffer profiles, point_order, points, nodes, node_levels, tm;
         gpu::Buffer partial_sum, partial_comp, resume, near_offsets, near_indices;
         gpu::TexelView point_texels, tree_texels;
         std::vector<uint32_t> level_offsets;
+        struct NearWindow {
+            uint32_t first_slot, slot_count, index_base;
+            VkDeviceSize bytes;
+        };
+        std::vector<NearWindow> near_windows;  // near-pass dispatches, each within one binding's range
     };
+
+    // Buffers bound whole as storage buffers must fit one binding; say so before the GPU is touched.
+    void check_storage_range(VkDeviceSize bytes, const char* what) const
+    {
+        if (bytes > ctx.limits().maxStorageBufferRange)
+            throw Error(std::string(what) + ": " + std::to_string(bytes) + " bytes exceed the device's maxStorageBufferRange (" +
+                        std::to_string(ctx.limits().maxStorageBufferRange) + "): the mesh has too many vertices for this device");
+    }
+
+    // Splits the slots into runs whose near-list entries fit one storage-buffer binding
+    // (maxStorageBufferRange), each window starting at an allowed binding offset.
+    void plan_near_windows(MeshState& m, const std::vector<uint32_t>& offsets) const
+    {
+        const auto& lim = ctx.limits();
+        const VkDeviceSize align = std::max<VkDeviceSize>(lim.minStorageBufferOffsetAlignment, 4);
+        const VkDeviceSize max_bytes = (VkDeviceSize(lim.maxStorageBufferRange) / align) * align - align;
+        const uint32_t slots = uint32_t(offsets.size() - 1);
+        m.near_windows.clear();
+        for (uint32_t k0 = 0; k0 < slots;) {
+            const VkDeviceSize start = (VkDeviceSize(offsets[k0]) * 4 / align) * align;
+            uint32_t k1 = k0 + 1;
+            if (VkDeviceSize(offsets[k1]) * 4 - start > max_bytes)
+                throw Error("t_m: the near-field list of one vertex exceeds the device's storage-buffer range");
+            // The longest run from k0 that fits (binary search over the monotone offsets).
+            uint32_t lo = k1, hi = slots;
+            while (lo < hi) {
+                const uint32_t mid = lo + (hi - lo + 1) / 2;
+                if (VkDeviceSize(offsets[mid]) * 4 - start <= max_bytes) lo = mid;
+                else hi = mid - 1;
+            }
+            k1 = lo;
+            const VkDeviceSize bytes = std::max<VkDeviceSize>(VkDeviceSize(offsets[k1]) * 4 - start, 4);
+            m.near_windows.push_back({k0, k1 - k0, uint32_t(start / 4), bytes});
+            k0 = k1;
+        }
+    }
 
     void upload_mesh(MeshState& m, const PreparedMesh& mesh, VkBufferUsageFlags extra_usage = 0)
     {
@@ -233,6 +274,7 @@ struct Baker::Impl {
         m.hits = gpu::Buffer(ctx, mesh.vertex_count() * sizeof(uint32_t), kStorageUsage, "ao hit counts");
         m.ao = gpu::Buffer(ctx, mesh.vertex_count() * sizeof(float), kStorageUsage, "ao");
         if (!refittable) return;
+        check_storage_range(VkDeviceSize(items.count()) * 48, "ray items (refitted as a storage buffer)");
         // Work for ray_refit.comp: every triangle item, then the node items level by level,
         // deepest first, each with its leaf's triangle count (0: inner node).
         std::vector<uint32_t> item_of_node(bvh.nodes.size());
@@ -302,11 +344,18 @@ struct Baker::Impl {
         m.partial_comp = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m partial compensation");
         bake::Bvh tree = bake::build_bvh(mesh.positions, mesh.positions, kPointLeafSize);
         bake::NearLists near = bake::build_near_lists(mesh, tree, near_margin);
+        std::vector<uint32_t> identity;
+        if (m.exact) {
+            identity.resize(n);
+            std::iota(identity.begin(), identity.end(), 0u);
+        }
+        // Rows in slot order, so a range of slots has a contiguous window of entries.
+        near = bake::reorder_rows(near, m.exact ? std::span<const uint32_t>(identity) : std::span<const uint32_t>(tree.order));
+        plan_near_windows(m, near.offsets);
         m.near_offsets = gpu::Buffer::from(ctx, near.offsets, kStorageUsage, "near-field offsets");
+        near.indices.resize(near.indices.size() + 64, 0);  // room for a window's aligned start and minimum size
         m.near_indices = gpu::Buffer::from(ctx, near.indices, kStorageUsage, "near-field sources");
         if (m.exact) {
-            std::vector<uint32_t> identity(n);
-            std::iota(identity.begin(), identity.end(), 0u);
             m.point_order = gpu::Buffer::from(ctx, identity, kStorageUsage, "identity order");
             m.points = gpu::Buffer(ctx, n * 32, kTexelUsage, "t_m sources");
             m.point_texels = gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "t_m sources (texels)");
@@ -320,7 +369,12 @@ struct Baker::Impl {
         m.level_offsets = levels.offsets;
         // One buffer holds the nodes (4 texels each) and then the sources (2 texels each), so one
         // fetch per lane brings a node and a source (tm_cluster.comp).
-        m.points = gpu::Buffer(ctx, tree.nodes.size() * 64 + n * 32, kTexelUsage, "t_m cluster tree and sources");
+        // Sources start at a texel that is a multiple of 16 (256 bytes): any device's allowed
+        // offset for binding them alone as a storage buffer.
+        m.first_point = (4 * m.node_count + 15) / 16 * 16;
+        check_storage_range(VkDeviceSize(n) * 32, "t_m sources");
+        check_storage_range(VkDeviceSize(m.node_count) * 64, "t_m cluster nodes");
+        m.points = gpu::Buffer(ctx, VkDeviceSize(m.first_point) * 16 + n * 32, kTexelUsage, "t_m cluster tree and sources");
         m.tree_texels = gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_UINT, 16, "t_m cluster tree and sources (texels)");
         m.resume = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m traversal resume state");
     }
@@ -331,21 +385,26 @@ struct Baker::Impl {
             if (timer) timer->mark(cmd, stage);
         };
         const uint32_t n = m.vertex_count;
-        const uint32_t first_point = 4 * m.node_count;  // texel of source 0
-        gather_kernel().dispatch(cmd, n, GatherPush{n, first_point}, {m.positions, m.areas, m.ao, m.point_order, m.points});
+        const gpu::Binding nodes_window(m.points.handle(), 0, std::max<VkDeviceSize>(VkDeviceSize(m.node_count) * 64, 16));
+        const gpu::Binding points_window(m.points.handle(), VkDeviceSize(m.first_point) * 16, VkDeviceSize(n) * 32);
+        gather_kernel().dispatch(cmd, n, GatherPush{n}, {m.positions, m.areas, m.ao, m.point_order, points_window});
         gpu::compute_barrier(cmd);
         mark("gather");
         if (!m.exact) {
             for (size_t l = 0; l + 1 < m.level_offsets.size(); ++l) {
                 const uint32_t first = m.level_offsets[l], count = m.level_offsets[l + 1] - first;
-                refit_kernel().dispatch(cmd, count, RefitPush{count, first, first_point}, {m.nodes, m.node_levels, m.points});
+                refit_kernel().dispatch(cmd, count, RefitPush{count, first}, {m.nodes, m.node_levels, nodes_window, points_window});
                 gpu::compute_barrier(cmd);
             }
             mark("refit");
             vkCmdFillBuffer(cmd, m.resume.handle(), 0, VK_WHOLE_SIZE, 0);
         }
-        near_kernel(m.variant).dispatch(cmd, n, NearPush{n}, {m.profiles, m.positions, m.areas, m.ao, m.near_offsets,
-                                                              m.near_indices, m.point_order, m.partial_sum, m.partial_comp, m.tm});
+        for (const auto& w : m.near_windows) {
+            near_kernel(m.variant).dispatch(cmd, w.slot_count, NearPush{w.first_slot, w.slot_count, w.index_base},
+                                            {m.profiles, m.positions, m.areas, m.ao, m.near_offsets,
+                                             gpu::Binding(m.near_indices.handle(), VkDeviceSize(w.index_base) * 4, w.bytes),
+                                             m.point_order, m.partial_sum, m.partial_comp, m.tm});
+        }
         gpu::compute_barrier(cmd);
         mark("t_m near field");
         if (m.exact) {
@@ -362,7 +421,7 @@ struct Baker::Impl {
         // Every thread visits each node and each source at most once: this many dispatches finish
         // every traversal; threads that are done return at once.
         const uint32_t dispatches = (m.node_count + n) / kClusterWorkPerDispatch + 1;
-        ClusterPush push{n, m.node_count, s.tm_epsilon, kClusterWorkPerDispatch};
+        ClusterPush push{n, m.node_count, s.tm_epsilon, kClusterWorkPerDispatch, m.first_point};
         for (uint32_t d = 0; d < dispatches; ++d) {
             kernel.dispatch(cmd, n, push, {m.profiles, m.tree_texels, m.point_order, m.resume, m.partial_sum, m.partial_comp, m.tm});
             gpu::compute_barrier(cmd);

@@ -61,4 +61,17 @@ NearLists build_near_lists(const PreparedMesh& mesh, const Bvh& tree, float marg
     return lists;
 }
 
+NearLists reorder_rows(const NearLists& lists, std::span<const uint32_t> order)
+{
+    NearLists out;
+    out.offsets.resize(order.size() + 1, 0);
+    out.indices.reserve(lists.indices.size());
+    for (size_t k = 0; k < order.size(); ++k) {
+        const uint32_t v = order[k];
+        out.indices.insert(out.indices.end(), lists.indices.begin() + lists.offsets[v], lists.indices.begin() + lists.offsets[v + 1]);
+        out.offsets[k + 1] = uint32_t(out.indices.size());
+    }
+    return out;
+}
+
 }  // namespace jade::bake

@@ -11,6 +11,7 @@
 #include <jade/mesh.hpp>
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace jade::bake {
@@ -29,5 +30,8 @@ struct NearLists {
 /// margin (> 1) covers float rounding at the boundary and, for a deforming mesh, how much
 /// closer vertices may come than at rest.
 NearLists build_near_lists(const PreparedMesh& mesh, const Bvh& point_tree, float margin);
+
+/// The same lists with rows in the order `order` (row k = the list of vertex order[k]).
+NearLists reorder_rows(const NearLists& lists, std::span<const uint32_t> order);
 
 }  // namespace jade::bake

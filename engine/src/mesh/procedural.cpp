@@ -8,6 +8,7 @@
 #include <jade/mesh.hpp>
 
 #include <cmath>
+#include <unordered_map>
 #include <numbers>
 #include <string>
 
@@ -134,6 +135,36 @@ TriangleMesh grid(uint32_t n, float spacing)
         }
     add_lattice_triangles(mesh.indices, 0, n);  // i along x, j along y: normal +z
     return mesh;
+}
+
+TriangleMesh subdivide(const TriangleMesh& mesh, uint32_t levels)
+{
+    TriangleMesh out = mesh;
+    out.normals.clear();
+    out.baked_ao.clear();
+    out.baked_tm.clear();
+    for (uint32_t level = 0; level < levels; ++level) {
+        if (out.triangle_count() * 4 >= (uint64_t(1) << 27)) bad_parameter("subdivide", "more than 2^27 triangles");
+        // One midpoint per undirected edge, keyed by its (lower, higher) vertex pair.
+        std::unordered_map<uint64_t, uint32_t> midpoint;
+        midpoint.reserve(out.indices.size());
+        auto mid = [&](uint32_t a, uint32_t b) {
+            const uint64_t key = (uint64_t(std::min(a, b)) << 32) | std::max(a, b);
+            auto [it, added] = midpoint.try_emplace(key, uint32_t(out.positions.size()));
+            if (added) out.positions.push_back(0.5f * (out.positions[a] + out.positions[b]));
+            return it->second;
+        };
+        std::vector<uint32_t> indices;
+        indices.reserve(out.indices.size() * 4);
+        for (size_t t = 0; t < out.triangle_count(); ++t) {
+            const uint32_t a = out.indices[3 * t], b = out.indices[3 * t + 1], c = out.indices[3 * t + 2];
+            const uint32_t ab = mid(a, b), bc = mid(b, c), ca = mid(c, a);
+            for (uint32_t v : {a, ab, ca, ab, b, bc, ca, bc, c, ab, bc, ca}) indices.push_back(v);
+        }
+        out.indices = std::move(indices);
+    }
+    out.name = mesh.name + " (subdivided " + std::to_string(levels) + "x)";
+    return out;
 }
 
 }  // namespace jade::procedural
