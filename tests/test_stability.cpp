@@ -308,8 +308,8 @@ class StabilityRender : public GpuTest {};
 // t_m and strength; t_m = 0 and 1e-30 give the Lambert image; t_m = 1e30 and FLT_MAX
 // (and strength 1e30, where strength·t_m overflows float) give the flat limit: every sphere
 // pixel k_d/π · 1/π · E, lit side and dark side alike (to 1e-4 relative: the LUT's last row is
-// 2e-6 from 1/π); strength 0 is Lambert whatever t_m; false colour stays finite over t_m from
-// 0 to FLT_MAX, also mixed on neighbouring vertices. t_m = ∞, NaN or < 0 is refused by
+// 2e-6 from 1/π); strength 0 is Lambert whatever t_m; false colour (and the curvature mode,
+// which ignores t_m) stay finite over t_m from 0 to FLT_MAX, also mixed on neighbouring vertices. t_m = ∞, NaN or < 0 is refused by
 // set_mesh with an error naming t_m and the vertex (decision: never clamped silently).
 TEST_F(StabilityRender, ZeroTinyAndHugeTmRenderFiniteWithTheirLimits)
 {
@@ -377,7 +377,7 @@ TEST_F(StabilityRender, ZeroTinyAndHugeTmRenderFiniteWithTheirLimits)
     // and false colour over the whole range: finite everywhere (checked inside render_with).
     std::vector<glm::vec3> mixed(sphere.vertex_count());
     for (size_t i = 0; i < mixed.size(); ++i) mixed[i] = glm::vec3(i % 2 ? flt_max : 0.0f, i % 3 ? 1e-30f : flt_max, 1.0f);
-    for (ShadingMode mode : {ShadingMode::Tm, ShadingMode::TmFalseColor}) {
+    for (ShadingMode mode : {ShadingMode::Tm, ShadingMode::TmFalseColor, ShadingMode::Curvature}) {
         render_with(mixed, 0.0f, mode);
         render_with(mixed, 1e30f, mode);
         for (float tm : {0.0f, 1e-30f, 1e30f, flt_max}) render(tm, 1.0f, mode);
