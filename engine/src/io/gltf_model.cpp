@@ -30,7 +30,7 @@ struct FsContext {
 /// Why the file at `uri` (relative to the glTF's folder) may not be read; empty if it may.
 std::string outside_reason(const std::filesystem::path& folder, const std::string& uri)
 {
-    if (uri.empty()) return "is empty";
+    if (uri.empty()) return {};  // names the folder itself: not a file, tinygltf says "File not found"
     if (uri.front() == '/' || uri.front() == '\\') return "is an absolute path";
     const auto colon = uri.find(':');
     if (colon != std::string::npos && uri.find_first_of("/\\") > colon)
