@@ -73,8 +73,14 @@ void main()
     vec3 n = normalize(in_normal);
     vec3 v = normalize(frame.eye - in_position);
     vec3 albedo = data.albedo_strength.rgb;
-    // (t / t_max)^¼ with t = strength · t_m, on the LUT's texel centres; past 1 the sampler clamps.
-    vec3 lut_v = sqrt(sqrt(data.albedo_strength.w * max(in_tm, vec3(0.0)) * data.params.x)) * data.lut_map.z + data.lut_map.w;
+    // (t / t_max)^¼ with t = strength · t_m, on the LUT's texel centres. t past t_max is clamped
+    // here (the LUT's last row is t_max) rather than by the sampler: strength · t_m may overflow
+    // to +Inf, and an infinite texture coordinate is undefined. t_m is capped below +Inf first,
+    // since interpolating vertex values near FLT_MAX can round up to +Inf and strength 0 · Inf
+    // would be NaN (tests/test_stability.cpp renders t_m = 3e38 with strength 0 and 1e30).
+    vec3 tm = min(max(in_tm, vec3(0.0)), vec3(3.0e38));
+    vec3 t_rel = clamp(data.albedo_strength.w * tm * data.params.x, 0.0, 1.0);
+    vec3 lut_v = sqrt(sqrt(t_rel)) * data.lut_map.z + data.lut_map.w;
     float kappa_scaled = max(in_curvature, 0.0) * data.params.y;  // concave: treated as flat
 
     vec3 color = vec3(0.0);

@@ -3,13 +3,14 @@
 // and no temporary file left behind), and every malformed command line must be a usage error
 // (exit code 2, a message naming the flag). Never a crash: an exit code of 128 or more is a
 // signal (test_support.cpp maps it so), and sanitizer reports in the output are failures too.
-// No test here touches the GPU except WriteFailureAfterTheBake, which bakes a 4-vertex mesh.
+// No test here touches the GPU: output paths are checked before the mesh is loaded.
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -191,22 +192,60 @@ INSTANTIATE_TEST_SUITE_P(
                       BadCommandLine{{"frobnicate", "MESH"}, "unknown command 'frobnicate'"}),
     [](const auto& info) { return "case" + std::to_string(info.index); });
 
-// ------------------------------------------------------------------ failing after the bake --
+// ------------------------------------------------------------- bad output paths, early --
 
-TEST(cli_bad_input, WriteFailureAfterTheBakeIsAnErrorAndLeavesNothing)
+struct BadOutput {
+    std::vector<std::string> args;  ///< "MESH" is replaced by a tiny mesh, "DIR/" by a fresh folder
+    int exit_code;
+    std::string expected;  ///< a phrase of the message, naming the flag and the path
+};
+
+TEST(cli_bad_input, BadOutputPathsFailBeforeAnyWork)
 {
-    // The only test here that bakes: a 4-vertex mesh at draft quality, into a folder that does
-    // not exist, so the error comes from the atomic write at the very end.
-    const auto folder = out("cli_bad_input/no_such_folder/x").parent_path();
-    fs::remove_all(folder);
-    const auto output = folder / "tetra.glb";
-    const std::vector<std::string> args = {"bake", tiny_mesh().string(), "--out", output.string(), "--quality", "draft"};
-    const auto r = run_cli(args);
-    expect_no_crash(args, r);
-    EXPECT_EQ(r.exit_code, kError) << describe(args, r);
-    EXPECT_NE(r.output.find("tetra.glb"), std::string::npos) << describe(args, r);
-    EXPECT_FALSE(fs::exists(folder)) << describe(args, r);
-    EXPECT_EQ(temporaries(folder.parent_path()), std::vector<std::string>{}) << describe(args, r);
+    // An output that cannot be written is found before the mesh is loaded and before the GPU is
+    // touched: no "baking" line, exit 2 for a wrong extension (a usage error), exit 1 for a
+    // folder that is missing, not a folder, or where no file can be created; nothing is left.
+    const auto dir = out("cli_bad_input/outputs/x").parent_path();
+    fs::remove_all(dir);
+    fs::create_directories(dir / "a_folder.glb");
+    std::ofstream(dir / "a_file.txt") << "not a folder\n";
+    const std::vector<BadOutput> cases = {
+        {{"bake", "MESH", "--out", "DIR/x.stl"}, kUsage, "--out DIR/x.stl: unsupported extension '.stl' (supported: .glb, .gltf)"},
+        {{"bake", "MESH", "--out", "DIR/x"}, kUsage, "--out DIR/x: unsupported extension ''"},
+        {{"bake", "MESH", "--out", "DIR/x.png"}, kUsage, "unsupported extension '.png' (supported: .glb, .gltf)"},
+        {{"bake", "MESH", "--out", "DIR/missing/x.glb"}, kError, "--out DIR/missing/x.glb: folder 'DIR/missing' does not exist"},
+        {{"bake", "MESH", "--out", "DIR/a_folder.glb"}, kError, "--out DIR/a_folder.glb: is a folder, not a file"},
+        {{"bake", "MESH", "--out", "DIR/a_file.txt/x.glb"}, kError, "'DIR/a_file.txt' is not a folder"},
+        // Root ignores permission bits; /proc refuses new files to everyone.
+        {{"bake", "MESH", "--out", "/proc/jade-test.glb"}, kError, "--out /proc/jade-test.glb: cannot create a file in folder '/proc'"},
+        {{"render", "MESH", "--out", "DIR/x.jpg"}, kUsage, "--out DIR/x.jpg: unsupported extension '.jpg' (supported: .png, .exr)"},
+        {{"render", "MESH", "--out", "DIR/missing/x.png"}, kError, "folder 'DIR/missing' does not exist"},
+        {{"figure1", "--mesh", "MESH", "--out", "DIR/x.tga"}, kUsage, "--out DIR/x.tga: unsupported extension '.tga'"},
+        {{"figure1", "--mesh", "MESH", "--out", "/proc/f.png"}, kError, "cannot create a file in folder '/proc'"},
+        {{"report", "MESH", "--tiny", "--out", "DIR/a_file.txt"}, kError, "--out DIR/a_file.txt: cannot create the folder"},
+        {{"report", "MESH", "--tiny", "--out", "/proc/jade-report"}, kError, "--out /proc/jade-report: cannot create the folder"},
+    };
+    const auto substitute = [&](std::string s) {
+        if (s == "MESH") return tiny_mesh().string();
+        if (s.rfind("DIR/", 0) == 0) return (dir / s.substr(4)).string();
+        for (size_t at; (at = s.find("DIR/")) != std::string::npos;) s.replace(at, 4, dir.string() + "/");
+        return s;
+    };
+    for (const auto& c : cases) {
+        std::vector<std::string> args;
+        for (const auto& a : c.args) args.push_back(substitute(a));
+        const auto r = run_cli(args);
+        expect_no_crash(args, r);
+        EXPECT_EQ(r.exit_code, c.exit_code) << describe(args, r);
+        EXPECT_NE(r.output.find(substitute(c.expected)), std::string::npos) << "expected '" << c.expected << "': " << describe(args, r);
+        EXPECT_EQ(r.output.find("baking"), std::string::npos) << "the bake ran: " << describe(args, r);
+    }
+    // Nothing created: only the two entries made above, no temporary or probe file anywhere.
+    std::vector<std::string> left;
+    for (const auto& e : fs::recursive_directory_iterator(dir)) left.push_back(fs::relative(e.path(), dir).string());
+    std::sort(left.begin(), left.end());
+    EXPECT_EQ(left, (std::vector<std::string>{"a_file.txt", "a_folder.glb"}));
+    EXPECT_EQ(temporaries("/proc"), std::vector<std::string>{});
 }
 
 }  // namespace

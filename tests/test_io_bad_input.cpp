@@ -75,6 +75,12 @@ const std::map<std::string, std::string> kExpectedErrors = {
     {"gltf_short_data_uri.gltf", "tinygltf: Failed to decode"},
     {"gltf_two_parents.gltf", "node 2 is reached twice"},
     {"gltf_truncated_json.gltf", "tinygltf: "},
+    // external files outside the glTF's folder (../cube_external.bin exists and would load)
+    {"gltf_uri_parent.gltf", "buffer 0: URI '../cube_external.bin' points outside the glTF file's folder"},
+    {"gltf_uri_percent_parent.gltf", "buffer 0: URI '../cube_external.bin' points outside the glTF file's folder"},
+    {"gltf_uri_absolute.gltf", "buffer 0: URI '/etc/passwd' is an absolute path"},
+    {"gltf_uri_file_scheme.gltf", "buffer 0: URI 'file:///etc/passwd' is not a relative file path"},
+    {"gltf_image_uri_parent.gltf", "image 0: URI '../cube_external.bin' points outside the glTF file's folder"},
     {"glb_truncated.glb", "GLB header declares 1404 bytes but the file has 702"},
     {"glb_bad_magic.glb", "not a binary glTF file"},
     {"glb_version1.glb", "GLB version 1 is not supported"},
@@ -197,6 +203,47 @@ TEST(io_bad_input, MissingFilesAndFoldersAreErrors)
     const auto folder = out("folder.ply/x").parent_path();
     std::filesystem::create_directories(folder);
     EXPECT_EQ(load_error(folder), "folder.ply: cannot open: not a regular file");
+}
+
+TEST(io_bad_input, ExternalFilesAreReadOnlyFromTheGltfFolderAndBelow)
+{
+    // A glTF names its buffers and images by URI. Files in its folder or below load (also through
+    // a `..` that stays inside); files that exist outside it, reached by `..` or by an absolute
+    // path, are refused with a message naming the buffer and the URI. Judged lexically.
+    std::ifstream in(data("cube_external.gltf"));
+    const std::string gltf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_NE(gltf.find("\"cube_external.bin\""), std::string::npos);
+    const auto with_uri = [&](const std::string& uri) {
+        std::string text = gltf;
+        text.replace(text.find("\"cube_external.bin\""), 19, "\"" + uri + "\"");
+        return text;
+    };
+    const auto root = out("uri/model/m.gltf").parent_path().parent_path();
+    std::filesystem::create_directories(root / "model" / "sub");
+    for (const auto& copy : {root / "secret.bin", root / "model" / "sub" / "buffer.bin"})
+        std::filesystem::copy_file(data("cube_external.bin"), copy, std::filesystem::copy_options::overwrite_existing);
+
+    EXPECT_EQ(jade::load_mesh(data("cube_external.gltf")).positions.size(), 24u);
+    const std::map<std::string, std::string> cases = {
+        {"sub/buffer.bin", ""},
+        {"sub/../sub/./buffer.bin", ""},
+        {"../model/sub/buffer.bin", ""},  // climbs out and back in: lexically inside
+        {"../secret.bin", "buffer 0: URI '../secret.bin' points outside the glTF file's folder"},
+        {"sub/../../secret.bin", "points outside the glTF file's folder"},
+        {(root / "secret.bin").string(), "is an absolute path"},
+        {(root / "model" / "sub" / "buffer.bin").string(), "is an absolute path"},
+    };
+    for (const auto& [uri, expected] : cases) {
+        const auto path = root / "model" / "m.gltf";
+        std::ofstream(path, std::ios::binary | std::ios::trunc) << with_uri(uri);
+        const auto message = load_error(path);
+        if (expected.empty()) {
+            EXPECT_EQ(message, "(loaded without error)") << uri;
+        } else {
+            EXPECT_EQ(message.rfind("m.gltf: ", 0), 0u) << uri << " -> " << message;
+            EXPECT_NE(message.find(expected), std::string::npos) << uri << " -> " << message;
+        }
+    }
 }
 
 // --------------------------------------------------------------------------------- fuzzing --

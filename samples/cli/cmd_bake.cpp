@@ -69,6 +69,7 @@ int cmd_bake(int argc, char** argv)
     auto out = args.get("out");
     if (!out) args.fail("--out FILE is required");
     BakeSettings settings = bake_settings_from_args(args);
+    check_output_file(args, "out", *out, {".glb", ".gltf"});
 
     TriangleMesh mesh = load_mesh_arg(args.positional()[0]);
     PreparedMesh prepared = prepare_mesh(mesh);

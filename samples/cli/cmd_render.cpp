@@ -175,6 +175,7 @@ int cmd_render(int argc, char** argv)
     settings.exposure = float(args.number("exposure", 1.0, 0.0, 1e6));
     settings.samples = args.count("samples", 4, 1, 8);
     const std::string out = args.get_or("out", "render.png");
+    check_output_file(args, "out", out, {".png", ".exr"});
 
     auto ctx = make_context(args);
     const bool need_tm = settings.mode == ShadingMode::Tm || settings.mode == ShadingMode::TmFalseColor;
@@ -214,6 +215,8 @@ int cmd_figure1(int argc, char** argv)
     for (auto& w : words) word_ptrs.push_back(w.data());
     Args args("figure1", specs, int(word_ptrs.size()), word_ptrs.data(), 2);
     auto [w, h] = parse_size(args, "512x512");
+    const std::string out = args.get_or("out", "figure1.png");
+    check_output_file(args, "out", out, {".png", ".exr"});
 
     auto ctx = make_context(args);
     Scene scene = load_scene(args, *ctx, args.get_or("mesh", "bunny"), true);
@@ -240,7 +243,6 @@ int cmd_figure1(int argc, char** argv)
         draw_text(figure, x, int(h) + 3 * scale, labels[k], glm::vec3(1.0f), scale);
         std::printf("(%c) %-16s GPU %s\n", 'a' + k, std::string(shading_mode_name(modes[k])).c_str(), format_ms(panel.gpu_ms).c_str());
     }
-    const std::string out = args.get_or("out", "figure1.png");
     save_image(out, int(figure.width), int(figure.height), figure.rgba);
     std::printf("%s: %ux%u, material %s\n", out.c_str(), figure.width, figure.height, scene.material.name.c_str());
     return 0;

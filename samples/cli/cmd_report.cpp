@@ -157,9 +157,8 @@ int cmd_report(int argc, char** argv)
     const Plan plan = make_plan(args.flag("tiny") ? "tiny" : args.flag("quick") ? "quick" : "full",
                                 args.count("sample", 300, 1, 1u << 24), epsilon_list(args));
     const fs::path dir = *out;
+    check_output_folder("out", dir);
     std::error_code ec;
-    fs::create_directories(dir, ec);
-    if (ec || !fs::is_directory(dir)) throw Error("--out " + dir.string() + ": cannot create the folder: " + ec.message());
 
     if (args.flag("summary-only")) {
         auto ctx = make_context(args);

@@ -8,6 +8,7 @@
 #include <jade/material.hpp>
 #include <jade/mesh.hpp>
 
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -35,6 +36,16 @@ BakeSettings bake_settings_from_args(const Args& args);
 /// The built-in default scene when `path` is empty or "bunny": the Stanford bunny if
 /// assets/ has it, else a procedural sphere.
 TriangleMesh load_mesh_arg(const std::string& path);
+
+/// Checks an output file named by --FLAG before any work is done (a bake must not run for
+/// nothing): the extension is one of `extensions` (lower case, with the dot; else a usage
+/// error, exit 2), the path is not a folder, its folder exists, and a file can be created
+/// there (else jade::Error, exit 1). Leaves nothing behind.
+void check_output_file(const Args& args, const std::string& flag, const std::filesystem::path& path,
+                       const std::vector<std::string>& extensions);
+/// Creates the output folder named by --FLAG if needed and checks that a file can be created in
+/// it (jade::Error otherwise).
+void check_output_folder(const std::string& flag, const std::filesystem::path& folder);
 
 std::string format_ms(double ms);
 

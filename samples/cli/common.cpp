@@ -2,10 +2,17 @@
 
 #include <jade/io.hpp>
 
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
 
 namespace jade::cli {
 
@@ -98,6 +105,67 @@ TriangleMesh load_mesh_arg(const std::string& path)
     std::fprintf(stderr, "jade: %s not found (run third_party/fetch_assets.sh); using a procedural sphere\n",
                  bunny.string().c_str());
     return procedural::sphere(1.0f, 64, 128);
+}
+
+namespace {
+
+std::string lower(std::string s)
+{
+    for (auto& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+
+/// Creates and removes "<path>.tmp-<pid>" (the name the writers use for their temporary file):
+/// permission bits do not stop root, a read-only or full file system does, so only a real
+/// file tells. Throws jade::Error naming the flag and the folder.
+void probe_writable(const std::string& flag, const std::filesystem::path& path, const std::filesystem::path& folder)
+{
+    auto probe = path;
+    probe += ".tmp-" + std::to_string(::getpid());
+    bool created = false;
+    {
+        std::ofstream f(probe, std::ios::binary | std::ios::trunc);
+        created = f.is_open();
+    }
+    const int error = errno;
+    std::error_code ignored;
+    std::filesystem::remove(probe, ignored);
+    if (!created)
+        throw Error("--" + flag + " " + path.string() + ": cannot create a file in folder '" + folder.string() +
+                    "': " + std::strerror(error));
+}
+
+}  // namespace
+
+void check_output_file(const Args& args, const std::string& flag, const std::filesystem::path& path,
+                       const std::vector<std::string>& extensions)
+{
+    namespace fs = std::filesystem;
+    const auto ext = lower(path.extension().string());
+    if (std::find(extensions.begin(), extensions.end(), ext) == extensions.end()) {
+        std::string list;
+        for (const auto& e : extensions) list += (list.empty() ? "" : ", ") + e;
+        args.fail("--" + flag + " " + path.string() + ": unsupported extension '" + path.extension().string() +
+                  "' (supported: " + list + ")");
+    }
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) throw Error("--" + flag + " " + path.string() + ": is a folder, not a file");
+    const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
+    if (!fs::exists(folder, ec)) throw Error("--" + flag + " " + path.string() + ": folder '" + folder.string() + "' does not exist");
+    if (!fs::is_directory(folder, ec)) throw Error("--" + flag + " " + path.string() + ": '" + folder.string() + "' is not a folder");
+    probe_writable(flag, path, folder);
+}
+
+void check_output_folder(const std::string& flag, const std::filesystem::path& folder)
+{
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    fs::create_directories(folder, ec);
+    if (ec || !fs::is_directory(folder)) {
+        const std::string why = ec ? ec.message() : "a file of that name exists";
+        throw Error("--" + flag + " " + folder.string() + ": cannot create the folder: " + why);
+    }
+    probe_writable(flag, folder / "jade-write-probe", folder);
 }
 
 std::string format_ms(double ms)

@@ -268,6 +268,17 @@ def bad_gltf_files():
     d["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64.b64encode(bytes(raw)).decode()
     out["gltf_index_out_of_range.gltf"] = d
 
+    # External files that are not the glTF's own folder or below it: a relative path climbing out
+    # of the folder to a file that exists and would load (tests/data/cube_external.bin), the same
+    # percent-encoded, an absolute path, a file: URL, and an image (read but never decoded).
+    def external(uri):
+        return lambda d: d["buffers"][0].update(uri=uri)
+    variant("gltf_uri_parent.gltf", external("../cube_external.bin"))
+    variant("gltf_uri_percent_parent.gltf", external("%2E%2E/cube_external.bin"))
+    variant("gltf_uri_absolute.gltf", external("/etc/passwd"))
+    variant("gltf_uri_file_scheme.gltf", external("file:///etc/passwd"))
+    variant("gltf_image_uri_parent.gltf", lambda d: d.update(images=[{"uri": "../cube_external.bin"}]))
+
     texts = {name: dump(d) for name, d in out.items()}
     texts["gltf_truncated_json.gltf"] = dump(doc)[:300]
     return texts
@@ -302,6 +313,11 @@ def main():
     os.makedirs(BAD, exist_ok=True)
     write(os.path.join(HERE, "cube_seams.gltf"), dump(cube_seams().finish()))
     write(os.path.join(HERE, "cube_seams.glb"), cube_seams().glb())
+    external = cube_seams()
+    doc = external.finish()
+    doc["buffers"][0]["uri"] = "cube_external.bin"
+    write(os.path.join(HERE, "cube_external.gltf"), dump(doc))
+    write(os.path.join(HERE, "cube_external.bin"), bytes(external.buffer))
     write(os.path.join(HERE, "nodes_transforms.gltf"), dump(nodes_transforms().finish()))
     write(os.path.join(HERE, "strip_fan.gltf"), dump(strip_fan().finish()))
     write(os.path.join(HERE, "cube_ascii.ply"), ply_cube("ascii", "uchar", "int", "vertex_indices", False))

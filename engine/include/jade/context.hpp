@@ -24,7 +24,8 @@ struct ContextOptions {
     /// Enable VK_LAYER_KHRONOS_validation (also on when JADE_VALIDATION=1). Every warning or
     /// error message is logged and counted (validation_messages()).
     bool validation = false;
-    /// Also enable the layer's synchronization validation (also JADE_SYNC_VALIDATION=1).
+    /// Also enable the layer's synchronization validation (also JADE_SYNC_VALIDATION=1); implies
+    /// `validation`. Logs "jade: Vulkan synchronization validation on" once.
     bool synchronization_validation = false;
     /// Where log lines go (validation messages, device choice with verbose). Default: stderr.
     std::function<void(std::string_view)> log;

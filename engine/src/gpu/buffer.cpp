@@ -2,10 +2,57 @@
 
 #include "gpu/context.hpp"
 
+#include <jade/context.hpp>
+
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
+#include <string>
 
 namespace jade::gpu {
+
+namespace {
+
+std::string mib(VkDeviceSize bytes)
+{
+    const double m = double(bytes) / double(1u << 20);
+    char text[64];
+    std::snprintf(text, sizeof text, m >= 100 ? "%.0f MiB" : "%.3g MiB", m);
+    return std::to_string(bytes) + " bytes (" + text + ")";
+}
+
+constexpr VkMemoryPropertyFlags kHostFlags = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+
+BufferLimits limits_of(const Context& ctx, bool host_visible)
+{
+    BufferLimits l;
+    l.max_storage_range = ctx.limits().maxStorageBufferRange;
+    l.max_allocation = ctx.max_memory_allocation_size();
+    // The buffer's memory type must have these flags (allocate_memory); its heap is one of theirs.
+    const VkMemoryPropertyFlags required = host_visible ? kHostFlags : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+    const auto& mem = ctx.memory_properties();
+    for (uint32_t i = 0; i < mem.memoryTypeCount; ++i)
+        if ((mem.memoryTypes[i].propertyFlags & required) == required)
+            l.heap_bytes = std::max(l.heap_bytes, mem.memoryHeaps[mem.memoryTypes[i].heapIndex].size);
+    return l;
+}
+
+}  // namespace
+
+void check_buffer_size(const BufferLimits& limits, VkDeviceSize bytes, VkBufferUsageFlags usage, StorageBinding binding,
+                       const char* name)
+{
+    const std::string what = std::string("GPU buffer '") + name + "' of " + mib(bytes);
+    if ((usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) && binding == StorageBinding::Whole && bytes > limits.max_storage_range)
+        throw Error(what + " exceeds the device's maxStorageBufferRange of " + mib(limits.max_storage_range) +
+                    " (the largest storage buffer a shader can bind)");
+    if (limits.max_allocation && bytes > limits.max_allocation)
+        throw Error(what + " exceeds the device's maxMemoryAllocationSize of " + mib(limits.max_allocation));
+    if (bytes > limits.heap_bytes)
+        throw Error(what + " exceeds the largest memory heap it can use, " + mib(limits.heap_bytes));
+}
+
+BufferLimits buffer_limits(jade::Context& ctx, bool host_visible) { return limits_of(ctx.gpu(), host_visible); }
 
 uint32_t find_memory_type(const Context& ctx, uint32_t type_bits, VkMemoryPropertyFlags required,
                           VkMemoryPropertyFlags preferred)
@@ -39,9 +86,11 @@ OwnedMemory allocate_memory(const Context& ctx, const VkMemoryRequirements& req,
     return owned;
 }
 
-Buffer::Buffer(Context& ctx, VkDeviceSize bytes, VkBufferUsageFlags usage, const char* name, bool host_visible)
+Buffer::Buffer(Context& ctx, VkDeviceSize bytes, VkBufferUsageFlags usage, const char* name, bool host_visible,
+               StorageBinding binding)
     : ctx_(&ctx), size_(std::max<VkDeviceSize>(bytes, 16))  // Vulkan forbids empty buffers
 {
+    check_buffer_size(limits_of(ctx, host_visible), size_, usage, binding, name);  // before any Vulkan call
     VkBufferCreateInfo ci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
     ci.size = size_;
     ci.usage = usage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;

@@ -1,6 +1,7 @@
 // gpu/buffer.hpp - one VkBuffer with its own memory, and upload/read-back.
 #pragma once
 
+#include "gpu/buffer_limits.hpp"
 #include "gpu/vk.hpp"
 
 #include <cstddef>
@@ -14,10 +15,13 @@ class Context;
 /// A storage (or other) buffer with dedicated memory. Memory is device-local; when the device
 /// also exposes it to the host (lavapipe, integrated GPUs, resizable BAR) it stays mapped and
 /// upload/download are memcpy, else they go through a temporary staging buffer.
+/// The size is checked against the device limits (check_buffer_size) before any Vulkan call:
+/// a buffer too large is a jade::Error naming it and the limit, never a device error or crash.
 class Buffer {
 public:
     Buffer() = default;
-    Buffer(Context& ctx, VkDeviceSize bytes, VkBufferUsageFlags usage, const char* name, bool host_visible = false);
+    Buffer(Context& ctx, VkDeviceSize bytes, VkBufferUsageFlags usage, const char* name, bool host_visible = false,
+           StorageBinding binding = StorageBinding::Whole);
 
     template <class T> static Buffer from(Context& ctx, std::span<const T> data, VkBufferUsageFlags usage, const char* name)
     {

@@ -182,8 +182,8 @@ VKAPI_ATTR VkBool32 VKAPI_CALL Context::on_debug_message(VkDebugUtilsMessageSeve
 
 void Context::create_instance(const ContextOptions& options)
 {
-    bool validation = options.validation || env_flag("JADE_VALIDATION");
-    bool sync_validation = options.synchronization_validation || env_flag("JADE_SYNC_VALIDATION");
+    const bool sync_validation = options.synchronization_validation || env_flag("JADE_SYNC_VALIDATION");
+    const bool validation = options.validation || env_flag("JADE_VALIDATION") || sync_validation;  // sync needs the layer
 
     std::vector<const char*> layers, extensions;
     bool debug_utils = has_instance_extension(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
@@ -226,6 +226,8 @@ void Context::create_instance(const ContextOptions& options)
     check(r, "vkCreateInstance");
 
     if (validation) {
+        // Said once, so that a test job can prove the hazard checks were on (tests/CMakeLists.txt).
+        if (sync_validation) log("jade: Vulkan synchronization validation on");
         messenger.pNext = nullptr;
         auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
             vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
@@ -323,10 +325,12 @@ void Context::create_device()
 
 void Context::fill_info()
 {
-    VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+    VkPhysicalDeviceMaintenance3Properties maintenance3{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
+    VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES, &maintenance3};
     VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES, &driver};
     VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &subgroup};
     vkGetPhysicalDeviceProperties2(physical_, &props);
+    max_memory_allocation_size_ = maintenance3.maxMemoryAllocationSize;
     const auto& l = properties_.limits;
     info_.name = properties_.deviceName;
     info_.driver = std::string(driver.driverName) + " " + driver.driverInfo;

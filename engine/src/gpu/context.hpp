@@ -25,6 +25,8 @@ public:
     uint32_t queue_family() const { return queue_family_; }
     const VkPhysicalDeviceLimits& limits() const { return properties_.limits; }
     const VkPhysicalDeviceMemoryProperties& memory_properties() const { return memory_; }
+    /// maxMemoryAllocationSize (Vulkan 1.1): the largest single allocation.
+    VkDeviceSize max_memory_allocation_size() const { return max_memory_allocation_size_; }
     const DeviceInfo& info() const { return info_; }
     uint64_t validation_messages() const { return validation_messages_.load(); }
 
@@ -66,6 +68,7 @@ private:
     VkPhysicalDeviceProperties properties_{};
     VkPhysicalDeviceMemoryProperties memory_{};
     bool float64_ = false;
+    VkDeviceSize max_memory_allocation_size_ = 0;
     uint32_t queue_family_ = 0;
     VkDevice device_ = VK_NULL_HANDLE;
     VkQueue queue_ = VK_NULL_HANDLE;

@@ -4,30 +4,73 @@
 
 #include "io/common.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cstring>
+#include <optional>
 #include <string_view>
 
 namespace jade::io {
 
 namespace {
 
-/// tinygltf's file access, limited to the glTF's own folder (tinygltf would also search the
-/// current directory) and to files within the size limit; URIs are never shell-expanded.
+/// tinygltf's file access, limited to the glTF's own folder and below (tinygltf would also
+/// search the current directory); URIs are never shell-expanded. tinygltf asks for
+/// `basedir + "/" + uri` (uri percent-decoded), so the URI is recovered from the path and judged
+/// lexically: absolute paths, URIs with a scheme (`file:`, `C:`) and relative paths whose `..`
+/// climb above the folder are refused and remembered, so that the load fails naming them instead
+/// of with tinygltf's "File not found". Symbolic links inside the folder are followed.
 struct FsContext {
-    std::string folder;  ///< with a trailing separator
+    std::filesystem::path folder;  ///< absolute, lexically normal, no trailing separator
+    std::string prefix;            ///< folder + "/": what tinygltf puts before every URI
+    std::string refused_uri;       ///< the first URI refused, percent-decoded
+    std::string refused_why;       ///< why, e.g. "is an absolute path"
 };
+
+/// Why the file at `uri` (relative to the glTF's folder) may not be read; empty if it may.
+std::string outside_reason(const std::filesystem::path& folder, const std::string& uri)
+{
+    if (uri.empty()) return {};  // names the folder itself: not a file, tinygltf says "File not found"
+    if (uri.front() == '/' || uri.front() == '\\') return "is an absolute path";
+    const auto colon = uri.find(':');
+    if (colon != std::string::npos && uri.find_first_of("/\\") > colon)
+        return "is not a relative file path (it has a scheme or drive '" + printable(uri.substr(0, colon + 1), 16) + "')";
+    const auto target = (folder / uri).lexically_normal();
+    const auto mismatch = std::mismatch(folder.begin(), folder.end(), target.begin(), target.end());
+    if (mismatch.first != folder.end()) return "points outside the glTF file's folder";
+    return {};
+}
+
+/// The URI in a path tinygltf built, or nullopt for its other candidates (the current directory).
+std::optional<std::string> uri_of(const FsContext& ctx, const std::string& path)
+{
+    if (!path.starts_with(ctx.prefix)) return std::nullopt;
+    return path.substr(ctx.prefix.size());
+}
 
 bool fs_exists(const std::string& path, void* user)
 {
-    const auto& ctx = *static_cast<const FsContext*>(user);
+    auto& ctx = *static_cast<FsContext*>(user);
+    const auto uri = uri_of(ctx, path);
+    if (!uri) return false;
+    if (auto why = outside_reason(ctx.folder, *uri); !why.empty()) {
+        if (ctx.refused_uri.empty()) ctx.refused_uri = *uri, ctx.refused_why = std::move(why);
+        return false;
+    }
     std::error_code ec;
-    return path.starts_with(ctx.folder) && std::filesystem::is_regular_file(path, ec);
+    return std::filesystem::is_regular_file(path, ec);
 }
 
 std::string fs_expand(const std::string& path, void*) { return path; }
 
-bool fs_read(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*)
+bool fs_read(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user)
 {
+    const auto& ctx = *static_cast<const FsContext*>(user);
+    const auto uri = uri_of(ctx, path);
+    if (!uri || !outside_reason(ctx.folder, *uri).empty()) {  // tinygltf reads only what fs_exists accepted
+        if (err) *err += "refused to read a file outside the glTF file's folder";
+        return false;
+    }
     try {
         const auto bytes = read_file(path);
         out->assign(bytes.begin(), bytes.end());
@@ -36,6 +79,33 @@ bool fs_read(std::vector<unsigned char>* out, std::string* err, const std::strin
         if (err) *err += e.what();
         return false;
     }
+}
+
+/// `%XX` escapes decoded (as tinygltf does before it looks a URI up), to match image URIs.
+std::string percent_decoded(const std::string& uri)
+{
+    std::string out;
+    for (size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(uint8_t(uri[i + 1])) && std::isxdigit(uint8_t(uri[i + 2]))) {
+            out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+            i += 2;
+        } else {
+            out += uri[i];
+        }
+    }
+    return out;
+}
+
+/// Fails naming the buffer or image whose URI was refused. Buffers are parsed (and their files
+/// read) in order and the first failure stops the parse, so a refused URI that is no image's
+/// belongs to the buffer after the last one parsed.
+void fail_refused_uri(const std::string& name, const FsContext& ctx, const tinygltf::Model& model)
+{
+    std::string element = "buffer " + std::to_string(model.buffers.size());
+    for (size_t i = 0; i < model.images.size(); ++i)
+        if (percent_decoded(model.images[i].uri) == ctx.refused_uri) element = "image " + std::to_string(i);
+    fail(name, element + ": URI '" + printable(ctx.refused_uri, 64) + "' " + ctx.refused_why +
+                   " (only files in the glTF file's folder or below it are read)");
 }
 
 bool fs_write(std::string* err, const std::string&, const std::vector<unsigned char>&, void*)
@@ -122,8 +192,10 @@ tinygltf::Model parse_gltf(const std::filesystem::path& path, const std::string&
     tinygltf::TinyGLTF loader;
     FsContext ctx;
     std::error_code ec;
-    auto folder = std::filesystem::absolute(path, ec).parent_path();
-    ctx.folder = (folder / "").string();
+    ctx.folder = std::filesystem::absolute(path, ec).parent_path().lexically_normal();
+    if (ctx.folder.has_relative_path() && ctx.folder.filename().empty()) ctx.folder = ctx.folder.parent_path();
+    const std::string folder = ctx.folder.string();
+    ctx.prefix = folder.ends_with('/') ? folder : folder + "/";
     loader.SetFsCallbacks({&fs_exists, &fs_expand, &fs_read, &fs_write, &ctx});
     loader.SetImageLoader(&skip_image, nullptr);
 
@@ -135,17 +207,18 @@ tinygltf::Model parse_gltf(const std::filesystem::path& path, const std::string&
             const uint32_t length = check_glb(name, bytes);
             check_json_depth(name, std::string_view(bytes).substr(20, read_u32(bytes, 12)));
             ok = loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
-                                             length, folder.string());
+                                             length, folder);
         } else {
             check_json_depth(name, bytes);
             ok = loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), static_cast<unsigned>(bytes.size()),
-                                            folder.string());
+                                            folder);
         }
     } catch (const Error&) {
         throw;
     } catch (const std::exception& e) {
         fail(name, std::string("tinygltf: ") + e.what());
     }
+    if (!ctx.refused_uri.empty()) fail_refused_uri(name, ctx, model);
     if (!ok) fail(name, "tinygltf: " + one_line(err.empty() && warn.empty() ? "parse failed" : err + warn));
     return model;
 }

@@ -10,7 +10,8 @@ namespace jade::io {
 
 /// Parses a .gltf or .glb held in memory. The GLB container is checked first (tinygltf 2.7 lets
 /// a BIN chunk run 8 bytes past the end of the file); external buffers are read only from the
-/// folder of `path`, within the file size limit; images are neither read nor decoded.
+/// folder of `path` and below it (a URI outside it is an error naming the buffer or image),
+/// within the file size limit; images are never decoded.
 tinygltf::Model parse_gltf(const std::filesystem::path& path, const std::string& name, const std::string& bytes,
                            bool binary);
 

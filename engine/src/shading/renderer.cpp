@@ -26,6 +26,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cfloat>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -207,7 +208,8 @@ struct Renderer::Impl {
     {
         if (s.false_color_max > s.false_color_min) return {s.false_color_min, s.false_color_max};
         if (tm_max_mean > tm_min_mean) return {tm_min_mean, tm_max_mean};
-        return {tm_min_mean, tm_min_mean + 1.0f};  // constant t_m: any non-empty range
+        // Constant t_m: any non-empty range; + 1 alone is lost in rounding for large t_m.
+        return {tm_min_mean, tm_min_mean + std::max(1.0f, tm_min_mean)};
     }
 
     // The curvature LUT is built on the first curvature-mode draw after set_material (it costs
@@ -232,7 +234,8 @@ struct Renderer::Impl {
         const auto [lo, hi] = false_color_range(s);
         d.curvature_map = curvature_lut ? curvature_lut->shader_map() : glm::vec4(0.0f);
         d.params = glm::vec4(float(1.0 / LutLayout::kMaxVariance), curvature_lut ? float(curvature_lut->scale()) : 0.0f, lo,
-                             1.0f / (hi - lo));
+                             // finite: the shader multiplies (t_m − lo) by it, 0 · Inf would be NaN
+                             float(std::min(1.0 / (double(hi) - double(lo)), double(FLT_MAX))));
         for (int i = 0; i < 9; ++i) d.color_map[i] = glm::vec4(false_color(float(i) / 8.0f), 1.0f);
         for (size_t k = 0; k < lights.size(); ++k)
             d.lights[k] = {glm::vec4(lights[k].vector, lights[k].type == Light::Type::Point ? 1.0f : 0.0f),
@@ -378,11 +381,14 @@ void Renderer::set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm)
     float tm_min = INFINITY, tm_max = 0.0f;
     for (size_t i = 0; i < n; ++i) {
         glm::vec3 t = tm.empty() ? glm::vec3(0.0f) : tm[i];
-        if (!std::isfinite(t.x + t.y + t.z) || t.x < 0 || t.y < 0 || t.z < 0)
+        // Each component on its own: t.x + t.y + t.z overflows for values near FLT_MAX, which
+        // are valid (the shader clamps strength · t_m to the LUT's range).
+        if (!(std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.z)) || t.x < 0 || t.y < 0 || t.z < 0)
             throw Error("Renderer::set_mesh: t_m of vertex " + std::to_string(i) + " is negative or not finite");
         vertices[i] = {mesh.positions[i], mesh.normals[i], t, curvature[i]};
-        tm_min = std::min(tm_min, (t.x + t.y + t.z) / 3.0f);
-        tm_max = std::max(tm_max, (t.x + t.y + t.z) / 3.0f);
+        const float mean = t.x / 3.0f + t.y / 3.0f + t.z / 3.0f;
+        tm_min = std::min(tm_min, mean);
+        tm_max = std::max(tm_max, mean);
     }
     Impl& m = *impl_;
     vkDeviceWaitIdle(m.ctx.device());  // the old buffers may still be read by recorded draws
