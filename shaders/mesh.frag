@@ -10,7 +10,8 @@ layout(constant_id = 1) const uint CHANNELS = 3;  // 1: grey material, one LUT f
 
 const uint kLambert = 0, kCurvature = 1, kTm = 2, kFalseColor = 3;
 
-layout(binding = 1) uniform sampler2D translucency_lut;  // R32F, f(cos θ, t)
+// f(cos θ, t) as (W − 1) × (H − 1) quads: cell (i, j) = texels (i, j), (i+1, j), (i, j+1), (i+1, j+1).
+layout(binding = 1) uniform samplerBuffer translucency_quads;
 layout(binding = 2) uniform sampler2D curvature_lut;     // RGBA32F, D_c(cos θ, κ) per channel
 
 layout(location = 0) in vec3 in_position;
@@ -20,16 +21,24 @@ layout(location = 3) in float in_curvature;
 
 layout(location = 0) out vec4 out_color;
 
-// f(θ, t) for cos θ = c and the LUT row coordinate v of t: no acos, the LUT's u axis is
-// cos θ itself.
-float translucency(float c, float v)
+// Where a fragment reads the translucency LUT in t, per channel and the same for every light:
+// the first quad of its row of quads, and the weight of the upper row.
+struct LutRows {
+    vec3 first;
+    vec3 weight;
+};
+
+// Bilinear interpolation done here, not by the sampler: one fetch of the quad around (x, y)
+// instead of a filtered sample, which on lavapipe costs several times more (docs/shading.md).
+// Weights in full float precision; row and column indices are exact in float (< 2^24).
+float translucency(float first_of_row, float column, float column_weight, float row_weight)
 {
-    return textureLod(translucency_lut, vec2(c * data.lut_map.x + data.lut_map.y, v), 0.0).r;
+    vec4 q = texelFetch(translucency_quads, int(first_of_row + column));
+    return mix(mix(q.x, q.y, column_weight), mix(q.z, q.w, column_weight), row_weight);
 }
 
-// The diffuse response per channel, F in (k_d/π) F E. `lut_v` is the translucency LUT's
-// texture coordinate v per channel (the same for every light).
-vec3 diffuse_response(float c, vec3 lut_v, float kappa_scaled)
+// The diffuse response per channel, F in (k_d/π) F E.
+vec3 diffuse_response(float c, LutRows rows, float kappa_scaled)
 {
     if (MODE == kCurvature) {
         vec4 m = data.curvature_map;
@@ -37,8 +46,13 @@ vec3 diffuse_response(float c, vec3 lut_v, float kappa_scaled)
         return textureLod(curvature_lut, vec2(c * m.x + m.y, v * m.z + m.w), 0.0).rgb;
     }
     if (MODE == kTm) {
-        if (CHANNELS == 1) return vec3(translucency(c, lut_v.r));
-        return vec3(translucency(c, lut_v.r), translucency(c, lut_v.g), translucency(c, lut_v.b));
+        // The LUT's u axis is cos θ itself (no acos): column x ∈ [0, W − 1], texel i on cos θ_i.
+        float x = clamp(c, -1.0, 1.0) * data.lut_map.x + data.lut_map.x;
+        float column = min(floor(x), data.lut_map.y - 1.0);
+        float w = x - column;
+        if (CHANNELS == 1) return vec3(translucency(rows.first.r, column, w, rows.weight.r));
+        return vec3(translucency(rows.first.r, column, w, rows.weight.r), translucency(rows.first.g, column, w, rows.weight.g),
+                    translucency(rows.first.b, column, w, rows.weight.b));
     }
     return vec3(max(c, 0.0));
 }
@@ -73,14 +87,19 @@ void main()
     vec3 n = normalize(in_normal);
     vec3 v = normalize(frame.eye - in_position);
     vec3 albedo = data.albedo_strength.rgb;
-    // (t / t_max)^¼ with t = strength · t_m, on the LUT's texel centres. t past t_max is clamped
-    // here (the LUT's last row is t_max) rather than by the sampler: strength · t_m may overflow
-    // to +Inf, and an infinite texture coordinate is undefined. t_m is capped below +Inf first,
+    // Row y = (t / t_max)^¼ · (H − 1) with t = strength · t_m, interpolated t_m as the poster
+    // (not the row: docs/shading.md); past t_max the last row. t_m is capped below +Inf first,
     // since interpolating vertex values near FLT_MAX can round up to +Inf and strength 0 · Inf
-    // would be NaN (tests/test_stability.cpp renders t_m = 3e38 with strength 0 and 1e30).
+    // would be NaN (tests/test_stability.cpp renders t_m = 3e38 with strength 0 and 1e30), and
+    // t is clamped before the root: strength · t_m may overflow to +Inf.
     vec3 tm = min(max(in_tm, vec3(0.0)), vec3(3.0e38));
-    vec3 t_rel = clamp(data.albedo_strength.w * tm * data.params.x, 0.0, 1.0);
-    vec3 lut_v = sqrt(sqrt(t_rel)) * data.lut_map.z + data.lut_map.w;
+    LutRows rows;
+    {
+        vec3 y = sqrt(sqrt(clamp(data.albedo_strength.w * tm * data.params.x, 0.0, 1.0))) * data.lut_map.z;
+        vec3 row = min(floor(y), vec3(data.lut_map.w));
+        rows.first = row * data.lut_map.y;
+        rows.weight = y - row;
+    }
     float kappa_scaled = max(in_curvature, 0.0) * data.params.y;  // concave: treated as flat
 
     vec3 color = vec3(0.0);
@@ -95,7 +114,7 @@ void main()
         }
         l = normalize(l);
         float c = dot(n, l);
-        color += albedo * (1.0 / JADE_PI) * diffuse_response(c, lut_v, kappa_scaled) * e;
+        color += albedo * (1.0 / JADE_PI) * diffuse_response(c, rows, kappa_scaled) * e;
         if (c > 0.0 && data.specular.z > 0.0) color += data.specular.z * specular_lobe(n, v, l, c) * e;
     }
     out_color = vec4(color, 1.0);

@@ -46,22 +46,18 @@ const std::vector<Query>& queries()
     return q;
 }
 
-// What the sampler does: mesh.frag's coordinates in float32, then linear filtering with
-// texel centres at (i + ½)/W and clamp-to-edge, weights in full precision (lavapipe's 8-bit
-// sub-texel weights add at most 2⁻⁹ of a texel-to-texel step, < 3e-6 here).
+// What mesh.frag does: continuous texel indices in float32, x = cos θ·(W − 1)/2 + (W − 1)/2 and
+// y = (t/t_max)^¼·(H − 1) (clamped to the last row), then bilinear interpolation of the quad
+// (i, j) … (i + 1, j + 1) with i = min(⌊x⌋, W − 2), j = min(⌊y⌋, H − 2), weights x − i, y − j.
 double sample(const std::vector<float>& lut, const LutLayout& layout, double cos_theta, double t)
 {
     const float W = float(layout.width), H = float(layout.height);
-    const float u = float(cos_theta) * ((W - 1.0f) / (2.0f * W)) + 0.5f;
-    const float s = std::sqrt(std::sqrt(float(t) * float(1.0 / LutLayout::kMaxVariance)));
-    const float v = s * ((H - 1.0f) / H) + 0.5f / H;
-    const double x = double(u) * W - 0.5, y = double(v) * H - 0.5;
-    const double x0 = std::floor(x), y0 = std::floor(y), a = x - x0, b = y - y0;
-    auto texel = [&](double i, double j) {
-        const int ii = std::clamp(int(i), 0, int(layout.width) - 1), jj = std::clamp(int(j), 0, int(layout.height) - 1);
-        return double(lut[size_t(jj) * layout.width + ii]);
-    };
-    return (1 - b) * ((1 - a) * texel(x0, y0) + a * texel(x0 + 1, y0)) + b * ((1 - a) * texel(x0, y0 + 1) + a * texel(x0 + 1, y0 + 1));
+    const float x = std::clamp(float(cos_theta), -1.0f, 1.0f) * (0.5f * (W - 1.0f)) + 0.5f * (W - 1.0f);
+    const float y = std::min(std::sqrt(std::sqrt(float(t) * float(1.0 / LutLayout::kMaxVariance))), 1.0f) * (H - 1.0f);
+    const float i = std::min(std::floor(x), W - 2.0f), j = std::min(std::floor(y), H - 2.0f);
+    const double a = double(x - i), b = double(y - j);
+    auto texel = [&](float ii, float jj) { return double(lut[size_t(jj) * layout.width + size_t(ii)]); };
+    return (1 - b) * ((1 - a) * texel(i, j) + a * texel(i + 1, j)) + b * ((1 - a) * texel(i, j + 1) + a * texel(i + 1, j + 1));
 }
 
 struct MaxError {

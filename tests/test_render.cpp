@@ -6,10 +6,13 @@
 
 #include <jade/bake.hpp>
 #include <jade/io.hpp>
+#include <jade/lut.hpp>
 #include <jade/render.hpp>
 
 // Golden PNGs are read with OpenImageIO, which jade::io links already (jade/io.hpp has no reader).
 #include <OpenImageIO/imageio.h>
+
+#include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -197,6 +200,45 @@ TEST_F(Render, StrengthBrightensShadowSideMonotonically)
         if (strength == 0.0f) EXPECT_LT(shadow, 1e-3);  // Lambert: black past the terminator
         EXPECT_GT(shadow, previous);
         previous = shadow;
+    }
+}
+
+// Every lit pixel of the t_m path against the float64 f(cos θ, t): the shader's LUT read
+// (quads, indices, bilinear weights) as accurate as the LUT itself (≤ 1e-4). cos θ per pixel
+// comes from two Lambert renders of the same sphere (light l and −l: max(±cos θ, 0)), one
+// sample per pixel, so both modes see the same fragments; t_m is constant, so t is exact.
+TEST_F(Render, TmMatchesFloat64LutReferenceOnEveryPixel)
+{
+    Renderer r(context());
+    const glm::vec3 t(2e-4f, 0.05f, 1.5f);  // small t (kink), mid, large: three LUT rows
+    r.set_mesh(unit_sphere(), std::vector<glm::vec3>(unit_sphere().vertex_count(), t));
+    const glm::vec3 dir = glm::normalize(glm::vec3(1.0f, 0.3f, 0.6f));
+    const Light front = Light::directional(dir, glm::vec3(std::numbers::pi_v<float>));  // albedo 1: L = F
+    const Light back = Light::directional(-dir, glm::vec3(std::numbers::pi_v<float>));
+    for (bool grey : {true, false}) {
+        Material m = matte();
+        if (!grey) m.profile[2] = ChannelProfile::burley(0.1 * (1 + 1e-12));  // the three-fetch pipeline
+        r.set_material(m);
+        RenderSettings s = settings(96, ShadingMode::Lambert);
+        s.samples = 1;
+        RenderedImage lit = r.render(kFront, {&front, 1}, s), unlit = r.render(kFront, {&back, 1}, s);
+        s.mode = ShadingMode::Tm;
+        RenderedImage tm = r.render(kFront, {&front, 1}, s);
+        double worst = 0;
+        size_t pixels = 0;
+        for (uint32_t y = 0; y < s.height; ++y)
+            for (uint32_t x = 0; x < s.width; ++x) {
+                if (tm.pixel(x, y)[3] == 0.0f) continue;
+                const double c = double(lit.pixel(x, y)[0]) - double(unlit.pixel(x, y)[0]);
+                for (int ch = 0; ch < 3; ++ch) {
+                    const double tc = grey ? double(t[0]) : double(t[ch]);
+                    worst = std::max(worst, std::abs(double(tm.pixel(x, y)[ch]) - lut_reference(c, tc)));
+                }
+                ++pixels;
+            }
+        std::printf("%s: %zu pixels, max |F - f_ref| = %.3g\n", grey ? "grey" : "rgb", pixels, worst);
+        EXPECT_GT(pixels, 3000u);
+        EXPECT_LE(worst, 1e-4);
     }
 }
 

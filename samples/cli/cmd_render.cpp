@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <sstream>
 #include <tuple>
 
@@ -248,18 +249,43 @@ int cmd_figure1(int argc, char** argv)
     return 0;
 }
 
+namespace {
+// CPU time of the whole process, all threads (lavapipe renders on this process's threads):
+// the work done, whatever other jobs on the machine do to the wall time.
+double process_cpu_ms()
+{
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return double(ts.tv_sec) * 1e3 + double(ts.tv_nsec) * 1e-6;
+}
+}  // namespace
+
 int cmd_bench_render(int argc, char** argv)
 {
     Args args("bench render", all_options({device_options(), material_options(), bake_options(),
-                                           {{"repeat", "N", "frames per mode and size, alternating (default 20)"}}}),
+                                           {{"repeat", "N", "frame pairs (lambert, tm) per size, alternating (default 30)"},
+                                            {"samples", "N", "MSAA samples 1, 2, 4, 8 (default 4, as jade render)"},
+                                            {"sizes", "N,N", "square image sizes (default 512,1024)"}}}),
               argc, argv, 3);
     if (args.flag("help")) {
         std::printf("usage: jade bench render [MESH] [options]\n\nFrame time of tm against lambert shading at 512x512 and "
-                    "1024x1024, the same scene,\nmeasured alternately in one run (GPU timestamps and wall time).\n\n%s",
+                    "1024x1024, the same scene,\nmeasured alternately in one run (GPU timestamps, wall time, and the CPU "
+                    "time of the\nprocess, which is lavapipe's work when the machine is shared).\n\n%s",
                     args.help().c_str());
         return 0;
     }
-    const uint32_t repeat = args.count("repeat", 20, 1, 10000);
+    const uint32_t repeat = args.count("repeat", 30, 1, 10000);
+    const uint32_t samples = args.count("samples", 4, 1, 8);
+    std::vector<uint32_t> sizes;
+    {
+        std::stringstream list(args.get_or("sizes", "512,1024"));
+        for (std::string word; std::getline(list, word, ',');) {
+            char* end = nullptr;
+            const long n = std::strtol(word.c_str(), &end, 10);
+            if (word.empty() || *end != '\0' || n < 1 || n > 16384) args.fail("--sizes: '" + word + "' is not a size in 1..16384");
+            sizes.push_back(uint32_t(n));
+        }
+    }
     auto ctx = make_context(args);
     Scene scene = load_scene(args, *ctx, args.positional().empty() ? "bunny" : args.positional()[0], true);
     Camera camera = Camera::framing(scene.prepared.bbox_min, scene.prepared.bbox_max);
@@ -269,29 +295,52 @@ int cmd_bench_render(int argc, char** argv)
     std::printf("mesh %s: %zu vertices, %zu triangles; material %s (%s); device %s\n", scene.mesh.name.c_str(),
                 scene.prepared.vertex_count(), scene.prepared.triangle_count(), scene.material.name.c_str(),
                 scene.material.grey() ? "grey: 1 LUT fetch" : "RGB: 3 LUT fetches", ctx->device_info().name.c_str());
+    std::printf("same camera, %zu default lights, %ux MSAA, RGBA16F target, specular on in both modes; %u frame pairs "
+                "per size after 2 warm-up pairs\n",
+                lights.size(), samples, repeat);
     std::printf("%-10s %-8s %12s %12s %12s %12s\n", "size", "mode", "GPU median", "GPU min", "wall median", "wall min");
-    auto median = [](std::vector<double> v) { std::sort(v.begin(), v.end()); return v[v.size() / 2]; };
-    for (uint32_t size : {512u, 1024u}) {
+    // The machine may be shared: each iteration renders both modes back to back (in
+    // alternating order, so neither always runs second) and the ratio is taken per pair, so
+    // load that changes more slowly than one pair cancels. Quartiles of the pair ratios say how
+    // noisy the run was.
+    auto quantile = [](std::vector<double> v, double q) {
+        std::sort(v.begin(), v.end());
+        return v[size_t(std::lround(q * double(v.size() - 1)))];
+    };
+    for (uint32_t size : sizes) {
         RenderSettings s;
         s.width = s.height = size;
-        std::vector<double> gpu[2], wall[2];
+        s.samples = samples;
+        std::vector<double> gpu[2], wall[2], cpu[2], gpu_ratio, wall_ratio, cpu_ratio;
         for (int warm = 0; warm < 2; ++warm)  // pipelines, targets, caches
             for (ShadingMode m : {ShadingMode::Lambert, ShadingMode::Tm}) s.mode = m, renderer.render(camera, lights, s);
-        for (uint32_t i = 0; i < repeat; ++i)
-            for (int k = 0; k < 2; ++k) {
+        for (uint32_t i = 0; i < repeat; ++i) {
+            for (int n = 0; n < 2; ++n) {
+                const int k = (i % 2 == 0) ? n : 1 - n;
                 s.mode = k == 0 ? ShadingMode::Lambert : ShadingMode::Tm;
+                const double cpu0 = process_cpu_ms();
                 RenderedImage img = renderer.render(camera, lights, s);
+                cpu[k].push_back(process_cpu_ms() - cpu0);
                 gpu[k].push_back(img.gpu_ms);
                 wall[k].push_back(img.wall_ms);
             }
+            gpu_ratio.push_back(gpu[1].back() / gpu[0].back());
+            wall_ratio.push_back(wall[1].back() / wall[0].back());
+            cpu_ratio.push_back(cpu[1].back() / cpu[0].back());
+        }
         for (int k = 0; k < 2; ++k)
             std::printf("%4ux%-5u %-8s %12s %12s %12s %12s\n", size, size, k == 0 ? "lambert" : "tm",
-                        format_ms(median(gpu[k])).c_str(), format_ms(*std::min_element(gpu[k].begin(), gpu[k].end())).c_str(),
-                        format_ms(median(wall[k])).c_str(), format_ms(*std::min_element(wall[k].begin(), wall[k].end())).c_str());
-        std::printf("%4ux%-5u tm / lambert: GPU %.3fx (median), %.3fx (min); wall %.3fx (median)\n", size, size,
-                    median(gpu[1]) / median(gpu[0]),
-                    *std::min_element(gpu[1].begin(), gpu[1].end()) / *std::min_element(gpu[0].begin(), gpu[0].end()),
-                    median(wall[1]) / median(wall[0]));
+                        format_ms(quantile(gpu[k], 0.5)).c_str(), format_ms(quantile(gpu[k], 0.0)).c_str(),
+                        format_ms(quantile(wall[k], 0.5)).c_str(), format_ms(quantile(wall[k], 0.0)).c_str());
+        std::printf("%4ux%-5u tm / lambert: GPU %.3fx (median of %u pairs; quartiles %.3f-%.3f; ratio of mins %.3fx), "
+                    "wall %.3fx (quartiles %.3f-%.3f)\n",
+                    size, size, quantile(gpu_ratio, 0.5), repeat, quantile(gpu_ratio, 0.25), quantile(gpu_ratio, 0.75),
+                    quantile(gpu[1], 0.0) / quantile(gpu[0], 0.0), quantile(wall_ratio, 0.5), quantile(wall_ratio, 0.25),
+                    quantile(wall_ratio, 0.75));
+        std::printf("%4ux%-5u tm / lambert: CPU time of this process (lavapipe's threads) %.3fx (quartiles %.3f-%.3f; "
+                    "lambert %s, tm %s median)\n",
+                    size, size, quantile(cpu_ratio, 0.5), quantile(cpu_ratio, 0.25), quantile(cpu_ratio, 0.75),
+                    format_ms(quantile(cpu[0], 0.5)).c_str(), format_ms(quantile(cpu[1], 0.5)).c_str());
     }
     return 0;
 }

@@ -47,6 +47,15 @@ void require_format(const gpu::Context& ctx, VkFormat format, VkFormatFeatureFla
                     " cannot store/sample/linearly filter the texture format it needs (format " + std::to_string(format) + ")");
 }
 
+void require_texel_format(const gpu::Context& ctx, VkFormat format, const char* what)
+{
+    VkFormatProperties p;
+    vkGetPhysicalDeviceFormatProperties(ctx.physical_device(), format, &p);
+    if (!(p.bufferFeatures & VK_FORMAT_FEATURE_UNIFORM_TEXEL_BUFFER_BIT))
+        throw Error(std::string(what) + ": device " + ctx.info().name + " cannot read format " + std::to_string(format) +
+                    " from a uniform texel buffer");
+}
+
 void check_size(uint32_t width, uint32_t height, const char* what)
 {
     if (width < 3 || width % 2 == 0 || height < 2)
@@ -78,13 +87,29 @@ TranslucencyLut::TranslucencyLut(gpu::Context& ctx, const LutLayout& layout) : l
                        {gpu::Binding::image(image_.view(), VK_IMAGE_LAYOUT_GENERAL)});
         image_.transition(cmd, gpu::use::kSampled);
     });
+
+    // mesh.frag reads quads, not the image: on lavapipe one RGBA32F texel-buffer fetch plus a
+    // bilinear blend in the shader costs a fraction of one filtered sample (docs/shading.md).
+    // Packed on the host from the GPU-built texels, so both hold the same float32 values.
+    const uint32_t W = layout.width, H = layout.height;
+    const uint64_t count = uint64_t(W - 1) * (H - 1);
+    require_texel_format(ctx, VK_FORMAT_R32G32B32A32_SFLOAT, "translucency LUT");
+    const std::vector<float> f = read(ctx);
+    std::vector<glm::vec4> quads(count);
+    for (uint32_t j = 0; j + 1 < H; ++j)
+        for (uint32_t i = 0; i + 1 < W; ++i) {
+            const size_t t = size_t(j) * W + i;
+            quads[size_t(j) * (W - 1) + i] = {f[t], f[t + 1], f[t + W], f[t + W + 1]};
+        }
+    quads_ = gpu::Buffer::from(ctx, quads, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, "translucency LUT quads");
+    quads_view_ = gpu::TexelView(ctx, quads_, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "translucency LUT quads");
 }
 
 glm::vec4 TranslucencyLut::shader_map() const
 {
-    // x = (cos θ + 1)/2 · (W − 1) on texel centres: u = (x + ½)/W = cos θ·(W − 1)/2W + ½.
-    glm::vec2 v = texel_centre_map(layout_.height);
-    return {float(layout_.width - 1) / float(2 * layout_.width), 0.5f, v.x, v.y};
+    // Continuous texel indices: column x = (cos θ + 1)/2 · (W − 1), row y = (t/t_max)^¼ · (H − 1).
+    const float w = float(layout_.width), h = float(layout_.height);
+    return {0.5f * (w - 1.0f), w - 1.0f, h - 1.0f, h - 2.0f};
 }
 
 std::vector<float> TranslucencyLut::read(gpu::Context& ctx)

@@ -1,14 +1,19 @@
 // shading/lut.hpp - the two shading look-up tables as GPU textures.
 //
 //   TranslucencyLut  f(cos θ, t) of jade/lut.hpp, R32_SFLOAT, built on the GPU by
-//                    shaders/lut_build.comp (parameterisation: jade::LutLayout).
+//                    shaders/lut_build.comp (parameterisation: jade::LutLayout); mesh.frag
+//                    reads the same texels repacked as one RGBA32F "quad" per cell (the 2×2
+//                    texels around it) from a uniform texel buffer and interpolates them
+//                    bilinearly itself (docs/shading.md says why not the sampler).
 //   CurvatureLut     D_c(cos θ, κ) per colour channel, RGBA32F (A = 1), built on the CPU in
 //                    float64 with jade::curvature_lut_reference and uploaded.
-// Both are sampled with linear filtering and clamp-to-edge (make_lut_sampler), and both put
-// cos θ = 0 on a texel centre, so at t = 0 (κ = 0) the kink of max(cos θ, 0) is exact.
+// The curvature LUT is sampled with linear filtering and clamp-to-edge (make_lut_sampler). Both
+// put cos θ = 0 on a texel centre, so at t = 0 (κ = 0) the kink of max(cos θ, 0) is exact.
 #pragma once
 
+#include "gpu/buffer.hpp"
 #include "gpu/image.hpp"
+#include "gpu/texel_view.hpp"
 
 #include <jade/material.hpp>
 #include <jade/render.hpp>
@@ -34,7 +39,11 @@ public:
 
     const LutLayout& layout() const { return layout_; }
     const gpu::Image& image() const { return image_; }
-    /// u = cos θ·x + y, v = (t/t_max)^¼·z + w (what mesh.frag's translucency() computes).
+    /// The quads: (W − 1) × (H − 1) RGBA32F texels; cell (i, j), at index j·(W − 1) + i, holds
+    /// image texels (i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1).
+    const gpu::TexelView& quads() const { return quads_view_; }
+    /// What mesh.frag indexes the quads with: column x = cos θ·m.x + m.x ∈ [0, W − 1],
+    /// m.y = W − 1 quads a row, row y = (t/t_max)^¼·m.z ∈ [0, H − 1], m.w = H − 2 the last.
     glm::vec4 shader_map() const;
     /// Reads the texels back (width × height floats, row-major, row j = variance j).
     std::vector<float> read(gpu::Context& ctx);
@@ -42,6 +51,8 @@ public:
 private:
     LutLayout layout_;
     gpu::Image image_;
+    gpu::Buffer quads_;
+    gpu::TexelView quads_view_;  // destroyed before quads_
 };
 
 class CurvatureLut {

@@ -148,7 +148,7 @@ struct Renderer::Impl {
                                 {1, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
                                 {2, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, tm)},
                                 {3, VK_FORMAT_R32_SFLOAT, offsetof(Vertex, curvature)}};
-                d.bindings = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                d.bindings = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,
                               VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
                 d.push_size = sizeof(FramePush);
                 d.constants = {uint32_t(mode), channels};
@@ -299,7 +299,7 @@ struct Renderer::Impl {
         ri.pDepthAttachment = &depth;
         vkCmdBeginRendering(cmd, &ri);
         pipe.bind(cmd, {s.width, s.height}, push,
-                  {frame_data, gpu::Binding::image(lut.image().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler),
+                  {frame_data, lut.quads(),
                    gpu::Binding::image(curvature.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler)});
         VkBuffer vb = vertices.handle();
         VkDeviceSize offset = 0;
