@@ -27,8 +27,9 @@ TriangleMesh load_mesh(const std::filesystem::path& path);
 AnimatedMesh load_animated_gltf(const std::filesystem::path& path);
 
 /// Writes an animated image (frames of width × height linear-RGB RGBA floats, sRGB-encoded,
-/// 8 bit) at `fps` frames per second: .gif (OpenImageIO's GIF writer, subimages + "FPS") or
-/// .webp. Atomic like save_image.
+/// 8 bit) at `fps` frames per second (0 < fps ≤ 100; GIF stores a delay in 1/100 s) as a looping
+/// .gif (OpenImageIO's GIF writer, one subimage per frame; its WebP writer cannot animate).
+/// Atomic like save_image.
 void save_animation(const std::filesystem::path& path, int width, int height, const std::vector<std::vector<float>>& frames,
                     double fps);
 

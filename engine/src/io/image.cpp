@@ -68,8 +68,10 @@ std::vector<uint8_t> to_srgb8(const std::vector<float>& rgba)
     return bytes;
 }
 
-/// All frames as subimages of one file: OIIO's GIF and WebP writers support "appendsubimage";
-/// the frame rate is the "FPS" attribute (a rational), the GIF loops forever.
+/// All frames as subimages of one file: OIIO's GIF writer supports "appendsubimage" (its WebP
+/// writer, in OIIO 2.4, writes single images only);
+/// the frame rate is the "FramesPerSecond" attribute (a rational; the GIF writer turns it into
+/// a delay in 1/100 s), the GIF loops forever.
 void write_frames(const std::string& name, const char* format, const std::filesystem::path& tmp, int width, int height,
                   const std::vector<std::vector<float>>& frames, double fps)
 {
@@ -82,7 +84,7 @@ void write_frames(const std::string& name, const char* format, const std::filesy
     spec.attribute("oiio:UnassociatedAlpha", 1);
     const int fps_num = int(std::lround(fps * 100.0)), fps_den = 100;
     const int rational[2] = {std::max(fps_num, 1), fps_den};
-    spec.attribute("FPS", OIIO::TypeRational, rational);
+    spec.attribute("FramesPerSecond", OIIO::TypeRational, rational);
     spec.attribute("oiio:Movie", 1);
     spec.attribute("gif:LoopCount", 0);
     for (size_t f = 0; f < frames.size(); ++f) {
@@ -102,7 +104,7 @@ void save_animation(const std::filesystem::path& path, int width, int height, co
 {
     const auto name = io::display_name(path);
     const auto ext = io::lower_extension(path);
-    if (ext != ".gif" && ext != ".webp") io::fail(name, "unsupported animation format '" + ext + "' (supported: .gif, .webp)");
+    if (ext != ".gif") io::fail(name, "unsupported animation format '" + ext + "' (supported: .gif)");
     if (width <= 0 || height <= 0 || frames.empty())
         io::fail(name, "animation of " + std::to_string(frames.size()) + " frames of " + std::to_string(width) + "x" +
                            std::to_string(height) + " is empty");
@@ -113,7 +115,7 @@ void save_animation(const std::filesystem::path& path, int width, int height, co
             io::fail(name, "frame " + std::to_string(f) + " has " + std::to_string(frames[f].size()) + " floats, expected " +
                                std::to_string(expected));
     io::write_atomically(path, [&](const std::filesystem::path& tmp) {
-        write_frames(name, ext == ".gif" ? "gif" : "webp", tmp, width, height, frames, fps);
+        write_frames(name, "gif", tmp, width, height, frames, fps);
     });
 }
 
