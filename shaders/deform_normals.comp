@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // Area-weighted vertex normals and vertex areas of the deformed mesh, with the definitions of
 // engine/src/mesh/prepare.cpp (normals_and_areas): per vertex the sum of the adjacent
-// triangles' cross products (b − a) × (c − a), normalised; the area a third of each adjacent
+// triangles' cross products (b − a) × (c − a) (from deform_triangles.comp), normalised; the area a third of each adjacent
 // triangle's; where the sum cancels, the largest adjacent triangle's normal (the first one in
 // triangle order on ties), and (0,0,1) if that is degenerate too. Each vertex gathers over its
 // own adjacency list (built once on the host, triangles in ascending order), so no atomics.
@@ -12,12 +12,11 @@ layout(push_constant, scalar) uniform Push {
     uint vertex_count;
 } pc;
 
-layout(binding = 0, scalar) readonly buffer Positions { vec3 positions[]; };
-layout(binding = 1, scalar) readonly buffer Indices { uint indices[]; };
-layout(binding = 2, scalar) readonly buffer AdjacencyOffsets { uint adjacency_offsets[]; };  // vertex_count + 1
-layout(binding = 3, scalar) readonly buffer AdjacentTriangles { uint adjacent_triangles[]; };
-layout(binding = 4, scalar) writeonly buffer Normals { vec3 normals[]; };
-layout(binding = 5, scalar) writeonly buffer Areas { float areas[]; };
+layout(binding = 0, scalar) readonly buffer Triangles { vec4 triangles[]; };  // xyz: cross product, w: area
+layout(binding = 1, scalar) readonly buffer AdjacencyOffsets { uint adjacency_offsets[]; };  // vertex_count + 1
+layout(binding = 2, scalar) readonly buffer AdjacentTriangles { uint adjacent_triangles[]; };
+layout(binding = 3, scalar) writeonly buffer Normals { vec3 normals[]; };
+layout(binding = 4, scalar) writeonly buffer Areas { float areas[]; };
 
 // prepare.cpp uses 1e-9 in float64; float32 cross products of the same triangle seen from
 // different corners differ by ~1e-7 relative, so a float32 residue below 1e-5 is cancellation.
@@ -31,10 +30,9 @@ void main()
     float area = 0.0, largest = 0.0;
     uint end = adjacency_offsets[v + 1u];
     for (uint k = adjacency_offsets[v]; k < end; ++k) {
-        uint t = adjacent_triangles[k];
-        vec3 a = positions[indices[3u * t]], b = positions[indices[3u * t + 1u]], c = positions[indices[3u * t + 2u]];
-        vec3 cr = cross(b - a, c - a);
-        float tri_area = 0.5 * length(cr);
+        vec4 triangle = triangles[adjacent_triangles[k]];
+        vec3 cr = triangle.xyz;
+        float tri_area = triangle.w;
         sum += cr;
         area += tri_area / 3.0;
         if (tri_area > largest) {

@@ -183,6 +183,14 @@ public:
     /// Morphs and skins the rest positions with `pose` (needs set_skin), then normals; waits.
     DeformTimings deform(const Pose& pose);
 
+    /// The same passes recorded into the caller's command buffer (for a frame that goes on to
+    /// re-bake and draw from the buffers below without waiting). Records the deform pass, a
+    /// compute barrier, the normals pass and a full compute barrier; the caller adds barriers
+    /// for other stages. record(Pose) writes the joint matrices and morph weights into
+    /// host-visible buffers at once: the previous submission that read them must have completed.
+    void record(VkCommandBuffer cmd, const ProceduralDeformer& deformer, double t);
+    void record(VkCommandBuffer cmd, const Pose& pose);
+
     DeformedVertices read() const;
 
     /// The GPU buffers, for passes that consume the deformed mesh without a read-back.

@@ -36,6 +36,9 @@ struct ProceduralPush {
 struct SkinPush {
     uint32_t vertex_count, morph_count, joint_count;
 };
+struct TrianglesPush {
+    uint32_t triangle_count;
+};
 struct NormalsPush {
     uint32_t vertex_count;
 };
@@ -63,18 +66,19 @@ double ms_since(std::chrono::steady_clock::time_point t0)
 
 struct MeshDeformer::Impl {
     gpu::Context& ctx;
-    uint32_t n;
-    gpu::Kernel procedural, skin, normals_kernel;
-    gpu::Buffer rest, indices, adjacency_offsets, adjacent_triangles, positions, normals, areas;
+    uint32_t n, triangle_count;
+    gpu::Kernel procedural, skin, triangles_kernel, normals_kernel;
+    gpu::Buffer rest, indices, adjacency_offsets, adjacent_triangles, triangles, positions, normals, areas;
     // Skinning: set by set_skin.
     std::optional<SkinBinding> binding_sizes;
     gpu::Buffer morph_deltas, morph_weights, joints, weights, joint_matrices;
 
     Impl(gpu::Context& c, const PreparedMesh& mesh)
-        : ctx(c), n(uint32_t(mesh.vertex_count())),
+        : ctx(c), n(uint32_t(mesh.vertex_count())), triangle_count(uint32_t(mesh.triangle_count())),
           procedural(c, {"deform_procedural", shaders::deform_procedural_comp(), storage_bindings(2), sizeof(ProceduralPush), 64, {}}),
           skin(c, {"deform_skin", shaders::deform_skin_comp(), storage_bindings(7), sizeof(SkinPush), 64, {}}),
-          normals_kernel(c, {"deform_normals", shaders::deform_normals_comp(), storage_bindings(6), sizeof(NormalsPush), 64, {}})
+          triangles_kernel(c, {"deform_triangles", shaders::deform_triangles_comp(), storage_bindings(3), sizeof(TrianglesPush), 64, {}}),
+          normals_kernel(c, {"deform_normals", shaders::deform_normals_comp(), storage_bindings(5), sizeof(NormalsPush), 64, {}})
     {
         // Each vertex's adjacent triangles, in ascending triangle order (the order prepare.cpp
         // visits them in, which decides ties of the largest triangle).
@@ -87,9 +91,28 @@ struct MeshDeformer::Impl {
         indices = make_buffer(ctx, mesh.indices, "deform: triangles");
         adjacency_offsets = make_buffer(ctx, offsets, "deform: adjacency offsets");
         adjacent_triangles = make_buffer(ctx, list, "deform: adjacent triangles");
+        triangles = gpu::Buffer(ctx, std::max<VkDeviceSize>(16, VkDeviceSize(triangle_count) * 16), kStorage, "deform: triangle cross products");
         positions = make_buffer(ctx, mesh.positions, "deform: deformed positions");
         normals = make_buffer(ctx, mesh.normals, "deform: deformed normals");
         areas = make_buffer(ctx, mesh.areas, "deform: deformed areas");
+    }
+
+    /// The deform pass `record_deform`, then normals and areas, with the barriers between.
+    void record(VkCommandBuffer cmd, const std::function<void(VkCommandBuffer)>& record_deform, gpu::GpuTimer* timer)
+    {
+        // Each barrier comes before its stage's timestamp: lavapipe writes a timestamp when it
+        // reaches it in the command stream, while the dispatch before it may still be running.
+        record_deform(cmd);
+        gpu::compute_barrier(cmd);
+        if (timer) timer->mark(cmd, "deform");
+        // Normals in two passes: each triangle's cross product once (as prepare.cpp computes it),
+        // then each vertex gathers its triangles' (a third of the loads of computing them per
+        // vertex, and no atomics).
+        triangles_kernel.dispatch(cmd, triangle_count, TrianglesPush{triangle_count}, {positions, indices, triangles});
+        gpu::compute_barrier(cmd);
+        normals_kernel.dispatch(cmd, n, NormalsPush{n}, {triangles, adjacency_offsets, adjacent_triangles, normals, areas});
+        gpu::compute_barrier(cmd);  // the results are read by the next pass or the host
+        if (timer) timer->mark(cmd, "normals");
     }
 
     DeformTimings run(const std::function<void(VkCommandBuffer)>& record_deform)
@@ -98,12 +121,7 @@ struct MeshDeformer::Impl {
         gpu::GpuTimer timer(ctx, 4);
         ctx.submit_and_wait([&](VkCommandBuffer cmd) {
             timer.begin(cmd);
-            record_deform(cmd);
-            timer.mark(cmd, "deform");
-            gpu::compute_barrier(cmd);
-            normals_kernel.dispatch(cmd, n, NormalsPush{n}, {positions, indices, adjacency_offsets, adjacent_triangles, normals, areas});
-            timer.mark(cmd, "normals");
-            gpu::compute_barrier(cmd);  // the results are read by the next pass or the host
+            record(cmd, record_deform, &timer);
         });
         const auto stages = timer.stages();
         DeformTimings t;
@@ -111,6 +129,41 @@ struct MeshDeformer::Impl {
         t.normals_ms = stages.at(1).second;
         t.wall_ms = ms_since(t0);
         return t;
+    }
+
+    std::function<void(VkCommandBuffer)> procedural_pass(const ProceduralDeformer& d, double t)
+    {
+        d.validate();
+        if (!std::isfinite(t)) throw Error("deform: time is not finite");
+        const double s = std::sin(kTwoPi * t / d.period);
+        ProceduralPush push{n, uint32_t(d.kind), d.axis, 0.0f, d.origin, 0.0f, 0.0f};
+        switch (d.kind) {
+        case DeformerKind::Bend: push.amount = float(d.amplitude * s / d.length); break;
+        case DeformerKind::Twist: push.amount = float(d.amplitude * s / d.length); break;
+        case DeformerKind::Squash: push.amount = float(1.0 + d.amplitude * s); break;
+        case DeformerKind::Wave:
+            push.amount = d.amplitude;
+            push.wave_k = float(kTwoPi / d.wavelength);
+            push.wave_phase = float(std::fmod(kTwoPi * t / d.period, kTwoPi));
+            break;
+        }
+        return [this, push](VkCommandBuffer cmd) { procedural.dispatch(cmd, n, push, {rest, positions}); };
+    }
+
+    std::function<void(VkCommandBuffer)> skin_pass(const Pose& pose)
+    {
+        if (!binding_sizes) throw Error("MeshDeformer::deform(Pose): set_skin was not called");
+        if (pose.joint_matrices.size() != binding_sizes->joint_count || pose.morph_weights.size() != binding_sizes->morph_count)
+            throw Error("MeshDeformer::deform(Pose): " + std::to_string(pose.joint_matrices.size()) + " joint matrices and " +
+                        std::to_string(pose.morph_weights.size()) + " morph weights, the skin has " +
+                        std::to_string(binding_sizes->joint_count) + " and " + std::to_string(binding_sizes->morph_count));
+        // Small per-frame data, written before the submission that reads it.
+        joint_matrices.upload(pose.joint_matrices.data(), pose.joint_matrices.size() * sizeof(glm::mat4));
+        if (!pose.morph_weights.empty()) morph_weights.upload(pose.morph_weights.data(), pose.morph_weights.size() * sizeof(float));
+        const SkinPush push{n, binding_sizes->morph_count, binding_sizes->joint_count};
+        return [this, push](VkCommandBuffer cmd) {
+            skin.dispatch(cmd, n, push, {rest, morph_deltas, morph_weights, joints, weights, joint_matrices, positions});
+        };
     }
 };
 
@@ -147,42 +200,16 @@ void MeshDeformer::set_skin(const SkinBinding& b)
     m.binding_sizes = sizes;
 }
 
-DeformTimings MeshDeformer::deform(const ProceduralDeformer& d, double t)
+DeformTimings MeshDeformer::deform(const ProceduralDeformer& d, double t) { return impl_->run(impl_->procedural_pass(d, t)); }
+
+DeformTimings MeshDeformer::deform(const Pose& pose) { return impl_->run(impl_->skin_pass(pose)); }
+
+void MeshDeformer::record(VkCommandBuffer cmd, const ProceduralDeformer& d, double t)
 {
-    d.validate();
-    if (!std::isfinite(t)) throw Error("deform: time is not finite");
-    auto& m = *impl_;
-    const double s = std::sin(kTwoPi * t / d.period);
-    ProceduralPush push{m.n, uint32_t(d.kind), d.axis, 0.0f, d.origin, 0.0f, 0.0f};
-    switch (d.kind) {
-    case DeformerKind::Bend: push.amount = float(d.amplitude * s / d.length); break;
-    case DeformerKind::Twist: push.amount = float(d.amplitude * s / d.length); break;
-    case DeformerKind::Squash: push.amount = float(1.0 + d.amplitude * s); break;
-    case DeformerKind::Wave:
-        push.amount = d.amplitude;
-        push.wave_k = float(kTwoPi / d.wavelength);
-        push.wave_phase = float(std::fmod(kTwoPi * t / d.period, kTwoPi));
-        break;
-    }
-    return m.run([&](VkCommandBuffer cmd) { m.procedural.dispatch(cmd, m.n, push, {m.rest, m.positions}); });
+    impl_->record(cmd, impl_->procedural_pass(d, t), nullptr);
 }
 
-DeformTimings MeshDeformer::deform(const Pose& pose)
-{
-    auto& m = *impl_;
-    if (!m.binding_sizes) throw Error("MeshDeformer::deform(Pose): set_skin was not called");
-    if (pose.joint_matrices.size() != m.binding_sizes->joint_count || pose.morph_weights.size() != m.binding_sizes->morph_count)
-        throw Error("MeshDeformer::deform(Pose): " + std::to_string(pose.joint_matrices.size()) + " joint matrices and " +
-                    std::to_string(pose.morph_weights.size()) + " morph weights, the skin has " +
-                    std::to_string(m.binding_sizes->joint_count) + " and " + std::to_string(m.binding_sizes->morph_count));
-    // Small per-frame data: written before the submission below, which waits for completion.
-    m.joint_matrices.upload(pose.joint_matrices.data(), pose.joint_matrices.size() * sizeof(glm::mat4));
-    if (!pose.morph_weights.empty()) m.morph_weights.upload(pose.morph_weights.data(), pose.morph_weights.size() * sizeof(float));
-    const SkinPush push{m.n, m.binding_sizes->morph_count, m.binding_sizes->joint_count};
-    return m.run([&](VkCommandBuffer cmd) {
-        m.skin.dispatch(cmd, m.n, push, {m.rest, m.morph_deltas, m.morph_weights, m.joints, m.weights, m.joint_matrices, m.positions});
-    });
-}
+void MeshDeformer::record(VkCommandBuffer cmd, const Pose& pose) { impl_->record(cmd, impl_->skin_pass(pose), nullptr); }
 
 DeformedVertices MeshDeformer::read() const
 {
