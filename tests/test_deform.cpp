@@ -361,7 +361,7 @@ TEST(DeformAnimation, BadFilesAreErrorsNamingTheElement)
 {
     auto expect_error = [](const std::string& file, const std::string& message) {
         try {
-            load_animated_gltf(test::data("bad/" + file));
+            load_animated_gltf(test::data("bad_animation/" + file));
             ADD_FAILURE() << "no error for " << file;
         } catch (const Error& e) {
             EXPECT_NE(std::string(e.what()).find(file), std::string::npos) << e.what();

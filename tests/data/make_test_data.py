@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Generates the binary and base64-carrying test files in tests/data (glTF, GLB, PLY) and the
-malformed variants in tests/data/bad. Deterministic; rerun after editing, then commit the output:
+malformed variants in tests/data/bad and tests/data/bad_animation. Deterministic; rerun after
+editing, then commit the output:
 
     python3 tests/data/make_test_data.py
 
@@ -16,6 +17,7 @@ import struct
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 BAD = os.path.join(HERE, "bad")
+BAD_ANIMATION = os.path.join(HERE, "bad_animation")
 
 FLOAT, UBYTE, USHORT, UINT = 5126, 5121, 5123, 5125
 ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER = 34962, 34963
@@ -368,7 +370,8 @@ def skinned_morph_anim():
     return g
 
 def bad_animation_files():
-    """Malformed variants of skinned_morph_anim.gltf for load_animated_gltf (tests/test_deform.cpp)."""
+    """Malformed variants of skinned_morph_anim.gltf for load_animated_gltf (tests/test_deform.cpp),
+    in tests/data/bad_animation."""
     good = skinned_morph_anim().finish()
 
     def variant(edit):
@@ -401,8 +404,10 @@ def main():
     write(os.path.join(HERE, "nodes_transforms.gltf"), dump(nodes_transforms().finish()))
     write(os.path.join(HERE, "strip_fan.gltf"), dump(strip_fan().finish()))
     write(os.path.join(HERE, "skinned_morph_anim.gltf"), dump(skinned_morph_anim().finish()))
+    # Not in bad/: those must all fail load_mesh, which ignores animations.
+    os.makedirs(BAD_ANIMATION, exist_ok=True)
     for name, data in bad_animation_files().items():
-        write(os.path.join(BAD, name), data)
+        write(os.path.join(BAD_ANIMATION, name), data)
     write(os.path.join(HERE, "cube_ascii.ply"), ply_cube("ascii", "uchar", "int", "vertex_indices", False))
     write(os.path.join(HERE, "cube_binary_le.ply"), ply_cube("binary_little_endian", "int", "uint", "vertex_index", False))
     write(os.path.join(HERE, "cube_binary_be.ply"), ply_cube("binary_big_endian", "uint", "int", "vertex_indices", True))
