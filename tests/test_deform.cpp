@@ -150,7 +150,7 @@ TEST_F(DeformGpu, ProceduralDeformersMatchFloat64OnSeveralFrames)
         const PreparedMesh rest = load_case_mesh(which);
         MeshDeformer deformer(context(), rest);
         for (DeformerKind kind : {DeformerKind::Bend, DeformerKind::Twist, DeformerKind::Squash, DeformerKind::Wave}) {
-            for (uint32_t axis : {1u, 2u}) {
+            for (uint32_t axis : {0u, 1u, 2u}) {
                 ProceduralDeformer d = ProceduralDeformer::fit(kind, rest, axis);
                 for (double t : {0.0, 0.3, 0.85, 1.55}) {
                     SCOPED_TRACE(std::string(which) + " " + std::string(deformer_name(kind)) + " axis " + std::to_string(axis) +
@@ -236,6 +236,29 @@ TEST_F(DeformGpu, SquashPreservesVolumeAndBendPreservesAxisLength)
     ASSERT_LT(glm::distance(flat.positions[top], glm::vec3(0, 1, 0)), 1e-6f);
     EXPECT_NEAR(bent.positions[top].y - flat.bbox_min.y, radius, 1e-5);
     EXPECT_NEAR(bent.positions[top].x, radius, 1e-5);
+}
+
+TEST_F(DeformGpu, TwoSidedSheetTakesTheLargestTrianglesNormal)
+{
+    // Each triangle of a grid also listed reversed: at every vertex the cross products cancel
+    // exactly, and prepare_mesh's rule picks the largest adjacent triangle, the first one on
+    // ties — here the front side (listed first), so after a wave every normal faces +z-ish.
+    TriangleMesh sheet = procedural::grid(16, 0.1f);
+    const size_t front = sheet.indices.size();
+    for (size_t t = 0; t < front; t += 3) sheet.indices.insert(sheet.indices.end(), {sheet.indices[t], sheet.indices[t + 2], sheet.indices[t + 1]});
+    const PreparedMesh rest = prepare_mesh(sheet);
+    MeshDeformer deformer(context(), rest);
+    ProceduralDeformer wave = ProceduralDeformer::fit(DeformerKind::Wave, rest, 0);  // displaces along v = z
+    wave.amplitude = 0.1f;
+    deformer.deform(wave, 0.3);
+    const DeformedVertices gpu = deformer.read();
+    Reference ref;
+    for (const auto& p : rest.positions) ref.positions.push_back(deform_reference(wave, 0.3, glm::dvec3(p)));
+    normals_and_areas(rest.indices, ref);
+    const Errors e = compare(gpu, ref);
+    EXPECT_LT(e.normal_max, 1e-5);
+    for (const auto& n : gpu.normals) EXPECT_GT(n.z, 0.5f);
+    EXPECT_LT(e.area_rel, 1e-5);
 }
 
 TEST_F(DeformGpu, RejectsBadParameters)
