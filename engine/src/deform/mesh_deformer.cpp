@@ -70,7 +70,10 @@ struct MeshDeformer::Impl {
     gpu::Kernel procedural, skin, triangles_kernel, normals_kernel;
     gpu::Buffer rest, indices, adjacency_offsets, adjacent_triangles, triangles, positions, normals, areas;
     // Skinning: set by set_skin.
-    std::optional<SkinBinding> binding_sizes;
+    struct SkinSizes {
+        uint32_t joint_count, morph_count;
+    };
+    std::optional<SkinSizes> binding_sizes;
     gpu::Buffer morph_deltas, morph_weights, joints, weights, joint_matrices;
 
     Impl(gpu::Context& c, const PreparedMesh& mesh)
@@ -194,10 +197,7 @@ void MeshDeformer::set_skin(const SkinBinding& b)
     m.weights = make_buffer(m.ctx, b.joint_weights, "deform: joint weights");
     m.morph_weights = make_buffer(m.ctx, std::vector<float>(b.morph_count, 0.0f), "deform: morph weights", true);
     m.joint_matrices = make_buffer(m.ctx, std::vector<glm::mat4>(b.joint_count, glm::mat4(1.0f)), "deform: joint matrices", true);
-    SkinBinding sizes;
-    sizes.joint_count = b.joint_count;
-    sizes.morph_count = b.morph_count;
-    m.binding_sizes = sizes;
+    m.binding_sizes = Impl::SkinSizes{b.joint_count, b.morph_count};
 }
 
 DeformTimings MeshDeformer::deform(const ProceduralDeformer& d, double t) { return impl_->run(impl_->procedural_pass(d, t)); }
