@@ -21,6 +21,7 @@ const char* kUsage =
     "  figure1            the poster's Figure 1: the blue-jewel bunny in four shading modes\n"
     "  bench render MESH  frame time of t_m shading against Lambert at 512^2 and 1024^2\n"
     "  report [MESH...]   error of every approximation against GPU and wall time (--out DIR)\n"
+    "  deform [MESH]      deforming mesh demo: GPU deform, re-bake, t_m frames and a GIF\n"
     "\n"
     "Environment: JADE_DEVICE (device name), JADE_VALIDATION=1 (Khronos validation layer).\n";
 
@@ -41,6 +42,7 @@ int main(int argc, char** argv)
         if (command == "render") return jade::cli::cmd_render(argc, argv);
         if (command == "figure1") return jade::cli::cmd_figure1(argc, argv);
         if (command == "report") return jade::cli::cmd_report(argc, argv);
+        if (command == "deform") return jade::cli::cmd_deform(argc, argv);
         std::fprintf(stderr, "jade: unknown command '%s'\n\n%s", command.c_str(), kUsage);
         return 2;
     } catch (const jade::cli::UsageError& e) {

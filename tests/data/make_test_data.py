@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Generates the binary and base64-carrying test files in tests/data (glTF, GLB, PLY) and the
-malformed variants in tests/data/bad. Deterministic; rerun after editing, then commit the output:
+malformed variants in tests/data/bad and tests/data/bad_animation. Deterministic; rerun after
+editing, then commit the output:
 
     python3 tests/data/make_test_data.py
 
@@ -16,6 +17,7 @@ import struct
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 BAD = os.path.join(HERE, "bad")
+BAD_ANIMATION = os.path.join(HERE, "bad_animation")
 
 FLOAT, UBYTE, USHORT, UINT = 5126, 5121, 5123, 5125
 ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER = 34962, 34963
@@ -309,6 +311,103 @@ def bad_ply_files():
     }
 
 
+def skinned_morph_anim():
+    """A closed square column (0.5 x 2 x 0.5, rings at y = 0, 0.5, ..., 2) skinned to two joints,
+    with one morph target and an animation whose three channels use the three sampler types.
+    tests/test_deform.cpp hand-computes the expected pose from the numbers written here:
+      node 0  the mesh, skin 0, translation (5, 0, 0) (ignored: the mesh is skinned)
+      node 1  joint "root" at the origin; node 2 joint "upper", child of 1, translation (0, 1, 0)
+      weights: rings y <= 0.5 -> root, y = 1 -> 0.5 / 0.5, y >= 1.5 -> upper
+      morph target 0: the top ring (y = 2) moves by (+0.1 x, 0, +0.1 z) (it widens by 20 %)
+      animation 0: node 2 rotation LINEAR keys 0, 1 s: identity -> 90 deg about z
+                   node 1 translation STEP keys 0, 0.5, 1 s: (0,0,0), (1,0,0), (2,0,0)
+                   node 0 weights CUBICSPLINE keys 0, 1 s: [in 0, value 0, out 2], [in 0, value 1, out 0]
+    """
+    g = Gltf()
+    h = 0.25
+    square = [(-h, -h), (h, -h), (h, h), (-h, h)]
+    rings = [0.0, 0.5, 1.0, 1.5, 2.0]
+    pos = [(x, y, z) for y in rings for (x, z) in square]
+    idx = []
+    for r in range(len(rings) - 1):
+        for k in range(4):
+            a, b = 4 * r + k, 4 * r + (k + 1) % 4
+            c, d = a + 4, b + 4
+            idx += [a, c, b, b, c, d]  # counter-clockwise seen from outside
+    top = 4 * (len(rings) - 1)
+    idx += [0, 1, 2, 0, 2, 3]                      # bottom, facing -y
+    idx += [top, top + 2, top + 1, top, top + 3, top + 2]  # top, facing +y
+    joints, weights = [], []
+    for (x, y, z) in pos:
+        joints += [0, 1, 0, 0]
+        w1 = 0.0 if y <= 0.5 else (0.5 if y == 1.0 else 1.0)
+        weights += [1.0 - w1, w1, 0.0, 0.0]
+    delta = [(0.1 * x, 0.0, 0.1 * z) if y == 2.0 else (0.0, 0.0, 0.0) for (x, y, z) in pos]
+    p_acc = g.vec3(pos, minmax=True)
+    i_acc = g.indices(idx, USHORT)
+    j_acc = g.accessor("B", joints, UBYTE, "VEC4", len(pos), ARRAY_BUFFER)
+    w_acc = g.accessor("f", weights, FLOAT, "VEC4", len(pos), ARRAY_BUFFER)
+    d_acc = g.vec3(delta, minmax=True)
+    ibm = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1,
+           1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1]  # column-major: identity, translate(0,-1,0)
+    ibm_acc = g.accessor("f", ibm, FLOAT, "MAT4", 2, None)
+    del g.doc["bufferViews"][-1]["target"]
+    s = math.sin(math.pi / 4)
+    t_rot = g.accessor("f", [0.0, 1.0], FLOAT, "SCALAR", 2, None)
+    del g.doc["bufferViews"][-1]["target"]
+    v_rot = g.accessor("f", [0, 0, 0, 1, 0, 0, s, s], FLOAT, "VEC4", 2, None)
+    del g.doc["bufferViews"][-1]["target"]
+    t_step = g.accessor("f", [0.0, 0.5, 1.0], FLOAT, "SCALAR", 3, None)
+    del g.doc["bufferViews"][-1]["target"]
+    v_step = g.accessor("f", [0, 0, 0, 1, 0, 0, 2, 0, 0], FLOAT, "VEC3", 3, None)
+    del g.doc["bufferViews"][-1]["target"]
+    v_cubic = g.accessor("f", [0.0, 0.0, 2.0, 0.0, 1.0, 0.0], FLOAT, "SCALAR", 6, None)
+    del g.doc["bufferViews"][-1]["target"]
+    g.doc["meshes"].append({"primitives": [{"attributes": {"POSITION": p_acc, "JOINTS_0": j_acc, "WEIGHTS_0": w_acc},
+                                            "indices": i_acc, "targets": [{"POSITION": d_acc}]}],
+                            "weights": [0.0]})
+    g.doc["nodes"] = [{"name": "column", "mesh": 0, "skin": 0, "translation": [5.0, 0.0, 0.0]},
+                      {"name": "root", "children": [2]},
+                      {"name": "upper", "translation": [0.0, 1.0, 0.0]}]
+    g.doc["skins"] = [{"joints": [1, 2], "inverseBindMatrices": ibm_acc, "skeleton": 1}]
+    g.doc["scenes"] = [{"nodes": [0, 1]}]
+    g.doc["animations"] = [{"name": "bend_slide_bulge",
+                            "samplers": [{"input": t_rot, "output": v_rot, "interpolation": "LINEAR"},
+                                         {"input": t_step, "output": v_step, "interpolation": "STEP"},
+                                         {"input": t_rot, "output": v_cubic, "interpolation": "CUBICSPLINE"}],
+                            "channels": [{"sampler": 0, "target": {"node": 2, "path": "rotation"}},
+                                         {"sampler": 1, "target": {"node": 1, "path": "translation"}},
+                                         {"sampler": 2, "target": {"node": 0, "path": "weights"}}]}]
+    return g
+
+def bad_animation_files():
+    """Malformed variants of skinned_morph_anim.gltf for load_animated_gltf (tests/test_deform.cpp),
+    in tests/data/bad_animation."""
+    good = skinned_morph_anim().finish()
+
+    def variant(edit):
+        d = copy.deepcopy(good)
+        edit(d)
+        return dump(d)
+
+    def set_(path, value):
+        def edit(d):
+            node = d
+            for key in path[:-1]:
+                node = node[key]
+            node[path[-1]] = value
+        return edit
+
+    return {
+        "anim_bad_interpolation.gltf": variant(set_(["animations", 0, "samplers", 1, "interpolation"], "SMOOTH")),
+        "anim_bad_joint.gltf": variant(set_(["skins", 0, "joints"], [1, 7])),
+        "anim_cycle.gltf": variant(set_(["nodes", 2, "children"], [1])),
+        "anim_bad_target.gltf": variant(set_(["animations", 0, "channels", 0, "target", "node"], 9)),
+        # sampler 1 (STEP, 3 translation keys) given the 2-key time accessor of sampler 0
+        "anim_output_count.gltf": variant(set_(["animations", 0, "samplers", 1, "input"], 6)),
+    }
+
+
 def main():
     os.makedirs(BAD, exist_ok=True)
     write(os.path.join(HERE, "cube_seams.gltf"), dump(cube_seams().finish()))
@@ -320,6 +419,11 @@ def main():
     write(os.path.join(HERE, "cube_external.bin"), bytes(external.buffer))
     write(os.path.join(HERE, "nodes_transforms.gltf"), dump(nodes_transforms().finish()))
     write(os.path.join(HERE, "strip_fan.gltf"), dump(strip_fan().finish()))
+    write(os.path.join(HERE, "skinned_morph_anim.gltf"), dump(skinned_morph_anim().finish()))
+    # Not in bad/: those must all fail load_mesh, which ignores animations.
+    os.makedirs(BAD_ANIMATION, exist_ok=True)
+    for name, data in bad_animation_files().items():
+        write(os.path.join(BAD_ANIMATION, name), data)
     write(os.path.join(HERE, "cube_ascii.ply"), ply_cube("ascii", "uchar", "int", "vertex_indices", False))
     write(os.path.join(HERE, "cube_binary_le.ply"), ply_cube("binary_little_endian", "int", "uint", "vertex_index", False))
     write(os.path.join(HERE, "cube_binary_be.ply"), ply_cube("binary_big_endian", "uint", "int", "vertex_indices", True))

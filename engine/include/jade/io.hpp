@@ -2,6 +2,7 @@
 // tinyobjloader, OpenImageIO); the core library jade::jade reads and writes no files.
 #pragma once
 
+#include <jade/deform.hpp>
 #include <jade/mesh.hpp>
 
 #include <filesystem>
@@ -19,6 +20,18 @@ namespace jade {
 /// Throws jade::Error naming the file, the element and what is wrong; never returns a partly
 /// read mesh. Header counts are checked against the file size before anything is allocated.
 TriangleMesh load_mesh(const std::filesystem::path& path);
+
+/// Loads the first node with a mesh of a glTF file with its skin (JOINTS_0/WEIGHTS_0, inverse
+/// bind matrices), morph targets (POSITION deltas), node hierarchy and animations (LINEAR, STEP,
+/// CUBICSPLINE), for jade/deform.hpp. Only TRIANGLES primitives; errors as load_mesh.
+AnimatedMesh load_animated_gltf(const std::filesystem::path& path);
+
+/// Writes an animated image (frames of width × height linear-RGB RGBA floats, sRGB-encoded,
+/// 8 bit) at `fps` frames per second (0 < fps ≤ 100; GIF stores a delay in 1/100 s) as a looping
+/// .gif (OpenImageIO's GIF writer, one subimage per frame; its WebP writer cannot animate).
+/// Atomic like save_image.
+void save_animation(const std::filesystem::path& path, int width, int height, const std::vector<std::vector<float>>& frames,
+                    double fps);
 
 /// What `jade bake` stores next to the mesh.
 struct BakedAttributes {

@@ -58,7 +58,66 @@ void write_exr(const std::string& name, const std::filesystem::path& tmp, int wi
     write_oiio(name, "openexr", tmp, spec, OIIO::TypeDesc::FLOAT, rgba.data());
 }
 
+std::vector<uint8_t> to_srgb8(const std::vector<float>& rgba)
+{
+    std::vector<uint8_t> bytes(rgba.size());
+    for (size_t i = 0; i < rgba.size(); i += 4) {
+        for (size_t c = 0; c < 3; ++c) bytes[i + c] = to_byte(srgb_encode(rgba[i + c]));
+        bytes[i + 3] = to_byte(clamp01(rgba[i + 3]));
+    }
+    return bytes;
+}
+
+/// All frames as subimages of one file: OIIO's GIF writer supports "appendsubimage" (its WebP
+/// writer, in OIIO 2.4, writes single images only);
+/// the frame rate is the "FramesPerSecond" attribute (a rational; the GIF writer turns it into
+/// a delay in 1/100 s), the GIF loops forever.
+void write_frames(const std::string& name, const char* format, const std::filesystem::path& tmp, int width, int height,
+                  const std::vector<std::vector<float>>& frames, double fps)
+{
+    auto out = OIIO::ImageOutput::create(format);
+    if (!out) io::fail(name, std::string("OpenImageIO has no ") + format + " writer: " + OIIO::geterror());
+    if (!out->supports("multiimage") || !out->supports("appendsubimage"))
+        io::fail(name, std::string("OpenImageIO's ") + format + " writer cannot write animations");
+    OIIO::ImageSpec spec(width, height, 4, OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:ColorSpace", "sRGB");
+    spec.attribute("oiio:UnassociatedAlpha", 1);
+    const int fps_num = int(std::lround(fps * 100.0)), fps_den = 100;
+    const int rational[2] = {std::max(fps_num, 1), fps_den};
+    spec.attribute("FramesPerSecond", OIIO::TypeRational, rational);
+    spec.attribute("oiio:Movie", 1);
+    spec.attribute("gif:LoopCount", 0);
+    for (size_t f = 0; f < frames.size(); ++f) {
+        const auto mode = f == 0 ? OIIO::ImageOutput::Create : OIIO::ImageOutput::AppendSubimage;
+        if (!out->open(tmp.string(), spec, mode)) io::fail(name, "cannot open " + tmp.string() + " for writing: " + out->geterror());
+        const auto bytes = to_srgb8(frames[f]);
+        if (!out->write_image(OIIO::TypeDesc::UINT8, bytes.data()))
+            io::fail(name, "writing frame " + std::to_string(f) + " of " + tmp.string() + " failed: " + out->geterror());
+    }
+    if (!out->close()) io::fail(name, "closing " + tmp.string() + " failed: " + out->geterror());
+}
+
 }  // namespace
+
+void save_animation(const std::filesystem::path& path, int width, int height, const std::vector<std::vector<float>>& frames,
+                    double fps)
+{
+    const auto name = io::display_name(path);
+    const auto ext = io::lower_extension(path);
+    if (ext != ".gif") io::fail(name, "unsupported animation format '" + ext + "' (supported: .gif)");
+    if (width <= 0 || height <= 0 || frames.empty())
+        io::fail(name, "animation of " + std::to_string(frames.size()) + " frames of " + std::to_string(width) + "x" +
+                           std::to_string(height) + " is empty");
+    if (!(fps > 0.0) || !(fps <= 100.0)) io::fail(name, "frame rate " + std::to_string(fps) + " is not in (0, 100]");
+    const uint64_t expected = uint64_t(width) * uint64_t(height) * 4;
+    for (size_t f = 0; f < frames.size(); ++f)
+        if (frames[f].size() != expected)
+            io::fail(name, "frame " + std::to_string(f) + " has " + std::to_string(frames[f].size()) + " floats, expected " +
+                               std::to_string(expected));
+    io::write_atomically(path, [&](const std::filesystem::path& tmp) {
+        write_frames(name, "gif", tmp, width, height, frames, fps);
+    });
+}
 
 void save_image(const std::filesystem::path& path, int width, int height, const std::vector<float>& rgba)
 {
