@@ -21,6 +21,7 @@
 #include <jade/material.hpp>
 #include <jade/mesh.hpp>
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 #include <vulkan/vulkan.h>
 
@@ -55,12 +56,20 @@ enum class ToneMap : uint32_t {
 ToneMap parse_tone_map(std::string_view name);
 
 /// A pinhole camera. Right-handed; looks from `eye` at `target`; `up` need not be orthogonal
-/// to the view direction but not parallel to it. Near and far planes are fitted to the mesh.
+/// to the view direction but not parallel to it. Near and far planes are fitted to the mesh's
+/// bounding sphere unless both are given (0 < near_plane < far_plane), e.g. to share a depth
+/// buffer with a host renderer (then use view_projection() for the host's own geometry).
 struct Camera {
     glm::vec3 eye{0.0f, 0.0f, 5.0f};
     glm::vec3 target{0.0f};
     glm::vec3 up{0.0f, 1.0f, 0.0f};
     float fov_y_degrees = 30.0f;  ///< vertical field of view, (0, 180)
+    float near_plane = 0.0f, far_plane = 0.0f;  ///< mesh units; 0, 0: fitted to the mesh
+
+    /// The clip-from-world matrix the renderer uses with explicit planes: perspectiveRH_ZO
+    /// (depth 0 at near, 1 at far) with y flipped (Vulkan framebuffer rows top to bottom) times
+    /// lookAtRH(eye, target, up). Throws jade::Error unless 0 < near_plane < far_plane, aspect > 0.
+    glm::mat4 view_projection(float aspect) const;
 
     /// The camera looking at the centre of the box [lo, hi] from `direction` (from the target
     /// towards the eye), at the distance where the box's bounding sphere fills the smaller of
@@ -138,13 +147,20 @@ struct RendererOptions {
 };
 
 /// Where record() draws: the caller's images, described by views.
-///   color    samples × colour format, layout COLOR_ATTACHMENT_OPTIMAL (cleared, then discarded
-///            when `resolve` is set, else stored)
+///   color    samples × colour format (RGBA16F, or RGBA32F with RenderSettings::float32), layout
+///            COLOR_ATTACHMENT_OPTIMAL (cleared to the background, or loaded with `load`; then
+///            discarded when `resolve` is set, else stored)
 ///   resolve  1 sample, same format, COLOR_ATTACHMENT_OPTIMAL, or VK_NULL_HANDLE when samples = 1
-///   depth    samples × D32_SFLOAT, DEPTH_ATTACHMENT_OPTIMAL (cleared to 1, not stored)
+///   depth    samples × D32_SFLOAT, DEPTH_ATTACHMENT_OPTIMAL (cleared to 1 and not stored, or
+///            with `load` loaded, depth-tested LESS and stored)
+/// All three stay in these layouts after the draw.
 struct RenderTarget {
     VkImageView color = VK_NULL_HANDLE, resolve = VK_NULL_HANDLE, depth = VK_NULL_HANDLE;
     uint32_t width = 0, height = 0;
+    /// Draw over what the host already rendered into color and depth (embedding): no clear.
+    /// Depth is only comparable when the camera has explicit near/far planes that the host
+    /// used too (Camera::view_projection).
+    bool load = false;
 };
 
 class Renderer {

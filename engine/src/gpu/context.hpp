@@ -14,6 +14,8 @@ namespace jade::gpu {
 class Context {
 public:
     explicit Context(const ContextOptions& options);
+    /// Adopts the host's objects (jade/context.hpp AdoptedVulkan); destroys only its own.
+    Context(const AdoptedVulkan& host, const ContextOptions& options);
     ~Context();
     Context(const Context&) = delete;
     Context& operator=(const Context&) = delete;
@@ -27,6 +29,7 @@ public:
     const VkPhysicalDeviceMemoryProperties& memory_properties() const { return memory_; }
     const DeviceInfo& info() const { return info_; }
     uint64_t validation_messages() const { return validation_messages_.load(); }
+    bool adopted() const { return adopted_; }
 
     /// Records commands with `record` into a fresh primary command buffer, submits it and waits.
     /// The simple path for bakes and tests; frame loops record into their own buffers.
@@ -53,11 +56,14 @@ private:
     void create_instance(const ContextOptions& options);
     void choose_physical_device(const ContextOptions& options);
     void create_device();
+    void check_adopted(const AdoptedVulkan& host);
+    void create_submission_objects();
     void fill_info();
     void destroy();
 
     std::function<void(std::string_view)> log_;
     bool verbose_ = false;
+    bool adopted_ = false;  // instance and device are the host's: never destroyed here
     std::atomic<uint64_t> validation_messages_{0};
 
     VkInstance instance_ = VK_NULL_HANDLE;

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Builds samples/embed as a separate project the way a host would, then runs the embedding
+# test (test_embed, validation on) against that binary.
+#   build_and_run.sh install    SOURCE BUILD WORK TEST_EMBED  - cmake --install BUILD into
+#                               WORK/prefix, then find_package(jade) from the sample
+#   build_and_run.sh subdirectory SOURCE BUILD WORK TEST_EMBED - add_subdirectory(SOURCE)
+# Fails on the first failing step (set -e); each step's output goes to the ctest log.
+set -euo pipefail
+mode=$1 source=$2 build=$3 work=$4 test_embed=$5
+rm -rf "$work"
+mkdir -p "$work"
+generator=()
+command -v ninja >/dev/null && generator=(-G Ninja)
+case "$mode" in
+install)
+  cmake --install "$build" --prefix "$work/prefix" >/dev/null
+  test -f "$work/prefix/lib/cmake/jade/jadeConfig.cmake"
+  test -f "$work/prefix/lib/cmake/jade/jadeConfigVersion.cmake"
+  test -f "$work/prefix/include/jade/render.hpp"
+  cmake -S "$source/samples/embed" -B "$work/build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release \
+        -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
+  ;;
+subdirectory)
+  cmake -S "$source/samples/embed" -B "$work/build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release \
+        -DJADE_SOURCE_DIR="$source" >/dev/null
+  # A parent project must not get Jade's samples or tests by default.
+  if grep -q "^JADE_BUILD_TESTS:BOOL=ON" "$work/build/CMakeCache.txt"; then echo "JADE_BUILD_TESTS is on"; exit 1; fi
+  if grep -q "^JADE_BUILD_SAMPLES:BOOL=ON" "$work/build/CMakeCache.txt"; then echo "JADE_BUILD_SAMPLES is on"; exit 1; fi
+  ;;
+*) echo "unknown mode $mode"; exit 1 ;;
+esac
+cmake --build "$work/build" --target jade_embed -j "${JADE_CONSUMER_JOBS:-2}"
+JADE_EMBED="$work/build/jade_embed" JADE_TEST_OUT="$work/out" \
+  "$test_embed" --gtest_filter='Embed.SampleDrawsTheTranslucentSphereIntoTheHostsFrame'
