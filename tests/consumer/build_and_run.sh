@@ -2,12 +2,14 @@
 # Builds samples/embed as a separate project the way a host would, then runs the embedding
 # test (test_embed, validation on) against that binary.
 #   build_and_run.sh install    SOURCE BUILD WORK TEST_EMBED  - cmake --install BUILD into
-#                               WORK/prefix, then find_package(jade) from the sample
+#                               WORK/prefix, then find_package(jade) from tests/consumer/core_only
+#                               (core alone) and from the sample (with io)
 #   build_and_run.sh subdirectory SOURCE BUILD WORK TEST_EMBED - add_subdirectory(SOURCE)
 # Fails on the first failing step (set -e); each step's output goes to the ctest log.
 set -euo pipefail
 mode=$1 source=$2 build=$3 work=$4 test_embed=$5
-rm -rf "$work"
+# The consumer's build folder is kept between runs (incremental); the prefix and output are not.
+rm -rf "$work/prefix" "$work/out" "$work/core_build"
 mkdir -p "$work"
 generator=()
 command -v ninja >/dev/null && generator=(-G Ninja)
@@ -17,6 +19,11 @@ install)
   test -f "$work/prefix/lib/cmake/jade/jadeConfig.cmake"
   test -f "$work/prefix/lib/cmake/jade/jadeConfigVersion.cmake"
   test -f "$work/prefix/include/jade/render.hpp"
+  # Core only: no io dependencies needed, jade::io not imported.
+  cmake -S "$source/tests/consumer/core_only" -B "$work/core_build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release \
+        -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
+  cmake --build "$work/core_build" >/dev/null
+  "$work/core_build/core_consumer"
   cmake -S "$source/samples/embed" -B "$work/build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release \
         -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
   ;;
