@@ -31,7 +31,7 @@ struct ContextOptions {
     bool synchronization_validation = false;
     /// Where log lines go (validation messages, device choice with verbose). Default: stderr.
     std::function<void(std::string_view)> log;
-    bool verbose = false;
+    bool verbose = false;  ///< log the chosen (or adopted) device
 };
 
 /// The host's Vulkan objects, for a Context that adopts them instead of creating its own
@@ -73,18 +73,20 @@ struct AdoptedVulkan {
 
 /// What `jade info` prints and what code may want to know about the device.
 struct DeviceInfo {
-    std::string name, driver, type;       ///< type: "discrete", "integrated", "virtual", "cpu", "other"
+    std::string name, driver, type;       ///< device and driver names; type: "discrete", "integrated", "virtual", "cpu", "other"
     uint32_t api_version = 0;             ///< VK_MAKE_API_VERSION encoded
-    uint64_t max_storage_buffer_range = 0;
-    uint32_t max_workgroup_count[3] = {0, 0, 0};
+    uint64_t max_storage_buffer_range = 0;        ///< bytes
+    uint32_t max_workgroup_count[3] = {0, 0, 0};  ///< compute dispatch limits
     uint32_t max_workgroup_invocations = 0;
-    uint32_t subgroup_size = 0;
+    uint32_t subgroup_size = 0;                   ///< default subgroup size (8 on lavapipe)
     bool float64 = false;                 ///< shaderFloat64
     double timestamp_period_ns = 0;       ///< nanoseconds per timestamp tick
-    uint64_t device_local_heap_bytes = 0;
-    std::string api_version_string() const;
+    uint64_t device_local_heap_bytes = 0; ///< size of the largest device-local heap
+    std::string api_version_string() const;  ///< "1.3.238"
 };
 
+/// The device Jade runs on; every other GPU object (Baker, Renderer) takes one and must be
+/// destroyed before it. Move-less and not copyable.
 class Context {
 public:
     /// Creates an instance and device. Throws jade::Error when no suitable device exists, with
@@ -100,7 +102,7 @@ public:
     Context(const Context&) = delete;
     Context& operator=(const Context&) = delete;
 
-    const DeviceInfo& device_info() const;
+    const DeviceInfo& device_info() const;  ///< filled once at construction
     /// Validation warnings and errors seen so far (0 when validation is off).
     uint64_t validation_messages() const;
     /// Names of the Vulkan devices present, best first (no context needed).
@@ -113,7 +115,7 @@ public:
     /// Sets the features Jade needs in the host's feature structs (leaves the others alone).
     static void enable_required_features(VkPhysicalDeviceVulkan12Features& f12, VkPhysicalDeviceVulkan13Features& f13);
 
-    gpu::Context& gpu();  ///< internal: the engine's GPU layer
+    gpu::Context& gpu();  ///< internal: the engine's GPU layer (not part of the installed API's contract)
 private:
     std::unique_ptr<gpu::Context> gpu_;
 };

@@ -36,6 +36,7 @@ namespace jade {
 
 class Context;
 
+/// What the fragment shader computes (see the header comment).
 enum class ShadingMode : uint32_t {
     Lambert = 0,       ///< (k_d/π) max(cos θ, 0) E
     Curvature = 1,     ///< curvature-dependent reflectance (Kubo et al. 2010), needs no bake
@@ -47,6 +48,7 @@ std::string_view shading_mode_name(ShadingMode mode);
 /// The inverse of shading_mode_name; throws jade::Error listing the names.
 ShadingMode parse_shading_mode(std::string_view name);
 
+/// Host-side tone mapping of render()'s result (never applied by record()).
 enum class ToneMap : uint32_t {
     None = 0,        ///< linear HDR, as rendered
     Reinhard = 1,    ///< x / (1 + x) per channel
@@ -78,12 +80,14 @@ struct Camera {
                           glm::vec3 up = {0.0f, 1.0f, 0.0f}, float fov_y_degrees = 30.0f);
 };
 
+/// A light for the Tm, Curvature and Lambert modes (at most 64 per draw).
 struct Light {
     enum class Type : uint32_t { Directional = 0, Point = 1 };
     Type type = Type::Directional;
     glm::vec3 vector{0.0f, 0.0f, 1.0f};  ///< Directional: towards the light (any length); Point: position
     glm::vec3 color{1.0f};               ///< Directional: irradiance E; Point: intensity I (E = I/d²)
 
+    /// Shorthands: a directional light towards `towards_light` with irradiance E, a point light.
     static Light directional(glm::vec3 towards_light, glm::vec3 irradiance) { return {Type::Directional, towards_light, irradiance}; }
     static Light point(glm::vec3 position, glm::vec3 intensity) { return {Type::Point, position, intensity}; }
 };
@@ -106,6 +110,8 @@ struct RenderedImage {
     const float* pixel(uint32_t x, uint32_t y) const { return rgba.data() + (size_t(y) * width + x) * 4; }
 };
 
+/// Per-draw settings of render() and record(); validated at each call (jade::Error naming the
+/// setting: unsupported sample count, size 0, more than 64 lights).
 struct RenderSettings {
     uint32_t width = 512, height = 512;
     ShadingMode mode = ShadingMode::Tm;
@@ -133,12 +139,13 @@ struct LutLayout {
     static constexpr double kMaxVariance = 25.0;  ///< t_max, rad²: f(θ, 25) is within 2e-6 of 1/π
     uint32_t width = 1537, height = 161;
     double cos_theta(uint32_t i) const { return -1.0 + 2.0 * double(i) / double(width - 1); }
-    double variance(uint32_t j) const;
+    double variance(uint32_t j) const;  ///< t_j above, rad²
     /// Continuous texel coordinates (x, y) of (cos θ, t) before the +½ and division.
     double x(double cos_theta) const;
     double y(double t) const;
 };
 
+/// Fixed at Renderer construction: LUT sizes (GPU memory: width × height × 4 bytes each).
 struct RendererOptions {
     LutLayout lut;                                      ///< translucency LUT size (odd width, ≥ 3 × 2)
     uint32_t curvature_lut_width = 129, curvature_lut_height = 64;
@@ -163,8 +170,12 @@ struct RenderTarget {
     bool load = false;
 };
 
+/// Draws one mesh with one material. Owns its GPU buffers, LUT images and pipelines (created
+/// lazily per mode, sample count and format). Threading and lifetime as in the header comment.
 class Renderer {
 public:
+    /// Builds the translucency LUT on the GPU (submits to the Context's queue and waits).
+    /// Throws jade::Error for an even or too small LUT width/height or missing format support.
     explicit Renderer(Context& context, const RendererOptions& options = {});
     ~Renderer();
     Renderer(const Renderer&) = delete;
@@ -202,8 +213,9 @@ public:
     void record(VkCommandBuffer cmd, const RenderTarget& target, const Camera& camera, std::span<const Light> lights,
                 const RenderSettings& settings);
 
-    const LutLayout& lut_layout() const;
+    const LutLayout& lut_layout() const;  ///< as given in RendererOptions
     /// The translucency LUT as the GPU built it, width × height floats, row j = variance(j).
+    /// Reads back from the GPU (submits and waits).
     std::vector<float> read_lut();
     /// Signed mean curvature per bake vertex of the current mesh (1/mesh units, > 0 convex).
     const std::vector<float>& curvature() const;
