@@ -71,6 +71,15 @@ struct AdoptedVulkan {
     std::vector<std::string> enabled_extensions;  ///< device extensions the host enabled
 };
 
+/// How many GPU objects a Context has created since construction (never decremented): lets
+/// tests prove that skipped work created nothing (e.g. a bake served from the cache).
+struct ObjectCounts {
+    uint64_t compute_pipelines = 0;   ///< bake kernels, LUT builders
+    uint64_t graphics_pipelines = 0;  ///< renderer variants
+    uint64_t buffers = 0;             ///< every VkBuffer (device-local and staging)
+    uint64_t images = 0;
+};
+
 /// What `jade info` prints and what code may want to know about the device.
 struct DeviceInfo {
     std::string name, driver, type;       ///< device and driver names; type: "discrete", "integrated", "virtual", "cpu", "other"
@@ -107,6 +116,8 @@ public:
     uint64_t validation_messages() const;
     /// Names of the Vulkan devices present, best first (no context needed).
     static std::vector<std::string> list_devices();
+    /// Objects created so far through this Context (thread-safe read).
+    ObjectCounts created_objects() const;
     /// True when this Context adopted the host's objects (and will not destroy them).
     bool adopted() const;
 

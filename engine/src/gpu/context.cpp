@@ -524,6 +524,16 @@ void Context::submit_and_wait(const std::function<void(VkCommandBuffer)>& record
     check(vkResetFences(device_, 1, &f), "vkResetFences");
 }
 
+void Context::count_created(VkObjectType type, bool compute) const
+{
+    switch (type) {
+    case VK_OBJECT_TYPE_PIPELINE: (compute ? compute_pipelines_ : graphics_pipelines_)++; break;
+    case VK_OBJECT_TYPE_BUFFER: buffers_++; break;
+    case VK_OBJECT_TYPE_IMAGE: images_++; break;
+    default: break;
+    }
+}
+
 void Context::set_name(VkObjectType type, uint64_t handle, const char* name) const
 {
     if (!set_object_name_ || !handle) return;
@@ -577,6 +587,7 @@ std::vector<std::string> Context::list_devices() { return gpu::Context::list_dev
 Context::Context(const AdoptedVulkan& host, const ContextOptions& options)
     : gpu_(std::make_unique<gpu::Context>(host, options)) {}
 bool Context::adopted() const { return gpu_->adopted(); }
+ObjectCounts Context::created_objects() const { return gpu_->created_objects(); }
 std::vector<const char*> Context::required_device_extensions() { return {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME}; }
 void Context::enable_required_features(VkPhysicalDeviceVulkan12Features& f12, VkPhysicalDeviceVulkan13Features& f13)
 {

@@ -42,6 +42,13 @@ public:
         set_name(type, reinterpret_cast<uint64_t>(handle), name);
     }
 
+    /// Counts one created object for Context::created_objects() (buffer, image, pipeline).
+    void count_created(VkObjectType type, bool compute = false) const;
+    ObjectCounts created_objects() const
+    {
+        return {compute_pipelines_.load(), graphics_pipelines_.load(), buffers_.load(), images_.load()};
+    }
+
     void log(std::string_view line) const;
     bool verbose() const { return verbose_; }
 
@@ -65,6 +72,7 @@ private:
     bool verbose_ = false;
     bool adopted_ = false;  // instance and device are the host's: never destroyed here
     std::atomic<uint64_t> validation_messages_{0};
+    mutable std::atomic<uint64_t> compute_pipelines_{0}, graphics_pipelines_{0}, buffers_{0}, images_{0};
 
     VkInstance instance_ = VK_NULL_HANDLE;
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
