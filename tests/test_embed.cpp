@@ -294,3 +294,20 @@ TEST_F(Embed, SampleDrawsTheTranslucentSphereIntoTheHostsFrame)
     const glm::ivec2 centre = to_pixel({0.0f, 0.0f, 0.0f});
     EXPECT_GT(px(centre.x, centre.y).g, 0.1f);
 }
+
+TEST(EmbedCamera, ViewProjectionNeedsExplicitPlanesAndMapsThemToDepthZeroAndOne)
+{
+    Camera camera;  // eye (0, 0, 5) looking at the origin
+    EXPECT_THROW(camera.view_projection(1.0f), Error);  // planes 0, 0: fitted per mesh, no matrix
+    camera.near_plane = 1.0f;
+    camera.far_plane = 9.0f;
+    EXPECT_THROW(camera.view_projection(0.0f), Error);
+    const glm::mat4 m = camera.view_projection(2.0f);
+    auto ndc = [&](glm::vec3 p) { glm::vec4 c = m * glm::vec4(p, 1.0f); return glm::vec3(c) / c.w; };
+    EXPECT_NEAR(ndc({0, 0, 4}).z, 0.0f, 1e-6f);   // 1 unit from the eye: the near plane
+    EXPECT_NEAR(ndc({0, 0, -4}).z, 1.0f, 1e-6f);  // 9 units: the far plane
+    // y flipped for Vulkan: a point above the target lands in the upper half (negative y).
+    EXPECT_LT(ndc({0, 1, 0}).y, 0.0f);
+    // The top of the field of view (30 degrees) at distance 5 is y = -1.
+    EXPECT_NEAR(ndc({0, 5.0f * std::tan(15.0f * 3.14159265f / 180.0f), 0}).y, -1.0f, 1e-5f);
+}

@@ -28,8 +28,10 @@ install)
         -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
   ;;
 subdirectory)
-  cmake -S "$source/samples/embed" -B "$work/build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release \
-        -DJADE_SOURCE_DIR="$source" >/dev/null
+  # Jade's sources are compiled again here: without optimisation (about half the compile time;
+  # the sample's sphere is small) and without debug information.
+  cmake -S "$source/samples/embed" -B "$work/build" "${generator[@]}" -DCMAKE_BUILD_TYPE=None \
+        -DCMAKE_CXX_FLAGS=-O0 -DJADE_SOURCE_DIR="$source" >/dev/null
   # A parent project must not get Jade's samples or tests by default.
   if grep -q "^JADE_BUILD_TESTS:BOOL=ON" "$work/build/CMakeCache.txt"; then echo "JADE_BUILD_TESTS is on"; exit 1; fi
   if grep -q "^JADE_BUILD_SAMPLES:BOOL=ON" "$work/build/CMakeCache.txt"; then echo "JADE_BUILD_SAMPLES is on"; exit 1; fi
