@@ -88,15 +88,17 @@ struct BakeSettings {
     /// error on the bunny and the dragon (d = 5 % of the diagonal): θ = 1: 1.6e-3, 0.7: 4.7e-4,
     /// 0.5: 1.6e-4, 0.3: 1.6e-5.
     float tm_epsilon = 1.2f;
-    static BakeSettings preset(Quality q);
+    static BakeSettings preset(Quality q);  ///< the Quality table above
 };
 
-/// GPU time per stage (timestamp queries) and wall time, milliseconds.
+/// GPU time per stage (timestamp queries) and wall time, milliseconds. setup_ms: host time
+/// building the BVH, cluster tree and near-field lists before the GPU passes.
 struct BakeTimings {
     std::vector<std::pair<std::string, double>> gpu_stages;
     double gpu_total_ms = 0, wall_ms = 0, setup_ms = 0;
 };
 
+/// What a bake produced, one value per bake vertex of the PreparedMesh it was given.
 struct BakeResult {
     std::vector<float> ao;           ///< per bake vertex, [0,1]
     std::vector<glm::vec3> tm;       ///< per bake vertex, linear RGB, unitless
@@ -105,7 +107,11 @@ struct BakeResult {
 };
 
 /// Runs the AO and t_m passes on the GPU. Keeps its compute pipelines between bakes; create
-/// one per Context. Not thread-safe.
+/// one per Context. Not thread-safe; use it from the Context's thread and destroy it before
+/// the Context. Every bake records into Jade's own command buffers, submits them to the
+/// Context's queue (the host's queue for an adopted Context) and blocks until they complete;
+/// its GPU buffers are released when the call returns. Errors (jade::Error): an empty mesh,
+/// `ao` of the wrong size, settings out of range, a failed Vulkan call.
 class Baker {
 public:
     explicit Baker(Context& context);
@@ -113,11 +119,12 @@ public:
     Baker(const Baker&) = delete;
     Baker& operator=(const Baker&) = delete;
 
+    /// AO then t_m (the material's profiles, per channel; one channel when grey()).
     BakeResult bake(const PreparedMesh& mesh, const Material& material, const BakeSettings& settings = {});
     /// t_m only, from given AO (one value per bake vertex).
     BakeResult bake_tm(const PreparedMesh& mesh, std::span<const float> ao, const Material& material,
                        const BakeSettings& settings = {});
-    /// AO only.
+    /// AO only, one value in [0, 1] per bake vertex; `timings` (optional) receives GPU/wall times.
     std::vector<float> bake_ao(const PreparedMesh& mesh, const AoSettings& settings, BakeTimings* timings = nullptr);
 
     struct Impl;

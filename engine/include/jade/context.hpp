@@ -2,8 +2,11 @@
 //
 // A Context owns (or, for embedding, adopts) a Vulkan 1.3 instance, device and one queue that
 // does both compute and graphics. It is not thread-safe: use one Context from one thread at a
-// time. Destroying it waits for the GPU.
+// time. Destroying it waits for its queue (owned: for the device) to be idle.
+// See docs/embedding.md for adopting a host's device.
 #pragma once
+
+#include <vulkan/vulkan.h>
 
 #include <cstdint>
 #include <functional>
@@ -29,39 +32,102 @@ struct ContextOptions {
     bool synchronization_validation = false;
     /// Where log lines go (validation messages, device choice with verbose). Default: stderr.
     std::function<void(std::string_view)> log;
-    bool verbose = false;
+    bool verbose = false;  ///< log the chosen (or adopted) device
+};
+
+/// The host's Vulkan objects, for a Context that adopts them instead of creating its own
+/// (embedding Jade in another renderer). Jade never destroys them; they must outlive the Context.
+///
+/// Requirements, checked by the Context constructor (a jade::Error lists everything missing):
+/// - instance created with apiVersion ≥ 1.3 (`api_version`), physical device with Vulkan ≥ 1.3;
+/// - `queue` from `queue_family`, a family with graphics, compute and timestamps;
+/// - device extensions (`enabled_extensions`): VK_KHR_push_descriptor;
+/// - device features (`enabled_features`, the pNext chain given to vkCreateDevice: a
+///   VkPhysicalDeviceFeatures2 and/or VkPhysicalDeviceVulkan12Features/Vulkan13Features or the
+///   matching single-feature structs): dynamicRendering, synchronization2, maintenance4,
+///   scalarBlockLayout, hostQueryReset. Context::enable_required_features() sets them.
+/// Optional: shaderFloat64 (reported in DeviceInfo::float64).
+///
+/// Function loading: the extension entry points Jade needs (vkCmdPushDescriptorSetKHR,
+/// vkSetDebugUtilsObjectNameEXT) are loaded through `get_device_proc_addr` /
+/// `get_instance_proc_addr` when given. Core Vulkan 1.3 commands are called through the Vulkan
+/// loader that Jade links (libvulkan), whose entry points dispatch on the handle: the host's
+/// handles must therefore come from the system loader (linking libvulkan or using volk both do);
+/// a host that bypasses the loader and talks to a driver directly is not supported.
+///
+/// Queue use: Jade submits to `queue` itself (buffer uploads, LUT builds, bakes, render()) and
+/// waits for each submission with its own fence, and set_mesh/set_material/destructors of
+/// Renderer call vkDeviceWaitIdle. Vulkan requires the host to synchronise access to the queue
+/// and device externally: do not submit to it from another thread while a Jade call runs.
+struct AdoptedVulkan {
+    VkInstance instance = VK_NULL_HANDLE;
+    VkPhysicalDevice physical_device = VK_NULL_HANDLE;
+    VkDevice device = VK_NULL_HANDLE;
+    VkQueue queue = VK_NULL_HANDLE;
+    uint32_t queue_family = 0;
+    uint32_t api_version = 0;  ///< the apiVersion the host's instance was created with
+    PFN_vkGetInstanceProcAddr get_instance_proc_addr = nullptr;  ///< null: the loader's
+    PFN_vkGetDeviceProcAddr get_device_proc_addr = nullptr;      ///< null: the loader's
+    const void* enabled_features = nullptr;  ///< VkDeviceCreateInfo::pNext chain the host used
+    std::vector<std::string> enabled_extensions;  ///< device extensions the host enabled
+};
+
+/// How many GPU objects a Context has created since construction (never decremented): lets
+/// tests prove that skipped work created nothing (e.g. a bake served from the cache).
+struct ObjectCounts {
+    uint64_t compute_pipelines = 0;   ///< bake kernels, LUT builders
+    uint64_t graphics_pipelines = 0;  ///< renderer variants
+    uint64_t buffers = 0;             ///< every VkBuffer (device-local and staging)
+    uint64_t images = 0;
 };
 
 /// What `jade info` prints and what code may want to know about the device.
 struct DeviceInfo {
-    std::string name, driver, type;       ///< type: "discrete", "integrated", "virtual", "cpu", "other"
+    std::string name, driver, type;       ///< device and driver names; type: "discrete", "integrated", "virtual", "cpu", "other"
     uint32_t api_version = 0;             ///< VK_MAKE_API_VERSION encoded
-    uint64_t max_storage_buffer_range = 0;
-    uint32_t max_workgroup_count[3] = {0, 0, 0};
+    uint64_t max_storage_buffer_range = 0;        ///< bytes
+    uint32_t max_workgroup_count[3] = {0, 0, 0};  ///< compute dispatch limits
     uint32_t max_workgroup_invocations = 0;
-    uint32_t subgroup_size = 0;
+    uint32_t subgroup_size = 0;                   ///< default subgroup size (8 on lavapipe)
     bool float64 = false;                 ///< shaderFloat64
     double timestamp_period_ns = 0;       ///< nanoseconds per timestamp tick
-    uint64_t device_local_heap_bytes = 0;
-    std::string api_version_string() const;
+    uint64_t device_local_heap_bytes = 0; ///< size of the largest device-local heap
+    std::string api_version_string() const;  ///< "1.3.238"
 };
 
+/// The device Jade runs on; every other GPU object (Baker, Renderer) takes one and must be
+/// destroyed before it. Move-less and not copyable.
 class Context {
 public:
     /// Creates an instance and device. Throws jade::Error when no suitable device exists, with
     /// every device considered and why it was rejected, and what to install.
     explicit Context(const ContextOptions& options = {});
+    /// Adopts the host's instance, device and queue (see AdoptedVulkan): creates only Jade's
+    /// own command pool and fence on them. Throws jade::Error listing every missing version,
+    /// queue capability, extension and feature. `options.device` and `options.validation` are
+    /// ignored (the host owns the instance and its layers; validation_messages() stays 0 — the
+    /// host's messenger sees Jade's messages); `log` and `verbose` apply.
+    Context(const AdoptedVulkan& host, const ContextOptions& options = {});
     ~Context();
     Context(const Context&) = delete;
     Context& operator=(const Context&) = delete;
 
-    const DeviceInfo& device_info() const;
+    const DeviceInfo& device_info() const;  ///< filled once at construction
     /// Validation warnings and errors seen so far (0 when validation is off).
     uint64_t validation_messages() const;
     /// Names of the Vulkan devices present, best first (no context needed).
     static std::vector<std::string> list_devices();
+    /// Objects created so far through this Context (thread-safe read).
+    ObjectCounts created_objects() const;
+    /// True when this Context adopted the host's objects (and will not destroy them).
+    bool adopted() const;
 
-    gpu::Context& gpu();  ///< internal: the engine's GPU layer
+    /// The device extensions Jade needs (for the host's VkDeviceCreateInfo).
+    static std::vector<const char*> required_device_extensions();
+    /// Sets the features Jade needs in the host's feature structs (leaves the others alone).
+    static void enable_required_features(VkPhysicalDeviceVulkan12Features& f12, VkPhysicalDeviceVulkan13Features& f13);
+
+    gpu::Context& gpu();  ///< internal: the engine's GPU layer (not part of the installed API's contract)
 private:
     std::unique_ptr<gpu::Context> gpu_;
 };

@@ -7,6 +7,8 @@
 // - Radii r are in mesh units. Physical data (Jensen et al. 2001, d'Eon) is in millimetres;
 //   presets take `mm_per_unit`, the number of millimetres one mesh unit stands for.
 // - Colour channels are linear RGB, index 0 = red.
+// Everything here is plain data and pure functions: thread-safe, no GPU needed. Errors are
+// jade::Error naming the parameter at fault.
 #pragma once
 
 #include <glm/vec3.hpp>
@@ -20,6 +22,7 @@
 
 namespace jade {
 
+/// Which analytic family a ChannelProfile is.
 enum class ProfileKind : uint32_t {
     Burley = 0,     ///< Christensen–Burley normalised diffusion, shape d
     Dipole = 1,     ///< classical dipole (Jensen et al. 2001), normalised by its total reflectance
@@ -35,12 +38,15 @@ struct ChannelProfile {
     double d = 1.0;                        ///< Burley shape, mesh units
     double sigma_tr = 0, z_r = 0, z_v = 0; ///< Dipole, in 1/mesh units and mesh units
     double dipole_total = 1;               ///< Dipole: unnormalised total reflectance R_d (for docs)
-    uint32_t gaussian_count = 0;
+    uint32_t gaussian_count = 0;           ///< Gaussians: how many of weight/variance are used
     std::array<double, kMaxGaussians> weight{}, variance{}; ///< Gaussians: Σ weight = 1; variance in units²
 
+    /// Burley with shape d > 0 (mesh units); throws jade::Error for d ≤ 0 or not finite.
     static ChannelProfile burley(double d);
     /// From reduced scattering and absorption coefficients in 1/mesh-unit and relative IOR η.
     static ChannelProfile dipole(double sigma_s_prime, double sigma_a, double eta);
+    /// 1 to 6 Gaussians, weights ≥ 0 (normalised to sum 1), variances > 0 in units²; throws
+    /// jade::Error for mismatched sizes or bad values.
     static ChannelProfile gaussians(std::span<const double> weights, std::span<const double> variances);
     /// Burley's fit from surface albedo A and mean free path ℓ (mesh units): d = ℓ / s(A),
     /// s = 1.85 − A + 7|A − 0.8|³ (searchlight configuration).
@@ -55,7 +61,7 @@ struct ChannelProfile {
 
 /// A translucent (or opaque) material.
 struct Material {
-    std::string name;
+    std::string name;                       ///< preset or user name, used in messages and reports
     std::array<ChannelProfile, 3> profile;  ///< linear RGB
     glm::vec3 albedo{0.8f};                 ///< diffuse albedo k_d, linear RGB
     float strength = 1.0f;                  ///< Gaussian variance (rad²) = strength · t_m

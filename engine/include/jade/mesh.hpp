@@ -2,6 +2,7 @@
 //
 // Conventions: positions are in the mesh's own units (Jade never rescales silently); the
 // coordinate system is right-handed; triangles are counter-clockwise when seen from outside.
+// Meshes are plain data; the functions here are CPU-only and thread-safe (no shared state).
 #pragma once
 
 #include <glm/vec3.hpp>
@@ -83,6 +84,7 @@ std::vector<T> to_render_vertices(const PreparedMesh& prepared, const std::vecto
 /// Procedural meshes: a scene that needs no download.
 namespace procedural {
 /// UV sphere of the given radius centred at the origin; `rings` ≥ 2, `segments` ≥ 3.
+/// Like box and grid, throws jade::Error for counts or sizes out of range.
 TriangleMesh sphere(float radius, uint32_t rings, uint32_t segments);
 /// Axis-aligned closed box from `lo` to `hi`, each face split into n×n quads (a thin slab or a
 /// thick block). n ≥ 1.

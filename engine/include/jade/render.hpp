@@ -21,6 +21,7 @@
 #include <jade/material.hpp>
 #include <jade/mesh.hpp>
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 #include <vulkan/vulkan.h>
 
@@ -35,6 +36,7 @@ namespace jade {
 
 class Context;
 
+/// What the fragment shader computes (see the header comment).
 enum class ShadingMode : uint32_t {
     Lambert = 0,       ///< (k_d/π) max(cos θ, 0) E
     Curvature = 1,     ///< curvature-dependent reflectance (Kubo et al. 2010), needs no bake
@@ -46,6 +48,7 @@ std::string_view shading_mode_name(ShadingMode mode);
 /// The inverse of shading_mode_name; throws jade::Error listing the names.
 ShadingMode parse_shading_mode(std::string_view name);
 
+/// Host-side tone mapping of render()'s result (never applied by record()).
 enum class ToneMap : uint32_t {
     None = 0,        ///< linear HDR, as rendered
     Reinhard = 1,    ///< x / (1 + x) per channel
@@ -55,12 +58,20 @@ enum class ToneMap : uint32_t {
 ToneMap parse_tone_map(std::string_view name);
 
 /// A pinhole camera. Right-handed; looks from `eye` at `target`; `up` need not be orthogonal
-/// to the view direction but not parallel to it. Near and far planes are fitted to the mesh.
+/// to the view direction but not parallel to it. Near and far planes are fitted to the mesh's
+/// bounding sphere unless both are given (0 < near_plane < far_plane), e.g. to share a depth
+/// buffer with a host renderer (then use view_projection() for the host's own geometry).
 struct Camera {
     glm::vec3 eye{0.0f, 0.0f, 5.0f};
     glm::vec3 target{0.0f};
     glm::vec3 up{0.0f, 1.0f, 0.0f};
     float fov_y_degrees = 30.0f;  ///< vertical field of view, (0, 180)
+    float near_plane = 0.0f, far_plane = 0.0f;  ///< mesh units; 0, 0: fitted to the mesh
+
+    /// The clip-from-world matrix the renderer uses with explicit planes: perspectiveRH_ZO
+    /// (depth 0 at near, 1 at far) with y flipped (Vulkan framebuffer rows top to bottom) times
+    /// lookAtRH(eye, target, up). Throws jade::Error unless 0 < near_plane < far_plane, aspect > 0.
+    glm::mat4 view_projection(float aspect) const;
 
     /// The camera looking at the centre of the box [lo, hi] from `direction` (from the target
     /// towards the eye), at the distance where the box's bounding sphere fills the smaller of
@@ -69,12 +80,14 @@ struct Camera {
                           glm::vec3 up = {0.0f, 1.0f, 0.0f}, float fov_y_degrees = 30.0f);
 };
 
+/// A light for the Tm, Curvature and Lambert modes (at most 64 per draw).
 struct Light {
     enum class Type : uint32_t { Directional = 0, Point = 1 };
     Type type = Type::Directional;
     glm::vec3 vector{0.0f, 0.0f, 1.0f};  ///< Directional: towards the light (any length); Point: position
     glm::vec3 color{1.0f};               ///< Directional: irradiance E; Point: intensity I (E = I/d²)
 
+    /// Shorthands: a directional light towards `towards_light` with irradiance E, a point light.
     static Light directional(glm::vec3 towards_light, glm::vec3 irradiance) { return {Type::Directional, towards_light, irradiance}; }
     static Light point(glm::vec3 position, glm::vec3 intensity) { return {Type::Point, position, intensity}; }
 };
@@ -97,6 +110,8 @@ struct RenderedImage {
     const float* pixel(uint32_t x, uint32_t y) const { return rgba.data() + (size_t(y) * width + x) * 4; }
 };
 
+/// Per-draw settings of render() and record(); validated at each call (jade::Error naming the
+/// setting: unsupported sample count, size 0, more than 64 lights).
 struct RenderSettings {
     uint32_t width = 512, height = 512;
     ShadingMode mode = ShadingMode::Tm;
@@ -124,12 +139,13 @@ struct LutLayout {
     static constexpr double kMaxVariance = 25.0;  ///< t_max, rad²: f(θ, 25) is within 2e-6 of 1/π
     uint32_t width = 1537, height = 161;
     double cos_theta(uint32_t i) const { return -1.0 + 2.0 * double(i) / double(width - 1); }
-    double variance(uint32_t j) const;
+    double variance(uint32_t j) const;  ///< t_j above, rad²
     /// Continuous texel coordinates (x, y) of (cos θ, t) before the +½ and division.
     double x(double cos_theta) const;
     double y(double t) const;
 };
 
+/// Fixed at Renderer construction: LUT sizes (GPU memory: width × height × 4 bytes each).
 struct RendererOptions {
     LutLayout lut;                                      ///< translucency LUT size (odd width, ≥ 3 × 2)
     uint32_t curvature_lut_width = 129, curvature_lut_height = 64;
@@ -138,17 +154,28 @@ struct RendererOptions {
 };
 
 /// Where record() draws: the caller's images, described by views.
-///   color    samples × colour format, layout COLOR_ATTACHMENT_OPTIMAL (cleared, then discarded
-///            when `resolve` is set, else stored)
+///   color    samples × colour format (RGBA16F, or RGBA32F with RenderSettings::float32), layout
+///            COLOR_ATTACHMENT_OPTIMAL (cleared to the background, or loaded with `load`; then
+///            discarded when `resolve` is set, else stored)
 ///   resolve  1 sample, same format, COLOR_ATTACHMENT_OPTIMAL, or VK_NULL_HANDLE when samples = 1
-///   depth    samples × D32_SFLOAT, DEPTH_ATTACHMENT_OPTIMAL (cleared to 1, not stored)
+///   depth    samples × D32_SFLOAT, DEPTH_ATTACHMENT_OPTIMAL (cleared to 1 and not stored, or
+///            with `load` loaded, depth-tested LESS and stored)
+/// All three stay in these layouts after the draw.
 struct RenderTarget {
     VkImageView color = VK_NULL_HANDLE, resolve = VK_NULL_HANDLE, depth = VK_NULL_HANDLE;
     uint32_t width = 0, height = 0;
+    /// Draw over what the host already rendered into color and depth (embedding): no clear.
+    /// Depth is only comparable when the camera has explicit near/far planes that the host
+    /// used too (Camera::view_projection).
+    bool load = false;
 };
 
+/// Draws one mesh with one material. Owns its GPU buffers, LUT images and pipelines (created
+/// lazily per mode, sample count and format). Threading and lifetime as in the header comment.
 class Renderer {
 public:
+    /// Builds the translucency LUT on the GPU (submits to the Context's queue and waits).
+    /// Throws jade::Error for an even or too small LUT width/height or missing format support.
     explicit Renderer(Context& context, const RendererOptions& options = {});
     ~Renderer();
     Renderer(const Renderer&) = delete;
@@ -186,8 +213,9 @@ public:
     void record(VkCommandBuffer cmd, const RenderTarget& target, const Camera& camera, std::span<const Light> lights,
                 const RenderSettings& settings);
 
-    const LutLayout& lut_layout() const;
+    const LutLayout& lut_layout() const;  ///< as given in RendererOptions
     /// The translucency LUT as the GPU built it, width × height floats, row j = variance(j).
+    /// Reads back from the GPU (submits and waits).
     std::vector<float> read_lut();
     /// Signed mean curvature per bake vertex of the current mesh (1/mesh units, > 0 convex).
     const std::vector<float>& curvature() const;

@@ -106,6 +106,7 @@ Buffer::Buffer(Context& ctx, VkDeviceSize bytes, VkBufferUsageFlags usage, const
     check(vkBindBufferMemory(ctx.device(), b, memory_, 0), "vkBindBufferMemory");
     buffer_ = std::move(owned);
     ctx.set_name(b, VK_OBJECT_TYPE_BUFFER, name);
+    ctx.count_created(VK_OBJECT_TYPE_BUFFER);
 }
 
 void Buffer::upload(const void* data, size_t bytes, size_t offset)

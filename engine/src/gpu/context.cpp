@@ -145,10 +145,147 @@ Context::Context(const ContextOptions& options) : log_(options.log), verbose_(op
     }
 }
 
+Context::Context(const AdoptedVulkan& host, const ContextOptions& options)
+    : log_(options.log), verbose_(options.verbose), adopted_(true)
+{
+    check_adopted(host);  // throws before anything is created
+    instance_ = host.instance;
+    physical_ = host.physical_device;
+    device_ = host.device;
+    queue_ = host.queue;
+    queue_family_ = host.queue_family;
+    vkGetPhysicalDeviceProperties(physical_, &properties_);
+    vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);
+    auto gipa = host.get_instance_proc_addr ? host.get_instance_proc_addr : vkGetInstanceProcAddr;
+    auto gdpa = host.get_device_proc_addr ? host.get_device_proc_addr : vkGetDeviceProcAddr;
+    cmd_push_descriptor_set =
+        reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(gdpa(device_, "vkCmdPushDescriptorSetKHR"));
+    if (!cmd_push_descriptor_set) throw Error("adopted Vulkan device: vkCmdPushDescriptorSetKHR cannot be loaded");
+    // Null when the host's instance has no VK_EXT_debug_utils: objects are then not named.
+    set_object_name_ = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(gipa(instance_, "vkSetDebugUtilsObjectNameEXT"));
+    try {
+        create_submission_objects();
+        fill_info();
+    } catch (...) {
+        destroy();
+        throw;
+    }
+    if (verbose_) log(std::string("jade: adopted the host's device ") + properties_.deviceName);
+}
+
+namespace {
+
+// The features Jade needs, as found in (or missing from) a vkCreateDevice pNext chain.
+struct RequiredFeatures {
+    bool dynamic_rendering = false, synchronization2 = false, maintenance4 = false;
+    bool scalar_block_layout = false, host_query_reset = false, float64 = false;
+
+    void read(const void* chain)
+    {
+        for (auto* s = static_cast<const VkBaseInStructure*>(chain); s; s = s->pNext) {
+            switch (s->sType) {
+            case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2:
+                float64 |= bool(reinterpret_cast<const VkPhysicalDeviceFeatures2*>(s)->features.shaderFloat64);
+                break;
+            case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES: {
+                auto* f = reinterpret_cast<const VkPhysicalDeviceVulkan12Features*>(s);
+                scalar_block_layout |= bool(f->scalarBlockLayout);
+                host_query_reset |= bool(f->hostQueryReset);
+                break;
+            }
+            case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES: {
+                auto* f = reinterpret_cast<const VkPhysicalDeviceVulkan13Features*>(s);
+                dynamic_rendering |= bool(f->dynamicRendering);
+                synchronization2 |= bool(f->synchronization2);
+                maintenance4 |= bool(f->maintenance4);
+                break;
+            }
+            case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES:
+                dynamic_rendering |= bool(reinterpret_cast<const VkPhysicalDeviceDynamicRenderingFeatures*>(s)->dynamicRendering);
+                break;
+            case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SYNCHRONIZATION_2_FEATURES:
+                synchronization2 |= bool(reinterpret_cast<const VkPhysicalDeviceSynchronization2Features*>(s)->synchronization2);
+                break;
+            case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_FEATURES:
+                maintenance4 |= bool(reinterpret_cast<const VkPhysicalDeviceMaintenance4Features*>(s)->maintenance4);
+                break;
+            case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SCALAR_BLOCK_LAYOUT_FEATURES:
+                scalar_block_layout |= bool(reinterpret_cast<const VkPhysicalDeviceScalarBlockLayoutFeatures*>(s)->scalarBlockLayout);
+                break;
+            case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_HOST_QUERY_RESET_FEATURES:
+                host_query_reset |= bool(reinterpret_cast<const VkPhysicalDeviceHostQueryResetFeatures*>(s)->hostQueryReset);
+                break;
+            default: break;
+            }
+        }
+    }
+};
+
+}  // namespace
+
+void Context::check_adopted(const AdoptedVulkan& host)
+{
+    std::vector<std::string> missing;
+    if (!host.instance) missing.push_back("instance is VK_NULL_HANDLE");
+    if (!host.physical_device) missing.push_back("physical_device is VK_NULL_HANDLE");
+    if (!host.device) missing.push_back("device is VK_NULL_HANDLE");
+    if (!host.queue) missing.push_back("queue is VK_NULL_HANDLE");
+    if (!missing.empty()) {
+        std::string msg = "adopted Vulkan objects:";
+        for (auto& m : missing) msg += " " + m + ";";
+        throw Error(msg);
+    }
+    auto version = [](uint32_t v) {
+        return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v));
+    };
+    if (host.api_version < VK_API_VERSION_1_3)
+        missing.push_back("instance apiVersion 1.3 (AdoptedVulkan::api_version is " + version(host.api_version) + ")");
+    VkPhysicalDeviceProperties props;
+    vkGetPhysicalDeviceProperties(host.physical_device, &props);
+    if (props.apiVersion < VK_API_VERSION_1_3)
+        missing.push_back("device Vulkan 1.3 (" + std::string(props.deviceName) + " has " + version(props.apiVersion) + ")");
+    uint32_t n = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(host.physical_device, &n, nullptr);
+    std::vector<VkQueueFamilyProperties> families(n);
+    vkGetPhysicalDeviceQueueFamilyProperties(host.physical_device, &n, families.data());
+    if (host.queue_family >= n) {
+        missing.push_back("queue family " + std::to_string(host.queue_family) + " (the device has " + std::to_string(n) + ")");
+    } else {
+        const auto& f = families[host.queue_family];
+        if (!(f.queueFlags & VK_QUEUE_GRAPHICS_BIT)) missing.push_back("graphics on queue family " + std::to_string(host.queue_family));
+        if (!(f.queueFlags & VK_QUEUE_COMPUTE_BIT)) missing.push_back("compute on queue family " + std::to_string(host.queue_family));
+        if (f.timestampValidBits == 0) missing.push_back("timestamps on queue family " + std::to_string(host.queue_family));
+    }
+    for (const char* ext : {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME})
+        if (std::find(host.enabled_extensions.begin(), host.enabled_extensions.end(), ext) == host.enabled_extensions.end())
+            missing.push_back(std::string("extension ") + ext);
+    RequiredFeatures f;
+    f.read(host.enabled_features);
+    if (!f.dynamic_rendering) missing.push_back("feature dynamicRendering");
+    if (!f.synchronization2) missing.push_back("feature synchronization2");
+    if (!f.maintenance4) missing.push_back("feature maintenance4");
+    if (!f.scalar_block_layout) missing.push_back("feature scalarBlockLayout");
+    if (!f.host_query_reset) missing.push_back("feature hostQueryReset");
+    float64_ = f.float64;
+    if (missing.empty()) return;
+    std::string msg = "adopted Vulkan device " + std::string(props.deviceName) + " lacks what Jade needs:";
+    for (auto& m : missing) msg += "\n  " + m;
+    msg += "\nenable them when creating the device (jade::Context::required_device_extensions(), "
+           "jade::Context::enable_required_features()) and list them in AdoptedVulkan";
+    throw Error(msg);
+}
+
 Context::~Context() { destroy(); }
 
 void Context::destroy()
 {
+    if (adopted_) {
+        // Only Jade's own objects go; the host's device and instance stay untouched.
+        if (queue_) vkQueueWaitIdle(queue_);
+        fence_.reset();
+        command_pool_.reset();
+        return;
+    }
     if (device_) vkDeviceWaitIdle(device_);
     fence_.reset();
     command_pool_.reset();
@@ -310,7 +447,11 @@ void Context::create_device()
     vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
     cmd_push_descriptor_set = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
         vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
+    create_submission_objects();
+}
 
+void Context::create_submission_objects()
+{
     VkCommandPoolCreateInfo pool{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     pool.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT | VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
     pool.queueFamilyIndex = queue_family_;
@@ -387,6 +528,16 @@ void Context::submit_and_wait(const std::function<void(VkCommandBuffer)>& record
     check(vkResetFences(device_, 1, &f), "vkResetFences");
 }
 
+void Context::count_created(VkObjectType type, bool compute) const
+{
+    switch (type) {
+    case VK_OBJECT_TYPE_PIPELINE: (compute ? compute_pipelines_ : graphics_pipelines_)++; break;
+    case VK_OBJECT_TYPE_BUFFER: buffers_++; break;
+    case VK_OBJECT_TYPE_IMAGE: images_++; break;
+    default: break;
+    }
+}
+
 void Context::set_name(VkObjectType type, uint64_t handle, const char* name) const
 {
     if (!set_object_name_ || !handle) return;
@@ -437,6 +588,19 @@ Context::~Context() = default;
 const DeviceInfo& Context::device_info() const { return gpu_->info(); }
 uint64_t Context::validation_messages() const { return gpu_->validation_messages(); }
 std::vector<std::string> Context::list_devices() { return gpu::Context::list_devices(); }
+Context::Context(const AdoptedVulkan& host, const ContextOptions& options)
+    : gpu_(std::make_unique<gpu::Context>(host, options)) {}
+bool Context::adopted() const { return gpu_->adopted(); }
+ObjectCounts Context::created_objects() const { return gpu_->created_objects(); }
+std::vector<const char*> Context::required_device_extensions() { return {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME}; }
+void Context::enable_required_features(VkPhysicalDeviceVulkan12Features& f12, VkPhysicalDeviceVulkan13Features& f13)
+{
+    f12.scalarBlockLayout = VK_TRUE;
+    f12.hostQueryReset = VK_TRUE;
+    f13.dynamicRendering = VK_TRUE;
+    f13.synchronization2 = VK_TRUE;
+    f13.maintenance4 = VK_TRUE;  // group size from a specialisation constant (LocalSizeId)
+}
 gpu::Context& Context::gpu() { return *gpu_; }
 
 }  // namespace jade

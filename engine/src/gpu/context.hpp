@@ -14,6 +14,8 @@ namespace jade::gpu {
 class Context {
 public:
     explicit Context(const ContextOptions& options);
+    /// Adopts the host's objects (jade/context.hpp AdoptedVulkan); destroys only its own.
+    Context(const AdoptedVulkan& host, const ContextOptions& options);
     ~Context();
     Context(const Context&) = delete;
     Context& operator=(const Context&) = delete;
@@ -29,6 +31,7 @@ public:
     VkDeviceSize max_memory_allocation_size() const { return max_memory_allocation_size_; }
     const DeviceInfo& info() const { return info_; }
     uint64_t validation_messages() const { return validation_messages_.load(); }
+    bool adopted() const { return adopted_; }
 
     /// Records commands with `record` into a fresh primary command buffer, submits it and waits.
     /// The simple path for bakes and tests; frame loops record into their own buffers.
@@ -39,6 +42,13 @@ public:
     template <class T> void set_name(T handle, VkObjectType type, const char* name) const
     {
         set_name(type, reinterpret_cast<uint64_t>(handle), name);
+    }
+
+    /// Counts one created object for Context::created_objects() (buffer, image, pipeline).
+    void count_created(VkObjectType type, bool compute = false) const;
+    ObjectCounts created_objects() const
+    {
+        return {compute_pipelines_.load(), graphics_pipelines_.load(), buffers_.load(), images_.load()};
     }
 
     void log(std::string_view line) const;
@@ -55,12 +65,16 @@ private:
     void create_instance(const ContextOptions& options);
     void choose_physical_device(const ContextOptions& options);
     void create_device();
+    void check_adopted(const AdoptedVulkan& host);
+    void create_submission_objects();
     void fill_info();
     void destroy();
 
     std::function<void(std::string_view)> log_;
     bool verbose_ = false;
+    bool adopted_ = false;  // instance and device are the host's: never destroyed here
     std::atomic<uint64_t> validation_messages_{0};
+    mutable std::atomic<uint64_t> compute_pipelines_{0}, graphics_pipelines_{0}, buffers_{0}, images_{0};
 
     VkInstance instance_ = VK_NULL_HANDLE;
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;

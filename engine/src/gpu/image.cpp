@@ -70,6 +70,7 @@ Image::Image(Context& ctx, const ImageDesc& desc)
     check(vkCreateImage(ctx.device(), &ci, nullptr, &image), (std::string("vkCreateImage ") + desc.name).c_str());
     OwnedImage owned(ctx.device(), image);
     ctx.set_name(image, VK_OBJECT_TYPE_IMAGE, desc.name);
+    ctx.count_created(VK_OBJECT_TYPE_IMAGE);
 
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(ctx.device(), image, &req);

@@ -81,6 +81,7 @@ Kernel::Kernel(Context& ctx, const KernelDesc& desc)
           (std::string("vkCreateComputePipelines ") + desc.name).c_str());
     pipeline_ = OwnedPipeline(ctx.device(), p);
     ctx.set_name(p, VK_OBJECT_TYPE_PIPELINE, desc.name);
+    ctx.count_created(VK_OBJECT_TYPE_PIPELINE, true);
 }
 
 void Kernel::check_push(size_t bytes) const

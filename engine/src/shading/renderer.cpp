@@ -197,11 +197,12 @@ struct Renderer::Impl {
         const glm::vec3 centre = 0.5f * (bbox_min + bbox_max);
         const float radius = std::max(0.5f * glm::length(bbox_max - bbox_min), 1e-30f) * 1.01f;
         const float distance = glm::length(cam.eye - centre);
-        const float far_plane = distance + radius;
-        const float near_plane = std::max(distance - radius, far_plane * 1e-4f);
-        glm::mat4 proj = glm::perspectiveRH_ZO(glm::radians(cam.fov_y_degrees), float(width) / float(height), near_plane, far_plane);
-        proj[1][1] *= -1.0f;  // Vulkan's framebuffer y points down: rows come out top to bottom
-        return {proj * glm::lookAtRH(cam.eye, cam.target, cam.up), cam.eye, light_count};
+        Camera fitted = cam;
+        if (!(cam.near_plane > 0.0f && cam.far_plane > cam.near_plane)) {
+            fitted.far_plane = distance + radius;
+            fitted.near_plane = std::max(distance - radius, fitted.far_plane * 1e-4f);
+        }
+        return {fitted.view_projection(float(width) / float(height)), cam.eye, light_count};
     }
 
     std::pair<float, float> false_color_range(const RenderSettings& s) const
@@ -277,9 +278,12 @@ struct Renderer::Impl {
         VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
         color.imageView = t.color;
         color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        color.loadOp = t.load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
         color.storeOp = t.resolve ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
-        color.clearValue.color = {{s.background.r, s.background.g, s.background.b, s.transparent_background ? 0.0f : 1.0f}};
+        // Only a cleared attachment gets a clear value: lavapipe (Mesa 22.3) clears a LOAD
+        // attachment whose clear value is non-zero (seen in samples/embed: the host's frame
+        // came back as the background colour).
+        if (!t.load) color.clearValue.color = {{s.background.r, s.background.g, s.background.b, s.transparent_background ? 0.0f : 1.0f}};
         if (t.resolve) {
             color.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
             color.resolveImageView = t.resolve;
@@ -288,9 +292,9 @@ struct Renderer::Impl {
         VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
         depth.imageView = t.depth;
         depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-        depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-        depth.clearValue.depthStencil = {1.0f, 0};
+        depth.loadOp = t.load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
+        depth.storeOp = t.load ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
+        if (!t.load) depth.clearValue.depthStencil = {1.0f, 0};  // as for colour above
         VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
         ri.renderArea = {{0, 0}, {s.width, s.height}};
         ri.layerCount = 1;

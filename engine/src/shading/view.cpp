@@ -3,6 +3,8 @@
 #include <jade/render.hpp>
 
 #include <glm/geometric.hpp>
+#include <glm/ext/matrix_clip_space.hpp>
+#include <glm/ext/matrix_transform.hpp>
 #include <glm/trigonometric.hpp>
 
 #include <algorithm>
@@ -41,6 +43,16 @@ ToneMap parse_tone_map(std::string_view name)
     for (uint32_t i = 0; i < 3; ++i)
         if (name == kToneMapNames[i]) return ToneMap(i);
     throw Error("tone map '" + std::string(name) + "' is not one of none, reinhard, aces");
+}
+
+glm::mat4 Camera::view_projection(float aspect) const
+{
+    if (!(near_plane > 0.0f && far_plane > near_plane) || !(aspect > 0.0f))
+        throw Error("camera: view_projection needs 0 < near_plane < far_plane and aspect > 0 (near " +
+                    std::to_string(near_plane) + ", far " + std::to_string(far_plane) + ", aspect " + std::to_string(aspect) + ")");
+    glm::mat4 proj = glm::perspectiveRH_ZO(glm::radians(fov_y_degrees), aspect, near_plane, far_plane);
+    proj[1][1] *= -1.0f;  // Vulkan's framebuffer y points down: rows come out top to bottom
+    return proj * glm::lookAtRH(eye, target, up);
 }
 
 Camera Camera::framing(glm::vec3 lo, glm::vec3 hi, float aspect, glm::vec3 direction, glm::vec3 up, float fov_y_degrees)

@@ -1,0 +1,186 @@
+// io/bake_cache.cpp - the on-disk bake cache of jade/cache.hpp.
+#include <jade/cache.hpp>
+#include <jade/context.hpp>
+#include <jade/error.hpp>
+
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <system_error>
+#include <unistd.h>
+#include <vector>
+
+namespace jade {
+namespace {
+
+constexpr char kMagic[8] = {'J', 'A', 'D', 'E', 'B', 'A', 'K', 'E'};
+
+// 64-bit FNV-1a: simple, stable across platforms and builds (std::hash is not).
+struct Fnv {
+    uint64_t h = 0xcbf29ce484222325ull;
+    void bytes(const void* p, size_t n)
+    {
+        const auto* b = static_cast<const unsigned char*>(p);
+        for (size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 0x100000001b3ull;
+    }
+    template <class T> void value(const T& v) { bytes(&v, sizeof v); }
+    template <class T> void span(const std::vector<T>& v)
+    {
+        value(uint64_t(v.size()));
+        bytes(v.data(), v.size() * sizeof(T));
+    }
+};
+
+struct Header {
+    char magic[8];
+    uint32_t version;
+    uint32_t method_used;
+    uint64_t key;
+    uint64_t vertex_count;
+    uint64_t checksum;
+};
+static_assert(sizeof(Header) == 40);
+
+uint64_t payload_checksum(const std::vector<float>& ao, const std::vector<glm::vec3>& tm)
+{
+    Fnv f;
+    f.bytes(ao.data(), ao.size() * sizeof(float));
+    f.bytes(tm.data(), tm.size() * sizeof(glm::vec3));
+    return f.h;
+}
+
+}  // namespace
+
+uint64_t bake_key(const PreparedMesh& mesh, const Material& material, const BakeSettings& s)
+{
+    Fnv f;
+    f.value(kBakeCacheVersion);
+    f.span(mesh.positions);
+    f.span(mesh.normals);
+    f.span(mesh.areas);
+    f.span(mesh.indices);
+    f.value(material.opaque);
+    for (const ChannelProfile& p : material.profile) {
+        f.value(p.kind);
+        f.value(p.d);
+        f.value(p.sigma_tr);
+        f.value(p.z_r);
+        f.value(p.z_v);
+        f.value(p.dipole_total);
+        f.value(p.gaussian_count);
+        f.value(p.weight);
+        f.value(p.variance);
+    }
+    f.value(s.ao.rays);
+    f.value(s.ao.low_discrepancy);
+    f.value(s.ao.seed);
+    f.value(s.ao.max_distance_rel);
+    f.value(s.ao.epsilon_rel);
+    f.value(s.method);
+    f.value(s.tm_epsilon);
+    return f.h;
+}
+
+BakeCache::BakeCache(std::filesystem::path dir) : dir_(std::move(dir))
+{
+    std::error_code ec;
+    std::filesystem::create_directories(dir_, ec);
+    if (ec || !std::filesystem::is_directory(dir_))
+        throw Error(dir_.string() + ": cannot create the bake cache folder (" + ec.message() + ")");
+}
+
+std::filesystem::path BakeCache::entry_path(uint64_t key) const
+{
+    char name[32];
+    std::snprintf(name, sizeof name, "%016llx.jbake", static_cast<unsigned long long>(key));
+    return dir_ / name;
+}
+
+std::optional<BakeResult> BakeCache::load(uint64_t key, size_t vertex_count, std::string* why) const
+{
+    auto fail = [&](std::string reason) -> std::optional<BakeResult> {
+        if (why) *why = std::move(reason);
+        return std::nullopt;
+    };
+    std::ifstream in(entry_path(key), std::ios::binary);
+    if (!in) return fail("missing");
+    Header h{};
+    if (!in.read(reinterpret_cast<char*>(&h), sizeof h)) return fail("truncated header");
+    if (std::memcmp(h.magic, kMagic, sizeof kMagic) != 0) return fail("bad magic");
+    if (h.version != kBakeCacheVersion)
+        return fail("version " + std::to_string(h.version) + ", expected " + std::to_string(kBakeCacheVersion));
+    if (h.key != key) return fail("key mismatch");
+    if (h.vertex_count != vertex_count)
+        return fail("vertex count " + std::to_string(h.vertex_count) + ", expected " + std::to_string(vertex_count));
+    if (h.method_used > uint32_t(TmMethod::Clustered)) return fail("bad method");
+    BakeResult r;
+    r.ao.resize(vertex_count);
+    r.tm.resize(vertex_count);
+    if (!in.read(reinterpret_cast<char*>(r.ao.data()), std::streamsize(vertex_count * sizeof(float))) ||
+        !in.read(reinterpret_cast<char*>(r.tm.data()), std::streamsize(vertex_count * sizeof(glm::vec3))))
+        return fail("truncated");
+    if (in.peek() != std::char_traits<char>::eof()) return fail("trailing bytes");
+    if (payload_checksum(r.ao, r.tm) != h.checksum) return fail("checksum mismatch");
+    r.method_used = TmMethod(h.method_used);
+    if (why) why->clear();
+    return r;
+}
+
+void BakeCache::store(uint64_t key, const BakeResult& r) const
+{
+    const std::filesystem::path path = entry_path(key);
+    if (r.ao.size() != r.tm.size())
+        throw Error(path.string() + ": cannot store a bake with " + std::to_string(r.ao.size()) + " AO and " +
+                    std::to_string(r.tm.size()) + " t_m values");
+    Header h{};
+    std::memcpy(h.magic, kMagic, sizeof kMagic);
+    h.version = kBakeCacheVersion;
+    h.method_used = uint32_t(r.method_used);
+    h.key = key;
+    h.vertex_count = r.ao.size();
+    h.checksum = payload_checksum(r.ao, r.tm);
+    // Unique per process, so concurrent writers never share a temporary file.
+    const std::filesystem::path tmp = path.string() + ".tmp" + std::to_string(::getpid());
+    {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        out.write(reinterpret_cast<const char*>(&h), sizeof h);
+        out.write(reinterpret_cast<const char*>(r.ao.data()), std::streamsize(r.ao.size() * sizeof(float)));
+        out.write(reinterpret_cast<const char*>(r.tm.data()), std::streamsize(r.tm.size() * sizeof(glm::vec3)));
+        out.flush();
+        if (!out) {
+            std::error_code ec;
+            std::filesystem::remove(tmp, ec);
+            throw Error(tmp.string() + ": cannot write the bake cache entry");
+        }
+    }
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) {
+        std::filesystem::remove(tmp, ec);
+        throw Error(path.string() + ": cannot rename the bake cache entry into place (" + ec.message() + ")");
+    }
+}
+
+CachedBake bake_with_cache(Context& context, const BakeCache& cache, const PreparedMesh& mesh, const Material& material,
+                           const BakeSettings& settings)
+{
+    CachedBake out;
+    if (material.opaque) {
+        out.source = BakeSource::Opaque;
+        return out;
+    }
+    const uint64_t key = bake_key(mesh, material, settings);
+    if (auto hit = cache.load(key, mesh.vertex_count(), &out.note)) {
+        out.result = std::move(*hit);
+        out.source = BakeSource::Cache;
+        return out;
+    }
+    // The Baker (and its pipelines) exists only for a miss.
+    Baker baker(context);
+    out.result = baker.bake(mesh, material, settings);
+    out.source = BakeSource::Baked;
+    cache.store(key, out.result);
+    return out;
+}
+
+}  // namespace jade

@@ -1,0 +1,313 @@
+// Embedding (issue 7): a jade::Context that adopts a host's Vulkan objects, and samples/embed,
+// the host program that draws its own ground and Jade's sphere into one frame.
+// The host instance here has the validation layer on and every test fails on any message.
+#include "test_support.hpp"
+
+#include <jade/bake.hpp>
+#include <jade/context.hpp>
+#include <jade/render.hpp>
+
+#include <gtest/gtest.h>
+// The sample's PNG is read with OpenImageIO, which jade::io links already.
+#include <OpenImageIO/imageio.h>
+
+#include <glm/mat4x4.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <sys/wait.h>
+#include <string>
+#include <vector>
+
+using namespace jade;
+
+namespace {
+
+uint32_t host_messages = 0;
+
+VKAPI_ATTR VkBool32 VKAPI_CALL count_message(VkDebugUtilsMessageSeverityFlagBitsEXT, VkDebugUtilsMessageTypeFlagsEXT,
+                                             const VkDebugUtilsMessengerCallbackDataEXT* data, void*)
+{
+    ++host_messages;
+    ADD_FAILURE() << "validation: " << (data->pMessage ? data->pMessage : "");
+    return VK_FALSE;
+}
+
+// A minimal host: its own instance (validation on) and a device with or without what Jade needs.
+struct Host {
+    VkInstance instance = VK_NULL_HANDLE;
+    VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+    VkPhysicalDevice physical = VK_NULL_HANDLE;
+    uint32_t family = UINT32_MAX;
+    VkDevice device = VK_NULL_HANDLE;
+    VkQueue queue = VK_NULL_HANDLE;
+    VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
+    VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
+    std::vector<const char*> extensions;
+
+    explicit Host(bool with_jade_requirements)
+    {
+        VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+        app.apiVersion = VK_API_VERSION_1_3;
+        const char* layer = "VK_LAYER_KHRONOS_validation";
+        const char* debug_utils = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
+        VkDebugUtilsMessengerCreateInfoEXT mci{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+        mci.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+        mci.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                          VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+        mci.pfnUserCallback = &count_message;
+        VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO, &mci};
+        ci.pApplicationInfo = &app;
+        ci.enabledLayerCount = 1;
+        ci.ppEnabledLayerNames = &layer;
+        ci.enabledExtensionCount = 1;
+        ci.ppEnabledExtensionNames = &debug_utils;
+        if (vkCreateInstance(&ci, nullptr, &instance) != VK_SUCCESS) throw Error("test host: vkCreateInstance failed");
+        auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
+        create(instance, &mci, nullptr, &messenger);
+
+        uint32_t n = 0;
+        vkEnumeratePhysicalDevices(instance, &n, nullptr);
+        std::vector<VkPhysicalDevice> devices(n);
+        vkEnumeratePhysicalDevices(instance, &n, devices.data());
+        for (VkPhysicalDevice pd : devices) {
+            VkPhysicalDeviceProperties p;
+            vkGetPhysicalDeviceProperties(pd, &p);
+            // The same device Jade's own Context picks when JADE_DEVICE names one.
+            const char* wanted = std::getenv("JADE_DEVICE");
+            if (p.apiVersion < VK_API_VERSION_1_3 || (wanted && *wanted && !std::strstr(p.deviceName, wanted))) continue;
+            uint32_t nf = 0;
+            vkGetPhysicalDeviceQueueFamilyProperties(pd, &nf, nullptr);
+            std::vector<VkQueueFamilyProperties> fam(nf);
+            vkGetPhysicalDeviceQueueFamilyProperties(pd, &nf, fam.data());
+            for (uint32_t i = 0; i < nf && family == UINT32_MAX; ++i)
+                if ((fam[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (fam[i].queueFlags & VK_QUEUE_COMPUTE_BIT)) family = i;
+            if (family != UINT32_MAX) { physical = pd; break; }
+        }
+        if (!physical) throw Error("test host: no Vulkan 1.3 device");
+        if (with_jade_requirements) {
+            Context::enable_required_features(f12, f13);
+            extensions = Context::required_device_extensions();
+        }
+        float priority = 1.0f;
+        VkDeviceQueueCreateInfo q{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+        q.queueFamilyIndex = family;
+        q.queueCount = 1;
+        q.pQueuePriorities = &priority;
+        VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
+        dci.queueCreateInfoCount = 1;
+        dci.pQueueCreateInfos = &q;
+        dci.enabledExtensionCount = uint32_t(extensions.size());
+        dci.ppEnabledExtensionNames = extensions.data();
+        if (vkCreateDevice(physical, &dci, nullptr, &device) != VK_SUCCESS) throw Error("test host: vkCreateDevice failed");
+        vkGetDeviceQueue(device, family, 0, &queue);
+    }
+    ~Host()
+    {
+        if (device) vkDestroyDevice(device, nullptr);
+        auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
+        if (messenger) destroy(instance, messenger, nullptr);
+        vkDestroyInstance(instance, nullptr);
+    }
+    AdoptedVulkan adopted() const
+    {
+        AdoptedVulkan a;
+        a.instance = instance;
+        a.physical_device = physical;
+        a.device = device;
+        a.queue = queue;
+        a.queue_family = family;
+        a.api_version = VK_API_VERSION_1_3;
+        a.get_instance_proc_addr = vkGetInstanceProcAddr;
+        a.get_device_proc_addr = vkGetDeviceProcAddr;
+        a.enabled_features = &features;
+        a.enabled_extensions.assign(extensions.begin(), extensions.end());
+        return a;
+    }
+};
+
+class Embed : public ::testing::Test {
+protected:
+    void SetUp() override { host_messages = 0; }
+    void TearDown() override { EXPECT_EQ(host_messages, 0u) << "Vulkan validation reported messages"; }
+};
+
+}  // namespace
+
+TEST_F(Embed, AdoptionListsEverythingTheHostsDeviceLacks)
+{
+    Host host(false);  // a Vulkan 1.3 device created with no extension and no 1.2/1.3 feature
+    try {
+        Context context(host.adopted());
+        FAIL() << "adopting a device without Jade's features must throw";
+    } catch (const Error& e) {
+        const std::string msg = e.what();
+        for (const char* missing : {"VK_KHR_push_descriptor", "dynamicRendering", "synchronization2", "maintenance4",
+                                    "scalarBlockLayout", "hostQueryReset"})
+            EXPECT_NE(msg.find(missing), std::string::npos) << missing << " not named in: " << msg;
+        EXPECT_NE(msg.find("adopted Vulkan device"), std::string::npos) << msg;
+    }
+    AdoptedVulkan bad = host.adopted();
+    bad.device = VK_NULL_HANDLE;
+    EXPECT_THROW(Context{bad}, Error);
+    bad = host.adopted();
+    bad.api_version = VK_API_VERSION_1_1;
+    bad.queue_family = 999;
+    try {
+        Context context(bad);
+        FAIL() << "must throw";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("apiVersion 1.3"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("queue family 999"), std::string::npos) << e.what();
+    }
+}
+
+TEST_F(Embed, AdoptedContextBakesLikeAnOwnedOneAndLeavesTheDeviceAlive)
+{
+    const PreparedMesh sphere = prepare_mesh(procedural::sphere(1.0f, 12, 16));
+    const Material material = burley_material({0.3, 0.2, 0.1}, glm::vec3(0.8f));
+    const BakeSettings settings = BakeSettings::preset(Quality::Draft);
+    BakeResult owned;
+    {
+        ContextOptions o;
+        o.validation = true;
+        Context context(o);
+        owned = Baker(context).bake(sphere, material, settings);
+        EXPECT_EQ(context.validation_messages(), 0u);
+    }
+    Host host(true);
+    BakeResult adopted;
+    {
+        Context context(host.adopted());
+        EXPECT_TRUE(context.adopted());
+        adopted = Baker(context).bake(sphere, material, settings);
+    }
+    ASSERT_EQ(adopted.tm.size(), sphere.vertex_count());
+    ASSERT_EQ(owned.tm.size(), adopted.tm.size());
+    // Same shaders, same inputs, same kind of device: the same numbers (up to the device's
+    // reduction order, which is deterministic for a fixed device).
+    for (size_t i = 0; i < owned.tm.size(); ++i)
+        for (int c = 0; c < 3; ++c) ASSERT_NEAR(adopted.tm[i][c], owned.tm[i][c], 1e-5f * (1.0f + owned.tm[i][c])) << i;
+    EXPECT_GT(adopted.tm[0].r, 0.0f);
+    // The device and queue are still the host's and usable after ~Context.
+    EXPECT_EQ(vkQueueWaitIdle(host.queue), VK_SUCCESS);
+    VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VkFence fence = VK_NULL_HANDLE;
+    EXPECT_EQ(vkCreateFence(host.device, &fci, nullptr, &fence), VK_SUCCESS);
+    vkDestroyFence(host.device, fence, nullptr);
+}
+
+namespace {
+
+// samples/embed's binary: JADE_EMBED (the out-of-tree consumer tests point it at theirs), else
+// the one built with the suite.
+std::string embed_executable()
+{
+    const char* v = std::getenv("JADE_EMBED");
+    return v && *v ? v : JADE_DEFAULT_EMBED;
+}
+
+std::vector<float> read_png(const std::filesystem::path& path, int& width, int& height)
+{
+    auto in = OIIO::ImageInput::open(path.string());
+    if (!in) return {};
+    width = in->spec().width;
+    height = in->spec().height;
+    std::vector<float> pixels(size_t(width) * height * 4);
+    if (in->spec().nchannels != 4 || !in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, pixels.data())) return {};
+    return pixels;
+}
+
+}  // namespace
+
+TEST_F(Embed, SampleDrawsTheTranslucentSphereIntoTheHostsFrame)
+{
+    const auto png = test::out("embed/frame.png");
+    const std::string cmd = "'" + embed_executable() + "' '" + png.string() + "' --validation 2>&1";
+    FILE* pipe = popen(cmd.c_str(), "r");
+    ASSERT_NE(pipe, nullptr);
+    std::string output;
+    char buf[4096];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) output.append(buf, n);
+    const int status = pclose(pipe);
+    ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << cmd << "\n" << output;  // 2: validation messages
+
+    int w = 0, h = 0;
+    const std::vector<float> img = read_png(png, w, h);
+    ASSERT_EQ(w, 320);
+    ASSERT_EQ(h, 240);
+    auto px = [&](int x, int y) { return glm::vec3(img[(size_t(y) * w + x) * 4], img[(size_t(y) * w + x) * 4 + 1], img[(size_t(y) * w + x) * 4 + 2]); };
+    // The sample's camera (samples/embed/main.cpp), projected here to find where things are.
+    Camera camera;
+    camera.eye = {0.0f, 1.4f, 5.0f};
+    camera.target = {0.0f, -0.3f, 0.0f};
+    camera.fov_y_degrees = 35.0f;
+    camera.near_plane = 0.1f;
+    camera.far_plane = 50.0f;
+    const glm::mat4 clip = camera.view_projection(float(w) / float(h));
+    auto to_pixel = [&](glm::vec3 p) {
+        glm::vec4 c = clip * glm::vec4(p, 1.0f);
+        return glm::ivec2(int((c.x / c.w * 0.5f + 0.5f) * w), int((c.y / c.w * 0.5f + 0.5f) * h));
+    };
+    // The host's sky (clear colour 0.45, 0.6, 0.85 linear, sRGB-encoded by the PNG writer) in
+    // the top-left corner, its grey checkerboard ground below the sphere.
+    const glm::vec3 sky = px(2, 2);
+    EXPECT_NEAR(sky.r, 0.70, 0.02);
+    EXPECT_NEAR(sky.g, 0.80, 0.02);
+    EXPECT_NEAR(sky.b, 0.93, 0.02);
+    // Ground (plane y = -0.6, the sample's kGroundHeight) in front of and beside the sphere.
+    for (glm::vec3 p : {glm::vec3(1.4f, -0.6f, 1.0f), glm::vec3(-1.5f, -0.6f, 0.5f)}) {
+        const glm::ivec2 q = to_pixel(p);
+        const glm::vec3 g = px(q.x, q.y);
+        EXPECT_NEAR(g.r, g.g, 1e-3f) << q.x << "," << q.y;
+        EXPECT_NEAR(g.g, g.b, 1e-3f) << q.x << "," << q.y;
+        EXPECT_GT(g.r, 0.3f);
+    }
+    // The sphere (radius 1 at the origin): Jade's jade-green shading, neither sky nor grey,
+    // across its projected disk above the ground.
+    auto jade_green = [&](glm::vec3 c) {
+        const bool greyish = std::abs(c.r - c.g) < 0.02f && std::abs(c.g - c.b) < 0.02f;
+        return !greyish && glm::length(c - sky) > 0.05f && c.g > c.r && c.g > c.b;
+    };
+    int sphere_pixels = 0, tested = 0;
+    for (float dx : {-0.6f, -0.3f, 0.0f, 0.3f, 0.6f})
+        for (float dy : {-0.3f, 0.0f, 0.3f, 0.6f}) {
+            const glm::ivec2 p = to_pixel({dx, dy, std::sqrt(1.0f - dx * dx - dy * dy)});
+            ++tested;
+            if (jade_green(px(p.x, p.y))) ++sphere_pixels;
+        }
+    EXPECT_EQ(sphere_pixels, tested) << "the sphere is missing from the host's frame";
+    // Depth is shared: the sphere's front surface below the ground plane is hidden by the
+    // host's ground, which was drawn first.
+    for (glm::vec3 p : {glm::vec3(0.0f, -0.8f, 0.6f), glm::vec3(0.3f, -0.75f, 0.59f)}) {
+        const glm::ivec2 q = to_pixel(p);
+        const glm::vec3 c = px(q.x, q.y);
+        EXPECT_NEAR(c.r, c.g, 1e-3f) << "sphere drawn through the ground at " << q.x << "," << q.y;
+        EXPECT_NEAR(c.g, c.b, 1e-3f);
+    }
+    // A translucent jade sphere is lit: its centre is not black.
+    const glm::ivec2 centre = to_pixel({0.0f, 0.0f, 0.0f});
+    EXPECT_GT(px(centre.x, centre.y).g, 0.1f);
+}
+
+TEST(EmbedCamera, ViewProjectionNeedsExplicitPlanesAndMapsThemToDepthZeroAndOne)
+{
+    Camera camera;  // eye (0, 0, 5) looking at the origin
+    EXPECT_THROW(camera.view_projection(1.0f), Error);  // planes 0, 0: fitted per mesh, no matrix
+    camera.near_plane = 1.0f;
+    camera.far_plane = 9.0f;
+    EXPECT_THROW(camera.view_projection(0.0f), Error);
+    const glm::mat4 m = camera.view_projection(2.0f);
+    auto ndc = [&](glm::vec3 p) { glm::vec4 c = m * glm::vec4(p, 1.0f); return glm::vec3(c) / c.w; };
+    EXPECT_NEAR(ndc({0, 0, 4}).z, 0.0f, 1e-6f);   // 1 unit from the eye: the near plane
+    EXPECT_NEAR(ndc({0, 0, -4}).z, 1.0f, 1e-6f);  // 9 units: the far plane
+    // y flipped for Vulkan: a point above the target lands in the upper half (negative y).
+    EXPECT_LT(ndc({0, 1, 0}).y, 0.0f);
+    // The top of the field of view (30 degrees) at distance 5 is y = -1.
+    EXPECT_NEAR(ndc({0, 5.0f * std::tan(15.0f * 3.14159265f / 180.0f), 0}).y, -1.0f, 1e-5f);
+}
