@@ -269,7 +269,10 @@ struct Baker::Impl {
         bake::Bvh bvh = bake::build_bvh(lo, hi, kTriangleLeafSize);
         bake::RayItems items = bake::flatten_ray_items(bvh, mesh);
         m.item_count = items.count();
-        m.ray_items = gpu::Buffer::from(ctx, items.texels, kTexelUsage, "ray items (BVH nodes and triangles)");
+        // Fetched as texels; bound whole as a storage buffer only by a refit (checked below).
+        m.ray_items = gpu::Buffer(ctx, items.texels.size() * 16, kTexelUsage, "ray items (BVH nodes and triangles)", false,
+                                  gpu::StorageBinding::Windows);
+        m.ray_items.upload(items.texels.data(), items.texels.size() * 16);
         m.ray_item_texels = gpu::TexelView(ctx, m.ray_items, VK_FORMAT_R32G32B32A32_UINT, 16, "ray items (texels)");
         m.hits = gpu::Buffer(ctx, mesh.vertex_count() * sizeof(uint32_t), kStorageUsage, "ao hit counts");
         m.ao = gpu::Buffer(ctx, mesh.vertex_count() * sizeof(float), kStorageUsage, "ao");
@@ -354,7 +357,10 @@ struct Baker::Impl {
         plan_near_windows(m, near.offsets);
         m.near_offsets = gpu::Buffer::from(ctx, near.offsets, kStorageUsage, "near-field offsets");
         near.indices.resize(near.indices.size() + 64, 0);  // room for a window's aligned start and minimum size
-        m.near_indices = gpu::Buffer::from(ctx, near.indices, kStorageUsage, "near-field sources");
+        // Bound in windows (plan_near_windows), so it may outgrow one binding.
+        m.near_indices = gpu::Buffer(ctx, near.indices.size() * 4, kStorageUsage, "near-field sources", false,
+                                     gpu::StorageBinding::Windows);
+        m.near_indices.upload(near.indices.data(), near.indices.size() * 4);
         if (m.exact) {
             m.point_order = gpu::Buffer::from(ctx, identity, kStorageUsage, "identity order");
             m.points = gpu::Buffer(ctx, n * 32, kTexelUsage, "t_m sources");
@@ -374,7 +380,8 @@ struct Baker::Impl {
         m.first_point = (4 * m.node_count + 15) / 16 * 16;
         check_storage_range(VkDeviceSize(n) * 32, "t_m sources");
         check_storage_range(VkDeviceSize(m.node_count) * 64, "t_m cluster nodes");
-        m.points = gpu::Buffer(ctx, VkDeviceSize(m.first_point) * 16 + n * 32, kTexelUsage, "t_m cluster tree and sources");
+        m.points = gpu::Buffer(ctx, VkDeviceSize(m.first_point) * 16 + n * 32, kTexelUsage, "t_m cluster tree and sources", false,
+                               gpu::StorageBinding::Windows);  // bound as two windows, each checked above
         m.tree_texels = gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_UINT, 16, "t_m cluster tree and sources (texels)");
         m.resume = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m traversal resume state");
     }
