@@ -3,10 +3,11 @@
 // normals and areas on the GPU, re-bake AO and t_m, render the `tm` shading; writes the frames
 // as PNG and an animated GIF and prints the GPU time of each stage per frame.
 //
-// INTERIM re-bake path: the deformed positions, normals and areas are read back to the host and
-// handed to the public Baker as a PreparedMesh (which uploads them again and builds its BVHs on
-// the CPU). This is a CPU round trip per frame, kept only until the GPU-resident re-bake
-// (BVH refit on the GPU, bake from MeshDeformer's buffers) replaces it.
+// Re-bake path: jade::DynamicBake keeps both trees on the GPU and refits them every frame (no
+// CPU BVH builds). The deformed positions, normals and areas still make a trip through the host
+// because the Renderer takes host positions (Renderer::set_mesh); a host that records
+// MeshDeformer::record and DynamicBake::record(cmd, positions, normals, areas) into one command
+// buffer needs no read-back for the bake at all.
 #include "commands.hpp"
 
 #include <jade/deform.hpp>
@@ -167,13 +168,14 @@ int cmd_deform(int argc, char** argv)
 
     std::filesystem::create_directories(out_dir);
     Baker baker(*ctx);
+    DynamicBake rebake(baker, rest, material, bake_settings);
     Renderer renderer(*ctx);
     renderer.set_material(material);
     std::printf("jade deform: %s, %zu bake vertices, %s, %u frames over %.3g s, bake %u AO rays, theta %.2g, %ux%u\n",
                 mesh.name.c_str(), rest.vertex_count(), gltf ? ("glTF animation '" + animated->animations[animation].name + "'").c_str()
                                                              : kind_name.c_str(),
                 frames, cycle, bake_settings.ao.rays, bake_settings.tm_epsilon, width, height);
-    std::printf("GPU time per stage (ms); wall: the whole frame on the host, read-backs and CPU BVH builds included\n");
+    std::printf("GPU time per stage (ms; bake t_m includes the GPU BVH and cluster-tree refits); wall: the whole frame on the host\n");
     std::printf("%-7s %9s %9s %10s %10s %9s %10s\n", "frame", "deform", "normals", "bake AO", "bake t_m", "draw", "wall");
     std::vector<std::vector<float>> images;
     StageTimes sum;
@@ -182,9 +184,9 @@ int cmd_deform(int argc, char** argv)
         StageTimes st;
         const DeformTimings dt = deform_frame(f);
         st.deform = dt.deform_ms, st.normals = dt.normals_ms;
-        // INTERIM: read back and re-bake through the public API (see the top of this file).
+        // The deformed vertices go through the host for the renderer (see the top of this file).
         const PreparedMesh deformed = deformed_mesh(rest, deformer.read());
-        const BakeResult baked = baker.bake(deformed, material, bake_settings);
+        const BakeResult baked = rebake.bake(deformed.positions, deformed.normals, deformed.areas);
         for (const auto& [stage, ms] : baked.timings.gpu_stages) (stage == "ao" ? st.ao : st.tm) += ms;
         renderer.set_mesh(deformed, baked.tm);
         RenderedImage image = renderer.render(camera, lights, render_settings);
