@@ -506,15 +506,8 @@ void Context::submit_and_wait(const std::function<void(VkCommandBuffer)>& record
     check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
     record(cmd);
     // Make every write of the submission visible to the host (mapped read-back after the fence).
-    VkMemoryBarrier2 to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-    to_host.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    to_host.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
-    to_host.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-    to_host.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dep.memoryBarrierCount = 1;
-    dep.pMemoryBarriers = &to_host;
-    vkCmdPipelineBarrier2(cmd, &dep);
+    memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                   VK_ACCESS_2_HOST_READ_BIT);
     check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
 
     VkCommandBufferSubmitInfo cb{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};

@@ -260,20 +260,11 @@ struct Renderer::Impl {
         // The frame constants are rewritten in the command stream: wait for the previous draw's
         // shader reads (write-after-read), then make the new values visible to this draw.
         const size_t bytes = offsetof(FrameData, lights) + lights.size() * sizeof(GpuLight);
-        VkMemoryBarrier2 b{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-        b.srcStageMask = VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
-        b.dstStageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
-        b.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        dep.memoryBarrierCount = 1;
-        dep.pMemoryBarriers = &b;
-        vkCmdPipelineBarrier2(cmd, &dep);
+        constexpr VkPipelineStageFlags2 shaders = VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+        gpu::memory_barrier(cmd, shaders, 0, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
         vkCmdUpdateBuffer(cmd, frame_data.handle(), 0, (bytes + 3) & ~size_t(3), &data);
-        b.srcStageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
-        b.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-        b.dstStageMask = VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
-        b.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
-        vkCmdPipelineBarrier2(cmd, &dep);
+        gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, shaders,
+                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
 
         VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
         color.imageView = t.color;
