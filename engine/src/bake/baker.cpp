@@ -156,14 +156,14 @@ struct Baker::Impl {
     }
     const gpu::Kernel& exact_kernel(const TmVariant& v)
     {
-        require_subgroup_groups();
+        if (!tm_exact[v.grey][v.kind]) require_subgroup_groups();  // once, when the kernel is made
         return kernel(tm_exact[v.grey][v.kind], {"tm_exact", shaders::tm_exact_comp(),
                                                  {kStorage, kTexels, kStorage, kStorage, kStorage}, sizeof(ExactPush), 64,
                                                  tm_constants(v)});
     }
     const gpu::Kernel& cluster_kernel(const TmVariant& v)
     {
-        require_subgroup_groups();
+        if (!tm_cluster[v.grey][v.kind]) require_subgroup_groups();
         return kernel(tm_cluster[v.grey][v.kind],
                       {"tm_cluster", shaders::tm_cluster_comp(),
                        {kStorage, kTexels, kStorage, kStorage, kStorage, kStorage, kStorage}, sizeof(ClusterPush), 64,
