@@ -1,8 +1,11 @@
 // jade bench bake MESH: GPU bake timings per stage, measured side by side with the float64 CPU
 // reference and the all-pairs GPU pass in one run, and the error of each against float64.
+// jade bench render --scene SCENE.gltf: frame time of a cached static scene against the same
+// scene never baked (t_m = 0: the same draws), measured alternately in one run.
 #include "commands.hpp"
 
 #include <jade/io.hpp>
+#include <jade/scene.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -29,7 +32,7 @@ int bench_bake(const Args& args)
     PreparedMesh p = prepare_mesh(mesh);
     Material m = material_from_args(args, p);
     BakeSettings s = bake_settings_from_args(args);
-    uint32_t reps = args.count("repeat", 3, 1, 100);
+    uint32_t reps = args.count("repeat", 3, 1, 100);  // render --scene: frame pairs, default 30
     auto ctx = make_context(args);
     Baker baker(*ctx);
     const double n = double(p.vertex_count());
@@ -82,6 +85,89 @@ int bench_bake(const Args& args)
     return 0;
 }
 
+double quantile(std::vector<double> v, double q)
+{
+    std::sort(v.begin(), v.end());
+    return v[size_t(std::lround(q * double(v.size() - 1)))];
+}
+
+// Static bakes that never ran: every translucent object is drawn with t_m = 0 (the same draw).
+StaticBakeSource never_baked()
+{
+    StaticBakeSource s;
+    s.lookup = [](const PreparedMesh&, const Material&, const BakeSettings&) { return StaticBakeSource::Lookup{0, true}; };
+    s.bake = [](Context&, const PreparedMesh& mesh, const Material&, const BakeSettings&) {
+        CachedBake b;
+        b.result.tm.assign(mesh.vertex_count(), glm::vec3(0.0f));
+        b.source = BakeSource::Cache;
+        b.note = "never baked: t_m = 0";
+        return b;
+    };
+    return s;
+}
+
+int bench_render_scene(const Args& args)
+{
+    std::vector<std::string> warnings;
+    const Scene scene = load_scene(*args.get("scene"), &warnings);
+    for (const auto& w : warnings) std::fprintf(stderr, "jade: warning: %s\n", w.c_str());
+    for (const auto& o : scene.objects)
+        if (o.deforming()) args.fail("--scene: object '" + o.name + "' deforms; the benchmark compares static scenes");
+    SceneSettings settings = scene_settings_from_args(args);
+    const std::filesystem::path dir =
+        args.get_or("cache", (std::filesystem::temp_directory_path() / "jade-bench-cache").string());
+    const BakeCache cache(dir);
+    const uint32_t repeat = args.count("repeat", 30, 1, 10000);
+    RenderSettings rs;
+    rs.width = rs.height = args.count("size", 512, 1, 16384);
+    rs.samples = args.count("samples", 4, 1, 8);
+    auto ctx = make_context(args);
+    {
+        SceneRenderer fill(*ctx, scene, settings, cached_bakes(cache));  // bakes what the cache lacks
+        size_t baked = 0;
+        for (const auto& p : fill.passes_run()) baked += p.kind == PassKind::StaticBake;
+        std::printf("cache %s: %zu static bakes were missing and ran now\n", dir.string().c_str(), baked);
+    }
+    const ObjectCounts before = ctx->created_objects();
+    SceneRenderer cached(*ctx, scene, settings, cached_bakes(cache));
+    const ObjectCounts after = ctx->created_objects();
+    SceneRenderer unbaked(*ctx, scene, settings, never_baked());
+    std::printf("cached scene set-up created %llu compute pipelines (bake kernels: 0 expected) and %llu buffers "
+                "(%.2f MiB; the draw's only)\n",
+                (unsigned long long)(after.compute_pipelines - before.compute_pipelines),
+                (unsigned long long)(after.buffers - before.buffers),
+                double(after.device_buffer_bytes - before.device_buffer_bytes) / double(1u << 20));
+    std::printf("scene %s: %zu objects; %ux%u, %ux MSAA, %u frame pairs after 2 warm-up pairs, device %s\n", scene.name.c_str(),
+                scene.objects.size(), rs.width, rs.height, rs.samples, repeat, ctx->device_info().name.c_str());
+    const Camera camera = Camera::framing(cached.bbox_min(), cached.bbox_max(), 1.0f, glm::vec3(0.35f, 0.45f, 1.0f));
+    const auto lights = default_lights(camera);
+    SceneRenderer* r[2] = {&unbaked, &cached};
+    std::vector<double> gpu[2], wall[2], gpu_ratio, wall_ratio;
+    for (int warm = 0; warm < 2; ++warm)
+        for (auto* x : r) x->render(0.0, camera, lights, rs);
+    for (uint32_t i = 0; i < repeat; ++i) {
+        for (int n = 0; n < 2; ++n) {  // alternating order: neither always runs second
+            const int k = (i % 2 == 0) ? n : 1 - n;
+            const RenderedImage img = r[k]->render(0.0, camera, lights, rs);
+            gpu[k].push_back(img.gpu_ms);
+            wall[k].push_back(img.wall_ms);
+        }
+        gpu_ratio.push_back(gpu[1].back() / gpu[0].back());
+        wall_ratio.push_back(wall[1].back() / wall[0].back());
+    }
+    std::printf("%-22s %12s %12s %12s %12s\n", "scene", "GPU median", "GPU min", "wall median", "wall min");
+    const char* names[2] = {"never baked (t_m = 0)", "cached static bake"};
+    for (int k = 0; k < 2; ++k)
+        std::printf("%-22s %12s %12s %12s %12s\n", names[k], format_ms(quantile(gpu[k], 0.5)).c_str(),
+                    format_ms(quantile(gpu[k], 0.0)).c_str(), format_ms(quantile(wall[k], 0.5)).c_str(),
+                    format_ms(quantile(wall[k], 0.0)).c_str());
+    std::printf("cached / never baked: GPU %.3fx (median of %u pairs; quartiles %.3f-%.3f), wall %.3fx (quartiles %.3f-%.3f); "
+                "target: within 5%%\n",
+                quantile(gpu_ratio, 0.5), repeat, quantile(gpu_ratio, 0.25), quantile(gpu_ratio, 0.75), quantile(wall_ratio, 0.5),
+                quantile(wall_ratio, 0.25), quantile(wall_ratio, 0.75));
+    return 0;
+}
+
 }  // namespace
 
 int cmd_bench(int argc, char** argv)
@@ -90,13 +176,20 @@ int cmd_bench(int argc, char** argv)
     for (auto& v : {material_options(), bake_options()}) specs.insert(specs.end(), v.begin(), v.end());
     specs.push_back({"repeat", "N", "timed repetitions, best kept (default 3)"});
     specs.push_back({"sample", "N", "vertices the float64 t_m reference runs on (default 256)"});
+    specs.push_back({"scene", "FILE", "render: a static glTF scene, cached against never baked"});
+    specs.push_back({"cache", "DIR", "render --scene: the bake cache (default: the system's temp folder)"});
+    specs.push_back({"mode", "M", "render --scene: tm | tm-false-color (default tm)"});
+    specs.push_back({"size", "N", "render --scene: square image size (default 512)"});
+    specs.push_back({"samples", "N", "render --scene: MSAA samples (default 4)"});
     Args args("bench", specs, argc, argv, 2);
     if (args.flag("help") || args.positional().empty()) {
-        std::printf("usage: jade bench bake [MESH] [options]\n\n%s", args.help().c_str());
+        std::printf("usage: jade bench bake [MESH] [options]\n       jade bench render --scene SCENE.gltf [--cache DIR] "
+                    "[options]\n\n%s", args.help().c_str());
         return args.flag("help") ? 0 : 2;
     }
     if (args.positional()[0] == "bake") return bench_bake(args);
-    args.fail("unknown benchmark '" + args.positional()[0] + "' (known: bake)");
+    if (args.positional()[0] == "render" && args.get("scene")) return bench_render_scene(args);
+    args.fail("unknown benchmark '" + args.positional()[0] + "' (known: bake, render --scene)");
 }
 
 }  // namespace jade::cli

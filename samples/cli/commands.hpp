@@ -7,6 +7,7 @@
 #include <jade/context.hpp>
 #include <jade/material.hpp>
 #include <jade/mesh.hpp>
+#include <jade/scene.hpp>
 
 #include <filesystem>
 #include <memory>
@@ -23,6 +24,8 @@ int cmd_figure1(int argc, char** argv);
 int cmd_bench_render(int argc, char** argv);
 int cmd_report(int argc, char** argv);
 int cmd_deform(int argc, char** argv);
+int cmd_plan(int argc, char** argv);
+int cmd_scene(int argc, char** argv);
 
 // Options most commands take.
 std::vector<OptionSpec> device_options();
@@ -49,5 +52,9 @@ void check_output_file(const Args& args, const std::string& flag, const std::fil
 void check_output_folder(const std::string& flag, const std::filesystem::path& folder);
 
 std::string format_ms(double ms);
+
+// Scenes (cmd_scene.cpp): --cache, --mode and the bake options as SceneSettings.
+std::vector<OptionSpec> scene_options();
+SceneSettings scene_settings_from_args(const Args& args);
 
 }  // namespace jade::cli

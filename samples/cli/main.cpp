@@ -22,8 +22,20 @@ const char* kUsage =
     "  bench render MESH  frame time of t_m shading against Lambert at 512^2 and 1024^2\n"
     "  report [MESH...]   error of every approximation against GPU and wall time (--out DIR)\n"
     "  deform [MESH]      deforming mesh demo: GPU deform, re-bake, t_m frames and a GIF\n"
+    "  plan SCENE.gltf    the passes, shader variants and GPU memory a glTF scene needs (--cache DIR)\n"
+    "  scene SCENE.gltf   render a glTF scene running only the planned passes (--verbose lists them)\n"
+    "  bench render --scene SCENE.gltf  cached static scene against the same scene never baked\n"
     "\n"
     "Environment: JADE_DEVICE (device name), JADE_VALIDATION=1 (Khronos validation layer).\n";
+
+// `jade bench render --scene FILE` is the scene benchmark (cmd_bench.cpp); without --scene,
+// the single-mesh one (cmd_render.cpp).
+bool has_scene_flag(int argc, char** argv)
+{
+    for (int i = 3; i < argc; ++i)
+        if (!std::strcmp(argv[i], "--scene") || !std::strncmp(argv[i], "--scene=", 8)) return true;
+    return false;
+}
 
 }  // namespace
 
@@ -37,12 +49,15 @@ int main(int argc, char** argv)
     try {
         if (command == "info") return jade::cli::cmd_info(argc, argv);
         if (command == "bake") return jade::cli::cmd_bake(argc, argv);
-        if (command == "bench" && argc > 2 && !std::strcmp(argv[2], "render")) return jade::cli::cmd_bench_render(argc, argv);
+        if (command == "bench" && argc > 2 && !std::strcmp(argv[2], "render") && !has_scene_flag(argc, argv))
+            return jade::cli::cmd_bench_render(argc, argv);
         if (command == "bench") return jade::cli::cmd_bench(argc, argv);
         if (command == "render") return jade::cli::cmd_render(argc, argv);
         if (command == "figure1") return jade::cli::cmd_figure1(argc, argv);
         if (command == "report") return jade::cli::cmd_report(argc, argv);
         if (command == "deform") return jade::cli::cmd_deform(argc, argv);
+        if (command == "plan") return jade::cli::cmd_plan(argc, argv);
+        if (command == "scene") return jade::cli::cmd_scene(argc, argv);
         std::fprintf(stderr, "jade: unknown command '%s'\n\n%s", command.c_str(), kUsage);
         return 2;
     } catch (const jade::cli::UsageError& e) {

@@ -79,6 +79,10 @@ struct ObjectCounts {
     uint64_t graphics_pipelines = 0;  ///< renderer variants
     uint64_t buffers = 0;             ///< every VkBuffer (device-local and staging)
     uint64_t images = 0;
+    /// Bytes of the device-local buffers among `buffers` (their requested sizes, at least 16
+    /// each; host-visible staging and read-back buffers are left out): what jade::plan_scene
+    /// estimates.
+    uint64_t device_buffer_bytes = 0;
 };
 
 /// What `jade info` prints and what code may want to know about the device.

@@ -106,7 +106,7 @@ Buffer::Buffer(Context& ctx, VkDeviceSize bytes, VkBufferUsageFlags usage, const
     check(vkBindBufferMemory(ctx.device(), b, memory_, 0), "vkBindBufferMemory");
     buffer_ = std::move(owned);
     ctx.set_name(b, VK_OBJECT_TYPE_BUFFER, name);
-    ctx.count_created(VK_OBJECT_TYPE_BUFFER);
+    ctx.count_created(VK_OBJECT_TYPE_BUFFER, false, host_visible ? 0 : size_);
 }
 
 void Buffer::upload(const void* data, size_t bytes, size_t offset)

@@ -521,11 +521,11 @@ void Context::submit_and_wait(const std::function<void(VkCommandBuffer)>& record
     check(vkResetFences(device_, 1, &f), "vkResetFences");
 }
 
-void Context::count_created(VkObjectType type, bool compute) const
+void Context::count_created(VkObjectType type, bool compute, uint64_t device_bytes) const
 {
     switch (type) {
     case VK_OBJECT_TYPE_PIPELINE: (compute ? compute_pipelines_ : graphics_pipelines_)++; break;
-    case VK_OBJECT_TYPE_BUFFER: buffers_++; break;
+    case VK_OBJECT_TYPE_BUFFER: buffers_++, device_buffer_bytes_ += device_bytes; break;
     case VK_OBJECT_TYPE_IMAGE: images_++; break;
     default: break;
     }

@@ -44,11 +44,12 @@ public:
         set_name(type, reinterpret_cast<uint64_t>(handle), name);
     }
 
-    /// Counts one created object for Context::created_objects() (buffer, image, pipeline).
-    void count_created(VkObjectType type, bool compute = false) const;
+    /// Counts one created object for Context::created_objects() (buffer, image, pipeline);
+    /// `device_bytes`: the size of a device-local (not staging) buffer.
+    void count_created(VkObjectType type, bool compute = false, uint64_t device_bytes = 0) const;
     ObjectCounts created_objects() const
     {
-        return {compute_pipelines_.load(), graphics_pipelines_.load(), buffers_.load(), images_.load()};
+        return {compute_pipelines_.load(), graphics_pipelines_.load(), buffers_.load(), images_.load(), device_buffer_bytes_.load()};
     }
 
     void log(std::string_view line) const;
@@ -74,7 +75,7 @@ private:
     bool verbose_ = false;
     bool adopted_ = false;  // instance and device are the host's: never destroyed here
     std::atomic<uint64_t> validation_messages_{0};
-    mutable std::atomic<uint64_t> compute_pipelines_{0}, graphics_pipelines_{0}, buffers_{0}, images_{0};
+    mutable std::atomic<uint64_t> compute_pipelines_{0}, graphics_pipelines_{0}, buffers_{0}, images_{0}, device_buffer_bytes_{0};
 
     VkInstance instance_ = VK_NULL_HANDLE;
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;

@@ -53,6 +53,7 @@ glm::dmat4 local_transform(const std::string& name, const tinygltf::Node& node, 
 struct Instance {
     int mesh;
     glm::dmat4 world;
+    int node;
 };
 
 std::vector<int> scene_roots(const std::string& name, const tinygltf::Model& model)
@@ -108,7 +109,7 @@ std::vector<Instance> mesh_instances(const std::string& name, const tinygltf::Mo
         if (node.mesh >= 0) {
             if (size_t(node.mesh) >= model.meshes.size())
                 fail(name, node_name + ": mesh " + std::to_string(node.mesh) + " does not exist");
-            instances.push_back({node.mesh, world});
+            instances.push_back({node.mesh, world, p.node});
         }
         for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.push_back({*it, p.node, world});
     }
@@ -138,6 +139,13 @@ public:
         for (size_t p = 0; p < mesh.primitives.size(); ++p)
             add_primitive("mesh " + std::to_string(instance.mesh) + " primitive " + std::to_string(p) + ": ", mesh.primitives[p],
                           instance.world);
+    }
+
+    /// Only primitive `p` of the instance (a scene object, io/scene_gltf.cpp).
+    void add(const Instance& instance, size_t p)
+    {
+        add_primitive("mesh " + std::to_string(instance.mesh) + " primitive " + std::to_string(p) + ": ",
+                      model_.meshes[size_t(instance.mesh)].primitives[p], instance.world);
     }
 
     TriangleMesh finish()
@@ -280,6 +288,21 @@ TriangleMesh read_gltf(const std::filesystem::path& path, const std::string& nam
     MeshBuilder builder(name, model);
     for (const auto& instance : mesh_instances(name, model, scene_roots(name, model))) builder.add(instance);
     return builder.finish();
+}
+
+std::vector<GltfPrimitive> read_gltf_primitives(const std::string& name, const tinygltf::Model& model)
+{
+    check_required_extensions(name, model);
+    std::vector<GltfPrimitive> out;
+    for (const auto& instance : mesh_instances(name, model, scene_roots(name, model))) {
+        const auto& mesh = model.meshes[size_t(instance.mesh)];
+        for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+            MeshBuilder builder(name, model);
+            builder.add(instance, p);
+            out.push_back({builder.finish(), instance.node, instance.mesh, int(p), mesh.primitives[p].material});
+        }
+    }
+    return out;
 }
 
 }  // namespace jade::io

@@ -1,10 +1,13 @@
 // io/gltf_model.hpp - parsing a glTF file into a tinygltf::Model (private to jade_io).
 #pragma once
 
+#include <jade/mesh.hpp>
+
 #include <tiny_gltf.h>
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace jade::io {
 
@@ -18,5 +21,13 @@ tinygltf::Model parse_gltf(const std::filesystem::path& path, const std::string&
 /// Rejects every required extension except those that only change materials or textures,
 /// naming it (compressed geometry, KHR_mesh_quantization, ...).
 void check_required_extensions(const std::string& name, const tinygltf::Model& model);
+
+/// One triangle primitive of one mesh instance of the default scene, in world space, read as
+/// read_gltf reads meshes (io/gltf.cpp); io/scene_gltf.cpp makes a scene object of each.
+struct GltfPrimitive {
+    TriangleMesh mesh;
+    int node, mesh_index, primitive, material;  ///< material: -1 when none
+};
+std::vector<GltfPrimitive> read_gltf_primitives(const std::string& name, const tinygltf::Model& model);
 
 }  // namespace jade::io

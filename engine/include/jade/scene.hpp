@@ -1,0 +1,188 @@
+// jade/scene.hpp - a scene that pays only for what it uses (issue 7, items 4 and 5).
+//
+// A Scene is a list of objects (mesh, material, static or deforming). plan_scene() analyses it
+// once into a ScenePlan: per object the passes it needs, the shader variant it is drawn with and
+// the GPU buffers each pass allocates. SceneRenderer then runs exactly the planned passes:
+//   opaque material      no bake at all; drawn with the Lambert variant (ShadingMode::Lambert)
+//   static, translucent  one bake (AO + t_m) or a cache read; the bake's buffers (BVH, cluster
+//                        tree, near lists, ...) are freed before the first frame; per frame
+//                        only the draw runs
+//   deforming            per frame: GPU deform (MeshDeformer), GPU re-bake (DynamicBake), draw
+//   grey profiles        one channel baked and one LUT fetch when drawn (the CHANNELS = 1
+//                        specialisation of shaders/mesh.frag); three otherwise
+// Objects are in world space, in mesh units (a glTF scene: metres).
+//
+// Core parts (this header) are in jade::jade; load_scene() and cached_bakes() are in jade::io
+// (they read and write files). Threading and lifetime as jade::Renderer: one thread, destroy
+// before the Context. Errors: jade::Error naming the object and what is wrong.
+#pragma once
+
+#include <jade/bake.hpp>
+#include <jade/cache.hpp>
+#include <jade/context.hpp>
+#include <jade/deform.hpp>
+#include <jade/material.hpp>
+#include <jade/mesh.hpp>
+#include <jade/render.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace jade {
+
+/// One object of a scene: a mesh in world space with one material.
+struct SceneObject {
+    std::string name;                            ///< for messages, plans and --verbose
+    TriangleMesh mesh;                           ///< world space, mesh units
+    Material material;
+    std::optional<ProceduralDeformer> deformer;  ///< set: the mesh deforms (per-frame passes)
+    bool deforming() const { return deformer.has_value(); }
+};
+
+struct Scene {
+    std::string name;  ///< file name or "procedural"
+    std::vector<SceneObject> objects;
+};
+
+/// What a pass does.
+enum class PassKind : uint32_t {
+    CacheRead = 0,   ///< static t_m read from the bake cache: no GPU work
+    StaticBake = 1,  ///< AO + t_m once, before the first frame (Baker::bake); buffers freed after
+    Deform = 2,      ///< per frame: MeshDeformer (positions, normals, areas on the GPU)
+    DynamicBake = 3, ///< per frame: DynamicBake (refit of both trees, AO, t_m)
+    Draw = 4,        ///< per frame: Renderer (the object's shader variant)
+};
+/// "cache read", "static bake", "deform", "dynamic bake", "draw".
+std::string_view pass_kind_name(PassKind kind);
+
+/// One GPU buffer a pass allocates; `bytes` is an estimate (see plan_scene).
+struct BufferEstimate {
+    std::string name;
+    uint64_t bytes = 0;
+    bool image = false;  ///< an image (the LUTs), not a buffer
+};
+
+struct PassPlan {
+    PassKind kind = PassKind::Draw;
+    bool per_frame = false;  ///< runs every frame (else once, in SceneRenderer's constructor)
+    bool resident = false;   ///< its buffers stay allocated while the SceneRenderer lives
+    std::vector<BufferEstimate> buffers;
+    uint64_t bytes() const;         ///< Σ buffers and images
+    uint64_t buffer_bytes() const;  ///< Σ buffers only (comparable with ObjectCounts::device_buffer_bytes)
+};
+
+/// The variant of shaders/mesh.frag an object is drawn with (its specialisation constants).
+struct ShaderVariant {
+    ShadingMode mode = ShadingMode::Tm;
+    uint32_t channels = 3;  ///< LUT fetches per light: 1 grey, 3 RGB (Lambert: 3, unused)
+};
+
+struct ObjectPlan {
+    std::string name;
+    size_t bake_vertices = 0, triangles = 0;  ///< after prepare_mesh
+    bool opaque = false, deforming = false;
+    uint32_t channels = 3;       ///< t_m channels baked: 1 grey, 3 RGB, 0 opaque
+    ShaderVariant variant;
+    uint64_t bake_key = 0;       ///< static translucent objects: the cache key (jade/cache.hpp)
+    bool cached = false;         ///< the bake source already holds this bake (CacheRead)
+    std::vector<PassPlan> passes;
+    uint64_t resident_bytes() const;   ///< buffers held while drawing
+    uint64_t transient_bytes() const;  ///< peak of the once-only passes, freed before drawing
+    bool runs(PassKind kind) const;
+};
+
+struct ScenePlan {
+    std::vector<ObjectPlan> objects;
+    uint64_t resident_bytes() const;
+    /// The largest once-only pass: static bakes run one after the other, each freed at once.
+    uint64_t transient_peak_bytes() const;
+    /// Human-readable, as `jade plan` prints it.
+    std::string describe() const;
+};
+
+/// Where static bakes come from. Default (empty functions): never cached, baked each time.
+/// jade::io's cached_bakes(cache) reads and fills a BakeCache.
+struct StaticBakeSource {
+    struct Lookup {
+        uint64_t key = 0;    ///< bake_key() of the bake
+        bool holds = false;  ///< a valid entry is already there
+    };
+    /// Whether a bake of (mesh, material, settings) is already available (plan only).
+    std::function<Lookup(const PreparedMesh&, const Material&, const BakeSettings&)> lookup;
+    /// Produces it: from the cache, or bakes (and stores).
+    std::function<CachedBake(Context&, const PreparedMesh&, const Material&, const BakeSettings&)> bake;
+};
+
+struct SceneSettings {
+    BakeSettings bake = BakeSettings::preset(Quality::Default);
+    /// Shading of translucent objects: Tm (the default) or TmFalseColor; opaque objects are
+    /// always Lambert. Curvature is not a scene mode.
+    ShadingMode mode = ShadingMode::Tm;
+    RendererOptions renderer;  ///< LUT sizes (counted in the plan)
+};
+
+/// Analyses the scene (CPU only: prepares every mesh). Memory is estimated from the vertex and
+/// triangle counts with the byte sizes of the structures engine/src/bake and engine/src/shading
+/// upload (documented in scene/plan.cpp); tests compare it with Context::created_objects().
+/// Throws jade::Error naming the object for an empty or invalid mesh, or a Curvature mode.
+ScenePlan plan_scene(const Scene& scene, const SceneSettings& settings, const StaticBakeSource& source = {});
+
+/// What ran, for --verbose and tests.
+struct PassRecord {
+    std::string object;
+    PassKind kind;
+    double wall_ms = 0;
+    std::string note;  ///< e.g. the cache's reason for a miss
+};
+
+/// Runs a plan: the once-only passes in the constructor, the per-frame passes and the draws in
+/// render(). Keeps, per object, only a Renderer (mesh vertices with t_m, LUT) and, when the
+/// object deforms, its MeshDeformer and DynamicBake. The Baker of static bakes is made for the
+/// constructor and destroyed at its end.
+class SceneRenderer {
+public:
+    SceneRenderer(Context& context, const Scene& scene, const SceneSettings& settings, const StaticBakeSource& source = {});
+    ~SceneRenderer();
+    SceneRenderer(const SceneRenderer&) = delete;
+    SceneRenderer& operator=(const SceneRenderer&) = delete;
+
+    const ScenePlan& plan() const;
+    /// Every pass run so far, in order (once-only passes first).
+    const std::vector<PassRecord>& passes_run() const;
+    /// The t_m each object is drawn with (per bake vertex; empty for opaque objects).
+    const std::vector<glm::vec3>& tm(size_t object) const;
+
+    /// Runs the per-frame passes at time `t` (seconds), then draws every object into one image
+    /// (one depth buffer; objects after the first are drawn over the others). `settings.mode`
+    /// is ignored: each object uses its planned variant. Near and far planes fit the whole
+    /// scene unless the camera gives them.
+    RenderedImage render(double t, const Camera& camera, std::span<const Light> lights, const RenderSettings& settings);
+    /// The scene's bounds (world space, rest pose).
+    glm::vec3 bbox_min() const;
+    glm::vec3 bbox_max() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+// ------------------------------------------------------------------------ jade::io parts --
+
+/// A scene file (.gltf / .glb): one object per triangle primitive of each mesh instance of the
+/// default scene, in world space, with its material mapped as docs/scene.md says
+/// (KHR_materials_volume, KHR_materials_diffuse_transmission, baseColorFactor and
+/// extras.jade). Warnings about unknown or contradictory values (each names the file, the
+/// material and the value, and the fallback taken) go to `warnings`. Throws jade::Error naming
+/// the file and element for malformed files.
+Scene load_scene(const std::filesystem::path& path, std::vector<std::string>* warnings = nullptr);
+
+/// Static bakes through a BakeCache (bake_with_cache; `holds` loads and checks the entry).
+StaticBakeSource cached_bakes(const BakeCache& cache);
+
+}  // namespace jade

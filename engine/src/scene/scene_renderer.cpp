@@ -1,0 +1,230 @@
+// scene/scene_renderer.cpp - SceneRenderer: runs a ScenePlan.
+//
+// Construction runs the once-only passes (cache reads, static bakes with a Baker that is
+// destroyed before the constructor returns, so no BVH, cluster tree or bake buffer outlives
+// it) and gives every object a Renderer holding only its vertices (with t_m), indices and LUT.
+// Deforming objects also keep a MeshDeformer and a DynamicBake. render() runs the per-frame
+// passes, then records every object's draw into one set of targets (the first clears them,
+// the others load them) and reads the image back.
+#include <jade/scene.hpp>
+
+#include "gpu/buffer.hpp"
+#include "gpu/context.hpp"
+#include "gpu/image.hpp"
+#include "gpu/timer.hpp"
+
+#include <jade/error.hpp>
+
+#include <glm/geometric.hpp>
+
+#include <chrono>
+#include <optional>
+
+namespace jade {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+}  // namespace
+
+struct SceneRenderer::Impl {
+    Context& context;
+    SceneSettings settings;
+    ScenePlan plan;
+    std::vector<PassRecord> passes;
+
+    struct Object {
+        PreparedMesh rest;
+        std::vector<glm::vec3> tm;
+        std::unique_ptr<Renderer> renderer;
+        // Deforming objects only.
+        std::optional<ProceduralDeformer> deformer;
+        std::unique_ptr<MeshDeformer> mesh_deformer;
+        std::unique_ptr<DynamicBake> dynamic_bake;
+        gpu::Buffer tm_readback;  // host-visible copy of the DynamicBake's t_m
+    };
+    std::vector<Object> objects;
+    std::unique_ptr<Baker> dynamic_baker;  // the DynamicBakes use its pipelines: kept
+    glm::vec3 lo{0.0f}, hi{0.0f};
+
+    struct Targets {
+        uint32_t width = 0, height = 0, samples = 0;
+        gpu::Image color, resolve, depth;
+        gpu::Buffer readback;
+    } targets;
+    std::optional<gpu::GpuTimer> timer;
+
+    Impl(Context& c, const Scene& scene, const SceneSettings& s, const StaticBakeSource& source)
+        : context(c), settings(s), plan(plan_scene(scene, s, source))
+    {
+        std::unique_ptr<Baker> static_baker;  // made for the first static bake, gone after the constructor
+        bool first = true;
+        for (size_t k = 0; k < scene.objects.size(); ++k) {
+            const SceneObject& so = scene.objects[k];
+            const ObjectPlan& op = plan.objects[k];
+            Object o;
+            o.rest = prepare_mesh(so.mesh);
+            if (first) lo = o.rest.bbox_min, hi = o.rest.bbox_max, first = false;
+            lo = glm::min(lo, o.rest.bbox_min), hi = glm::max(hi, o.rest.bbox_max);
+            for (const PassPlan& p : op.passes) {
+                const auto t0 = Clock::now();
+                PassRecord r{op.name, p.kind, 0, {}};
+                if (p.kind == PassKind::Draw) continue;  // per frame, in render()
+                if (p.kind == PassKind::CacheRead || p.kind == PassKind::StaticBake) {
+                    CachedBake b;
+                    if (source.bake) {
+                        b = source.bake(context, o.rest, so.material, settings.bake);
+                    } else {
+                        if (!static_baker) static_baker = std::make_unique<Baker>(context);
+                        b.result = static_baker->bake(o.rest, so.material, settings.bake);
+                        b.source = BakeSource::Baked;
+                    }
+                    // The plan said what should happen; say what did (an entry can go stale in between).
+                    r.kind = b.source == BakeSource::Cache ? PassKind::CacheRead : PassKind::StaticBake;
+                    r.note = b.note;
+                    o.tm = std::move(b.result.tm);
+                } else if (p.kind == PassKind::Deform) {
+                    o.deformer = *so.deformer;
+                    o.mesh_deformer = std::make_unique<MeshDeformer>(context, o.rest);
+                    r.note = "set up (runs every frame)";
+                } else if (p.kind == PassKind::DynamicBake) {
+                    if (!dynamic_baker) dynamic_baker = std::make_unique<Baker>(context);
+                    o.dynamic_bake = std::make_unique<DynamicBake>(*dynamic_baker, o.rest, so.material, settings.bake);
+                    o.tm_readback = gpu::Buffer(context.gpu(), o.rest.vertex_count() * 12, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                                "scene: t_m read-back", true);
+                    r.note = "set up (runs every frame)";
+                }
+                r.wall_ms = ms_since(t0);
+                passes.push_back(std::move(r));
+            }
+            o.renderer = std::make_unique<Renderer>(context, settings.renderer);
+            o.renderer->set_mesh(o.rest, o.tm);
+            o.renderer->set_material(so.material);
+            objects.push_back(std::move(o));
+        }
+    }
+
+    // Per frame: deform, re-bake and read t_m back in one submission, then the new vertices.
+    void run_per_frame(double t)
+    {
+        for (size_t k = 0; k < objects.size(); ++k) {
+            Object& o = objects[k];
+            if (!o.mesh_deformer) continue;
+            const auto t0 = Clock::now();
+            const auto n = o.rest.vertex_count();
+            context.gpu().submit_and_wait([&](VkCommandBuffer cmd) {
+                o.mesh_deformer->record(cmd, *o.deformer, t);
+                o.dynamic_bake->record(cmd, o.mesh_deformer->positions_buffer(), o.mesh_deformer->normals_buffer(),
+                                       o.mesh_deformer->areas_buffer());
+                gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                                    VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+                const VkBufferCopy region{0, 0, VkDeviceSize(n) * 12};
+                vkCmdCopyBuffer(cmd, o.dynamic_bake->buffers().tm, o.tm_readback.handle(), 1, &region);
+                gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                    VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+            });
+            const double deform_and_bake_ms = ms_since(t0);
+            o.tm = o.tm_readback.read<glm::vec3>(n);
+            o.renderer->set_mesh(deformed_mesh(o.rest, o.mesh_deformer->read()), o.tm);
+            passes.push_back({plan.objects[k].name, PassKind::Deform, 0, "t = " + std::to_string(t) + " s"});
+            passes.push_back({plan.objects[k].name, PassKind::DynamicBake, deform_and_bake_ms,
+                              "deform + re-bake in one submission, new vertices uploaded"});
+        }
+    }
+
+    void ensure_targets(const RenderSettings& s)
+    {
+        Targets& t = targets;
+        if (t.width == s.width && t.height == s.height && t.samples == s.samples) return;
+        t = Targets{};
+        const VkFormat format = VK_FORMAT_R32G32B32A32_SFLOAT;
+        const auto msaa = VkSampleCountFlagBits(s.samples);
+        const VkImageUsageFlags attachment = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+        t.color = gpu::Image(context.gpu(), {"scene colour", s.width, s.height, format,
+                                             attachment | (s.samples == 1 ? VkImageUsageFlags(VK_IMAGE_USAGE_TRANSFER_SRC_BIT) : 0u), msaa});
+        if (s.samples > 1)
+            t.resolve = gpu::Image(context.gpu(), {"scene resolve", s.width, s.height, format, attachment | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+        t.depth = gpu::Image(context.gpu(), {"scene depth", s.width, s.height, VK_FORMAT_D32_SFLOAT,
+                                             VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, msaa});
+        t.readback = gpu::Buffer(context.gpu(), t.color.bytes(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, "scene read-back", true);
+        t.width = s.width, t.height = s.height, t.samples = s.samples;
+    }
+
+    RenderedImage render(double time, const Camera& camera, std::span<const Light> lights, const RenderSettings& settings_in)
+    {
+        const auto t0 = Clock::now();
+        run_per_frame(time);
+        RenderSettings s = settings_in;
+        s.float32 = true;  // the targets are RGBA32F: read back without conversion
+        if (s.width == 0 || s.height == 0 || s.width > 16384 || s.height > 16384)
+            throw Error("render settings: size " + std::to_string(s.width) + "x" + std::to_string(s.height) + " is outside 1..16384");
+        // One depth range for every object: the scene's bounding sphere (as Renderer fits one mesh).
+        Camera cam = camera;
+        if (!(cam.near_plane > 0.0f && cam.far_plane > cam.near_plane)) {
+            const glm::vec3 centre = 0.5f * (lo + hi);
+            const float radius = std::max(0.5f * glm::length(hi - lo), 1e-30f) * 1.01f;
+            const float distance = glm::length(cam.eye - centre);
+            cam.far_plane = distance + radius;
+            cam.near_plane = std::max(distance - radius, cam.far_plane * 1e-4f);
+        }
+        ensure_targets(s);
+        Targets& t = targets;
+        gpu::Image& result = s.samples > 1 ? t.resolve : t.color;
+        if (!timer) timer.emplace(context.gpu(), 4);
+        context.gpu().submit_and_wait([&](VkCommandBuffer cmd) {
+            timer->begin(cmd);
+            t.color.transition(cmd, gpu::use::kColorAttachment, true);
+            t.depth.transition(cmd, gpu::use::kDepthAttachment, true);
+            if (t.resolve) t.resolve.transition(cmd, gpu::use::kColorAttachment, true);
+            for (size_t k = 0; k < objects.size(); ++k) {
+                RenderSettings os = s;
+                os.mode = plan.objects[k].variant.mode;
+                const RenderTarget target{t.color.view(), t.resolve ? t.resolve.view() : VK_NULL_HANDLE, t.depth.view(), s.width,
+                                          s.height, k > 0};
+                if (k > 0) {
+                    // The previous draw's attachment writes before this draw loads them.
+                    gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                                        VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                                        VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
+                                            VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                                        VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT |
+                                            VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
+                                            VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+                }
+                objects[k].renderer->record(cmd, target, cam, lights, os);
+            }
+            timer->mark(cmd, "draw");
+            result.transition(cmd, gpu::use::kTransferSrc);
+            result.copy_to_buffer(cmd, t.readback.handle());
+        });
+        for (const ObjectPlan& o : plan.objects) passes.push_back({o.name, PassKind::Draw, 0, std::string(shading_mode_name(o.variant.mode)) +
+                                                                                              ", CHANNELS=" + std::to_string(o.variant.channels)});
+        RenderedImage img;
+        img.width = s.width, img.height = s.height;
+        img.rgba = t.readback.read<float>(size_t(s.width) * s.height * 4);
+        img.gpu_ms = timer->total_ms();
+        if (s.tone_map != ToneMap::None || s.exposure != 1.0f) apply_tone_map(img, s.tone_map, s.exposure);
+        img.wall_ms = ms_since(t0);
+        return img;
+    }
+};
+
+SceneRenderer::SceneRenderer(Context& context, const Scene& scene, const SceneSettings& settings, const StaticBakeSource& source)
+    : impl_(std::make_unique<Impl>(context, scene, settings, source))
+{
+}
+SceneRenderer::~SceneRenderer() = default;
+
+const ScenePlan& SceneRenderer::plan() const { return impl_->plan; }
+const std::vector<PassRecord>& SceneRenderer::passes_run() const { return impl_->passes; }
+const std::vector<glm::vec3>& SceneRenderer::tm(size_t object) const { return impl_->objects.at(object).tm; }
+glm::vec3 SceneRenderer::bbox_min() const { return impl_->lo; }
+glm::vec3 SceneRenderer::bbox_max() const { return impl_->hi; }
+
+RenderedImage SceneRenderer::render(double t, const Camera& camera, std::span<const Light> lights, const RenderSettings& settings)
+{
+    return impl_->render(t, camera, lights, settings);
+}
+
+}  // namespace jade
