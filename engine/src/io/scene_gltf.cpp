@@ -292,6 +292,10 @@ Scene load_scene(const std::filesystem::path& path, std::vector<std::string>* wa
         std::optional<Material> no_material;
         for (io::GltfPrimitive& p : io::read_gltf_primitives(name, model)) {
             io::validate_loaded(p.mesh);
+            if (p.material >= int(model.materials.size()))
+                io::fail(name, "mesh " + std::to_string(p.mesh_index) + " primitive " + std::to_string(p.primitive) + ": material " +
+                                   std::to_string(p.material) + " does not exist (" + std::to_string(model.materials.size()) +
+                                   " materials)");
             auto& slot = p.material < 0 ? no_material : materials.at(size_t(p.material));
             if (!slot) slot = mapper.map(p.material);  // once per material: warnings once
             const auto& node = model.nodes[size_t(p.node)];
