@@ -433,3 +433,25 @@ TEST_F(SceneGpuTest, MixedSceneRunsThePlannedPassesPerFrame)
     EXPECT_EQ(draws, 8u);
     EXPECT_GT(renderer.tm(3)[0].x, 0.0f);
 }
+
+TEST_F(SceneGpuTest, LaterObjectsAreDepthTestedAgainstEarlierOnesWithMsaa)
+{
+    // A red opaque box in front of a blue one that is drawn second: the centre stays red.
+    Material red = material_preset("opaque", 1.0), blue = red;
+    red.albedo = {0.9f, 0.05f, 0.05f};
+    blue.albedo = {0.05f, 0.05f, 0.9f};
+    red.specular = blue.specular = 0.0f;
+    Scene scene{"depth", {object("front", procedural::box({-1, -1, 0.5f}, {1, 1, 1}, 1), red),
+                          object("back", procedural::box({-2, -2, -1}, {2, 2, -0.5f}, 1), blue)}};
+    SceneRenderer renderer(context(), scene, settings);
+    const Camera camera{{0.0f, 0.0f, 8.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 40.0f};
+    const std::vector<Light> lights = {Light::directional({0, 0, 1}, glm::vec3(3.0f))};
+    RenderSettings rs;
+    rs.width = rs.height = 64;
+    rs.samples = 4;
+    const RenderedImage img = renderer.render(0.0, camera, lights, rs);
+    const float* centre = img.pixel(32, 32);
+    EXPECT_GT(centre[0], 10.0f * centre[2]) << "the back object was drawn over the front one";
+    const float* edge = img.pixel(32, 14);  // outside the front box (rows 20-44), inside the back one (11-53)
+    EXPECT_GT(edge[2], 10.0f * edge[0]);
+}

@@ -156,10 +156,10 @@ struct RendererOptions {
 /// Where record() draws: the caller's images, described by views.
 ///   color    samples × colour format (RGBA16F, or RGBA32F with RenderSettings::float32), layout
 ///            COLOR_ATTACHMENT_OPTIMAL (cleared to the background, or loaded with `load`; then
-///            discarded when `resolve` is set, else stored)
+///            discarded when `resolve` is set and not `keep`, else stored)
 ///   resolve  1 sample, same format, COLOR_ATTACHMENT_OPTIMAL, or VK_NULL_HANDLE when samples = 1
 ///   depth    samples × D32_SFLOAT, DEPTH_ATTACHMENT_OPTIMAL (cleared to 1 and not stored, or
-///            with `load` loaded, depth-tested LESS and stored)
+///            with `load` loaded, depth-tested LESS and stored; stored also with `keep`)
 /// All three stay in these layouts after the draw.
 struct RenderTarget {
     VkImageView color = VK_NULL_HANDLE, resolve = VK_NULL_HANDLE, depth = VK_NULL_HANDLE;
@@ -168,6 +168,9 @@ struct RenderTarget {
     /// Depth is only comparable when the camera has explicit near/far planes that the host
     /// used too (Camera::view_projection).
     bool load = false;
+    /// More draws into the same images follow (a scene of several meshes): store the
+    /// multisampled colour and the depth too, so that the next draw can load them.
+    bool keep = false;
 };
 
 /// Draws one mesh with one material. Owns its GPU buffers, LUT images and pipelines (created

@@ -181,7 +181,7 @@ struct SceneRenderer::Impl {
                 RenderSettings os = s;
                 os.mode = plan.objects[k].variant.mode;
                 const RenderTarget target{t.color.view(), t.resolve ? t.resolve.view() : VK_NULL_HANDLE, t.depth.view(), s.width,
-                                          s.height, k > 0};
+                                          s.height, k > 0, k + 1 < objects.size()};
                 if (k > 0) {
                     // The previous draw's attachment writes before this draw loads them.
                     gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,

@@ -270,7 +270,7 @@ struct Renderer::Impl {
         color.imageView = t.color;
         color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
         color.loadOp = t.load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
-        color.storeOp = t.resolve ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
+        color.storeOp = t.resolve && !t.keep ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
         // Only a cleared attachment gets a clear value: lavapipe (Mesa 22.3) clears a LOAD
         // attachment whose clear value is non-zero (seen in samples/embed: the host's frame
         // came back as the background colour).
@@ -284,7 +284,7 @@ struct Renderer::Impl {
         depth.imageView = t.depth;
         depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
         depth.loadOp = t.load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
-        depth.storeOp = t.load ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
+        depth.storeOp = t.load || t.keep ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
         if (!t.load) depth.clearValue.depthStencil = {1.0f, 0};  // as for colour above
         VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
         ri.renderArea = {{0, 0}, {s.width, s.height}};
