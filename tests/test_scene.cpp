@@ -314,16 +314,8 @@ TEST_F(SceneGpuTest, StaticSceneSecondRunReadsTheCacheAndCreatesNoBakeObjects)
         EXPECT_NEAR(double(estimate) / double(baked), 1.0, 0.10);  // measured: +0.4 % here, -4.6 % on the bunny
     }
     // A scene that never bakes (t_m = 0 given) is the reference for "only the draws".
-    StaticBakeSource zero;
-    zero.lookup = [](const PreparedMesh&, const Material&, const BakeSettings&) { return StaticBakeSource::Lookup{0, true}; };
-    zero.bake = [](Context&, const PreparedMesh& m, const Material&, const BakeSettings&) {
-        CachedBake b;
-        b.result.tm.assign(m.vertex_count(), glm::vec3(0.0f));
-        b.source = BakeSource::Cache;
-        return b;
-    };
     const ObjectCounts c1 = context().created_objects();
-    { SceneRenderer never(context(), scene, settings, zero); }
+    { SceneRenderer never(context(), scene, settings, never_baked()); }
     const ObjectCounts c2 = context().created_objects();
     SceneRenderer second(context(), scene, settings, cached_bakes(BakeCache(dir)));
     const ObjectCounts c3 = context().created_objects();

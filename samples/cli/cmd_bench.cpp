@@ -91,21 +91,6 @@ double quantile(std::vector<double> v, double q)
     return v[size_t(std::lround(q * double(v.size() - 1)))];
 }
 
-// Static bakes that never ran: every translucent object is drawn with t_m = 0 (the same draw).
-StaticBakeSource never_baked()
-{
-    StaticBakeSource s;
-    s.lookup = [](const PreparedMesh&, const Material&, const BakeSettings&) { return StaticBakeSource::Lookup{0, true}; };
-    s.bake = [](Context&, const PreparedMesh& mesh, const Material&, const BakeSettings&) {
-        CachedBake b;
-        b.result.tm.assign(mesh.vertex_count(), glm::vec3(0.0f));
-        b.source = BakeSource::Cache;
-        b.note = "never baked: t_m = 0";
-        return b;
-    };
-    return s;
-}
-
 int bench_render_scene(const Args& args)
 {
     std::vector<std::string> warnings;

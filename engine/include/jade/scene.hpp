@@ -119,6 +119,10 @@ struct StaticBakeSource {
     std::function<CachedBake(Context&, const PreparedMesh&, const Material&, const BakeSettings&)> bake;
 };
 
+/// Every static translucent object drawn with t_m = 0, nothing baked or read: the same draws
+/// as a baked scene (benchmarks compare against it; t_m = 0 shades exactly as Lambert).
+StaticBakeSource never_baked();
+
 struct SceneSettings {
     BakeSettings bake = BakeSettings::preset(Quality::Default);
     /// Shading of translucent objects: Tm (the default) or TmFalseColor; opaque objects are

@@ -11,6 +11,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <new>
+#include <stdexcept>
 #include <span>
 #include <string>
 #include <string_view>
@@ -34,6 +36,21 @@ std::string display_name(const std::filesystem::path& path);
 
 /// Throws jade::Error("<file>: <what>").
 [[noreturn]] void fail(std::string_view file, std::string_view what);
+
+/// Runs `read` (a whole-file reader) and turns what is not a jade::Error - out of memory, the
+/// third-party parsers' own exception types (nlohmann::json, std::) - into one naming `file`.
+template <class Read> auto naming_file(std::string_view file, Read&& read) -> decltype(read())
+{
+    try {
+        return read();
+    } catch (const Error&) {
+        throw;
+    } catch (const std::bad_alloc&) {
+        fail(file, "out of memory while loading");
+    } catch (const std::exception& e) {
+        fail(file, std::string("cannot load: ") + e.what());
+    }
+}
 
 /// Reads a whole regular file, refusing files larger than `max_bytes` before reading them.
 std::string read_file(const std::filesystem::path& path, uint64_t max_bytes = kMaxFileBytes);

@@ -300,15 +300,7 @@ AnimatedMesh read_animated(const std::filesystem::path& path, const std::string&
 AnimatedMesh load_animated_gltf(const std::filesystem::path& path)
 {
     const auto name = io::display_name(path);
-    try {
-        return read_animated(path, name);
-    } catch (const Error&) {
-        throw;
-    } catch (const std::bad_alloc&) {
-        fail(name, "out of memory while loading");
-    } catch (const std::exception& e) {
-        fail(name, std::string("cannot load: ") + e.what());
-    }
+    return io::naming_file(name, [&] { return read_animated(path, name); });
 }
 
 }  // namespace jade

@@ -5,7 +5,6 @@
 #include "io/common.hpp"
 #include "io/loaders.hpp"
 
-#include <new>
 #include <string>
 
 namespace jade {
@@ -30,18 +29,11 @@ TriangleMesh read_by_extension(const std::filesystem::path& path, const std::str
 TriangleMesh load_mesh(const std::filesystem::path& path)
 {
     const auto name = io::display_name(path);
-    try {
+    return io::naming_file(name, [&] {
         TriangleMesh mesh = read_by_extension(path, name);
         io::validate_loaded(mesh);
         return mesh;
-    } catch (const Error&) {
-        throw;
-    } catch (const std::bad_alloc&) {
-        io::fail(name, "out of memory while loading");
-    } catch (const std::exception& e) {
-        // The third-party parsers may throw their own exception types (nlohmann::json, std::).
-        io::fail(name, std::string("cannot load: ") + e.what());
-    }
+    });
 }
 
 }  // namespace jade

@@ -27,7 +27,6 @@
 #include <jade/error.hpp>
 
 #include <cmath>
-#include <new>
 #include <sstream>
 
 namespace jade {
@@ -279,7 +278,7 @@ std::optional<ProceduralDeformer> node_deformer(const std::string& file, const t
 Scene load_scene(const std::filesystem::path& path, std::vector<std::string>* warnings)
 {
     const std::string name = io::display_name(path);
-    try {
+    return io::naming_file(name, [&] {
         const auto ext = io::lower_extension(path);
         if (ext != ".gltf" && ext != ".glb") io::fail(name, "a scene file must be .gltf or .glb, not '" + ext + "'");
         const std::string bytes = io::read_file(path);
@@ -309,13 +308,7 @@ Scene load_scene(const std::filesystem::path& path, std::vector<std::string>* wa
         }
         if (scene.objects.empty()) io::fail(name, "the default scene has no triangle primitives");
         return scene;
-    } catch (const Error&) {
-        throw;
-    } catch (const std::bad_alloc&) {
-        io::fail(name, "out of memory while loading");
-    } catch (const std::exception& e) {
-        io::fail(name, std::string("cannot load: ") + e.what());
-    }
+    });
 }
 
 StaticBakeSource cached_bakes(const BakeCache& cache)

@@ -201,6 +201,20 @@ std::string ScenePlan::describe() const
     return out.str();
 }
 
+StaticBakeSource never_baked()
+{
+    StaticBakeSource s;
+    s.lookup = [](const PreparedMesh&, const Material&, const BakeSettings&) { return StaticBakeSource::Lookup{0, true}; };
+    s.bake = [](Context&, const PreparedMesh& mesh, const Material&, const BakeSettings&) {
+        CachedBake b;
+        b.result.tm.assign(mesh.vertex_count(), glm::vec3(0.0f));
+        b.source = BakeSource::Cache;
+        b.note = "never baked: t_m = 0";
+        return b;
+    };
+    return s;
+}
+
 ScenePlan plan_scene(const Scene& scene, const SceneSettings& settings, const StaticBakeSource& source)
 {
     if (settings.mode != ShadingMode::Tm && settings.mode != ShadingMode::TmFalseColor)
