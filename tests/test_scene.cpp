@@ -429,6 +429,9 @@ TEST_F(SceneGpuTest, MixedSceneRunsThePlannedPassesPerFrame)
 TEST_F(SceneGpuTest, LaterObjectsAreDepthTestedAgainstEarlierOnesWithMsaa)
 {
     // A red opaque box in front of a blue one that is drawn second: the centre stays red.
+    // (This checks the composition of several draws. It does not catch a missing
+    // RenderTarget::keep: lavapipe keeps attachments stored with DONT_CARE, and the
+    // synchronization layer does not flag loading them; keep is set per the Vulkan spec.)
     Material red = material_preset("opaque", 1.0), blue = red;
     red.albedo = {0.9f, 0.05f, 0.05f};
     blue.albedo = {0.05f, 0.05f, 0.9f};
