@@ -512,3 +512,20 @@ TEST(SceneCli, BenchRenderSceneComparesCachedWithNeverBaked)
     EXPECT_NE(r.output.find("created 2 compute pipelines (2 objects"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("cached / never baked: GPU"), std::string::npos) << r.output;
 }
+
+TEST(SceneMaterials, EveryMalformedGltfOfTheLoaderTestsIsAnErrorNamingTheFile)
+{
+    size_t files = 0;
+    for (const auto& e : std::filesystem::directory_iterator(test::data("bad"))) {
+        const auto ext = e.path().extension().string();
+        if (ext != ".gltf" && ext != ".glb") continue;
+        ++files;
+        try {
+            load_scene(e.path());
+            ADD_FAILURE() << e.path() << " loaded";
+        } catch (const Error& err) {
+            EXPECT_EQ(std::string(err.what()).rfind(e.path().filename().string() + ": ", 0), 0u) << err.what();
+        }
+    }
+    EXPECT_GT(files, 10u);
+}
