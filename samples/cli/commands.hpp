@@ -23,6 +23,7 @@ int cmd_figure1(int argc, char** argv);
 int cmd_bench_render(int argc, char** argv);
 int cmd_report(int argc, char** argv);
 int cmd_deform(int argc, char** argv);
+int cmd_bench_deform(int argc, char** argv);
 
 // Options most commands take.
 std::vector<OptionSpec> device_options();

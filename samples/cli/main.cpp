@@ -22,6 +22,7 @@ const char* kUsage =
     "  bench render MESH  frame time of t_m shading against Lambert at 512^2 and 1024^2\n"
     "  report [MESH...]   error of every approximation against GPU and wall time (--out DIR)\n"
     "  deform [MESH]      deforming mesh demo: GPU deform, re-bake, t_m frames and a GIF\n"
+    "  bench deform       frames per second of the per-frame re-bake, full and amortised, with errors\n"
     "\n"
     "Environment: JADE_DEVICE (device name), JADE_VALIDATION=1 (Khronos validation layer).\n";
 
@@ -38,6 +39,7 @@ int main(int argc, char** argv)
         if (command == "info") return jade::cli::cmd_info(argc, argv);
         if (command == "bake") return jade::cli::cmd_bake(argc, argv);
         if (command == "bench" && argc > 2 && !std::strcmp(argv[2], "render")) return jade::cli::cmd_bench_render(argc, argv);
+        if (command == "bench" && argc > 2 && !std::strcmp(argv[2], "deform")) return jade::cli::cmd_bench_deform(argc, argv);
         if (command == "bench") return jade::cli::cmd_bench(argc, argv);
         if (command == "render") return jade::cli::cmd_render(argc, argv);
         if (command == "figure1") return jade::cli::cmd_figure1(argc, argv);
