@@ -140,9 +140,22 @@ TEST(Report, TinyRunWritesCsvSummaryAndErrorsFallWithEffort)
     ASSERT_GE(lut.size(), 2u);
     EXPECT_LT(lut[1].max, lut[0].max);
 
+    // Deformation: a refit traces the same rays over the same triangles as a rebuild, so its AO
+    // is identical; an amortised re-bake lags behind the moving mesh, so it errs.
+    const auto refit_ao = series(rows, "deform_ao", "refit (burley d=5%)");
+    const auto lagging_ao = series(rows, "deform_ao", "amortised (burley d=5%)");
+    ASSERT_EQ(refit_ao.size(), 1u);
+    ASSERT_EQ(lagging_ao.size(), 1u);
+    EXPECT_EQ(refit_ao[0].max, 0.0) << "refit AO against the from-scratch bake";
+    EXPECT_GT(lagging_ao[0].rms, 0.0) << "an amortised re-bake of a moving mesh should lag";
+    EXPECT_LT(lagging_ao[0].rms, 0.1);
+    const auto refit_tm = series(rows, "deform_tm", "refit (burley d=5%)");
+    ASSERT_EQ(refit_tm.size(), 1u);
+    EXPECT_LT(refit_tm[0].max, 2e-2) << "refit and rebuild t_m";
+
     const std::string md = read_text(dir / "summary.md");
     for (const char* s : {"## Recommended settings", "### draft", "### default", "### high", "| rays | method | GPU | wall | RMS | p99 | max |",
-                          "Translucency LUT size", "120 vertices"})
+                          "Translucency LUT size", "120 vertices", "### Deformation: refit, rebuild, amortised re-bakes"})
         EXPECT_NE(md.find(s), std::string::npos) << "summary.md lacks: " << s;
 }
 

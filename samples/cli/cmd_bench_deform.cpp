@@ -6,46 +6,13 @@
 // settings), so "full" shows what refitting costs in accuracy and the amortised rows what
 // re-baking a part per frame adds to it.
 #include "commands.hpp"
+#include "deform_sweep.hpp"
 
-#include <jade/deform.hpp>
-#include <jade/render.hpp>
-
-#include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <sstream>
 
 namespace jade::cli {
 namespace {
-
-struct FrameError {
-    double ao_rms = 0, ao_max = 0;  // absolute (A_o ∈ [0, 1])
-    double tm_rms = 0, tm_max = 0;  // relative to the from-scratch t_m, over channels
-};
-
-FrameError compare(const BakeResult& got, const BakeResult& ref)
-{
-    FrameError e;
-    const size_t n = ref.ao.size();
-    for (size_t i = 0; i < n; ++i) {
-        const double d = double(got.ao[i]) - double(ref.ao[i]);
-        e.ao_rms += d * d, e.ao_max = std::max(e.ao_max, std::abs(d));
-        for (int c = 0; c < 3; ++c) {
-            const double r = (double(got.tm[i][c]) - double(ref.tm[i][c])) / std::max(double(ref.tm[i][c]), 1e-12);
-            e.tm_rms += r * r, e.tm_max = std::max(e.tm_max, std::abs(r));
-        }
-    }
-    e.ao_rms = std::sqrt(e.ao_rms / double(n));
-    e.tm_rms = std::sqrt(e.tm_rms / (3.0 * double(n)));
-    return e;
-}
-
-struct ModeStats {
-    double deform = 0, normals = 0, refit = 0, ao = 0, tm = 0, draw = 0;
-    FrameError error;  // mean of the RMS values, max of the maxima, over the frames measured
-    uint32_t frames = 0;
-    double total() const { return deform + normals + refit + ao + tm + draw; }
-};
 
 std::vector<uint32_t> parse_slices(const Args& args)
 {
@@ -79,70 +46,34 @@ void bench_mesh(const Args& args, Context& ctx, const std::string& path, const s
 
     ProceduralDeformer deformer_params = ProceduralDeformer::fit(kind, rest, 1);
     deformer_params.period = 2.0f;
-    MeshDeformer deformer(ctx, rest);
     Baker baker(ctx);
-    DynamicBake rebake(baker, rest, material, settings);
     Renderer renderer(ctx);
     renderer.set_material(material);
-    RenderSettings render_settings;
-    render_settings.width = render_settings.height = size;
 
     std::printf("\n%s: %zu bake vertices, %zu triangles; %s, %u frames of %.3g s; material %s, %u AO rays, theta %.2g\n",
                 mesh.name.c_str(), rest.vertex_count(), rest.triangle_count(), args.get_or("deformer", "twist").c_str(),
                 frames, step, material.name.c_str(), settings.ao.rays, settings.tm_epsilon);
-
-    // The deformed frames and their from-scratch bakes (the reference of every mode).
-    std::vector<BakeResult> reference;
-    std::vector<Camera> cameras;
-    for (uint32_t f = 0; f < frames; ++f) {
-        deformer.deform(deformer_params, step * f);
-        PreparedMesh deformed = deformed_mesh(rest, deformer.read());
-        deformed.diagonal = rest.diagonal;  // DynamicBake keeps the rest pose's AO distances
-        reference.push_back(baker.bake(deformed, material, settings));
-        cameras.push_back(Camera::framing(deformed.bbox_min, deformed.bbox_max));
-    }
-
+    DeformSweep sweep(ctx, baker, rest, material, settings, deformer_params, frames, step);
+    std::printf("from-scratch bake of each frame (CPU BVH + cluster tree builds, GPU bake): GPU %.1f ms, wall %.1f ms\n",
+                sweep.rebuild_gpu_ms(), sweep.rebuild_wall_ms());
     std::printf("%-22s %7s %7s %7s %8s %8s %7s %8s %6s | %8s %8s %9s %9s\n", "mode (GPU ms/frame)", "deform", "normals",
                 "refit", "AO", "t_m", "draw", "total", "fps", "AO rms", "AO max", "t_m rms", "t_m max");
-    auto run = [&](const std::string& label, Amortisation amortisation) {
-        rebake.set_amortisation(amortisation);  // the first frame re-bakes everything
-        ModeStats st;
-        for (uint32_t f = 0; f < frames; ++f) {
-            const DeformTimings dt = deformer.deform(deformer_params, step * f);
-            const BakeResult r = rebake.bake(deformer.positions_buffer(), deformer.normals_buffer(), deformer.areas_buffer());
-            const PreparedMesh deformed = deformed_mesh(rest, deformer.read());
-            renderer.set_mesh(deformed, r.tm);
-            const RenderedImage image = renderer.render(cameras[f], default_lights(cameras[f]), render_settings);
-            // Frame 0 is a full re-bake in every mode: measure the steady state after it.
-            if (f == 0 && amortisation.ao_slices * amortisation.tm_slices > 1) continue;
-            st.deform += dt.deform_ms, st.normals += dt.normals_ms, st.draw += image.gpu_ms;
-            for (const auto& [stage, ms] : r.timings.gpu_stages) {
-                if (stage == "BVH refit") st.refit += ms;
-                else if (stage == "ao") st.ao += ms;
-                else st.tm += ms;
-            }
-            const FrameError e = compare(r, reference[f]);
-            st.error.ao_rms += e.ao_rms, st.error.tm_rms += e.tm_rms;
-            st.error.ao_max = std::max(st.error.ao_max, e.ao_max), st.error.tm_max = std::max(st.error.tm_max, e.tm_max);
-            ++st.frames;
-        }
-        const double n = st.frames;
-        st.deform /= n, st.normals /= n, st.refit /= n, st.ao /= n, st.tm /= n, st.draw /= n;
-        st.error.ao_rms /= n, st.error.tm_rms /= n;
-        std::printf("%-22s %7.2f %7.2f %7.2f %8.1f %8.1f %7.2f %8.1f %6.2f | %8.4f %8.4f %9.2e %9.2e\n", label.c_str(), st.deform,
-                    st.normals, st.refit, st.ao, st.tm, st.draw, st.total(), 1000.0 / st.total(), st.error.ao_rms,
+    auto print = [](const std::string& label, const SweepStats& st) {
+        std::printf("%-22s %7.2f %7.2f %7.2f %8.1f %8.1f %7.2f %8.1f %6.2f | %8.4f %8.4f %9.2e %9.2e\n", label.c_str(),
+                    st.deform, st.normals, st.refit, st.ao, st.tm, st.draw, st.total(), 1000.0 / st.total(), st.error.ao_rms,
                     st.error.ao_max, st.error.tm_rms, st.error.tm_max);
         std::fflush(stdout);
-        return st;
     };
-    const ModeStats full = run("full re-bake", {});
+    const SweepStats full = sweep.run({}, &renderer, size);
+    print("full re-bake (refit)", full);
     for (uint32_t s : slice_counts) {
+        const std::string label = "amortised 1/" + std::to_string(s);
         if (settings.ao.rays % s != 0) {
-            std::printf("%-22s (skipped: %u AO rays are not divisible by %u)\n", ("amortised 1/" + std::to_string(s)).c_str(),
-                        settings.ao.rays, s);
+            std::printf("%-22s (skipped: %u AO rays are not divisible by %u)\n", label.c_str(), settings.ao.rays, s);
             continue;
         }
-        const ModeStats a = run("amortised 1/" + std::to_string(s), {s, s});
+        const SweepStats a = sweep.run({s, s}, &renderer, size);
+        print(label, a);
         std::printf("%-22s %.2fx faster than full; added error AO rms %+.4f, t_m rms %+.2e\n", "", full.total() / a.total(),
                     a.error.ao_rms - full.error.ao_rms, a.error.tm_rms - full.error.tm_rms);
     }
