@@ -89,6 +89,11 @@ struct BakeSettings {
     /// error on the bunny and the dragon (d = 5 % of the diagonal): θ = 1: 1.6e-3, 0.7: 4.7e-4,
     /// 0.5: 1.6e-4, 0.3: 1.6e-5.
     float tm_epsilon = 1.2f;
+    /// All-pairs method only (TmMethod::Exact, or Auto on small meshes): accumulate the far
+    /// field in float64 instead of compensated float32 sums (pair values stay float32). Needs
+    /// DeviceInfo::float64 (jade::Error otherwise); for measuring what float32 sums cost in
+    /// accuracy (`jade report`), not for production: slower on every device.
+    bool tm_float64_sums = false;
     static BakeSettings preset(Quality q);  ///< the Quality table above
 };
 

@@ -98,9 +98,11 @@ void validate_ao_settings(const AoSettings& s)
     if (!(s.epsilon_rel >= 0) || !std::isfinite(s.epsilon_rel)) throw Error("AO: epsilon must be ≥ 0");
 }
 
-void validate_tm_settings(const BakeSettings& s)
+void validate_tm_settings(const BakeSettings& s, const gpu::Context& ctx)
 {
     if (!(s.tm_epsilon > 0) || !std::isfinite(s.tm_epsilon)) throw Error("t_m: epsilon must be > 0");
+    if (s.tm_float64_sums && !ctx.info().float64)
+        throw Error("t_m: float64 sums (BakeSettings::tm_float64_sums) need shaderFloat64, which this device lacks");
 }
 
 }  // namespace
@@ -122,6 +124,7 @@ struct Baker::Impl {
     std::optional<gpu::Kernel> ao_trace, ao_resolve, gather, refit, ray_refit;
     // t_m kernels per [grey (1 channel) or RGB][profile kind: Burley, dipole, Gaussians, mixed].
     std::optional<gpu::Kernel> tm_near[2][4], tm_exact[2][4], tm_cluster[2][4];
+    std::optional<gpu::Kernel> tm_exact_f64[2][4];  // BakeSettings::tm_float64_sums
 
     explicit Impl(gpu::Context& c) : ctx(c) {}
 
@@ -158,12 +161,13 @@ struct Baker::Impl {
         return kernel(tm_near[v.grey][v.kind],
                       {"tm_near", shaders::tm_near_comp(), storage_bindings(10), sizeof(NearPush), 64, tm_constants(v)});
     }
-    const gpu::Kernel& exact_kernel(const TmVariant& v)
+    const gpu::Kernel& exact_kernel(const TmVariant& v, bool float64_sums)
     {
-        if (!tm_exact[v.grey][v.kind]) require_subgroup_groups();  // once, when the kernel is made
-        return kernel(tm_exact[v.grey][v.kind], {"tm_exact", shaders::tm_exact_comp(),
-                                                 {kStorage, kTexels, kStorage, kStorage, kStorage}, sizeof(ExactPush), 64,
-                                                 tm_constants(v)});
+        auto& slot = float64_sums ? tm_exact_f64[v.grey][v.kind] : tm_exact[v.grey][v.kind];
+        if (!slot) require_subgroup_groups();  // once, when the kernel is made
+        return kernel(slot, {float64_sums ? "tm_exact_f64" : "tm_exact",
+                             float64_sums ? shaders::tm_exact_f64_comp() : shaders::tm_exact_comp(),
+                             {kStorage, kTexels, kStorage, kStorage, kStorage}, sizeof(ExactPush), 64, tm_constants(v)});
     }
     const gpu::Kernel& cluster_kernel(const TmVariant& v)
     {
@@ -340,7 +344,7 @@ struct Baker::Impl {
     // m.tm. `near_margin` (bake/near_field.hpp) covers how much closer vertices may come.
     void prepare_tm(MeshState& m, const PreparedMesh& mesh, const Material& material, const BakeSettings& s, float near_margin)
     {
-        validate_tm_settings(s);
+        validate_tm_settings(s, ctx);
         const size_t n = mesh.vertex_count();
         m.variant = tm_variant(material);
         m.exact = s.method == TmMethod::Exact || (s.method == TmMethod::Auto && n < kExactBelow);
@@ -436,7 +440,7 @@ struct Baker::Impl {
         gpu::compute_barrier(cmd);
         mark("t_m near field");
         if (m.exact) {
-            const auto& kernel = exact_kernel(m.variant);
+            const auto& kernel = exact_kernel(m.variant, s.tm_float64_sums);
             for (uint32_t begin = 0; begin < n; begin += kExactSourcesPerDispatch) {
                 ExactPush push{n, begin, std::min(n, begin + kExactSourcesPerDispatch)};
                 kernel.dispatch(cmd, n, push, {m.profiles, m.point_texels, m.partial_sum, m.partial_comp, m.tm});
