@@ -1,7 +1,10 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Ambient occlusion: one thread per (vertex, ray). A ray that hits a triangle within
-// max_distance adds 1 to its vertex's hit count (ao_resolve turns counts into A_o). Any hit
+// Ambient occlusion: one thread per (vertex, ray of the slice traced now). A ray that hits a
+// triangle within max_distance adds 1 to its vertex's hit count of that slice (ao_resolve sums
+// the slices and turns counts into A_o). Slices interleave the ray set: ray k of `rays` belongs
+// to slice k mod `slices`, so every slice is itself a stratified subset (an amortised re-bake
+// traces one slice a frame, jade/bake.hpp Amortisation; a full bake has one slice). Any hit
 // ends a ray, so the BVH is walked without a stack, in pre-order, following escape pointers.
 // One ray per thread also keeps every invocation's loop count far below lavapipe's limit of
 // 65,535 loop iterations per invocation (docs/lavapipe.md).
@@ -17,13 +20,15 @@ layout(push_constant, scalar) uniform Push {
     float epsilon;       // origin offset along the normal, mesh units
     float max_distance;  // mesh units
     uint item_count;
+    uint slices;         // divides rays
+    uint slice;          // the slice traced by this dispatch
 } pc;
 
 layout(binding = 0, scalar) readonly buffer Positions { vec3 positions[]; };
 layout(binding = 1, scalar) readonly buffer Normals { vec3 normals[]; };
 // The BVH flattened into items, nodes and triangles in pre-order (engine/src/bake/ray_items.hpp).
 layout(binding = 2) uniform usamplerBuffer items;
-layout(binding = 3, scalar) buffer Hits { uint hits[]; };
+layout(binding = 3, scalar) buffer Hits { uint hits[]; };  // [slice][vertex]
 
 // Möller–Trumbore, both faces; true when the hit lies in (0, tmax]. e1 = b − a, e2 = c − a.
 bool hits_triangle(vec3 o, vec3 d, float tmax, vec3 a, vec3 e1, vec3 e2)
@@ -63,10 +68,11 @@ bool occluded(vec3 o, vec3 d)
 void main()
 {
     uint index = jade_thread_index();
-    if (index >= pc.vertex_count * pc.rays) return;
-    uint v = index / pc.rays, k = index % pc.rays;
+    uint rays_in_slice = pc.rays / pc.slices;
+    if (index >= pc.vertex_count * rays_in_slice) return;
+    uint v = index / rays_in_slice, k = (index % rays_in_slice) * pc.slices + pc.slice;
     vec3 n = normals[v];
     vec3 o = positions[v] + pc.epsilon * n;
     vec3 d = ray_direction(n, ray_sample(v, k, pc.rays, pc.seed, pc.low_discrepancy != 0u));
-    if (occluded(o, d)) atomicAdd(hits[v], 1u);
+    if (occluded(o, d)) atomicAdd(hits[pc.slice * pc.vertex_count + v], 1u);
 }

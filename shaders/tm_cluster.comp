@@ -34,6 +34,8 @@ layout(push_constant, scalar) uniform Push {
     float epsilon;    // θ, the opening ratio
     uint work_budget; // loop iterations per dispatch (lavapipe's loop limit)
     uint first_point; // texel of source 0, after the nodes
+    uint slot_begin;  // the targets of this dispatch: tree slots [slot_begin, slot_end)
+    uint slot_end;    // (all of them, or one slice of an amortised re-bake)
 } pc;
 
 // Nodes (cluster_refit.comp: 4 texels each), then the sources in tree order (tm_common.glsl:
@@ -50,9 +52,9 @@ void main()
 {
     // Lanes past the end walk along with a copy of the last target (subgroup operations need
     // every lane) and write nothing.
-    uint k_lane = jade_thread_index();
-    bool in_range = k_lane < pc.vertex_count;
-    uint k = min(k_lane, pc.vertex_count - 1u);
+    uint k_lane = pc.slot_begin + jade_thread_index();
+    bool in_range = k_lane < pc.slot_end;
+    uint k = min(k_lane, pc.slot_end - 1u);
     uint lane = gl_SubgroupInvocationID & 7u;
     uvec3 state = subgroupBroadcastFirst(resume[k]);
     uint i = state.x, j = state.y, j_end = state.z;  // node; source cursor [j, j_end)

@@ -107,3 +107,62 @@ TEST_F(GpuTest, DynamicBakeRejectsInputsOfTheWrongSize)
     positions[3].y = NAN;
     EXPECT_THROW(dynamic.bake(positions, rest.normals, rest.areas), Error);
 }
+
+// Amortised re-bakes (jade::Amortisation) redo one AO ray slice and one t_m vertex range per
+// frame. Each slice computes exactly what the full re-bake computes for it, so:
+// - on a still mesh every amortised frame equals the full re-bake bit for bit;
+// - after the pose changes, AO is exact once every ray slice was re-traced (ao_slices frames),
+//   and t_m once every vertex range was re-evaluated after that (tm_slices more frames, minus
+//   the one they share): ao_slices + tm_slices − 1 frames. Before, the result lags.
+TEST_F(GpuTest, AmortisedDynamicBakeConvergesToTheFullReBake)
+{
+    const TriangleMesh source = load_mesh(test::asset("ChineseDragon-10kv.off"));
+    const PreparedMesh rest = prepare_mesh(source);
+    Material material = burley_material(glm::dvec3(0.05 * rest.diagonal), glm::vec3(0.8f));
+    material.profile[0] = ChannelProfile::burley(0.025 * rest.diagonal);
+    BakeSettings settings = BakeSettings::preset(Quality::Default);
+    settings.ao.rays = 32;
+    Baker baker(context());
+    DynamicBake full(baker, rest, material, settings);
+    DynamicBake amortised(baker, rest, material, settings);
+    const Amortisation slices{4, 3};
+    amortised.set_amortisation(slices);
+    EXPECT_EQ(amortised.amortisation().ao_slices, 4u);
+
+    const BakeResult still = full.bake(rest.positions, rest.normals, rest.areas);
+    for (int f = 0; f < 5; ++f) {
+        const BakeResult r = amortised.bake(rest.positions, rest.normals, rest.areas);
+        ASSERT_EQ(r.ao, still.ao) << "still mesh, frame " << f;
+        ASSERT_EQ(r.tm, still.tm) << "still mesh, frame " << f;
+    }
+
+    PreparedMesh moved = prepare_mesh(twisted(source, 0.1));
+    moved.diagonal = rest.diagonal;
+    const BakeResult target = full.bake(moved.positions, moved.normals, moved.areas);
+    const uint32_t frames = slices.ao_slices + slices.tm_slices - 1;
+    for (uint32_t f = 1; f <= frames; ++f) {
+        const BakeResult r = amortised.bake(moved.positions, moved.normals, moved.areas);
+        size_t ao_off = 0, tm_off = 0;
+        for (size_t i = 0; i < r.ao.size(); ++i) ao_off += r.ao[i] != target.ao[i], tm_off += r.tm[i] != target.tm[i];
+        SCOPED_TRACE("frame " + std::to_string(f) + " after the pose changed");
+        if (f < slices.ao_slices) EXPECT_GT(ao_off, r.ao.size() / 20) << "AO should still lag";
+        if (f >= slices.ao_slices) EXPECT_EQ(ao_off, 0u);
+        if (f < frames) EXPECT_GT(tm_off, 0u) << "t_m should still lag";
+        else EXPECT_EQ(tm_off, 0u);
+    }
+}
+
+TEST_F(GpuTest, AmortisationRejectsSlicesThatDoNotDivideTheRays)
+{
+    const PreparedMesh rest = prepare_mesh(procedural::sphere(1.0f, 16, 8));
+    Baker baker(context());
+    BakeSettings settings;
+    settings.ao.rays = 32;
+    DynamicBake dynamic(baker, rest, burley_material(glm::dvec3(0.1), glm::vec3(0.8f)), settings);
+    EXPECT_THROW(dynamic.set_amortisation({3, 1}), Error);
+    EXPECT_THROW(dynamic.set_amortisation({0, 1}), Error);
+    EXPECT_THROW(dynamic.set_amortisation({4, 0}), Error);
+    EXPECT_NO_THROW(dynamic.set_amortisation({8, 64}));  // more t_m slices than work groups: fine
+    const BakeResult r = dynamic.bake(rest.positions, rest.normals, rest.areas);
+    for (const auto& t : r.tm) ASSERT_TRUE(std::isfinite(t.x) && t.x >= 0);
+}

@@ -43,6 +43,7 @@ fs::path write_scene()
 struct CsvRow {
     std::string mesh, knob, value, method;
     double gpu_ms, wall_ms, rms, p99, max;
+    std::string notes;
 };
 
 // One CSV line (RFC 4180 quoting; no field of report.csv spans lines).
@@ -69,7 +70,7 @@ std::vector<CsvRow> read_rows(const fs::path& path, std::string& header)
         EXPECT_EQ(v.size(), 10u) << line;
         if (v.size() != 10) continue;
         auto d = [](const std::string& s) { return s.empty() ? -1.0 : std::stod(s); };
-        rows.push_back({v[0], v[1], v[2], v[3], d(v[4]), d(v[5]), d(v[6]), d(v[7]), d(v[8])});
+        rows.push_back({v[0], v[1], v[2], v[3], d(v[4]), d(v[5]), d(v[6]), d(v[7]), d(v[8]), v[9]});
     }
     return rows;
 }
@@ -132,17 +133,49 @@ TEST(Report, TinyRunWritesCsvSummaryAndErrorsFallWithEffort)
     for (size_t k = 1; k < eps.size(); ++k) EXPECT_LE(eps[k].max, eps[k - 1].max * 1.2 + 2e-6) << "eps " << eps[k].value;
     EXPECT_LT(eps.front().max, 0.05);
     const auto exact = series(rows, "tm_exact", "exact (burley d=5%)");
-    ASSERT_EQ(exact.size(), 1u);
+    ASSERT_GE(exact.size(), 1u);  // and a float64-sums row where the device has shaderFloat64
+    EXPECT_EQ(exact[0].value, "all pairs");
     EXPECT_LT(exact[0].max, 1e-4) << "float32 with compensated summation against float64";
+
+    // float64 sums (devices with shaderFloat64, lavapipe among them) err no more than float32's.
+    for (const auto& row : rows)
+        if (row.knob == "tm_exact" && row.value == "all pairs, float64 sums") EXPECT_LT(row.max, 1e-4);
+
+    // Final images carry PSNR and SSIM; the high preset's image is closer to the reference than draft's.
+    auto psnr_of = [&](const std::string& preset) {
+        for (const auto& row : rows)
+            if (row.knob == "image" && row.value == preset) {
+                const auto at = row.notes.find("PSNR ");
+                EXPECT_NE(row.notes.find("SSIM "), std::string::npos) << row.notes;
+                return at == std::string::npos ? 0.0 : std::strtod(row.notes.c_str() + at + 5, nullptr);
+            }
+        ADD_FAILURE() << "no image row for " << preset;
+        return 0.0;
+    };
+    EXPECT_GT(psnr_of("draft"), 30.0) << "PSNR in dB against the reference image";
+    EXPECT_GE(psnr_of("high"), psnr_of("draft"));
 
     // The LUT's error falls with its size.
     const auto lut = series(rows, "lut_size", "linear filtering (f)");
     ASSERT_GE(lut.size(), 2u);
     EXPECT_LT(lut[1].max, lut[0].max);
 
+    // Deformation: a refit traces the same rays over the same triangles as a rebuild, so its AO
+    // is identical; an amortised re-bake lags behind the moving mesh, so it errs.
+    const auto refit_ao = series(rows, "deform_ao", "refit (burley d=5%)");
+    const auto lagging_ao = series(rows, "deform_ao", "amortised (burley d=5%)");
+    ASSERT_EQ(refit_ao.size(), 1u);
+    ASSERT_EQ(lagging_ao.size(), 1u);
+    EXPECT_EQ(refit_ao[0].max, 0.0) << "refit AO against the from-scratch bake";
+    EXPECT_GT(lagging_ao[0].rms, 0.0) << "an amortised re-bake of a moving mesh should lag";
+    EXPECT_LT(lagging_ao[0].rms, 0.1);
+    const auto refit_tm = series(rows, "deform_tm", "refit (burley d=5%)");
+    ASSERT_EQ(refit_tm.size(), 1u);
+    EXPECT_LT(refit_tm[0].max, 2e-2) << "refit and rebuild t_m";
+
     const std::string md = read_text(dir / "summary.md");
     for (const char* s : {"## Recommended settings", "### draft", "### default", "### high", "| rays | method | GPU | wall | RMS | p99 | max |",
-                          "Translucency LUT size", "120 vertices"})
+                          "Translucency LUT size", "120 vertices", "### Deformation: refit, rebuild, amortised re-bakes"})
         EXPECT_NE(md.find(s), std::string::npos) << "summary.md lacks: " << s;
 }
 

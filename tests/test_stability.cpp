@@ -3,7 +3,7 @@
 // tiny and huge meshes, scattering distances from 1e-6 to 1e+6 × the diagonal, t_m of 0, 1e-30
 // and 1e30, and meshes that are degenerate, non-manifold, open or a single triangle. Every
 // test states what it expects; the meshes are small and procedural so the suite stays fast.
-// (The > 1 M-vertex case, which needs chunked passes, lives with the bake's own tests.)
+// (The > 1 M-vertex case, which needs chunked passes, is tests/test_large_mesh.cpp.)
 #include "gpu_fixture.hpp"
 
 #include <jade/bake.hpp>

@@ -4,10 +4,10 @@
 // as PNG and an animated GIF and prints the GPU time of each stage per frame.
 //
 // Re-bake path: jade::DynamicBake keeps both trees on the GPU and refits them every frame (no
-// CPU BVH builds). The deformed positions, normals and areas still make a trip through the host
-// because the Renderer takes host positions (Renderer::set_mesh); a host that records
-// MeshDeformer::record and DynamicBake::record(cmd, positions, normals, areas) into one command
-// buffer needs no read-back for the bake at all.
+// CPU BVH builds) and reads the deformer's buffers directly. The deformed vertices still make
+// a trip through the host for the Renderer, which takes host positions (Renderer::set_mesh); a
+// host that records MeshDeformer::record, DynamicBake::record(cmd, positions, normals, areas)
+// and its own draw into one command buffer needs no read-back at all.
 #include "commands.hpp"
 
 #include <jade/deform.hpp>
@@ -39,7 +39,9 @@ std::vector<OptionSpec> deform_options()
             {"period", "S", "seconds per cycle (procedural, default 2; gltf: the animation's duration)"},
             {"animation", "K", "gltf: index of the animation to play (default 0)"},
             {"size", "WxH", "frame size in pixels (default 256x256)"},
-            {"lights", "PRESET", "figure1 (back light: thin parts glow, default) | default"}};
+            {"lights", "PRESET", "figure1 (back light: thin parts glow, default) | default"},
+            {"amortise", "N", "re-trace 1/N of the AO rays and re-evaluate 1/N of the t_m values per frame (N divides the "
+                              "ray count; default 1: everything every frame)"}};
 }
 
 std::vector<OptionSpec> concat(std::initializer_list<std::vector<OptionSpec>> groups)
@@ -169,6 +171,13 @@ int cmd_deform(int argc, char** argv)
     std::filesystem::create_directories(out_dir);
     Baker baker(*ctx);
     DynamicBake rebake(baker, rest, material, bake_settings);
+    if (const uint32_t n = args.count("amortise", 1, 1, 64); n > 1) {
+        try {
+            rebake.set_amortisation({n, n});
+        } catch (const Error& e) {
+            args.fail(std::string("--amortise: ") + e.what());
+        }
+    }
     Renderer renderer(*ctx);
     renderer.set_material(material);
     std::printf("jade deform: %s, %zu bake vertices, %s, %u frames over %.3g s, bake %u AO rays, theta %.2g, %ux%u\n",
@@ -184,9 +193,9 @@ int cmd_deform(int argc, char** argv)
         StageTimes st;
         const DeformTimings dt = deform_frame(f);
         st.deform = dt.deform_ms, st.normals = dt.normals_ms;
+        const BakeResult baked = rebake.bake(deformer.positions_buffer(), deformer.normals_buffer(), deformer.areas_buffer());
         // The deformed vertices go through the host for the renderer (see the top of this file).
         const PreparedMesh deformed = deformed_mesh(rest, deformer.read());
-        const BakeResult baked = rebake.bake(deformed.positions, deformed.normals, deformed.areas);
         for (const auto& [stage, ms] : baked.timings.gpu_stages) (stage == "ao" ? st.ao : st.tm) += ms;
         renderer.set_mesh(deformed, baked.tm);
         RenderedImage image = renderer.render(camera, lights, render_settings);

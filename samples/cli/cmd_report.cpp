@@ -32,6 +32,8 @@ Plan make_plan(const std::string& name, uint32_t tm_sample, std::vector<float> e
         p.tm_grey_d = {0.05};
         p.lut_sizes = {16, 64};
         p.image_size = 64;
+        p.deform_frames = 3;
+        p.deform_slices = {2};
         return p;
     }
     p.ao_rays = {4, 8, 16, 32, 64, 128, 256, 512, 1024};
@@ -179,6 +181,7 @@ int cmd_report(int argc, char** argv)
         const size_t first = steps.size();
         add_bake_steps(session, states[m], steps);
         add_image_steps(session, states[m], steps);
+        add_deform_steps(session, states[m], steps);
         for (size_t k = first; k < steps.size(); ++k) steps[k].what = fs::path(sources[m]).stem().string() + ": " + steps[k].what;
     }
     add_lut_steps(session, steps);

@@ -24,6 +24,7 @@ int cmd_figure1(int argc, char** argv);
 int cmd_bench_render(int argc, char** argv);
 int cmd_report(int argc, char** argv);
 int cmd_deform(int argc, char** argv);
+int cmd_bench_deform(int argc, char** argv);
 int cmd_plan(int argc, char** argv);
 int cmd_scene(int argc, char** argv);
 

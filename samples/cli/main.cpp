@@ -22,6 +22,7 @@ const char* kUsage =
     "  bench render MESH  frame time of t_m shading against Lambert at 512^2 and 1024^2\n"
     "  report [MESH...]   error of every approximation against GPU and wall time (--out DIR)\n"
     "  deform [MESH]      deforming mesh demo: GPU deform, re-bake, t_m frames and a GIF\n"
+    "  bench deform       frames per second of the per-frame re-bake, full and amortised, with errors\n"
     "  plan SCENE.gltf    the passes, shader variants and GPU memory a glTF scene needs (--cache DIR)\n"
     "  scene SCENE.gltf   render a glTF scene running only the planned passes (--verbose lists them)\n"
     "  bench render --scene SCENE.gltf  cached static scene against the same scene never baked\n"
@@ -51,6 +52,7 @@ int main(int argc, char** argv)
         if (command == "bake") return jade::cli::cmd_bake(argc, argv);
         if (command == "bench" && argc > 2 && !std::strcmp(argv[2], "render") && !has_scene_flag(argc, argv))
             return jade::cli::cmd_bench_render(argc, argv);
+        if (command == "bench" && argc > 2 && !std::strcmp(argv[2], "deform")) return jade::cli::cmd_bench_deform(argc, argv);
         if (command == "bench") return jade::cli::cmd_bench(argc, argv);
         if (command == "render") return jade::cli::cmd_render(argc, argv);
         if (command == "figure1") return jade::cli::cmd_figure1(argc, argv);

@@ -52,6 +52,8 @@ struct Plan {
     uint32_t tm_sample = 300;              ///< vertices the float64 t_m reference runs on
     std::vector<uint32_t> lut_sizes;       ///< LUT N: (N + 1) × N texels
     uint32_t image_size = 512;             ///< final-image rows: width = height
+    uint32_t deform_frames = 6;            ///< frames of the twist the deformation rows play
+    std::vector<uint32_t> deform_slices{2, 4, 8};  ///< amortised modes (AO and t_m slices)
 };
 
 /// "full", "quick" or "tiny"; `epsilons` replaces the default ε list when not empty.
@@ -100,6 +102,10 @@ void add_lut_steps(Session& session, std::vector<Step>& steps);
 /// Final images of materials[0] with each preset's t_m and each LUT size, against the
 /// all-pairs t_m with the 4096-ray AO and the largest LUT.
 void add_image_steps(Session& session, MeshState& state, std::vector<Step>& steps);
+
+// report_deform.cpp
+/// Refit, rebuild and amortised re-bakes of a twisting mesh (materials[0], 32 AO rays).
+void add_deform_steps(Session& session, MeshState& state, std::vector<Step>& steps);
 
 // report_write.cpp
 /// Writes `content` to `path` through a temporary file in the same folder and a rename.

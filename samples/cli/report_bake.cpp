@@ -166,7 +166,9 @@ Step tm_step(Session& s, MeshState& st, size_t k, std::string knob, std::string 
         Row r{st.label, knob, value, method + " (" + label + ")", b.timings.gpu_total_ms, b.timings.wall_ms,
               error_stats(tm_errors(b.tm, st, mc)), ""};
         r.notes = strf("relative, vs float64 on %zu vertices", st.sample.size());
-        if (settings.method == TmMethod::Exact) {
+        if (settings.tm_float64_sums) {
+            r.notes += "; float32 pair values, float64 sums";
+        } else if (settings.method == TmMethod::Exact) {
             r.notes += "; float32 with compensated summation";
             mc.exact = std::move(b.tm);
         } else if (settings.method == TmMethod::Auto) {
@@ -195,6 +197,10 @@ void add_tm_steps(Session& s, MeshState& st, std::vector<Step>& steps)
         BakeSettings exact;
         exact.method = TmMethod::Exact;
         steps.push_back(tm_step(s, st, k, "tm_exact", "all pairs", "exact", exact, labels[k]));
+        if (s.context.device_info().float64) {  // float32 against float64 accumulation
+            exact.tm_float64_sums = true;
+            steps.push_back(tm_step(s, st, k, "tm_exact", "all pairs, float64 sums", "exact", exact, labels[k]));
+        }
         for (float eps : plan.tm_epsilons) {
             BakeSettings clustered;
             clustered.method = TmMethod::Clustered;

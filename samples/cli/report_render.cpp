@@ -6,7 +6,8 @@
 // points, against jade::lut_reference; absolute error of f(cos θ, t).
 // Images: t_m shading of materials[0] (default lights, framed from +z), error per covered pixel
 // in 8-bit sRGB levels (the worst channel, after clamping to [0, 1]) against the image of the
-// all-pairs t_m from the 4096-ray AO with a 4097 × 1025 LUT.
+// all-pairs t_m from the 4096-ray AO with a 4097 × 1025 LUT; the notes add PSNR and SSIM (a
+// perceptual metric: structure, contrast and luminance over 8×8 windows).
 #include "report.hpp"
 
 #include <jade/lut.hpp>
@@ -15,6 +16,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <random>
 
@@ -84,6 +86,59 @@ double srgb(float linear)
 {
     const double v = std::clamp(double(linear), 0.0, 1.0);
     return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
+}
+
+/// PSNR (dB) over the covered pixels' sRGB channels in [0, 1] and SSIM (Wang et al. 2004) of
+/// the sRGB luma, mean over 8×8 windows (stride 4) whose centre is covered, with the usual
+/// constants C1 = (0.01)², C2 = (0.03)². Identical images: PSNR +∞ (written "inf"), SSIM 1.
+struct ImageQuality {
+    double psnr = 0, ssim = 0;
+};
+
+ImageQuality image_quality(const RenderedImage& image, const RenderedImage& reference)
+{
+    const uint32_t w = reference.width, h = reference.height;
+    double se = 0;
+    size_t n = 0;
+    std::vector<double> a(size_t(w) * h), b(size_t(w) * h);
+    for (size_t p = 0; p < a.size(); ++p) {
+        const float* x = image.rgba.data() + 4 * p;
+        const float* y = reference.rgba.data() + 4 * p;
+        double la = 0, lb = 0;
+        for (int c = 0; c < 3; ++c) {
+            const double u = srgb(x[c]), v = srgb(y[c]), weight = c == 0 ? 0.2126 : c == 1 ? 0.7152 : 0.0722;
+            if (y[3] > 0.5f) se += (u - v) * (u - v), ++n;
+            la += weight * u, lb += weight * v;
+        }
+        a[p] = la, b[p] = lb;
+    }
+    ImageQuality q;
+    q.psnr = se == 0 ? std::numeric_limits<double>::infinity() : 10.0 * std::log10(double(n) / se);
+    constexpr double c1 = 0.01 * 0.01, c2 = 0.03 * 0.03;
+    double sum = 0;
+    size_t windows = 0;
+    for (uint32_t y0 = 0; y0 + 8 <= h; y0 += 4)
+        for (uint32_t x0 = 0; x0 + 8 <= w; x0 += 4) {
+            if (reference.rgba[4 * (size_t(y0 + 4) * w + x0 + 4) + 3] <= 0.5f) continue;
+            double ma = 0, mb = 0, vaa = 0, vbb = 0, vab = 0;
+            for (uint32_t y = y0; y < y0 + 8; ++y)
+                for (uint32_t x = x0; x < x0 + 8; ++x) ma += a[size_t(y) * w + x] / 64, mb += b[size_t(y) * w + x] / 64;
+            for (uint32_t y = y0; y < y0 + 8; ++y)
+                for (uint32_t x = x0; x < x0 + 8; ++x) {
+                    const double da = a[size_t(y) * w + x] - ma, db = b[size_t(y) * w + x] - mb;
+                    vaa += da * da / 63, vbb += db * db / 63, vab += da * db / 63;
+                }
+            sum += (2 * ma * mb + c1) * (2 * vab + c2) / ((ma * ma + mb * mb + c1) * (vaa + vbb + c2));
+            ++windows;
+        }
+    q.ssim = windows ? sum / double(windows) : 1.0;
+    return q;
+}
+
+std::string quality_note(const RenderedImage& image, const RenderedImage& reference)
+{
+    const ImageQuality q = image_quality(image, reference);
+    return std::isinf(q.psnr) ? strf("PSNR inf, SSIM %.6f", q.ssim) : strf("PSNR %.1f dB, SSIM %.6f", q.psnr, q.ssim);
 }
 
 /// Per covered pixel of `reference` (alpha > ½), the worst channel's difference in 8-bit sRGB levels.
@@ -179,8 +234,8 @@ void add_image_steps(Session& s, MeshState& st, std::vector<Step>& steps)
             RenderedImage img = render_with(*state->renderer, st, bake.tm, s.plan);
             Row r{st.label, "image", q, "t_m shading (" + st.materials.front().label + ")", bake.timings.gpu_total_ms,
                   bake.timings.wall_ms, error_stats(image_errors(img, state->reference)), ""};
-            r.notes = strf("8-bit sRGB levels per covered pixel, %ux%u, default LUT; gpu_ms/wall_ms: the bake (draw: %s GPU)",
-                           img.width, img.height, format_ms(img.gpu_ms).c_str());
+            r.notes = strf("8-bit sRGB levels per covered pixel, %ux%u, default LUT; gpu_ms/wall_ms: the bake (draw: %s GPU); ",
+                           img.width, img.height, format_ms(img.gpu_ms).c_str()) + quality_note(img, state->reference);
             return r;
         }});
     }
@@ -194,8 +249,8 @@ void add_image_steps(Session& s, MeshState& st, std::vector<Step>& steps)
             RenderedImage img = render_with(*renderer, st, st.materials.front().exact, s.plan);
             Row r{st.label, "image_lut", layout_name(layout), "t_m shading (" + st.materials.front().label + ")", img.gpu_ms,
                   ms_since(t0), error_stats(image_errors(img, state->reference)), ""};
-            r.notes = strf("8-bit sRGB levels per covered pixel, %ux%u, all-pairs t_m; gpu_ms: the draw; wall_ms: LUT build + draw",
-                           img.width, img.height);
+            r.notes = strf("8-bit sRGB levels per covered pixel, %ux%u, all-pairs t_m; gpu_ms: the draw; wall_ms: LUT build + draw; ",
+                           img.width, img.height) + quality_note(img, state->reference);
             if (last) *state = {};  // release the renderers before the context goes
             return r;
         }});

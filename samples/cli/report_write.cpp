@@ -129,6 +129,7 @@ namespace {
 //   t_m (tm_exact/epsilon/auto)      GPU time, max error        group: mesh, material
 //   presets end to end (quality)     GPU time, max error        group: mesh
 //   LUT (lut_size, image_lut)        texels,   max error        group: mesh
+//   deformation (deform_ao, _tm)     GPU time, RMS error        group: mesh, knob
 struct Axes {
     std::string group;
     double x = kNaN, y = kNaN;
@@ -147,6 +148,7 @@ std::optional<Axes> pareto_axes(const Row& r)
     if (r.knob == "tm_exact" || r.knob == "tm_epsilon" || r.knob == "tm_auto") return Axes{r.mesh + "|tm|" + c, r.gpu_ms, r.err.max};
     if (r.knob == "quality") return Axes{r.mesh + "|quality", r.gpu_ms, r.err.max};
     if (r.knob == "lut_size" || r.knob == "image_lut") return Axes{r.mesh + "|" + r.knob, texels(r.value), r.err.max};
+    if (r.knob == "deform_ao" || r.knob == "deform_tm") return Axes{r.mesh + "|" + r.knob, r.gpu_ms, r.err.rms};
     return std::nullopt;
 }
 
@@ -382,6 +384,16 @@ std::string summary_markdown(const std::vector<Row>& rows, const Plan& plan, con
         md << "### Final image (t_m shading, 8-bit sRGB levels per covered pixel)\n\n"
            << rows_table(rows, front, select(rows, [&](const Row& r) { return r.mesh == m && (r.knob == "image" || r.knob == "image_lut"); }),
                          "preset / LUT", false, true);
+        md << "### Deformation: refit, rebuild, amortised re-bakes\n\nA twist played at 15 frames per second; every "
+              "frame against a from-scratch bake of the same deformed mesh (rebuild: new BVH and cluster tree). GPU = "
+              "bake per frame (refits, AO, t_m); RMS = mean over frames of the per-frame RMS; max over all frames. "
+              "Amortised 1/N re-traces 1/N of the AO rays and re-evaluates 1/N of the vertices' t_m per frame "
+              "(`jade::Amortisation`); its first frame (a full re-bake) is left out.\n\nAO, absolute error:\n\n"
+           << rows_table(rows, front, select(rows, [&](const Row& r) { return r.mesh == m && r.knob == "deform_ao"; }), "mode",
+                         false, true)
+           << "t_m, relative error:\n\n"
+           << rows_table(rows, front, select(rows, [&](const Row& r) { return r.mesh == m && r.knob == "deform_tm"; }), "mode",
+                         true, true);
     }
     md << "## Translucency LUT size\n\n(N + 1) × N texels against `lut_reference` (float64), absolute error of f; "
           "wall = GPU build + read-back. The last row is the renderer's default size.\n\n"

@@ -28,6 +28,7 @@
 #include <glm/vec3.hpp>
 #include <vulkan/vulkan.h>
 
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -88,6 +89,11 @@ struct BakeSettings {
     /// error on the bunny and the dragon (d = 5 % of the diagonal): θ = 1: 1.6e-3, 0.7: 4.7e-4,
     /// 0.5: 1.6e-4, 0.3: 1.6e-5.
     float tm_epsilon = 1.2f;
+    /// All-pairs method only (TmMethod::Exact, or Auto on small meshes): accumulate the far
+    /// field in float64 instead of compensated float32 sums (pair values stay float32). Needs
+    /// DeviceInfo::float64 (jade::Error otherwise); for measuring what float32 sums cost in
+    /// accuracy (`jade report`), not for production: slower on every device.
+    bool tm_float64_sums = false;
     static BakeSettings preset(Quality q);  ///< the Quality table above
 };
 
@@ -133,6 +139,25 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
+/// How much of the re-bake one DynamicBake::record() does (amortisation over frames).
+///
+/// AO: the rays of AoSettings are split into `ao_slices` interleaved slices (ray k belongs to
+/// slice k mod ao_slices, so each slice is itself a stratified set); a record() re-traces one
+/// slice, in turn, and keeps the other slices' hit counts from the frames that traced them.
+/// t_m: the vertices, in the point tree's order (so each slice is a few compact patches of the
+/// surface), are split into `tm_slices` ranges; a record() re-evaluates one range, the others
+/// keep their value. Refits and the sources are updated every frame, with the AO they have. So
+/// on a still mesh every frame equals the full re-bake; after the mesh stops moving, AO is exact
+/// after ao_slices frames and t_m after ao_slices + tm_slices − 1; a moving mesh lags behind by
+/// up to that many frames. The first record() after construction or set_amortisation does
+/// everything. Meshes small enough for the all-pairs t_m pass (TmMethod::Auto under 2,048
+/// vertices) always re-evaluate every vertex's t_m. `jade bench deform` measures the error
+/// this adds against a from-scratch bake of each frame.
+struct Amortisation {
+    uint32_t ao_slices = 1;  ///< ≥ 1 and divides AoSettings::rays; 1: every ray every frame
+    uint32_t tm_slices = 1;  ///< ≥ 1; 1: every vertex's t_m every frame
+};
+
 /// The per-frame re-bake of a deforming mesh, all on the GPU (the poster's future work).
 ///
 /// Built once from the rest pose: the triangle BVH's and the cluster tree's shapes, the
@@ -171,9 +196,24 @@ public:
     /// Convenience: uploads the inputs, records, submits, waits and reads back. Throws
     /// jade::Error on sizes that do not match the rest pose or non-finite input.
     BakeResult bake(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals, std::span<const float> areas);
+    /// Convenience for inputs already on the GPU (e.g. a MeshDeformer's buffers, after its
+    /// deform() returned): records record(cmd, positions, normals, areas) with GPU timestamps
+    /// per stage, submits, waits, and reads ao and tm back when `read_back` (else they are empty).
+    BakeResult bake(VkBuffer positions, VkBuffer normals, VkBuffer areas, bool read_back = true);
+
+    /// Re-bakes a part of the work per record() (see Amortisation). Waits for the device to
+    /// be idle when the AO slice count changes (the hit-count buffer is reallocated). Throws
+    /// jade::Error naming the field when ao_slices does not divide the ray count or a count is 0.
+    void set_amortisation(const Amortisation& amortisation);
+    const Amortisation& amortisation() const;
 
 private:
+    struct BakeInputs {
+        VkBuffer positions, normals, areas;
+    };
+    void copy_inputs(VkCommandBuffer cmd, const BakeInputs& inputs);
     void record_timed(VkCommandBuffer cmd, void* timer);
+    BakeResult submit_timed(const BakeInputs* inputs, std::chrono::steady_clock::time_point t0, bool read_back);
     struct State;
     std::unique_ptr<State> state_;
 };

@@ -62,14 +62,18 @@ constexpr size_t kExactBelow = 2048;
 constexpr uint32_t kExactSourcesPerDispatch = 16384;
 constexpr uint32_t kClusterWorkPerDispatch = 32768;
 
-struct AoPush { uint32_t vertex_count, rays, seed, low_discrepancy; float epsilon, max_distance; uint32_t item_count; };
-struct AoResolvePush { uint32_t vertex_count, rays; };
+struct AoPush {
+    uint32_t vertex_count, rays, seed, low_discrepancy;
+    float epsilon, max_distance;
+    uint32_t item_count, slices, slice;
+};
+struct AoResolvePush { uint32_t vertex_count, rays, slices; };
 struct GatherPush { uint32_t vertex_count; };
 struct RefitPush { uint32_t count, first; };
 struct RayRefitPush { uint32_t count, first, mode; };
 struct NearPush { uint32_t first_slot, slot_count, index_base; };
 struct ExactPush { uint32_t vertex_count, source_begin, source_end; };
-struct ClusterPush { uint32_t vertex_count, node_count; float epsilon; uint32_t work_budget, first_point; };
+struct ClusterPush { uint32_t vertex_count, node_count; float epsilon; uint32_t work_budget, first_point, slot_begin, slot_end; };
 
 std::vector<VkDescriptorType> storage_bindings(size_t n) { return std::vector<VkDescriptorType>(n, kStorage); }
 
@@ -94,9 +98,11 @@ void validate_ao_settings(const AoSettings& s)
     if (!(s.epsilon_rel >= 0) || !std::isfinite(s.epsilon_rel)) throw Error("AO: epsilon must be ≥ 0");
 }
 
-void validate_tm_settings(const BakeSettings& s)
+void validate_tm_settings(const BakeSettings& s, const gpu::Context& ctx)
 {
     if (!(s.tm_epsilon > 0) || !std::isfinite(s.tm_epsilon)) throw Error("t_m: epsilon must be > 0");
+    if (s.tm_float64_sums && !ctx.info().float64)
+        throw Error("t_m: float64 sums (BakeSettings::tm_float64_sums) need shaderFloat64, which this device lacks");
 }
 
 }  // namespace
@@ -118,6 +124,7 @@ struct Baker::Impl {
     std::optional<gpu::Kernel> ao_trace, ao_resolve, gather, refit, ray_refit;
     // t_m kernels per [grey (1 channel) or RGB][profile kind: Burley, dipole, Gaussians, mixed].
     std::optional<gpu::Kernel> tm_near[2][4], tm_exact[2][4], tm_cluster[2][4];
+    std::optional<gpu::Kernel> tm_exact_f64[2][4];  // BakeSettings::tm_float64_sums
 
     explicit Impl(gpu::Context& c) : ctx(c) {}
 
@@ -154,12 +161,13 @@ struct Baker::Impl {
         return kernel(tm_near[v.grey][v.kind],
                       {"tm_near", shaders::tm_near_comp(), storage_bindings(10), sizeof(NearPush), 64, tm_constants(v)});
     }
-    const gpu::Kernel& exact_kernel(const TmVariant& v)
+    const gpu::Kernel& exact_kernel(const TmVariant& v, bool float64_sums)
     {
-        if (!tm_exact[v.grey][v.kind]) require_subgroup_groups();  // once, when the kernel is made
-        return kernel(tm_exact[v.grey][v.kind], {"tm_exact", shaders::tm_exact_comp(),
-                                                 {kStorage, kTexels, kStorage, kStorage, kStorage}, sizeof(ExactPush), 64,
-                                                 tm_constants(v)});
+        auto& slot = float64_sums ? tm_exact_f64[v.grey][v.kind] : tm_exact[v.grey][v.kind];
+        if (!slot) require_subgroup_groups();  // once, when the kernel is made
+        return kernel(slot, {float64_sums ? "tm_exact_f64" : "tm_exact",
+                             float64_sums ? shaders::tm_exact_f64_comp() : shaders::tm_exact_comp(),
+                             {kStorage, kTexels, kStorage, kStorage, kStorage}, sizeof(ExactPush), 64, tm_constants(v)});
     }
     const gpu::Kernel& cluster_kernel(const TmVariant& v)
     {
@@ -192,7 +200,8 @@ struct Baker::Impl {
         gpu::Buffer positions, normals, areas;
         // AO: the BVH as ray items; refit data when the mesh deforms.
         uint32_t item_count = 0;
-        gpu::Buffer ray_items, hits, ao;
+        gpu::Buffer ray_items, hits, ao;  // hits: per ray slice, per vertex
+        uint32_t ao_slices = 1;
         gpu::TexelView ray_item_texels;
         gpu::Buffer indices, item_origin, ray_work;  // dynamic only
         std::vector<uint32_t> ray_work_offsets;     // [0, triangles) then one range per level
@@ -312,22 +321,30 @@ struct Baker::Impl {
         }
     }
 
-    void record_ao(VkCommandBuffer cmd, MeshState& m, const AoSettings& s)
+    // Traces the ray slices [first, first + count) of m.ao_slices (ao_trace.comp) into their
+    // hit counts, then resolves A_o from the counts of every slice.
+    void record_ao(VkCommandBuffer cmd, MeshState& m, const AoSettings& s, uint32_t first = 0, uint32_t count = 0)
     {
-        AoPush push{m.vertex_count, s.rays, s.seed, s.low_discrepancy ? 1u : 0u, s.epsilon_rel * m.diagonal,
-                    s.max_distance_rel * m.diagonal, m.item_count};
-        vkCmdFillBuffer(cmd, m.hits.handle(), 0, VK_WHOLE_SIZE, 0);
+        if (count == 0) count = m.ao_slices;
+        const VkDeviceSize slice_bytes = VkDeviceSize(m.vertex_count) * sizeof(uint32_t);
+        vkCmdFillBuffer(cmd, m.hits.handle(), first * slice_bytes, count * slice_bytes, 0);
         gpu::compute_barrier(cmd);
-        ao_kernel().dispatch(cmd, uint64_t(m.vertex_count) * s.rays, push, {m.positions, m.normals, m.ray_item_texels, m.hits});
+        const uint32_t rays_in_slice = s.rays / m.ao_slices;
+        for (uint32_t slice = first; slice < first + count; ++slice) {
+            AoPush push{m.vertex_count, s.rays, s.seed, s.low_discrepancy ? 1u : 0u, s.epsilon_rel * m.diagonal,
+                        s.max_distance_rel * m.diagonal, m.item_count, m.ao_slices, slice};
+            ao_kernel().dispatch(cmd, uint64_t(m.vertex_count) * rays_in_slice, push,
+                                 {m.positions, m.normals, m.ray_item_texels, m.hits});
+        }
         gpu::compute_barrier(cmd);
-        ao_resolve_kernel().dispatch(cmd, m.vertex_count, AoResolvePush{m.vertex_count, s.rays}, {m.hits, m.ao});
+        ao_resolve_kernel().dispatch(cmd, m.vertex_count, AoResolvePush{m.vertex_count, s.rays, m.ao_slices}, {m.hits, m.ao});
     }
 
     // Sets up gather → near field → (all pairs | refit → clustered), reading m.ao, writing
     // m.tm. `near_margin` (bake/near_field.hpp) covers how much closer vertices may come.
     void prepare_tm(MeshState& m, const PreparedMesh& mesh, const Material& material, const BakeSettings& s, float near_margin)
     {
-        validate_tm_settings(s);
+        validate_tm_settings(s, ctx);
         const size_t n = mesh.vertex_count();
         m.variant = tm_variant(material);
         m.exact = s.method == TmMethod::Exact || (s.method == TmMethod::Auto && n < kExactBelow);
@@ -386,12 +403,18 @@ struct Baker::Impl {
         m.resume = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m traversal resume state");
     }
 
-    void record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSettings& s, gpu::GpuTimer* timer)
+    // Gathers every source and refits the cluster tree, then evaluates t_m for the targets in
+    // tree slots [slot_begin, slot_end) (every slot by default; the all-pairs method always
+    // evaluates every target).
+    void record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSettings& s, gpu::GpuTimer* timer, uint32_t slot_begin = 0,
+                   uint32_t slot_end = ~0u)
     {
         auto mark = [&](const char* stage) {
             if (timer) timer->mark(cmd, stage);
         };
         const uint32_t n = m.vertex_count;
+        if (m.exact) slot_begin = 0, slot_end = n;
+        slot_end = std::min(slot_end, n);
         const gpu::Binding nodes_window(m.points.handle(), 0, std::max<VkDeviceSize>(VkDeviceSize(m.node_count) * 64, 16));
         const gpu::Binding points_window(m.points.handle(), VkDeviceSize(m.first_point) * 16, VkDeviceSize(n) * 32);
         gather_kernel().dispatch(cmd, n, GatherPush{n}, {m.positions, m.areas, m.ao, m.point_order, points_window});
@@ -407,7 +430,9 @@ struct Baker::Impl {
             vkCmdFillBuffer(cmd, m.resume.handle(), 0, VK_WHOLE_SIZE, 0);
         }
         for (const auto& w : m.near_windows) {
-            near_kernel(m.variant).dispatch(cmd, w.slot_count, NearPush{w.first_slot, w.slot_count, w.index_base},
+            const uint32_t first = std::max(w.first_slot, slot_begin), end = std::min(w.first_slot + w.slot_count, slot_end);
+            if (first >= end) continue;
+            near_kernel(m.variant).dispatch(cmd, end - first, NearPush{first, end - first, w.index_base},
                                             {m.profiles, m.positions, m.areas, m.ao, m.near_offsets,
                                              gpu::Binding(m.near_indices.handle(), VkDeviceSize(w.index_base) * 4, w.bytes),
                                              m.point_order, m.partial_sum, m.partial_comp, m.tm});
@@ -415,7 +440,7 @@ struct Baker::Impl {
         gpu::compute_barrier(cmd);
         mark("t_m near field");
         if (m.exact) {
-            const auto& kernel = exact_kernel(m.variant);
+            const auto& kernel = exact_kernel(m.variant, s.tm_float64_sums);
             for (uint32_t begin = 0; begin < n; begin += kExactSourcesPerDispatch) {
                 ExactPush push{n, begin, std::min(n, begin + kExactSourcesPerDispatch)};
                 kernel.dispatch(cmd, n, push, {m.profiles, m.point_texels, m.partial_sum, m.partial_comp, m.tm});
@@ -428,9 +453,9 @@ struct Baker::Impl {
         // Every thread visits each node and each source at most once: this many dispatches finish
         // every traversal; threads that are done return at once.
         const uint32_t dispatches = (m.node_count + n) / kClusterWorkPerDispatch + 1;
-        ClusterPush push{n, m.node_count, s.tm_epsilon, kClusterWorkPerDispatch, m.first_point};
+        ClusterPush push{n, m.node_count, s.tm_epsilon, kClusterWorkPerDispatch, m.first_point, slot_begin, slot_end};
         for (uint32_t d = 0; d < dispatches; ++d) {
-            kernel.dispatch(cmd, n, push, {m.profiles, m.tree_texels, m.point_order, m.resume, m.partial_sum, m.partial_comp, m.tm});
+            kernel.dispatch(cmd, slot_end - slot_begin, push, {m.profiles, m.tree_texels, m.point_order, m.resume, m.partial_sum, m.partial_comp, m.tm});
             gpu::compute_barrier(cmd);
         }
         mark("t_m far field (clustered)");
@@ -526,7 +551,20 @@ struct DynamicBake::State {
     Baker::Impl& impl;
     BakeSettings settings;
     Baker::Impl::MeshState mesh;
+    Amortisation amortisation;
+    uint64_t frame = 0;       // record() calls since the last full re-bake
+    bool stale = true;        // the next record() re-bakes everything
     State(Baker::Impl& i, const BakeSettings& s) : impl(i), settings(s) {}
+
+    // Tree slots [begin, end) of t_m slice `k`: boundaries on multiples of 64 (a work group),
+    // so the lanes of a subgroup stay neighbours in the tree (tm_cluster.comp).
+    std::pair<uint32_t, uint32_t> tm_slice(uint32_t k) const
+    {
+        const uint64_t n = mesh.vertex_count, groups = (n + 63) / 64;
+        const uint64_t slices = std::min<uint64_t>(amortisation.tm_slices, groups);
+        const uint64_t begin = groups * (k % slices) / slices * 64, end = groups * (k % slices + 1) / slices * 64;
+        return {uint32_t(std::min(begin, n)), uint32_t(std::min(end, n))};
+    }
 };
 
 DynamicBake::DynamicBake(Baker& baker, const PreparedMesh& rest, const Material& material, const BakeSettings& settings)
@@ -552,14 +590,19 @@ void DynamicBake::record(VkCommandBuffer cmd) { record_timed(cmd, nullptr); }
 
 void DynamicBake::record(VkCommandBuffer cmd, VkBuffer positions, VkBuffer normals, VkBuffer areas)
 {
+    copy_inputs(cmd, {positions, normals, areas});
+    record_timed(cmd, nullptr);  // begins with the barrier that orders the copies before the refit
+}
+
+void DynamicBake::copy_inputs(VkCommandBuffer cmd, const BakeInputs& in)
+{
     auto& m = state_->mesh;
     gpu::compute_barrier(cmd);  // the caller's writes before the copies read them
     const VkDeviceSize n = m.vertex_count;
     const VkBufferCopy vec3s{0, 0, n * 12}, floats{0, 0, n * 4};
-    vkCmdCopyBuffer(cmd, positions, m.positions.handle(), 1, &vec3s);
-    vkCmdCopyBuffer(cmd, normals, m.normals.handle(), 1, &vec3s);
-    vkCmdCopyBuffer(cmd, areas, m.areas.handle(), 1, &floats);
-    record_timed(cmd, nullptr);  // begins with the barrier that orders the copies before the refit
+    vkCmdCopyBuffer(cmd, in.positions, m.positions.handle(), 1, &vec3s);
+    vkCmdCopyBuffer(cmd, in.normals, m.normals.handle(), 1, &vec3s);
+    vkCmdCopyBuffer(cmd, in.areas, m.areas.handle(), 1, &floats);
 }
 
 void DynamicBake::record_timed(VkCommandBuffer cmd, void* timer_ptr)
@@ -570,11 +613,39 @@ void DynamicBake::record_timed(VkCommandBuffer cmd, void* timer_ptr)
     gpu::compute_barrier(cmd);  // the inputs' writes (transfer or compute) before the refit reads them
     impl.record_ray_refit(cmd, m);
     if (timer) timer->mark(cmd, "BVH refit");
-    impl.record_ao(cmd, m, state_->settings.ao);
+    // Amortised: one AO slice and one t_m slice per record(), in turn; everything when stale.
+    const bool full = state_->stale;
+    const uint64_t frame = state_->frame;
+    state_->stale = false;
+    state_->frame = full ? 1 : frame + 1;
+    if (full) impl.record_ao(cmd, m, state_->settings.ao);
+    else impl.record_ao(cmd, m, state_->settings.ao, uint32_t(frame % m.ao_slices), 1);
     gpu::compute_barrier(cmd);
     if (timer) timer->mark(cmd, "ao");
-    impl.record_tm(cmd, m, state_->settings, timer);
+    const auto [begin, end] = full ? std::pair<uint32_t, uint32_t>{0, m.vertex_count}
+                                   : state_->tm_slice(uint32_t(frame % state_->amortisation.tm_slices));
+    impl.record_tm(cmd, m, state_->settings, timer, begin, end);
 }
+
+void DynamicBake::set_amortisation(const Amortisation& a)
+{
+    const uint32_t rays = state_->settings.ao.rays;
+    if (a.ao_slices == 0 || rays % a.ao_slices != 0)
+        throw Error("DynamicBake: Amortisation::ao_slices (" + std::to_string(a.ao_slices) + ") must be ≥ 1 and divide the " +
+                    std::to_string(rays) + " AO rays per vertex");
+    if (a.tm_slices == 0) throw Error("DynamicBake: Amortisation::tm_slices must be ≥ 1");
+    auto& m = state_->mesh;
+    if (a.ao_slices != m.ao_slices) {
+        vkDeviceWaitIdle(state_->impl.ctx.device());  // recorded frames may still use the hit counts
+        m.hits = gpu::Buffer(state_->impl.ctx, VkDeviceSize(m.vertex_count) * a.ao_slices * sizeof(uint32_t), kStorageUsage,
+                             "ao hit counts (per ray slice)");
+        m.ao_slices = a.ao_slices;
+    }
+    state_->amortisation = a;
+    state_->stale = true;
+}
+
+const Amortisation& DynamicBake::amortisation() const { return state_->amortisation; }
 
 BakeResult DynamicBake::bake(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
                              std::span<const float> areas)
@@ -592,14 +663,29 @@ BakeResult DynamicBake::bake(std::span<const glm::vec3> positions, std::span<con
     m.positions.upload(positions.data(), positions.size_bytes());
     m.normals.upload(normals.data(), normals.size_bytes());
     m.areas.upload(areas.data(), areas.size_bytes());
+    return submit_timed(nullptr, t0, true);
+}
+
+BakeResult DynamicBake::bake(VkBuffer positions, VkBuffer normals, VkBuffer areas, bool read_back)
+{
+    const BakeInputs inputs{positions, normals, areas};
+    return submit_timed(&inputs, Clock::now(), read_back);
+}
+
+BakeResult DynamicBake::submit_timed(const BakeInputs* inputs, std::chrono::steady_clock::time_point t0, bool read_back)
+{
+    auto& m = state_->mesh;
     gpu::GpuTimer timer(state_->impl.ctx);
     state_->impl.ctx.submit_and_wait([&](VkCommandBuffer cmd) {
         timer.begin(cmd);
+        if (inputs) copy_inputs(cmd, *inputs);
         record_timed(cmd, &timer);
     });
     BakeResult r;
-    r.ao = m.ao.read<float>(m.vertex_count);
-    r.tm = m.tm.read<glm::vec3>(m.vertex_count);
+    if (read_back) {
+        r.ao = m.ao.read<float>(m.vertex_count);
+        r.tm = m.tm.read<glm::vec3>(m.vertex_count);
+    }
     r.method_used = m.exact ? TmMethod::Exact : TmMethod::Clustered;
     finish_timings(r.timings, timer, 0, t0);
     return r;

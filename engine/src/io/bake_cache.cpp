@@ -78,6 +78,7 @@ uint64_t bake_key(const PreparedMesh& mesh, const Material& material, const Bake
     f.value(s.ao.epsilon_rel);
     f.value(s.method);
     f.value(s.tm_epsilon);
+    f.value(s.tm_float64_sums);
     return f.h;
 }
 
