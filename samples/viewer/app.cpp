@@ -311,8 +311,8 @@ void run_window(const Options& options)
         ++frame;
     }
     if (ui) {
-        const PanelRect r = ui->panel_rect();
-        std::printf("jade-view: panel at %d,%d size %dx%d\n", r.x, r.y, r.width, r.height);
+        for (const PanelRect& r : ui->panel_rects())
+            std::printf("jade-view: panel at %d,%d size %dx%d\n", r.x, r.y, r.width, r.height);
     }
     // Frame 0 creates Jade's pipelines: the summary leaves it out when there are others.
     const size_t skip = all_frame_ms.size() > 1 ? 1 : 0;

@@ -16,7 +16,8 @@ namespace viewer {
 
 namespace {
 
-constexpr float kPanelWidth = 300.0f;
+constexpr float kPanelWidth = 290.0f;
+constexpr float kItemWidth = 160.0f;  // sliders and combos; the labels take the rest
 
 void check_imgui(VkResult r)
 {
@@ -180,10 +181,10 @@ bool Ui::build(ViewState& s, const PanelInfo& info)
     ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f), ImGuiCond_Always);
     ImGui::SetNextWindowSize(ImVec2(kPanelWidth, 0.0f), ImGuiCond_Always);
     ImGui::Begin("jade", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_AlwaysAutoResize);
+    ImGui::PushItemWidth(kItemWidth);
     bool changed = false;
     ImGui::TextUnformatted(info.device.c_str());
     ImGui::Text("%s, %zu vertices", info.mesh.c_str(), info.vertices);
-    ImGui::Text("frame %.1f ms (%.1f fps)", info.frame_ms, info.frame_ms > 0 ? 1000.0 / info.frame_ms : 0.0);
 
     if (ImGui::CollapsingHeader("camera and lights", ImGuiTreeNodeFlags_DefaultOpen)) {
         changed |= ImGui::SliderFloat("yaw", &s.yaw, -180.0f, 180.0f, "%.0f deg");
@@ -224,11 +225,26 @@ bool Ui::build(ViewState& s, const PanelInfo& info)
             changed = true;
         }
     }
-    if (ImGui::CollapsingHeader("timings (ms)", ImGuiTreeNodeFlags_DefaultOpen)) {
-        for (const auto& [name, ms] : info.stages) ImGui::Text("%-26s %8.2f", name.c_str(), ms);
-    }
-    const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
-    rect_ = {int(pos.x), int(pos.y), int(size.x + 0.5f), int(size.y + 0.5f)};
+    ImGui::PopItemWidth();
+    rects_.clear();
+    auto add_rect = [this] {
+        const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+        rects_.push_back({int(pos.x), int(pos.y), int(size.x + 0.5f), int(size.y + 0.5f)});
+    };
+    add_rect();
+    ImGui::End();
+
+    // Frame and stage times: a small translucent overlay in the bottom-right corner.
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    ImGui::SetNextWindowPos(ImVec2(display.x - 6.0f, display.y - 6.0f), ImGuiCond_Always, ImVec2(1.0f, 1.0f));
+    ImGui::SetNextWindowBgAlpha(0.55f);
+    ImGui::Begin("timings", nullptr,
+                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove |
+                     ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs);
+    ImGui::Text("frame %.1f ms (%.1f fps)", info.frame_ms, info.frame_ms > 0 ? 1000.0 / info.frame_ms : 0.0);
+    ImGui::Separator();
+    for (const auto& [name, ms] : info.stages) ImGui::Text("%-30s %9.2f ms", name.c_str(), ms);
+    add_rect();
     ImGui::End();
     ImGui::Render();
     return changed;

@@ -27,7 +27,7 @@ struct PanelInfo {
     std::vector<std::pair<std::string, double>> stages;  ///< ms
 };
 
-/// Where the panel was drawn, pixels (the Xvfb test compares the rest of the image).
+/// Where a window of the panel was drawn, pixels (the Xvfb test compares the rest of the image).
 struct PanelRect {
     int x = 0, y = 0, width = 0, height = 0;
 };
@@ -47,7 +47,8 @@ public:
     bool build(ViewState& state, const PanelInfo& info);
     /// True when ImGui uses the mouse (the camera ignores drags and the wheel then).
     bool wants_mouse() const;
-    PanelRect panel_rect() const { return rect_; }
+    /// The controls window and the timings overlay, as drawn in the last frame.
+    const std::vector<PanelRect>& panel_rects() const { return rects_; }
     /// Records the panel's render pass on swapchain image `index` (layout
     /// COLOR_ATTACHMENT_OPTIMAL before, PRESENT_SRC_KHR after).
     void record(VkCommandBuffer cmd, uint32_t index, VkExtent2D extent);
@@ -57,7 +58,7 @@ private:
     Owned<VkDescriptorPool> pool_;
     Owned<VkRenderPass> render_pass_;
     std::vector<Owned<VkFramebuffer>> framebuffers_;
-    PanelRect rect_;
+    std::vector<PanelRect> rects_;
     bool imgui_context_ = false, glfw_backend_ = false, vulkan_backend_ = false;
 };
 
