@@ -209,7 +209,7 @@ void run_window(const Options& options)
     IdleOnExit idle{host.device()};
 
     std::deque<double> frame_ms;                // the last 30 frames, for the panel
-    std::vector<double> all_frame_ms, draw_ms;  // every frame, for the summary
+    std::vector<double> all_frame_ms, draw_ms, present_ms;  // every frame, for the summary
     double last = now_ms(), gpu_draw = 0, gpu_present = 0;
     double mouse_x = 0, mouse_y = 0;
     glfwGetCursorPos(window.handle(), &mouse_x, &mouse_y);
@@ -308,6 +308,7 @@ void run_window(const Options& options)
         if (frame_ms.size() > 30) frame_ms.pop_front();
         all_frame_ms.push_back(frame_time);
         draw_ms.push_back(gpu_draw);
+        present_ms.push_back(gpu_present);
         ++frame;
     }
     if (ui) {
@@ -318,10 +319,11 @@ void run_window(const Options& options)
     const size_t skip = all_frame_ms.size() > 1 ? 1 : 0;
     if (all_frame_ms.size() > skip) {
         const double n = double(all_frame_ms.size() - skip);
-        std::printf("jade-view: %zu frames at %ux%u, mean frame %.1f ms, Jade draw %.1f ms (GPU), first frame %.1f ms\n",
-                    all_frame_ms.size(), swapchain->extent().width, swapchain->extent().height,
-                    std::accumulate(all_frame_ms.begin() + long(skip), all_frame_ms.end(), 0.0) / n,
-                    std::accumulate(draw_ms.begin() + long(skip), draw_ms.end(), 0.0) / n, all_frame_ms.front());
+        auto mean = [&](const std::vector<double>& v) { return std::accumulate(v.begin() + long(skip), v.end(), 0.0) / n; };
+        std::printf("jade-view: %zu frames at %ux%u, mean frame %.1f ms: Jade draw %.1f ms, blit + panel %.1f ms (GPU); "
+                    "first frame %.1f ms\n",
+                    all_frame_ms.size(), swapchain->extent().width, swapchain->extent().height, mean(all_frame_ms),
+                    mean(draw_ms), mean(present_ms), all_frame_ms.front());
     }
     for (const auto& [name, ms] : scene.times().stages) std::printf("jade-view:   %-28s %9.2f ms\n", name.c_str(), ms);
 }
