@@ -194,7 +194,7 @@ void run_window(const Options& options)
 {
     Window window(options.width, options.height, "jade-view");
     VulkanHost host(window, options.validation);
-    std::printf("jade-view: %s, validation %s\n", host.device_name().c_str(), options.validation ? "on" : "off");
+    std::printf("jade-view: %s, validation %s\n", host.device_name().c_str(), host.validation() ? "on" : "off");
     ViewState state = options.state;
     Scene scene(host.adopted_vulkan(), options.mesh, state);
     std::printf("jade-view: %s, %zu bake vertices\n", scene.mesh_name().c_str(), scene.vertex_count());
@@ -215,6 +215,7 @@ void run_window(const Options& options)
     glfwGetCursorPos(window.handle(), &mouse_x, &mouse_y);
     for (uint32_t frame = 0; !window.should_close() && (options.frames == 0 || frame < options.frames);) {
         glfwPollEvents();
+        if (glfwGetKey(window.handle(), GLFW_KEY_ESCAPE) == GLFW_PRESS) glfwSetWindowShouldClose(window.handle(), GLFW_TRUE);
         const double t = now_ms(), dt = t - last;
         last = t;
         // Orbit with the left mouse button, zoom with the wheel, unless the panel has the mouse.

@@ -123,12 +123,27 @@ void VulkanHost::create_instance(bool validation)
     mci.pfnUserCallback = &on_message;
     VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
     ci.pApplicationInfo = &app;
-    if (validation) {
+    // JADE_SYNC_VALIDATION=1 adds the layer's synchronization validation (hazards between the
+    // viewer's and Jade's commands), as for the engine's own Context.
+    const char* sync_env = std::getenv("JADE_SYNC_VALIDATION");
+    const bool sync = sync_env && *sync_env && std::strcmp(sync_env, "0") != 0;
+    const VkValidationFeatureEnableEXT sync_feature = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
+    VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
+    features.enabledValidationFeatureCount = 1;
+    features.pEnabledValidationFeatures = &sync_feature;
+    if (validation || sync) {
         extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
         ci.enabledLayerCount = 1;
         ci.ppEnabledLayerNames = &layer;
         ci.pNext = &mci;  // also reports messages of vkCreateInstance / vkDestroyInstance
+        if (sync) {
+            features.pNext = &mci;
+            ci.pNext = &features;
+            std::fprintf(stderr, "jade-view: Vulkan synchronization validation on\n");
+        }
+        validation = true;
     }
+    validation_ = validation;
     ci.enabledExtensionCount = uint32_t(extensions.size());
     ci.ppEnabledExtensionNames = extensions.data();
     VkInstance instance = VK_NULL_HANDLE;

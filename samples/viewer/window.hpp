@@ -56,12 +56,14 @@ public:
     VkQueue queue() const { return queue_; }
     uint32_t queue_family() const { return family_; }
     const std::string& device_name() const { return device_name_; }
+    bool validation() const { return validation_; }  ///< the layer is on (--validation, JADE_VALIDATION, JADE_SYNC_VALIDATION)
     /// What jade::Context(const AdoptedVulkan&) needs to adopt this device.
     jade::AdoptedVulkan adopted_vulkan() const;
     /// Warnings and errors the validation layer reported so far (also printed to stderr).
     static uint64_t validation_messages();
 
 private:
+    bool validation_ = false;
     Owned<VkInstance> instance_;
     Owned<VkDebugUtilsMessengerEXT> messenger_;
     Owned<VkSurfaceKHR> surface_;

@@ -193,6 +193,19 @@ TEST_F(ViewerXvfb, DeformationRebakesEveryFrame)
     EXPECT_GT(d.over_tolerance, d.compared / 50) << "the bent bunny looks like the resting one";
 }
 
+// The layer's synchronization validation over every path of a frame: Jade's draw, the blit,
+// the panel's render pass, the screenshot copy, the per-frame deform and re-bake.
+TEST_F(ViewerXvfb, SynchronizationValidationIsClean)
+{
+    const auto shot = test::out("viewer/sync.png");
+    setenv("JADE_SYNC_VALIDATION", "1", 1);
+    const test::CliResult r = view({"sphere", "--size", "320x240", "--frames", "3", "--quality", "draft", "--deform", "twist",
+                                    "--screenshot", shot.string()});
+    unsetenv("JADE_SYNC_VALIDATION");
+    EXPECT_NE(r.output.find("synchronization validation on"), std::string::npos) << r.output;
+    EXPECT_EQ(read_png(shot).width, 320);
+}
+
 TEST_F(ViewerXvfb, BadArgumentsExitWithUsage)
 {
     const test::CliResult r = test::run_cli({"view", "--frames", "many"});
