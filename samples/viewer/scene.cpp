@@ -96,7 +96,8 @@ void Scene::update(const ViewState& state)
             const double t0 = now_ms();
             if (!deformer_) deformer_ = std::make_unique<jade::MeshDeformer>(context_, rest_);
             deformer_params_ = jade::ProceduralDeformer::fit(jade::DeformerKind(state.deformation - 1), rest_, 1);
-            rebake_ = std::make_unique<jade::DynamicBake>(baker_, rest_, material_, jade::BakeSettings::preset(state.quality));
+            if (!material_.opaque)  // an opaque material has no t_m to re-bake
+                rebake_ = std::make_unique<jade::DynamicBake>(baker_, rest_, material_, jade::BakeSettings::preset(state.quality));
             times_.stages.emplace_back("re-bake setup (CPU)", now_ms() - t0);
         }
         deform_and_rebake(state);
@@ -129,7 +130,7 @@ void Scene::deform_and_rebake(const ViewState& state)
     times_.stages.emplace_back("normals", d.normals_ms);
     jade::DeformedVertices v = deformer_->read();
     std::vector<glm::vec3> tm;
-    if (!material_.opaque) {
+    if (rebake_) {
         const jade::BakeResult r = rebake_->bake(v.positions, v.normals, v.areas);
         for (const auto& [name, ms] : r.timings.gpu_stages) times_.stages.emplace_back("re-bake " + name, ms);
         tm = r.tm;
