@@ -134,26 +134,29 @@ void record_frame(FrameSync& sync, Scene& scene, const ViewState& state, const R
     region.dstOffsets[1] = region.srcOffsets[1];
     vkCmdBlitImage(cmd, source, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, present, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region,
                    VK_FILTER_NEAREST);
+    // Where the swapchain image is now, and which writes to it the next barrier waits for.
+    VkImageLayout layout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    VkPipelineStageFlags2 stage = VK_PIPELINE_STAGE_2_BLIT_BIT;
+    VkAccessFlags2 access = VK_ACCESS_2_TRANSFER_WRITE_BIT;
     if (ui) {
-        image_barrier(cmd, present, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                      VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, color_out,
+        image_barrier(cmd, present, VK_IMAGE_ASPECT_COLOR_BIT, stage, access, layout, color_out,
                       VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
                       VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-        ui->record(cmd, index, e);  // ends in PRESENT_SRC_KHR
-    } else {
-        image_barrier(cmd, present, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                      VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
+        ui->record(cmd, index, e);  // its render pass ends in PRESENT_SRC_KHR (dependency at color_out)
+        layout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
+        stage = color_out;
+        access = VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
     }
     if (readback) {
-        image_barrier(cmd, present, VK_IMAGE_ASPECT_COLOR_BIT, color_out | VK_PIPELINE_STAGE_2_BLIT_BIT,
-                      VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
-                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+        image_barrier(cmd, present, VK_IMAGE_ASPECT_COLOR_BIT, stage, access, layout, VK_PIPELINE_STAGE_2_COPY_BIT,
+                      VK_ACCESS_2_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
         VkBufferImageCopy copy{};
         copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         copy.imageExtent = {e.width, e.height, 1};
         vkCmdCopyImageToBuffer(cmd, present, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback->buffer, 1, &copy);
-        image_barrier(cmd, present, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_COPY_BIT, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                      VK_PIPELINE_STAGE_2_NONE, 0, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
+        layout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+        stage = VK_PIPELINE_STAGE_2_COPY_BIT;
+        access = 0;
         VkMemoryBarrier2 to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
         to_host.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
         to_host.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
@@ -164,6 +167,9 @@ void record_frame(FrameSync& sync, Scene& scene, const ViewState& state, const R
         dep.pMemoryBarriers = &to_host;
         vkCmdPipelineBarrier2(cmd, &dep);
     }
+    if (layout != VK_IMAGE_LAYOUT_PRESENT_SRC_KHR)
+        image_barrier(cmd, present, VK_IMAGE_ASPECT_COLOR_BIT, stage, access, layout, VK_PIPELINE_STAGE_2_NONE, 0,
+                      VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
     vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, sync.timestamps, 2);
     check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
 }

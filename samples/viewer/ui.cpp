@@ -76,22 +76,29 @@ Ui::Ui(const VulkanHost& host, GLFWwindow* window, const Swapchain& swapchain) :
     subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
     subpass.colorAttachmentCount = 1;
     subpass.pColorAttachments = &ref;
-    // The caller's barrier made the blit visible to COLOR_ATTACHMENT_OUTPUT; the dependency
-    // orders the load after it.
-    VkSubpassDependency dependency{};
-    dependency.srcSubpass = VK_SUBPASS_EXTERNAL;
-    dependency.dstSubpass = 0;
-    dependency.srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
-    dependency.dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
-    dependency.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-    dependency.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    // In: the caller's barrier made the blit visible to COLOR_ATTACHMENT_OUTPUT; this orders the
+    // load after it. Out: the panel's writes and the transition to PRESENT_SRC_KHR happen before
+    // the caller's later barriers that start at COLOR_ATTACHMENT_OUTPUT (the screenshot copy).
+    VkSubpassDependency dependencies[2]{};
+    dependencies[0].srcSubpass = VK_SUBPASS_EXTERNAL;
+    dependencies[0].dstSubpass = 0;
+    dependencies[0].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    dependencies[0].dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    dependencies[0].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    dependencies[0].dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    dependencies[1].srcSubpass = 0;
+    dependencies[1].dstSubpass = VK_SUBPASS_EXTERNAL;
+    dependencies[1].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    dependencies[1].dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    dependencies[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    dependencies[1].dstAccessMask = 0;
     VkRenderPassCreateInfo ri{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
     ri.attachmentCount = 1;
     ri.pAttachments = &attachment;
     ri.subpassCount = 1;
     ri.pSubpasses = &subpass;
-    ri.dependencyCount = 1;
-    ri.pDependencies = &dependency;
+    ri.dependencyCount = 2;
+    ri.pDependencies = dependencies;
     VkRenderPass render_pass = VK_NULL_HANDLE;
     check(vkCreateRenderPass(device_, &ri, nullptr, &render_pass), "vkCreateRenderPass");
     render_pass_ = own(device_, render_pass, vkDestroyRenderPass);
