@@ -6,5 +6,6 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 bash "$root/third_party/install_deps.sh"
 bash "$root/third_party/fetch_assets.sh"
 jobs=$(nproc 2>/dev/null || echo 2)
-cmake -S "$root" -B "$root/build" -G Ninja -DCMAKE_BUILD_TYPE=Release ${JADE_CMAKE_ARGS:-} >/dev/null
+# The viewer is on: install_deps.sh installed GLFW and ImGui (JADE_CMAKE_ARGS can turn it off).
+cmake -S "$root" -B "$root/build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DJADE_WITH_GLFW=ON ${JADE_CMAKE_ARGS:-} >/dev/null
 cmake --build "$root/build" -j "$jobs"

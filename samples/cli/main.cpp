@@ -1,10 +1,14 @@
 // jade - the command-line sample: inspect devices and meshes, bake, render, benchmark.
 #include "commands.hpp"
 
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <exception>
 #include <string>
+#include <vector>
+
+#include <unistd.h>
 
 namespace {
 
@@ -26,6 +30,7 @@ const char* kUsage =
     "  plan SCENE.gltf    the passes, shader variants and GPU memory a glTF scene needs (--cache DIR)\n"
     "  scene SCENE.gltf   render a glTF scene running only the planned passes (--verbose lists them)\n"
     "  bench render --scene SCENE.gltf  cached static scene against the same scene never baked\n"
+    "  view [MESH]        interactive viewer window (runs jade-view, built with JADE_WITH_GLFW=ON)\n"
     "\n"
     "Environment: JADE_DEVICE (device name), JADE_VALIDATION=1 (Khronos validation layer).\n";
 
@@ -36,6 +41,29 @@ bool has_scene_flag(int argc, char** argv)
     for (int i = 3; i < argc; ++i)
         if (!std::strcmp(argv[i], "--scene") || !std::strncmp(argv[i], "--scene=", 8)) return true;
     return false;
+}
+
+// `jade view ...` executes the sibling binary jade-view with the same arguments, so that this
+// CLI never links GLFW or ImGui (and runs on machines without a display).
+int exec_viewer(int argc, char** argv)
+{
+    char self[4096];
+    const ssize_t n = readlink("/proc/self/exe", self, sizeof(self) - 1);
+    std::string dir = ".";
+    if (n > 0) {
+        self[n] = 0;
+        dir = self;
+        dir = dir.substr(0, dir.find_last_of('/'));
+    }
+    const std::string viewer = dir + "/jade-view";
+    std::vector<char*> args{const_cast<char*>(viewer.c_str())};
+    for (int i = 2; i < argc; ++i) args.push_back(argv[i]);
+    args.push_back(nullptr);
+    execv(viewer.c_str(), args.data());
+    std::fprintf(stderr, "jade view: cannot run %s: %s\n(the viewer is built when GLFW and Dear ImGui are found, or with "
+                         "-DJADE_WITH_GLFW=ON; Debian packages libglfw3-dev libimgui-dev)\n",
+                 viewer.c_str(), std::strerror(errno));
+    return 1;
 }
 
 }  // namespace
@@ -60,6 +88,7 @@ int main(int argc, char** argv)
         if (command == "deform") return jade::cli::cmd_deform(argc, argv);
         if (command == "plan") return jade::cli::cmd_plan(argc, argv);
         if (command == "scene") return jade::cli::cmd_scene(argc, argv);
+        if (command == "view") return exec_viewer(argc, argv);
         std::fprintf(stderr, "jade: unknown command '%s'\n\n%s", command.c_str(), kUsage);
         return 2;
     } catch (const jade::cli::UsageError& e) {

@@ -1,0 +1,183 @@
+#include "scene.hpp"
+
+#include <jade/io.hpp>
+#include <jade/material.hpp>
+#include <jade/mesh.hpp>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+
+namespace viewer {
+
+namespace {
+
+double now_ms()
+{
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+jade::TriangleMesh load(const std::string& arg)
+{
+    if (arg == "sphere") return jade::procedural::sphere(1.0f, 48, 96);
+    if (arg.empty() || arg == "bunny") {
+        const char* assets = std::getenv("JADE_ASSETS");
+        return jade::load_mesh(std::filesystem::path(assets ? assets : "assets") / "bunny00.off");
+    }
+    return jade::load_mesh(arg);
+}
+
+}  // namespace
+
+const char* quality_name(jade::Quality q)
+{
+    return q == jade::Quality::Draft ? "draft" : q == jade::Quality::High ? "high" : "default";
+}
+
+std::optional<jade::Quality> parse_quality(const std::string& name)
+{
+    if (name == "draft") return jade::Quality::Draft;
+    if (name == "default") return jade::Quality::Default;
+    if (name == "high") return jade::Quality::High;
+    return std::nullopt;
+}
+
+const std::vector<std::string>& deformation_names()
+{
+    static const std::vector<std::string> names = [] {
+        std::vector<std::string> n{"none"};
+        for (auto k : {jade::DeformerKind::Bend, jade::DeformerKind::Twist, jade::DeformerKind::Squash, jade::DeformerKind::Wave})
+            n.emplace_back(jade::deformer_name(k));
+        return n;
+    }();
+    return names;
+}
+
+Scene::Scene(const jade::AdoptedVulkan& host, const std::string& mesh_arg, const ViewState& initial)
+    : context_(host), baker_(context_), renderer_(context_)
+{
+    const jade::TriangleMesh mesh = load(mesh_arg);
+    mesh_name_ = mesh.name;
+    rest_ = jade::prepare_mesh(mesh);
+    // As `jade render`: the object is taken to be 100 mm across unless told otherwise.
+    mm_per_unit_ = rest_.diagonal > 0 ? 100.0 / rest_.diagonal : 1.0;
+    update(initial);
+}
+
+Scene::~Scene() = default;
+
+void Scene::update(const ViewState& state)
+{
+    // Keep the last bake's stage times on frames that bake nothing.
+    std::vector<std::pair<std::string, double>> previous = std::move(times_.stages);
+    times_.stages.clear();
+    const bool material_changed = state.material != baked_material_ || state.quality != baked_quality_;
+    if (material_changed) {
+        material_ = jade::material_preset(jade::material_preset_names().at(size_t(state.material)), mm_per_unit_);
+        strength_ = -1.0f;  // set_material below
+    }
+    if (state.strength != strength_) {
+        material_.strength = state.strength;
+        renderer_.set_material(material_);
+        strength_ = state.strength;
+    }
+    if (state.deformation == 0) {
+        if (material_changed || baked_deformation_ != 0) bake_static(state);
+        deformer_.reset();
+        rebake_.reset();
+    } else {
+        if (material_changed || state.deformation != baked_deformation_) {
+            // A new rest-pose re-bake (trees, near-field lists) for the material and quality.
+            rebake_.reset();
+            const double t0 = now_ms();
+            if (!deformer_) deformer_ = std::make_unique<jade::MeshDeformer>(context_, rest_);
+            deformer_params_ = jade::ProceduralDeformer::fit(jade::DeformerKind(state.deformation - 1), rest_, 1);
+            if (!material_.opaque)  // an opaque material has no t_m to re-bake
+                rebake_ = std::make_unique<jade::DynamicBake>(baker_, rest_, material_, jade::BakeSettings::preset(state.quality));
+            times_.stages.emplace_back("re-bake setup (CPU)", now_ms() - t0);
+        }
+        deform_and_rebake(state);
+    }
+    if (times_.stages.empty()) times_.stages = std::move(previous);
+    baked_material_ = state.material;
+    baked_quality_ = state.quality;
+    baked_deformation_ = state.deformation;
+}
+
+void Scene::bake_static(const ViewState& state)
+{
+    std::vector<glm::vec3> tm;
+    if (!material_.opaque) {
+        const jade::BakeResult r = baker_.bake(rest_, material_, jade::BakeSettings::preset(state.quality));
+        times_.bake_wall_ms = r.timings.wall_ms;
+        for (const auto& [name, ms] : r.timings.gpu_stages) times_.stages.emplace_back("bake " + name, ms);
+        tm = r.tm;
+    }
+    const double t0 = now_ms();
+    renderer_.set_mesh(rest_, tm);
+    times_.stages.emplace_back("set_mesh (CPU)", now_ms() - t0);
+}
+
+void Scene::deform_and_rebake(const ViewState& state)
+{
+    const double t0 = now_ms();
+    const jade::DeformTimings d = deformer_->deform(deformer_params_, state.time);
+    times_.stages.emplace_back("deform", d.deform_ms);
+    times_.stages.emplace_back("normals", d.normals_ms);
+    jade::DeformedVertices v = deformer_->read();
+    std::vector<glm::vec3> tm;
+    if (rebake_) {
+        const jade::BakeResult r = rebake_->bake(v.positions, v.normals, v.areas);
+        for (const auto& [name, ms] : r.timings.gpu_stages) times_.stages.emplace_back("re-bake " + name, ms);
+        tm = r.tm;
+    }
+    const double t1 = now_ms();
+    renderer_.set_mesh(jade::deformed_mesh(rest_, std::move(v)), tm);
+    times_.stages.emplace_back("set_mesh (CPU)", now_ms() - t1);
+    times_.bake_wall_ms = now_ms() - t0;
+}
+
+jade::Camera Scene::camera(const ViewState& state, float aspect) const
+{
+    const float yaw = glm::radians(state.yaw), pitch = glm::radians(state.pitch);
+    const glm::vec3 direction(std::sin(yaw) * std::cos(pitch), std::sin(pitch), std::cos(yaw) * std::cos(pitch));
+    // The same framing as `jade render` (bounds seen from +z by default), then the zoom.
+    jade::Camera c = jade::Camera::framing(rest_.bbox_min, rest_.bbox_max, aspect, direction);
+    if (state.zoom != 1.0f) c.eye = c.target + (c.eye - c.target) * state.zoom;
+    return c;
+}
+
+std::vector<jade::Light> Scene::lights(const ViewState& state, const jade::Camera& camera) const
+{
+    std::vector<jade::Light> lights = state.figure1_lights ? jade::figure1_lights(camera) : jade::default_lights(camera);
+    if (state.light_yaw == 0.0f && state.light_pitch == 0.0f) return lights;
+    // Rotate the rig about the camera's up (yaw) and right (pitch) axes.
+    const glm::vec3 forward = glm::normalize(camera.target - camera.eye);
+    const glm::vec3 right = glm::normalize(glm::cross(forward, camera.up));
+    const glm::vec3 up = glm::cross(right, forward);
+    const glm::mat4 rotation = glm::rotate(glm::mat4(1.0f), glm::radians(state.light_pitch), right) *
+                               glm::rotate(glm::mat4(1.0f), glm::radians(state.light_yaw), up);
+    for (jade::Light& l : lights) {
+        if (l.type == jade::Light::Type::Directional) l.vector = glm::vec3(rotation * glm::vec4(l.vector, 0.0f));
+        else l.vector = camera.target + glm::vec3(rotation * glm::vec4(l.vector - camera.target, 0.0f));
+    }
+    return lights;
+}
+
+void Scene::record(VkCommandBuffer cmd, const jade::RenderTarget& target, const ViewState& state, uint32_t samples)
+{
+    jade::RenderSettings settings;
+    settings.width = target.width;
+    settings.height = target.height;
+    settings.mode = state.mode;
+    settings.samples = samples;
+    const jade::Camera cam = camera(state, float(target.width) / float(target.height));
+    const std::vector<jade::Light> l = lights(state, cam);
+    renderer_.record(cmd, target, cam, l, settings);
+}
+
+}  // namespace viewer

@@ -1,0 +1,243 @@
+#include "window.hpp"
+
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+namespace viewer {
+
+// ------------------------------------------------------------------------------------ window --
+
+Window::Window(uint32_t width, uint32_t height, const std::string& title)
+{
+    glfwSetErrorCallback([](int code, const char* message) { std::fprintf(stderr, "jade-view: GLFW error %d: %s\n", code, message); });
+    if (!glfwInit())
+        throw std::runtime_error("cannot initialise GLFW: no display? (set DISPLAY, or run under xvfb-run)");
+    if (!glfwVulkanSupported()) {
+        glfwTerminate();
+        throw std::runtime_error("GLFW finds no Vulkan loader (install libvulkan1)");
+    }
+    glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+    window_ = glfwCreateWindow(int(width), int(height), title.c_str(), nullptr, nullptr);
+    if (!window_) {
+        glfwTerminate();
+        throw std::runtime_error("cannot create a " + std::to_string(width) + "x" + std::to_string(height) + " window");
+    }
+    glfwSetWindowUserPointer(window_, this);
+    glfwSetFramebufferSizeCallback(window_, &Window::on_resize);
+}
+
+Window::~Window()
+{
+    glfwDestroyWindow(window_);
+    glfwTerminate();
+}
+
+bool Window::should_close() const { return glfwWindowShouldClose(window_); }
+
+VkExtent2D Window::framebuffer_size() const
+{
+    int w = 0, h = 0;
+    glfwGetFramebufferSize(window_, &w, &h);
+    return {uint32_t(std::max(w, 0)), uint32_t(std::max(h, 0))};
+}
+
+bool Window::take_resized() { return std::exchange(resized_, false); }
+
+void Window::on_resize(GLFWwindow* window, int, int)
+{
+    static_cast<Window*>(glfwGetWindowUserPointer(window))->resized_ = true;
+}
+
+// ------------------------------------------------------------------------------ vulkan host --
+
+namespace {
+
+std::atomic<uint64_t> g_validation_messages{0};
+
+VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlagBitsEXT, VkDebugUtilsMessageTypeFlagsEXT,
+                                          const VkDebugUtilsMessengerCallbackDataEXT* data, void*)
+{
+    ++g_validation_messages;
+    std::fprintf(stderr, "jade-view: validation: %s\n", data->pMessage ? data->pMessage : "");
+    return VK_FALSE;
+}
+
+std::string lower(std::string s)
+{
+    for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+
+int type_rank(VkPhysicalDeviceType type)
+{
+    switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 0;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 1;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 3;
+    default: return 4;
+    }
+}
+
+}  // namespace
+
+uint64_t VulkanHost::validation_messages() { return g_validation_messages.load(); }
+
+VulkanHost::VulkanHost(const Window& window, bool validation)
+{
+    create_instance(validation);
+    VkSurfaceKHR surface = VK_NULL_HANDLE;
+    check(glfwCreateWindowSurface(instance_, window.handle(), nullptr, &surface), "glfwCreateWindowSurface");
+    surface_ = Owned<VkSurfaceKHR>(surface, [inst = instance_.get()](VkSurfaceKHR s) { vkDestroySurfaceKHR(inst, s, nullptr); });
+    pick_physical_device();
+    create_device();
+}
+
+VulkanHost::~VulkanHost()
+{
+    if (device_) vkDeviceWaitIdle(device_);
+}
+
+void VulkanHost::create_instance(bool validation)
+{
+    uint32_t glfw_count = 0;
+    const char** glfw_extensions = glfwGetRequiredInstanceExtensions(&glfw_count);
+    if (!glfw_extensions) throw std::runtime_error("GLFW reports no Vulkan surface extensions for this display");
+    std::vector<const char*> extensions(glfw_extensions, glfw_extensions + glfw_count);
+
+    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+    app.pApplicationName = "jade-view";
+    app.apiVersion = VK_API_VERSION_1_3;
+    const char* layer = "VK_LAYER_KHRONOS_validation";
+    VkDebugUtilsMessengerCreateInfoEXT mci{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    mci.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    mci.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                      VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    mci.pfnUserCallback = &on_message;
+    VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+    ci.pApplicationInfo = &app;
+    // JADE_SYNC_VALIDATION=1 adds the layer's synchronization validation (hazards between the
+    // viewer's and Jade's commands), as for the engine's own Context.
+    const char* sync_env = std::getenv("JADE_SYNC_VALIDATION");
+    const bool sync = sync_env && *sync_env && std::strcmp(sync_env, "0") != 0;
+    const VkValidationFeatureEnableEXT sync_feature = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
+    VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
+    features.enabledValidationFeatureCount = 1;
+    features.pEnabledValidationFeatures = &sync_feature;
+    if (validation || sync) {
+        extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+        ci.enabledLayerCount = 1;
+        ci.ppEnabledLayerNames = &layer;
+        ci.pNext = &mci;  // also reports messages of vkCreateInstance / vkDestroyInstance
+        if (sync) {
+            features.pNext = &mci;
+            ci.pNext = &features;
+            std::fprintf(stderr, "jade-view: Vulkan synchronization validation on\n");
+        }
+        validation = true;
+    }
+    validation_ = validation;
+    ci.enabledExtensionCount = uint32_t(extensions.size());
+    ci.ppEnabledExtensionNames = extensions.data();
+    VkInstance instance = VK_NULL_HANDLE;
+    check(vkCreateInstance(&ci, nullptr, &instance),
+          validation ? "vkCreateInstance with VK_LAYER_KHRONOS_validation (install vulkan-validationlayers)" : "vkCreateInstance");
+    instance_ = Owned<VkInstance>(instance, [](VkInstance i) { vkDestroyInstance(i, nullptr); });
+    if (validation) {
+        auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
+        auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
+        VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+        check(create(instance, &mci, nullptr, &messenger), "vkCreateDebugUtilsMessengerEXT");
+        messenger_ = Owned<VkDebugUtilsMessengerEXT>(messenger, [instance, destroy](VkDebugUtilsMessengerEXT m) { destroy(instance, m, nullptr); });
+    }
+}
+
+// The best Vulkan 1.3 device (discrete first, JADE_DEVICE narrows by name) with one queue family
+// that draws, computes, writes timestamps and presents to the window; Jade checks the rest.
+void VulkanHost::pick_physical_device()
+{
+    const char* wanted = std::getenv("JADE_DEVICE");
+    uint32_t n = 0;
+    vkEnumeratePhysicalDevices(instance_, &n, nullptr);
+    std::vector<VkPhysicalDevice> devices(n);
+    vkEnumeratePhysicalDevices(instance_, &n, devices.data());
+    std::string rejected;
+    int best_rank = 1 << 30;
+    for (VkPhysicalDevice pd : devices) {
+        VkPhysicalDeviceProperties p;
+        vkGetPhysicalDeviceProperties(pd, &p);
+        const std::string name = p.deviceName;
+        if (wanted && *wanted && lower(name).find(lower(wanted)) == std::string::npos) continue;
+        if (p.apiVersion < VK_API_VERSION_1_3) {
+            rejected += "\n  " + name + ": Vulkan < 1.3";
+            continue;
+        }
+        uint32_t nf = 0;
+        vkGetPhysicalDeviceQueueFamilyProperties(pd, &nf, nullptr);
+        std::vector<VkQueueFamilyProperties> families(nf);
+        vkGetPhysicalDeviceQueueFamilyProperties(pd, &nf, families.data());
+        const VkQueueFlags needed = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+        for (uint32_t i = 0; i < nf; ++i) {
+            VkBool32 present = VK_FALSE;
+            vkGetPhysicalDeviceSurfaceSupportKHR(pd, i, surface_, &present);
+            if ((families[i].queueFlags & needed) != needed || !present || families[i].timestampValidBits == 0) continue;
+            if (type_rank(p.deviceType) < best_rank) {
+                best_rank = type_rank(p.deviceType);
+                physical_ = pd;
+                family_ = i;
+                device_name_ = name;
+            }
+            break;
+        }
+        if (physical_ != pd) rejected += "\n  " + name + ": no queue family that draws, computes and presents to the window";
+    }
+    if (!physical_)
+        throw std::runtime_error("no Vulkan 1.3 device can present to the window" +
+                                 (wanted && *wanted ? " (JADE_DEVICE=" + std::string(wanted) + ")" : std::string()) + rejected);
+}
+
+void VulkanHost::create_device()
+{
+    jade::Context::enable_required_features(f12_, f13_);
+    extensions_ = jade::Context::required_device_extensions();
+    extensions_.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+    float priority = 1.0f;
+    VkDeviceQueueCreateInfo q{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+    q.queueFamilyIndex = family_;
+    q.queueCount = 1;
+    q.pQueuePriorities = &priority;
+    VkDeviceCreateInfo ci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features_};
+    ci.queueCreateInfoCount = 1;
+    ci.pQueueCreateInfos = &q;
+    ci.enabledExtensionCount = uint32_t(extensions_.size());
+    ci.ppEnabledExtensionNames = extensions_.data();
+    VkDevice device = VK_NULL_HANDLE;
+    check(vkCreateDevice(physical_, &ci, nullptr, &device), "vkCreateDevice");
+    device_ = Owned<VkDevice>(device, [](VkDevice d) { vkDestroyDevice(d, nullptr); });
+    vkGetDeviceQueue(device, family_, 0, &queue_);
+}
+
+jade::AdoptedVulkan VulkanHost::adopted_vulkan() const
+{
+    jade::AdoptedVulkan a;
+    a.instance = instance_;
+    a.physical_device = physical_;
+    a.device = device_;
+    a.queue = queue_;
+    a.queue_family = family_;
+    a.api_version = VK_API_VERSION_1_3;
+    a.get_instance_proc_addr = vkGetInstanceProcAddr;
+    a.get_device_proc_addr = vkGetDeviceProcAddr;
+    a.enabled_features = &features_;
+    a.enabled_extensions.assign(extensions_.begin(), extensions_.end());
+    return a;
+}
+
+}  // namespace viewer
