@@ -8,6 +8,8 @@
 #include <jade/error.hpp>
 #include <jade/io.hpp>
 #include <jade/mesh.hpp>
+#include <jade/bake.hpp>
+#include <jade/render.hpp>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -173,6 +175,48 @@ TEST_F(DeformGpu, ProceduralDeformersMatchFloat64OnSeveralFrames)
             }
         }
     }
+}
+
+// The GPU-resident frame: deform, re-bake and draw without mesh data through the host
+// (Renderer::update_vertices from the deformer's and the re-bake's buffers) renders the same
+// image as handing the read-back deformed mesh and t_m to set_mesh.
+TEST_F(DeformGpu, GpuVertexUpdateRendersLikeTheHostPath)
+{
+    const PreparedMesh rest = load_case_mesh("box");
+    MeshDeformer deformer(context(), rest);
+    const ProceduralDeformer bend = ProceduralDeformer::fit(DeformerKind::Bend, rest, 1);
+    deformer.deform(bend, 0.5);
+    const Material material = burley_material(glm::dvec3(0.1, 0.2, 0.3), glm::vec3(0.8f));
+    Baker baker(context());
+    DynamicBake rebake(baker, rest, material, BakeSettings::preset(Quality::Draft));
+    const BakeResult baked = rebake.bake(deformer.positions_buffer(), deformer.normals_buffer(), deformer.areas_buffer());
+
+    Camera camera = Camera::framing(rest.bbox_min - glm::vec3(0.5f), rest.bbox_max + glm::vec3(0.5f));
+    camera.near_plane = 0.1f, camera.far_plane = 50.0f;  // the same planes for both paths
+    const auto lights = figure1_lights(camera);
+    RenderSettings settings;
+    settings.width = settings.height = 96;
+
+    Renderer gpu_path(context());
+    gpu_path.set_material(material);
+    gpu_path.set_mesh(rest);
+    const RenderedImage before = gpu_path.render(camera, lights, settings);
+    gpu_path.update_vertices(deformer.positions_buffer(), deformer.normals_buffer(), rebake.buffers().tm);
+    const RenderedImage gpu_image = gpu_path.render(camera, lights, settings);
+
+    Renderer host_path(context());
+    host_path.set_material(material);
+    host_path.set_mesh(deformed_mesh(rest, deformer.read()), baked.tm);
+    const RenderedImage host_image = host_path.render(camera, lights, settings);
+
+    float worst = 0, moved = 0;
+    for (size_t i = 0; i < host_image.rgba.size(); ++i) {
+        worst = std::max(worst, std::abs(gpu_image.rgba[i] - host_image.rgba[i]));
+        moved = std::max(moved, std::abs(gpu_image.rgba[i] - before.rgba[i]));
+    }
+    EXPECT_LE(worst, 1e-3f) << "GPU-updated vertices against the host path (RGBA16F target)";
+    EXPECT_GT(moved, 0.1f) << "the update must change the picture";
+    EXPECT_THROW(gpu_path.update_vertices(VK_NULL_HANDLE, deformer.normals_buffer(), rebake.buffers().tm), Error);
 }
 
 TEST_F(DeformGpu, NormalsAndAreasMatchPrepareMeshOfTheDeformedPositions)

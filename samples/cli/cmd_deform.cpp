@@ -3,11 +3,12 @@
 // normals and areas on the GPU, re-bake AO and t_m, render the `tm` shading; writes the frames
 // as PNG and an animated GIF and prints the GPU time of each stage per frame.
 //
-// Re-bake path: jade::DynamicBake keeps both trees on the GPU and refits them every frame (no
-// CPU BVH builds) and reads the deformer's buffers directly. The deformed vertices still make
-// a trip through the host for the Renderer, which takes host positions (Renderer::set_mesh); a
-// host that records MeshDeformer::record, DynamicBake::record(cmd, positions, normals, areas)
-// and its own draw into one command buffer needs no read-back at all.
+// GPU-resident: jade::DynamicBake refits both trees on the GPU every frame and reads the
+// deformer's buffers; Renderer::update_vertices copies the deformed positions, normals and the
+// new t_m into the renderer's vertex buffer on the GPU. No mesh data goes through the host per
+// frame (only the finished image is read back). Each stage is its own submission here so that
+// its GPU time can be printed; a real-time host records MeshDeformer::record,
+// DynamicBake::record, Renderer::record_vertex_update and Renderer::record into one command buffer.
 #include "commands.hpp"
 
 #include <jade/deform.hpp>
@@ -15,7 +16,9 @@
 #include <jade/render.hpp>
 
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -161,7 +164,12 @@ int cmd_deform(int argc, char** argv)
         deform_frame(f);
         for (const auto& p : deformer.read().positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
     }
-    const Camera camera = Camera::framing(lo, hi, float(width) / float(height));
+    Camera camera = Camera::framing(lo, hi, float(width) / float(height));
+    {  // planes around every frame's bounds (set_mesh only sees the rest pose)
+        const float radius = 0.5f * glm::length(hi - lo), distance = glm::length(camera.eye - 0.5f * (lo + hi));
+        camera.near_plane = std::max(distance - 1.05f * radius, 1e-3f * radius);
+        camera.far_plane = distance + 1.05f * radius;
+    }
     const std::vector<Light> lights = light_preset == "figure1" ? figure1_lights(camera) : default_lights(camera);
     RenderSettings render_settings;
     render_settings.width = width, render_settings.height = height;
@@ -180,6 +188,7 @@ int cmd_deform(int argc, char** argv)
     }
     Renderer renderer(*ctx);
     renderer.set_material(material);
+    renderer.set_mesh(rest);  // the triangles and curvature; vertices follow on the GPU each frame
     std::printf("jade deform: %s, %zu bake vertices, %s, %u frames over %.3g s, bake %u AO rays, theta %.2g, %ux%u\n",
                 mesh.name.c_str(), rest.vertex_count(), gltf ? ("glTF animation '" + animated->animations[animation].name + "'").c_str()
                                                              : kind_name.c_str(),
@@ -193,11 +202,10 @@ int cmd_deform(int argc, char** argv)
         StageTimes st;
         const DeformTimings dt = deform_frame(f);
         st.deform = dt.deform_ms, st.normals = dt.normals_ms;
-        const BakeResult baked = rebake.bake(deformer.positions_buffer(), deformer.normals_buffer(), deformer.areas_buffer());
-        // The deformed vertices go through the host for the renderer (see the top of this file).
-        const PreparedMesh deformed = deformed_mesh(rest, deformer.read());
+        const BakeResult baked =
+            rebake.bake(deformer.positions_buffer(), deformer.normals_buffer(), deformer.areas_buffer(), /*read_back=*/false);
         for (const auto& [stage, ms] : baked.timings.gpu_stages) (stage == "ao" ? st.ao : st.tm) += ms;
-        renderer.set_mesh(deformed, baked.tm);
+        renderer.update_vertices(deformer.positions_buffer(), deformer.normals_buffer(), rebake.buffers().tm);
         RenderedImage image = renderer.render(camera, lights, render_settings);
         st.draw = image.gpu_ms;
         char name[32];

@@ -96,8 +96,10 @@ void Scene::update(const ViewState& state)
             const double t0 = now_ms();
             if (!deformer_) deformer_ = std::make_unique<jade::MeshDeformer>(context_, rest_);
             deformer_params_ = jade::ProceduralDeformer::fit(jade::DeformerKind(state.deformation - 1), rest_, 1);
-            if (!material_.opaque)  // an opaque material has no t_m to re-bake
+            if (!material_.opaque) {  // an opaque material has no t_m to re-bake
                 rebake_ = std::make_unique<jade::DynamicBake>(baker_, rest_, material_, jade::BakeSettings::preset(state.quality));
+                renderer_.set_mesh(rest_);  // triangles and curvature; the vertices follow on the GPU
+            }
             times_.stages.emplace_back("re-bake setup (CPU)", now_ms() - t0);
         }
         deform_and_rebake(state);
@@ -128,16 +130,20 @@ void Scene::deform_and_rebake(const ViewState& state)
     const jade::DeformTimings d = deformer_->deform(deformer_params_, state.time);
     times_.stages.emplace_back("deform", d.deform_ms);
     times_.stages.emplace_back("normals", d.normals_ms);
-    jade::DeformedVertices v = deformer_->read();
-    std::vector<glm::vec3> tm;
     if (rebake_) {
-        const jade::BakeResult r = rebake_->bake(v.positions, v.normals, v.areas);
+        // GPU-resident: the re-bake reads the deformer's buffers and the renderer's vertices are
+        // updated from them and from the new t_m, with no read-back.
+        const jade::BakeResult r = rebake_->bake(deformer_->positions_buffer(), deformer_->normals_buffer(),
+                                                 deformer_->areas_buffer(), /*read_back=*/false);
         for (const auto& [name, ms] : r.timings.gpu_stages) times_.stages.emplace_back("re-bake " + name, ms);
-        tm = r.tm;
+        const double t1 = now_ms();
+        renderer_.update_vertices(deformer_->positions_buffer(), deformer_->normals_buffer(), rebake_->buffers().tm);
+        times_.stages.emplace_back("vertex update (wall)", now_ms() - t1);
+    } else {  // opaque: no t_m, the deformed mesh as host data
+        const double t1 = now_ms();
+        renderer_.set_mesh(jade::deformed_mesh(rest_, deformer_->read()));
+        times_.stages.emplace_back("set_mesh (CPU)", now_ms() - t1);
     }
-    const double t1 = now_ms();
-    renderer_.set_mesh(jade::deformed_mesh(rest_, std::move(v)), tm);
-    times_.stages.emplace_back("set_mesh (CPU)", now_ms() - t1);
     times_.bake_wall_ms = now_ms() - t0;
 }
 
@@ -148,6 +154,11 @@ jade::Camera Scene::camera(const ViewState& state, float aspect) const
     // The same framing as `jade render` (bounds seen from +z by default), then the zoom.
     jade::Camera c = jade::Camera::framing(rest_.bbox_min, rest_.bbox_max, aspect, direction);
     if (state.zoom != 1.0f) c.eye = c.target + (c.eye - c.target) * state.zoom;
+    // Explicit planes around twice the rest pose's bounding sphere: a deformed mesh drawn from
+    // GPU-updated vertices may leave the rest bounds the renderer would fit the planes to.
+    const float radius = 0.5f * glm::length(rest_.bbox_max - rest_.bbox_min), distance = glm::length(c.eye - c.target);
+    c.near_plane = std::max(distance - 2.0f * radius, 1e-3f * radius);
+    c.far_plane = distance + 2.0f * radius;
     return c;
 }
 

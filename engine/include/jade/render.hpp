@@ -192,6 +192,18 @@ public:
     /// A mesh as loaded, with t_m per render vertex (e.g. TriangleMesh::baked_tm). It is
     /// prepared (welded) and t_m is averaged over the render vertices of each bake vertex.
     void set_mesh(const TriangleMesh& mesh, std::span<const glm::vec3> tm_per_render_vertex);
+    /// A deforming mesh, kept on the GPU: records a compute pass that copies new positions,
+    /// normals and t_m - tightly packed float3 per bake vertex of the mesh given to set_mesh,
+    /// in storage buffers such as MeshDeformer::positions_buffer()/normals_buffer() and
+    /// DynamicBake::buffers().tm - into the renderer's vertex buffer. t_m is clamped to
+    /// [0, 3e38] (NaN to 0). What set_mesh computed on the host stays: the curvature, the bounds
+    /// that fit the near/far planes, the false-colour range. Synchronisation, in `cmd`: a barrier
+    /// after earlier compute-shader and transfer writes to the inputs (and earlier draws' vertex
+    /// reads), and one before the vertex input of later draws on the same queue (record() or
+    /// render() after it). Throws jade::Error without a mesh or with a null buffer.
+    void record_vertex_update(VkCommandBuffer cmd, VkBuffer positions, VkBuffer normals, VkBuffer tm);
+    /// The same in a submission of its own (waits).
+    void update_vertices(VkBuffer positions, VkBuffer normals, VkBuffer tm);
     /// Albedo, strength, specular parameters and profiles (the curvature LUT is rebuilt, on
     /// the CPU in float64, when the profiles change). Waits for the GPU like set_mesh.
     void set_material(const Material& material);

@@ -8,6 +8,7 @@
 #include "gpu/buffer.hpp"
 #include "gpu/context.hpp"
 #include "gpu/image.hpp"
+#include "gpu/kernel.hpp"
 #include "gpu/pipeline.hpp"
 #include "gpu/timer.hpp"
 #include "shading/lut.hpp"
@@ -94,7 +95,8 @@ struct Renderer::Impl {
 
     // Mesh.
     gpu::Buffer vertices, indices;
-    uint32_t index_count = 0;
+    uint32_t index_count = 0, vertex_count = 0;
+    std::optional<gpu::Kernel> pack_vertices;  // record_vertex_update(): made on first use
     glm::vec3 bbox_min{0.0f}, bbox_max{0.0f};
     std::vector<float> curvature;
     float tm_min_mean = 0.0f, tm_max_mean = 0.0f;  // range of mean(t_m) over the vertices
@@ -387,7 +389,10 @@ void Renderer::set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm)
     }
     Impl& m = *impl_;
     vkDeviceWaitIdle(m.ctx.device());  // the old buffers may still be read by recorded draws
-    m.vertices = gpu::Buffer::from(m.ctx, vertices, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "mesh vertices");
+    // Storage too: record_vertex_update() rewrites positions, normals and t_m on the GPU.
+    m.vertices = gpu::Buffer::from(m.ctx, vertices, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                   "mesh vertices");
+    m.vertex_count = uint32_t(n);
     m.indices = gpu::Buffer::from(m.ctx, mesh.indices, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "mesh indices");
     m.index_count = uint32_t(mesh.indices.size());
     m.bbox_min = mesh.bbox_min, m.bbox_max = mesh.bbox_max;
@@ -413,6 +418,34 @@ void Renderer::set_mesh(const TriangleMesh& mesh, std::span<const glm::vec3> tm_
             if (count[b]) tm[b] /= float(count[b]);
     }
     set_mesh(prepared, tm);
+}
+
+void Renderer::record_vertex_update(VkCommandBuffer cmd, VkBuffer positions, VkBuffer normals, VkBuffer tm)
+{
+    Impl& m = *impl_;
+    if (!m.has_mesh) throw Error("Renderer::record_vertex_update: no mesh (call set_mesh first)");
+    if (!positions || !normals || !tm) throw Error("Renderer::record_vertex_update: a buffer is VK_NULL_HANDLE");
+    struct PackPush { uint32_t vertex_count; };
+    if (!m.pack_vertices)
+        m.pack_vertices.emplace(m.ctx, gpu::KernelDesc{"pack_vertices", shaders::pack_vertices_comp(),
+                                                      std::vector<VkDescriptorType>(4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
+                                                      sizeof(PackPush), 64, {}});
+    const VkDeviceSize stream = VkDeviceSize(m.vertex_count) * 12;
+    // Earlier compute or transfer writes to the inputs, and earlier draws' reads of the vertices.
+    gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT |
+                                 VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT,
+                        VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                        VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT);
+    m.pack_vertices->dispatch(cmd, m.vertex_count, PackPush{m.vertex_count},
+                              {gpu::Binding(positions, 0, stream), gpu::Binding(normals, 0, stream), gpu::Binding(tm, 0, stream),
+                               m.vertices});
+    gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_WRITE_BIT,
+                        VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT, VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT);
+}
+
+void Renderer::update_vertices(VkBuffer positions, VkBuffer normals, VkBuffer tm)
+{
+    impl_->ctx.submit_and_wait([&](VkCommandBuffer cmd) { record_vertex_update(cmd, positions, normals, tm); });
 }
 
 void Renderer::set_material(const Material& material)
