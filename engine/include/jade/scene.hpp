@@ -159,7 +159,9 @@ public:
     const ScenePlan& plan() const;
     /// Every pass run so far, in order (once-only passes first).
     const std::vector<PassRecord>& passes_run() const;
-    /// The t_m each object is drawn with (per bake vertex; empty for opaque objects).
+    /// The t_m each object is drawn with (per bake vertex; empty for opaque objects). For a
+    /// deforming object, the last frame's, read back from the GPU by this call (frames never
+    /// read it back themselves).
     const std::vector<glm::vec3>& tm(size_t object) const;
 
     /// Runs the per-frame passes at time `t` (seconds), then draws every object into one image

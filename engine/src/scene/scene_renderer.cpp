@@ -36,13 +36,12 @@ struct SceneRenderer::Impl {
 
     struct Object {
         PreparedMesh rest;
-        std::vector<glm::vec3> tm;
+        mutable std::vector<glm::vec3> tm;  // deforming: read back from the GPU by tm() only
         std::unique_ptr<Renderer> renderer;
         // Deforming objects only.
         std::optional<ProceduralDeformer> deformer;
         std::unique_ptr<MeshDeformer> mesh_deformer;
         std::unique_ptr<DynamicBake> dynamic_bake;
-        gpu::Buffer tm_readback;  // host-visible copy of the DynamicBake's t_m
     };
     std::vector<Object> objects;
     std::unique_ptr<Baker> dynamic_baker;  // the DynamicBakes use its pipelines: kept
@@ -91,8 +90,6 @@ struct SceneRenderer::Impl {
                 } else if (p.kind == PassKind::DynamicBake) {
                     if (!dynamic_baker) dynamic_baker = std::make_unique<Baker>(context);
                     o.dynamic_bake = std::make_unique<DynamicBake>(*dynamic_baker, o.rest, so.material, settings.bake);
-                    o.tm_readback = gpu::Buffer(context.gpu(), o.rest.vertex_count() * 12, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                                "scene: t_m read-back", true);
                     r.note = "set up (runs every frame)";
                 }
                 r.wall_ms = ms_since(t0);
@@ -105,31 +102,25 @@ struct SceneRenderer::Impl {
         }
     }
 
-    // Per frame: deform, re-bake and read t_m back in one submission, then the new vertices.
+    // Per frame: deform, re-bake and the renderer's vertex update in one submission, all on the
+    // GPU (Renderer::record_vertex_update): no mesh data goes through the host.
     void run_per_frame(double t)
     {
         for (size_t k = 0; k < objects.size(); ++k) {
             Object& o = objects[k];
             if (!o.mesh_deformer) continue;
             const auto t0 = Clock::now();
-            const auto n = o.rest.vertex_count();
             context.gpu().submit_and_wait([&](VkCommandBuffer cmd) {
                 o.mesh_deformer->record(cmd, *o.deformer, t);
                 o.dynamic_bake->record(cmd, o.mesh_deformer->positions_buffer(), o.mesh_deformer->normals_buffer(),
                                        o.mesh_deformer->areas_buffer());
-                gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                                    VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-                const VkBufferCopy region{0, 0, VkDeviceSize(n) * 12};
-                vkCmdCopyBuffer(cmd, o.dynamic_bake->buffers().tm, o.tm_readback.handle(), 1, &region);
-                gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                                    VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+                o.renderer->record_vertex_update(cmd, o.mesh_deformer->positions_buffer(), o.mesh_deformer->normals_buffer(),
+                                                 o.dynamic_bake->buffers().tm);
             });
             const double deform_and_bake_ms = ms_since(t0);
-            o.tm = o.tm_readback.read<glm::vec3>(n);
-            o.renderer->set_mesh(deformed_mesh(o.rest, o.mesh_deformer->read()), o.tm);
             passes.push_back({plan.objects[k].name, PassKind::Deform, 0, "t = " + std::to_string(t) + " s"});
             passes.push_back({plan.objects[k].name, PassKind::DynamicBake, deform_and_bake_ms,
-                              "deform + re-bake in one submission, new vertices uploaded"});
+                              "deform + re-bake + vertex update in one submission, on the GPU"});
         }
     }
 
@@ -218,7 +209,25 @@ SceneRenderer::~SceneRenderer() = default;
 
 const ScenePlan& SceneRenderer::plan() const { return impl_->plan; }
 const std::vector<PassRecord>& SceneRenderer::passes_run() const { return impl_->passes; }
-const std::vector<glm::vec3>& SceneRenderer::tm(size_t object) const { return impl_->objects.at(object).tm; }
+const std::vector<glm::vec3>& SceneRenderer::tm(size_t object) const
+{
+    const auto& o = impl_->objects.at(object);
+    if (o.dynamic_bake) {  // the last frame's t_m lives on the GPU: read it back on request only
+        const DynamicBake::Buffers b = o.dynamic_bake->buffers();
+        gpu::Buffer staging(impl_->context.gpu(), VkDeviceSize(b.vertex_count) * 12, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                            "scene: t_m read-back", true);
+        impl_->context.gpu().submit_and_wait([&](VkCommandBuffer cmd) {
+            gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                                VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+            const VkBufferCopy region{0, 0, VkDeviceSize(b.vertex_count) * 12};
+            vkCmdCopyBuffer(cmd, b.tm, staging.handle(), 1, &region);
+            gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                                VK_ACCESS_2_HOST_READ_BIT);
+        });
+        o.tm = staging.read<glm::vec3>(b.vertex_count);
+    }
+    return o.tm;
+}
 glm::vec3 SceneRenderer::bbox_min() const { return impl_->lo; }
 glm::vec3 SceneRenderer::bbox_max() const { return impl_->hi; }
 
