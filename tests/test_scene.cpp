@@ -283,7 +283,7 @@ protected:
     }
     static uint64_t draw_buffer_bytes(const ScenePlan& plan)
     {
-        uint64_t sum = 0;
+        uint64_t sum = plan.shared_buffer_bytes();  // the one translucency LUT of the scene
         for (const auto& o : plan.objects) sum += o.passes.back().buffer_bytes();
         return sum;
     }
@@ -322,10 +322,10 @@ TEST_F(SceneGpuTest, StaticSceneSecondRunReadsTheCacheAndCreatesNoBakeObjects)
     for (const auto& o : second.plan().objects) EXPECT_TRUE(o.cached);
     ASSERT_EQ(second.passes_run().size(), 3u);
     for (const auto& p : second.passes_run()) EXPECT_EQ(p.kind, PassKind::CacheRead);
-    // Exactly what the never-baked scene created: each Renderer's LUT builder, its vertex,
-    // index, frame and LUT buffers; no bake kernel, no bake buffer.
+    // Exactly what the never-baked scene created: the one shared LUT (its builder and buffers),
+    // each Renderer's vertex, index and frame buffers; no bake kernel, no bake buffer.
     EXPECT_EQ(c3.compute_pipelines - c2.compute_pipelines, c2.compute_pipelines - c1.compute_pipelines);
-    EXPECT_EQ(c3.compute_pipelines - c2.compute_pipelines, scene.objects.size());  // one LUT builder per Renderer
+    EXPECT_EQ(c3.compute_pipelines - c2.compute_pipelines, 1u);  // one LUT builder for all the Renderers
     EXPECT_EQ(c3.buffers - c2.buffers, c2.buffers - c1.buffers);
     EXPECT_EQ(c3.device_buffer_bytes - c2.device_buffer_bytes, draw_buffer_bytes(second.plan()));
     EXPECT_GT(second.tm(1)[0].x, 0.0f);
@@ -345,7 +345,7 @@ TEST_F(SceneGpuTest, OpaqueObjectAllocatesNoTmBuffers)
     EXPECT_EQ(c1.compute_pipelines - c0.compute_pipelines, 1u);  // the Renderer's LUT builder only
     // vertices, indices, frame data, LUT quads (device-local) and the LUT build's read-back (host-visible)
     EXPECT_EQ(c1.buffers - c0.buffers, 5u);
-    EXPECT_EQ(c1.device_buffer_bytes - c0.device_buffer_bytes, plan.objects[0].passes[0].buffer_bytes());
+    EXPECT_EQ(c1.device_buffer_bytes - c0.device_buffer_bytes, plan.objects[0].passes[0].buffer_bytes() + plan.shared_buffer_bytes());
     EXPECT_EQ(plan.objects[0].variant.mode, ShadingMode::Lambert);
 }
 
@@ -509,7 +509,7 @@ TEST(SceneCli, BenchRenderSceneComparesCachedWithNeverBaked)
                        "--quality", "draft"});
     ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("1 static bakes were missing and ran now"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("created 2 compute pipelines (2 objects"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("created 1 compute pipelines (2 objects"), std::string::npos) << r.output;  // the shared LUT's builder
     EXPECT_NE(r.output.find("cached / never baked: GPU"), std::string::npos) << r.output;
 }
 

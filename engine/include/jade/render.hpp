@@ -177,7 +177,9 @@ struct RenderTarget {
 /// lazily per mode, sample count and format). Threading and lifetime as in the header comment.
 class Renderer {
 public:
-    /// Builds the translucency LUT on the GPU (submits to the Context's queue and waits).
+    /// Builds the translucency LUT on the GPU (submits to the Context's queue and waits), or
+    /// shares the one another living Renderer of the same device and LUT size already built
+    /// (it does not depend on the material: a scene of many objects keeps one).
     /// Throws jade::Error for an even or too small LUT width/height or missing format support.
     explicit Renderer(Context& context, const RendererOptions& options = {});
     ~Renderer();

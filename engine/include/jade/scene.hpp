@@ -99,6 +99,10 @@ struct ObjectPlan {
 
 struct ScenePlan {
     std::vector<ObjectPlan> objects;
+    /// Held once for all objects while drawing: the translucency LUT (every Renderer of the
+    /// scene shares it, jade/render.hpp).
+    std::vector<BufferEstimate> shared;
+    uint64_t shared_buffer_bytes() const;  ///< `shared` without the images
     uint64_t resident_bytes() const;
     /// The largest once-only pass: static bakes run one after the other, each freed at once.
     uint64_t transient_peak_bytes() const;

@@ -89,16 +89,21 @@ std::vector<BufferEstimate> deform_buffers(size_t n, size_t tris)
             {"deform: deformed areas", at_least_16(4.0 * n)}};
 }
 
-// shading/renderer.cpp and shading/lut.cpp: what one Renderer holds while it draws.
-std::vector<BufferEstimate> draw_buffers(size_t n, size_t tris, const RendererOptions& o)
+// shading/renderer.cpp: what one Renderer holds of its own while it draws.
+std::vector<BufferEstimate> draw_buffers(size_t n, size_t tris)
 {
-    const LutLayout& l = o.lut;
     return {{"mesh vertices", at_least_16(double(kRendererVertexBytes) * n)},
             {"mesh indices", at_least_16(12.0 * tris)},
             {"frame data", kFrameDataBytes},
-            {"translucency LUT quads", at_least_16(16.0 * (l.width - 1) * (l.height - 1))},
-            {"translucency LUT (image)", uint64_t(l.width) * l.height * 4, true},
             {"curvature LUT placeholder (image)", 16, true}};
+}
+
+// shading/lut.cpp: the translucency LUT, shared by every Renderer of the scene.
+std::vector<BufferEstimate> shared_buffers(const RendererOptions& o)
+{
+    const LutLayout& l = o.lut;
+    return {{"translucency LUT quads", at_least_16(16.0 * (l.width - 1) * (l.height - 1))},
+            {"translucency LUT (image)", uint64_t(l.width) * l.height * 4, true}};
 }
 
 std::string bytes_text(uint64_t b)
@@ -157,10 +162,18 @@ bool ObjectPlan::runs(PassKind kind) const
     return std::any_of(passes.begin(), passes.end(), [&](const PassPlan& p) { return p.kind == kind; });
 }
 
+uint64_t ScenePlan::shared_buffer_bytes() const
+{
+    uint64_t sum = 0;
+    for (const auto& b : shared) sum += b.image ? 0 : b.bytes;
+    return sum;
+}
+
 uint64_t ScenePlan::resident_bytes() const
 {
     uint64_t sum = 0;
     for (const auto& o : objects) sum += o.resident_bytes();
+    for (const auto& b : shared) sum += b.bytes;
     return sum;
 }
 
@@ -195,6 +208,12 @@ std::string ScenePlan::describe() const
         }
         out << "  GPU memory: " << bytes_text(o.resident_bytes()) << " kept, " << bytes_text(o.transient_bytes())
             << " peak during the once-only passes\n";
+    }
+    if (!shared.empty()) {
+        uint64_t sum = 0;
+        for (const auto& b : shared) sum += b.bytes;
+        out << "shared by every object while drawing: " << shared.size() << " buffers and images, " << bytes_text(sum) << "\n";
+        for (const auto& b : shared) out << "      " << b.name << "  " << bytes_text(b.bytes) << "\n";
     }
     out << "scene: " << objects.size() << " objects, " << bytes_text(resident_bytes()) << " kept while drawing, "
         << bytes_text(transient_peak_bytes()) << " peak of once-only passes (estimates: see scene/plan.cpp)\n";
@@ -258,9 +277,10 @@ ScenePlan plan_scene(const Scene& scene, const SceneSettings& settings, const St
                 else o.passes.push_back({PassKind::StaticBake, false, false, bake_buffers(n, tris, settings.bake, false)});
             }
         }
-        o.passes.push_back({PassKind::Draw, true, true, draw_buffers(n, tris, settings.renderer)});
+        o.passes.push_back({PassKind::Draw, true, true, draw_buffers(n, tris)});
         plan.objects.push_back(std::move(o));
     }
+    if (!plan.objects.empty()) plan.shared = shared_buffers(settings.renderer);
     return plan;
 }
 

@@ -12,9 +12,12 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <map>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
+#include <tuple>
 
 namespace jade {
 
@@ -191,6 +194,20 @@ glm::vec4 CurvatureLut::shader_map() const
     const uint32_t w = image_.width();
     glm::vec2 v = texel_centre_map(image_.height());
     return {float(w - 1) / float(2 * w), 0.5f, v.x, v.y};
+}
+
+std::shared_ptr<TranslucencyLut> shared_translucency_lut(gpu::Context& ctx, const LutLayout& layout)
+{
+    // Weak entries: the registry never keeps a LUT alive, the Renderers do. Keyed by the device
+    // handle, so Contexts adopting the same device share too.
+    static std::mutex mutex;
+    static std::map<std::tuple<VkDevice, uint32_t, uint32_t>, std::weak_ptr<TranslucencyLut>> registry;
+    const std::lock_guard lock(mutex);
+    auto& slot = registry[{ctx.device(), layout.width, layout.height}];
+    if (auto lut = slot.lock()) return lut;
+    auto lut = std::make_shared<TranslucencyLut>(ctx, layout);
+    slot = lut;
+    return lut;
 }
 
 }  // namespace jade::shading

@@ -21,6 +21,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
+#include <memory>
 #include <vector>
 
 namespace jade::gpu { class Context; }
@@ -54,6 +55,12 @@ private:
     gpu::Buffer quads_;
     gpu::TexelView quads_view_;  // destroyed before quads_
 };
+
+/// The translucency LUT of `layout` on `ctx`'s device, shared by every Renderer of that device
+/// and layout while one of them holds it: built (one GPU submission) when none does, freed with
+/// the last holder. The LUT depends on nothing else (not on the material), so a scene of many
+/// objects builds and keeps one. Thread-safe.
+std::shared_ptr<TranslucencyLut> shared_translucency_lut(gpu::Context& ctx, const LutLayout& layout);
 
 class CurvatureLut {
 public:

@@ -88,7 +88,7 @@ struct Renderer::Impl {
     gpu::Context& ctx;
     RendererOptions options;
     gpu::OwnedSampler sampler;
-    shading::TranslucencyLut lut;
+    std::shared_ptr<shading::TranslucencyLut> lut;        // shared by the Renderers of this device and layout
     std::optional<shading::CurvatureLut> curvature_lut;    // made on demand: curvature_image()
     std::array<ChannelProfile, 3> curvature_lut_profiles;  // what curvature_lut was built for
     gpu::Image placeholder;                                // 1×1, bound when curvature_lut is not
@@ -116,7 +116,7 @@ struct Renderer::Impl {
     std::optional<gpu::GpuTimer> timer;
 
     Impl(gpu::Context& c, const RendererOptions& o)
-        : ctx(c), options(o), sampler(shading::make_lut_sampler(c)), lut(c, o.lut),
+        : ctx(c), options(o), sampler(shading::make_lut_sampler(c)), lut(shading::shared_translucency_lut(c, o.lut)),
           placeholder(c, {"curvature LUT placeholder", 1, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_SAMPLED_BIT}),
           frame_data(c, sizeof(FrameData), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "frame data")
     {
@@ -233,7 +233,7 @@ struct Renderer::Impl {
         d.albedo_strength = glm::vec4(m.albedo, m.strength);
         const float f0 = std::pow((m.ior - 1.0f) / (m.ior + 1.0f), 2.0f);
         d.specular = glm::vec4(f0, std::max(m.roughness * m.roughness, 1e-3f), m.specular, 0.0f);
-        d.lut_map = lut.shader_map();
+        d.lut_map = lut->shader_map();
         const auto [lo, hi] = false_color_range(s);
         d.curvature_map = curvature_lut ? curvature_lut->shader_map() : glm::vec4(0.0f);
         d.params = glm::vec4(float(1.0 / LutLayout::kMaxVariance), curvature_lut ? float(curvature_lut->scale()) : 0.0f, lo,
@@ -296,7 +296,7 @@ struct Renderer::Impl {
         ri.pDepthAttachment = &depth;
         vkCmdBeginRendering(cmd, &ri);
         pipe.bind(cmd, {s.width, s.height}, push,
-                  {frame_data, lut.quads(),
+                  {frame_data, lut->quads(),
                    gpu::Binding::image(curvature.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler)});
         VkBuffer vb = vertices.handle();
         VkDeviceSize offset = 0;
@@ -471,8 +471,8 @@ void Renderer::record(VkCommandBuffer cmd, const RenderTarget& target, const Cam
     impl_->record(cmd, target, camera, lights, settings);
 }
 
-const LutLayout& Renderer::lut_layout() const { return impl_->lut.layout(); }
-std::vector<float> Renderer::read_lut() { return impl_->lut.read(impl_->ctx); }
+const LutLayout& Renderer::lut_layout() const { return impl_->lut->layout(); }
+std::vector<float> Renderer::read_lut() { return impl_->lut->read(impl_->ctx); }
 const std::vector<float>& Renderer::curvature() const { return impl_->curvature; }
 double Renderer::curvature_scale() const
 {
