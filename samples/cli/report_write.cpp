@@ -388,7 +388,7 @@ std::string summary_markdown(const std::vector<Row>& rows, const Plan& plan, con
               "frame against a from-scratch bake of the same deformed mesh (rebuild: new BVH and cluster tree). GPU = "
               "bake per frame (refits, AO, t_m); RMS = mean over frames of the per-frame RMS; max over all frames. "
               "Amortised 1/N re-traces 1/N of the AO rays and re-evaluates 1/N of the vertices' t_m per frame "
-              "(`jade::Amortisation`); its first frame (a full re-bake) is left out.\n\nAO, absolute error:\n\n"
+              "(`jade::Amortisation`); its first frame (a full re-bake) is left out. Plot: deform.png.\n\nAO, absolute error:\n\n"
            << rows_table(rows, front, select(rows, [&](const Row& r) { return r.mesh == m && r.knob == "deform_ao"; }), "mode",
                          false, true)
            << "t_m, relative error:\n\n"

@@ -11,6 +11,8 @@ Reads DIR/report.csv (written by `jade report MESH... --out DIR`) and writes int
   presets.png  today's presets end to end: t_m max relative error and final-image error
                (99th percentile, 8-bit sRGB levels) against the bake's GPU time
   lut.png      translucency LUT: error of f and of the final image against the LUT's memory
+  deform.png   deforming mesh: AO RMS and t_m RMS error of refit and amortised re-bakes
+               (vs a from-scratch bake of each frame) against the GPU time per frame
 The Pareto front (no other configuration both cheaper and more accurate) uses the same axes
 and groups as summary.md: ringed in black. Files are written atomically (temp + rename).
 Needs matplotlib: installed on first use (apt-get python3-matplotlib on Debian/Ubuntu when
@@ -108,6 +110,8 @@ def axes_of(r):
         return (r["mesh"] + "|quality", r["gpu_ms"], r["err_max"])
     if knob in ("lut_size", "image_lut"):
         return (r["mesh"] + "|" + knob, texels(r["value"]), r["err_max"])
+    if knob in ("deform_ao", "deform_tm"):
+        return (r["mesh"] + "|" + knob, r["gpu_ms"], r["err_rms"])
     return None
 
 
@@ -271,6 +275,21 @@ class Plotter:
             self.pareto_legend(ax)
         self.save(fig, "lut.png")
 
+    def deform(self):
+        fig, axes = self.figure(2, "Deforming mesh: re-bake error per frame (vs a from-scratch bake) against GPU time "
+                                   "per frame (labels: refit, amortised 1/N)")
+        for ax, knob, ylabel in ((axes[0], "deform_ao", "AO error, RMS (absolute), mean over frames\n(refit: exactly 0, drawn at 1e-6)"),
+                                 (axes[1], "deform_tm", "t_m error, RMS (relative), mean over frames")):
+            for k, mesh in enumerate(OrderedDict.fromkeys(r["mesh"] for r in self.select(knob=knob))):
+                # The refit's AO error is 0 (identical to the rebuild): drawn at the axis floor.
+                pts = [r for r in self.select(knob=knob, mesh=mesh) if r["value"] != "rebuild"]
+                for r in pts:
+                    r["_x"], r["_y"] = r["gpu_ms"], max(r["err_rms"], 1e-6)
+                self.series(ax, pts, mesh, "C%d" % k, "o", x_scale=1e-3, annotate=lambda r: r["value"])
+            ax.set(xscale="log", yscale="log", xlabel="re-bake GPU time per frame (s)", ylabel=ylabel)
+            self.pareto_legend(ax)
+        self.save(fig, "deform.png")
+
 
 def main():
     if len(sys.argv) != 2 or sys.argv[1] in ("-h", "--help"):
@@ -285,7 +304,8 @@ def main():
     rows = load(path)
     mark_pareto(rows)
     p = Plotter(rows, out)
-    for knob, draw in (("ao_rays", p.ao), ("tm_epsilon", p.tm), ("quality", p.presets), ("lut_size", p.lut)):
+    for knob, draw in (("ao_rays", p.ao), ("tm_epsilon", p.tm), ("quality", p.presets), ("lut_size", p.lut),
+                       ("deform_ao", p.deform)):
         if p.select(knob=knob):
             draw()
     return 0
