@@ -11,6 +11,22 @@ uint32_t memory_type(VkPhysicalDevice physical, uint32_t bits, VkMemoryPropertyF
     throw std::runtime_error("no Vulkan memory type with properties " + std::to_string(wanted));
 }
 
+namespace {
+
+// Memory of the first type with `wanted` for what `req` asks, owned.
+Owned<VkDeviceMemory> allocate(VkPhysicalDevice physical, VkDevice device, const VkMemoryRequirements& req,
+                               VkMemoryPropertyFlags wanted)
+{
+    VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    ai.allocationSize = req.size;
+    ai.memoryTypeIndex = memory_type(physical, req.memoryTypeBits, wanted);
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    check(vkAllocateMemory(device, &ai, nullptr, &memory), "vkAllocateMemory");
+    return own(device, memory, vkFreeMemory);
+}
+
+}  // namespace
+
 Image make_image(VkPhysicalDevice physical, VkDevice device, VkFormat format, VkExtent2D extent,
                  VkSampleCountFlagBits samples, VkImageUsageFlags usage, VkImageAspectFlags aspect)
 {
@@ -29,13 +45,8 @@ Image make_image(VkPhysicalDevice physical, VkDevice device, VkFormat format, Vk
     img.image = own(device, image, vkDestroyImage);
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(device, image, &req);
-    VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    ai.allocationSize = req.size;
-    ai.memoryTypeIndex = memory_type(physical, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    VkDeviceMemory memory = VK_NULL_HANDLE;
-    check(vkAllocateMemory(device, &ai, nullptr, &memory), "vkAllocateMemory");
-    img.memory = own(device, memory, vkFreeMemory);
-    check(vkBindImageMemory(device, image, memory, 0), "vkBindImageMemory");
+    img.memory = allocate(physical, device, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    check(vkBindImageMemory(device, image, img.memory.get(), 0), "vkBindImageMemory");
     VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     vi.image = image;
     vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
@@ -59,14 +70,8 @@ HostBuffer make_host_buffer(VkPhysicalDevice physical, VkDevice device, VkDevice
     b.buffer = own(device, buffer, vkDestroyBuffer);
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(device, buffer, &req);
-    VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    ai.allocationSize = req.size;
-    ai.memoryTypeIndex = memory_type(physical, req.memoryTypeBits,
-                                     VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-    VkDeviceMemory memory = VK_NULL_HANDLE;
-    check(vkAllocateMemory(device, &ai, nullptr, &memory), "vkAllocateMemory");
-    b.memory = own(device, memory, vkFreeMemory);
-    check(vkBindBufferMemory(device, buffer, memory, 0), "vkBindBufferMemory");
+    b.memory = allocate(physical, device, req, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    check(vkBindBufferMemory(device, buffer, b.memory.get(), 0), "vkBindBufferMemory");
     return b;
 }
 
