@@ -1,0 +1,486 @@
+// bake/baker_impl.hpp - what the static bake (baker.cpp) and the per-frame re-bake
+// (dynamic_bake.cpp) share: the passes' push constants and limits, and Baker::Impl, which owns
+// the bake kernels and records every pass of one mesh's bake (its data flow: baker.cpp).
+// Private to engine/src/bake.
+#pragma once
+
+#include "bake/bvh.hpp"
+#include "bake/gpu_profile.hpp"
+#include "bake/near_field.hpp"
+#include "bake/ray_items.hpp"
+#include "gpu/buffer.hpp"
+#include "gpu/context.hpp"
+#include "gpu/kernel.hpp"
+#include "gpu/texel_view.hpp"
+#include "gpu/timer.hpp"
+
+#include <jade/bake.hpp>
+#include <jade/context.hpp>
+
+#include "jade_shaders.hpp"
+
+#include <glm/common.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace jade {
+namespace bake {
+
+using Clock = std::chrono::steady_clock;
+inline double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+constexpr VkDescriptorType kTexels = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+constexpr VkBufferUsageFlags kStorageUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+// Written by one pass as a storage buffer, fetched by the next as texels (gpu/texel_view.hpp).
+constexpr VkBufferUsageFlags kTexelUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+constexpr uint32_t kTriangleLeafSize = 4;
+constexpr uint32_t kPointLeafSize = 8;
+// Near-field list margins (bake/near_field.hpp): a static bake only needs to cover rounding;
+// a deforming mesh's lists, made at rest, must hold every pair that may come within 4ρ.
+constexpr float kStaticNearMargin = 1.05f;
+constexpr float kDynamicNearMargin = 1.5f;
+// Below this many vertices the all-pairs pass is as fast as building and walking the tree.
+constexpr size_t kExactBelow = 2048;
+
+// Sources per dispatch of the all-pairs pass (8 per loop iteration), and node visits per
+// dispatch of the clustered pass (one loop iteration each): lavapipe caps an invocation at
+// 65,535 loop iterations, and desktop drivers reset a GPU whose dispatch runs for seconds.
+constexpr uint32_t kExactSourcesPerDispatch = 16384;
+constexpr uint32_t kClusterWorkPerDispatch = 32768;
+
+struct AoPush {
+    uint32_t vertex_count, rays, seed, low_discrepancy;
+    float epsilon, max_distance;
+    uint32_t item_count, slices, slice;
+};
+struct AoResolvePush { uint32_t vertex_count, rays, slices; };
+struct GatherPush { uint32_t vertex_count; };
+struct RefitPush { uint32_t count, first; };
+struct RayRefitPush { uint32_t count, first, mode; };
+struct NearPush { uint32_t first_slot, slot_count, index_base; };
+struct ExactPush { uint32_t vertex_count, source_begin, source_end; };
+struct ClusterPush { uint32_t vertex_count, node_count; float epsilon; uint32_t work_budget, first_point, slot_begin, slot_end; };
+
+inline std::vector<VkDescriptorType> storage_bindings(size_t n) { return std::vector<VkDescriptorType>(n, kStorage); }
+
+// Which t_m kernel variant a material needs: one channel when grey, and the profile kind
+// shared by all channels (3: mixed kinds, chosen per channel at run time).
+struct TmVariant {
+    uint32_t grey;  // 1: grey
+    uint32_t kind;  // 0 Burley, 1 dipole, 2 Gaussians, 3 mixed (shaders/include/profile.glsl)
+};
+inline TmVariant tm_variant(const Material& m)
+{
+    const ProfileKind k = m.profile[0].kind;
+    const bool same = m.profile[1].kind == k && m.profile[2].kind == k;
+    return {m.grey() ? 1u : 0u, same ? uint32_t(k) : 3u};
+}
+
+inline void validate_ao_settings(const AoSettings& s)
+{
+    if (s.rays == 0 || s.rays > 65536) throw Error("AO: rays per vertex must be in 1..65536, got " + std::to_string(s.rays));
+    if (!(s.max_distance_rel > 0) || !std::isfinite(s.max_distance_rel))
+        throw Error("AO: max distance must be a positive fraction of the diagonal");
+    if (!(s.epsilon_rel >= 0) || !std::isfinite(s.epsilon_rel)) throw Error("AO: epsilon must be ≥ 0");
+}
+
+inline void validate_tm_settings(const BakeSettings& s, const gpu::Context& ctx)
+{
+    if (!(s.tm_epsilon > 0) || !std::isfinite(s.tm_epsilon)) throw Error("t_m: epsilon must be > 0");
+    if (s.tm_float64_sums && !ctx.info().float64)
+        throw Error("t_m: float64 sums (BakeSettings::tm_float64_sums) need shaderFloat64, which this device lacks");
+}
+
+inline void finish_timings(BakeTimings& t, const gpu::GpuTimer& timer, double setup, Clock::time_point t0)
+{
+    t.gpu_stages = timer.stages();
+    t.gpu_total_ms = timer.total_ms();
+    t.setup_ms = setup;
+    t.wall_ms = ms_since(t0);
+}
+
+}  // namespace bake
+
+// The bake's own vocabulary, for the two files that include this one.
+using bake::Clock;
+using bake::ms_since;
+using bake::kStorage;
+using bake::kTexels;
+using bake::kStorageUsage;
+using bake::kTexelUsage;
+using bake::kTriangleLeafSize;
+using bake::kPointLeafSize;
+using bake::kStaticNearMargin;
+using bake::kDynamicNearMargin;
+using bake::kExactBelow;
+using bake::kExactSourcesPerDispatch;
+using bake::kClusterWorkPerDispatch;
+using bake::AoPush;
+using bake::AoResolvePush;
+using bake::GatherPush;
+using bake::RefitPush;
+using bake::RayRefitPush;
+using bake::NearPush;
+using bake::ExactPush;
+using bake::ClusterPush;
+using bake::storage_bindings;
+using bake::TmVariant;
+using bake::tm_variant;
+using bake::validate_ao_settings;
+using bake::validate_tm_settings;
+using bake::finish_timings;
+
+struct Baker::Impl {
+    gpu::Context& ctx;
+    // Pipelines are made on first use: a scene that never needs one never creates it.
+    std::optional<gpu::Kernel> ao_trace, ao_resolve, gather, refit, ray_refit;
+    // t_m kernels per [grey (1 channel) or RGB][profile kind: Burley, dipole, Gaussians, mixed].
+    std::optional<gpu::Kernel> tm_near[2][4], tm_exact[2][4], tm_cluster[2][4];
+    std::optional<gpu::Kernel> tm_exact_f64[2][4];  // BakeSettings::tm_float64_sums
+
+    explicit Impl(gpu::Context& c) : ctx(c) {}
+
+    const gpu::Kernel& kernel(std::optional<gpu::Kernel>& slot, gpu::KernelDesc desc)
+    {
+        if (!slot) slot.emplace(ctx, desc);
+        return *slot;
+    }
+    const gpu::Kernel& ao_kernel()
+    {
+        return kernel(ao_trace, {"ao_trace", shaders::ao_trace_comp(), {kStorage, kStorage, kTexels, kStorage},
+                                 sizeof(AoPush), 64, {}});
+    }
+    const gpu::Kernel& ao_resolve_kernel()
+    {
+        return kernel(ao_resolve, {"ao_resolve", shaders::ao_resolve_comp(), storage_bindings(2), sizeof(AoResolvePush), 64, {}});
+    }
+    const gpu::Kernel& gather_kernel()
+    {
+        return kernel(gather, {"gather_sources", shaders::gather_sources_comp(), storage_bindings(5), sizeof(GatherPush), 64, {}});
+    }
+    const gpu::Kernel& refit_kernel()
+    {
+        return kernel(refit, {"cluster_refit", shaders::cluster_refit_comp(), storage_bindings(4), sizeof(RefitPush), 64, {}});
+    }
+    const gpu::Kernel& ray_refit_kernel()
+    {
+        return kernel(ray_refit, {"ray_refit", shaders::ray_refit_comp(), storage_bindings(5), sizeof(RayRefitPush), 64, {}});
+    }
+    // Specialisation constants of the t_m kernels: channel count and profile kind.
+    static std::vector<uint32_t> tm_constants(const TmVariant& v) { return {v.grey ? 1u : 3u, v.kind}; }
+    const gpu::Kernel& near_kernel(const TmVariant& v)
+    {
+        return kernel(tm_near[v.grey][v.kind],
+                      {"tm_near", shaders::tm_near_comp(), storage_bindings(10), sizeof(NearPush), 64, tm_constants(v)});
+    }
+    const gpu::Kernel& exact_kernel(const TmVariant& v, bool float64_sums)
+    {
+        auto& slot = float64_sums ? tm_exact_f64[v.grey][v.kind] : tm_exact[v.grey][v.kind];
+        if (!slot) require_subgroup_groups();  // once, when the kernel is made
+        return kernel(slot, {float64_sums ? "tm_exact_f64" : "tm_exact",
+                             float64_sums ? shaders::tm_exact_f64_comp() : shaders::tm_exact_comp(),
+                             {kStorage, kTexels, kStorage, kStorage, kStorage}, sizeof(ExactPush), 64, tm_constants(v)});
+    }
+    const gpu::Kernel& cluster_kernel(const TmVariant& v)
+    {
+        if (!tm_cluster[v.grey][v.kind]) require_subgroup_groups();
+        return kernel(tm_cluster[v.grey][v.kind],
+                      {"tm_cluster", shaders::tm_cluster_comp(),
+                       {kStorage, kTexels, kStorage, kStorage, kStorage, kStorage, kStorage}, sizeof(ClusterPush), 64,
+                       tm_constants(v)});
+    }
+    // The far passes share fetches across subgroups of at least 8 lanes (tm_common.glsl).
+    void require_subgroup_groups() const
+    {
+        VkPhysicalDeviceSubgroupProperties sub{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+        VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &sub};
+        vkGetPhysicalDeviceProperties2(ctx.physical_device(), &props);
+        const VkSubgroupFeatureFlags need =
+            VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_VOTE_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT;
+        if (sub.subgroupSize < 8 || !(sub.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) ||
+            (sub.supportedOperations & need) != need)
+            throw Error("t_m: the device's compute subgroups (" + std::to_string(sub.subgroupSize) +
+                        " lanes) lack what the far passes need: 8 or more lanes with basic, vote and ballot operations");
+    }
+
+
+    // GPU state of one mesh's bake: uploaded inputs, both trees, the passes' buffers. A static
+    // bake builds it, records once and drops it; a DynamicBake keeps it and records every frame.
+    struct MeshState {
+        uint32_t vertex_count = 0;
+        float diagonal = 0;
+        gpu::Buffer positions, normals, areas;
+        // AO: the BVH as ray items; refit data when the mesh deforms.
+        uint32_t item_count = 0;
+        gpu::Buffer ray_items, hits, ao;  // hits: per ray slice, per vertex
+        uint32_t ao_slices = 1;
+        gpu::TexelView ray_item_texels;
+        gpu::Buffer indices, item_origin, ray_work;  // dynamic only
+        std::vector<uint32_t> ray_work_offsets;     // [0, triangles) then one range per level
+        // t_m.
+        bool exact = false;
+        TmVariant variant{};
+        uint32_t node_count = 0, first_point = 0;  // first_point: texel of source 0 in `points`
+        gpu::Buffer profiles, point_order, points, nodes, node_levels, tm;
+        gpu::Buffer partial_sum, partial_comp, resume, near_offsets, near_indices;
+        gpu::TexelView point_texels, tree_texels;
+        std::vector<uint32_t> level_offsets;
+        struct NearWindow {
+            uint32_t first_slot, slot_count, index_base;
+            VkDeviceSize bytes;
+        };
+        std::vector<NearWindow> near_windows;  // near-pass dispatches, each within one binding's range
+    };
+
+    // Buffers bound whole as storage buffers must fit one binding; say so before the GPU is touched.
+    void check_storage_range(VkDeviceSize bytes, const char* what) const
+    {
+        if (bytes > ctx.limits().maxStorageBufferRange)
+            throw Error(std::string(what) + ": " + std::to_string(bytes) + " bytes exceed the device's maxStorageBufferRange (" +
+                        std::to_string(ctx.limits().maxStorageBufferRange) + "): the mesh has too many vertices for this device");
+    }
+
+    // Splits the slots into runs whose near-list entries fit one storage-buffer binding
+    // (maxStorageBufferRange), each window starting at an allowed binding offset.
+    void plan_near_windows(MeshState& m, const std::vector<uint32_t>& offsets) const
+    {
+        const auto& lim = ctx.limits();
+        const VkDeviceSize align = std::max<VkDeviceSize>(lim.minStorageBufferOffsetAlignment, 4);
+        const VkDeviceSize max_bytes = (VkDeviceSize(lim.maxStorageBufferRange) / align) * align - align;
+        const uint32_t slots = uint32_t(offsets.size() - 1);
+        m.near_windows.clear();
+        for (uint32_t k0 = 0; k0 < slots;) {
+            const VkDeviceSize start = (VkDeviceSize(offsets[k0]) * 4 / align) * align;
+            uint32_t k1 = k0 + 1;
+            if (VkDeviceSize(offsets[k1]) * 4 - start > max_bytes)
+                throw Error("t_m: the near-field list of one vertex exceeds the device's storage-buffer range");
+            // The longest run from k0 that fits (binary search over the monotone offsets).
+            uint32_t lo = k1, hi = slots;
+            while (lo < hi) {
+                const uint32_t mid = lo + (hi - lo + 1) / 2;
+                if (VkDeviceSize(offsets[mid]) * 4 - start <= max_bytes) lo = mid;
+                else hi = mid - 1;
+            }
+            k1 = lo;
+            const VkDeviceSize bytes = std::max<VkDeviceSize>(VkDeviceSize(offsets[k1]) * 4 - start, 4);
+            m.near_windows.push_back({k0, k1 - k0, uint32_t(start / 4), bytes});
+            k0 = k1;
+        }
+    }
+
+    void upload_mesh(MeshState& m, const PreparedMesh& mesh, VkBufferUsageFlags extra_usage = 0)
+    {
+        m.vertex_count = uint32_t(mesh.vertex_count());
+        m.diagonal = mesh.diagonal;
+        m.positions = gpu::Buffer::from(ctx, mesh.positions, kStorageUsage | extra_usage, "positions");
+        m.normals = gpu::Buffer::from(ctx, mesh.normals, kStorageUsage | extra_usage, "normals");
+        m.areas = gpu::Buffer::from(ctx, mesh.areas, kStorageUsage | extra_usage, "areas");
+    }
+
+    void prepare_ao(MeshState& m, const PreparedMesh& mesh, bool refittable)
+    {
+        const size_t tris = mesh.triangle_count();
+        std::vector<glm::vec3> lo(tris), hi(tris);
+        for (size_t t = 0; t < tris; ++t) {
+            glm::vec3 a = mesh.positions[mesh.indices[3 * t]], b = mesh.positions[mesh.indices[3 * t + 1]],
+                      c = mesh.positions[mesh.indices[3 * t + 2]];
+            lo[t] = glm::min(a, glm::min(b, c));
+            hi[t] = glm::max(a, glm::max(b, c));
+        }
+        bake::Bvh bvh = bake::build_bvh(lo, hi, kTriangleLeafSize);
+        bake::RayItems items = bake::flatten_ray_items(bvh, mesh);
+        m.item_count = items.count();
+        // Fetched as texels; bound whole as a storage buffer only by a refit (checked below).
+        m.ray_items = gpu::Buffer(ctx, items.texels.size() * 16, kTexelUsage, "ray items (BVH nodes and triangles)", false,
+                                  gpu::StorageBinding::Windows);
+        m.ray_items.upload(items.texels.data(), items.texels.size() * 16);
+        m.ray_item_texels = gpu::TexelView(ctx, m.ray_items, VK_FORMAT_R32G32B32A32_UINT, 16, "ray items (texels)");
+        m.hits = gpu::Buffer(ctx, mesh.vertex_count() * sizeof(uint32_t), kStorageUsage, "ao hit counts");
+        m.ao = gpu::Buffer(ctx, mesh.vertex_count() * sizeof(float), kStorageUsage, "ao");
+        if (!refittable) return;
+        check_storage_range(VkDeviceSize(items.count()) * 48, "ray items (refitted as a storage buffer)");
+        // Work for ray_refit.comp: every triangle item, then the node items level by level,
+        // deepest first, each with its leaf's triangle count (0: inner node).
+        std::vector<uint32_t> item_of_node(bvh.nodes.size());
+        std::vector<glm::uvec2> work;
+        for (uint32_t k = 0; k < items.count(); ++k) {
+            if (items.origin[k] & bake::kItemTriangleBit) work.push_back({k, 0});
+            else item_of_node[items.origin[k]] = k;
+        }
+        m.ray_work_offsets = {0, uint32_t(work.size())};
+        bake::BvhLevels levels = bake::bvh_levels(bvh);
+        for (size_t l = 0; l < levels.count(); ++l) {
+            for (uint32_t k = levels.offsets[l]; k < levels.offsets[l + 1]; ++k) {
+                const bake::BvhNode& node = bvh.nodes[levels.nodes[k]];
+                work.push_back({item_of_node[levels.nodes[k]], node.leaf() ? node.leaf_count() : 0});
+            }
+            m.ray_work_offsets.push_back(uint32_t(work.size()));
+        }
+        m.indices = gpu::Buffer::from(ctx, mesh.indices, kStorageUsage, "triangle indices");
+        m.item_origin = gpu::Buffer::from(ctx, items.origin, kStorageUsage, "ray item origins");
+        m.ray_work = gpu::Buffer::from(ctx, work, kStorageUsage, "ray refit work");
+    }
+
+    // Ray items follow the current positions: triangles, then node boxes bottom-up.
+    void record_ray_refit(VkCommandBuffer cmd, MeshState& m)
+    {
+        const auto& k = ray_refit_kernel();
+        for (size_t r = 0; r + 1 < m.ray_work_offsets.size(); ++r) {
+            const uint32_t first = m.ray_work_offsets[r], count = m.ray_work_offsets[r + 1] - first;
+            k.dispatch(cmd, count, RayRefitPush{count, first, r == 0 ? 0u : 1u},
+                       {m.positions, m.indices, m.item_origin, m.ray_work, m.ray_items});
+            gpu::compute_barrier(cmd);
+        }
+    }
+
+    // Traces the ray slices [first, first + count) of m.ao_slices (ao_trace.comp) into their
+    // hit counts, then resolves A_o from the counts of every slice.
+    void record_ao(VkCommandBuffer cmd, MeshState& m, const AoSettings& s, uint32_t first = 0, uint32_t count = 0)
+    {
+        if (count == 0) count = m.ao_slices;
+        const VkDeviceSize slice_bytes = VkDeviceSize(m.vertex_count) * sizeof(uint32_t);
+        vkCmdFillBuffer(cmd, m.hits.handle(), first * slice_bytes, count * slice_bytes, 0);
+        gpu::compute_barrier(cmd);
+        const uint32_t rays_in_slice = s.rays / m.ao_slices;
+        for (uint32_t slice = first; slice < first + count; ++slice) {
+            AoPush push{m.vertex_count, s.rays, s.seed, s.low_discrepancy ? 1u : 0u, s.epsilon_rel * m.diagonal,
+                        s.max_distance_rel * m.diagonal, m.item_count, m.ao_slices, slice};
+            ao_kernel().dispatch(cmd, uint64_t(m.vertex_count) * rays_in_slice, push,
+                                 {m.positions, m.normals, m.ray_item_texels, m.hits});
+        }
+        gpu::compute_barrier(cmd);
+        ao_resolve_kernel().dispatch(cmd, m.vertex_count, AoResolvePush{m.vertex_count, s.rays, m.ao_slices}, {m.hits, m.ao});
+    }
+
+    // Sets up gather → near field → (all pairs | refit → clustered), reading m.ao, writing
+    // m.tm. `near_margin` (bake/near_field.hpp) covers how much closer vertices may come.
+    void prepare_tm(MeshState& m, const PreparedMesh& mesh, const Material& material, const BakeSettings& s, float near_margin)
+    {
+        validate_tm_settings(s, ctx);
+        const size_t n = mesh.vertex_count();
+        m.variant = tm_variant(material);
+        m.exact = s.method == TmMethod::Exact || (s.method == TmMethod::Auto && n < kExactBelow);
+        auto profiles = bake::to_gpu(material);
+        if (!m.exact) {
+            // The faint test of tm_cluster.comp against the total area (≥ the total weight, so
+            // never laxer than against the weight).
+            double area = 0;
+            for (float a : mesh.areas) area += a;
+            const double threshold = 1e-3 * std::pow(double(s.tm_epsilon), 3);
+            for (int c = 0; c < 3; ++c)
+                profiles[c].faint_radius = bake::faint_radius(material.profile[c], area, threshold, mesh.diagonal);
+        }
+        m.profiles = gpu::Buffer::from(ctx, std::span<const bake::GpuProfile>(profiles), kStorageUsage, "profiles");
+        m.tm = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m");
+        m.partial_sum = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m partial sums");
+        m.partial_comp = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m partial compensation");
+        bake::Bvh tree = bake::build_bvh(mesh.positions, mesh.positions, kPointLeafSize);
+        bake::NearLists near = bake::build_near_lists(mesh, tree, near_margin);
+        std::vector<uint32_t> identity;
+        if (m.exact) {
+            identity.resize(n);
+            std::iota(identity.begin(), identity.end(), 0u);
+        }
+        // Rows in slot order, so a range of slots has a contiguous window of entries.
+        near = bake::reorder_rows(near, m.exact ? std::span<const uint32_t>(identity) : std::span<const uint32_t>(tree.order));
+        plan_near_windows(m, near.offsets);
+        m.near_offsets = gpu::Buffer::from(ctx, near.offsets, kStorageUsage, "near-field offsets");
+        near.indices.resize(near.indices.size() + 64, 0);  // room for a window's aligned start and minimum size
+        // Bound in windows (plan_near_windows), so it may outgrow one binding.
+        m.near_indices = gpu::Buffer(ctx, near.indices.size() * 4, kStorageUsage, "near-field sources", false,
+                                     gpu::StorageBinding::Windows);
+        m.near_indices.upload(near.indices.data(), near.indices.size() * 4);
+        if (m.exact) {
+            m.point_order = gpu::Buffer::from(ctx, identity, kStorageUsage, "identity order");
+            m.points = gpu::Buffer(ctx, n * 32, kTexelUsage, "t_m sources");
+            m.point_texels = gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "t_m sources (texels)");
+            return;
+        }
+        m.node_count = uint32_t(tree.nodes.size());
+        m.point_order = gpu::Buffer::from(ctx, tree.order, kStorageUsage, "point tree order");
+        m.nodes = gpu::Buffer::from(ctx, tree.nodes, kStorageUsage, "point tree nodes");
+        bake::BvhLevels levels = bake::bvh_levels(tree);
+        m.node_levels = gpu::Buffer::from(ctx, levels.nodes, kStorageUsage, "point tree levels");
+        m.level_offsets = levels.offsets;
+        // One buffer holds the nodes (4 texels each) and then the sources (2 texels each), so one
+        // fetch per lane brings a node and a source (tm_cluster.comp).
+        // Sources start at a texel that is a multiple of 16 (256 bytes): any device's allowed
+        // offset for binding them alone as a storage buffer.
+        m.first_point = (4 * m.node_count + 15) / 16 * 16;
+        check_storage_range(VkDeviceSize(n) * 32, "t_m sources");
+        check_storage_range(VkDeviceSize(m.node_count) * 64, "t_m cluster nodes");
+        m.points = gpu::Buffer(ctx, VkDeviceSize(m.first_point) * 16 + n * 32, kTexelUsage, "t_m cluster tree and sources", false,
+                               gpu::StorageBinding::Windows);  // bound as two windows, each checked above
+        m.tree_texels = gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_UINT, 16, "t_m cluster tree and sources (texels)");
+        m.resume = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m traversal resume state");
+    }
+
+    // Gathers every source and refits the cluster tree, then evaluates t_m for the targets in
+    // tree slots [slot_begin, slot_end) (every slot by default; the all-pairs method always
+    // evaluates every target).
+    void record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSettings& s, gpu::GpuTimer* timer, uint32_t slot_begin = 0,
+                   uint32_t slot_end = ~0u)
+    {
+        auto mark = [&](const char* stage) {
+            if (timer) timer->mark(cmd, stage);
+        };
+        const uint32_t n = m.vertex_count;
+        if (m.exact) slot_begin = 0, slot_end = n;
+        slot_end = std::min(slot_end, n);
+        const gpu::Binding nodes_window(m.points.handle(), 0, std::max<VkDeviceSize>(VkDeviceSize(m.node_count) * 64, 16));
+        const gpu::Binding points_window(m.points.handle(), VkDeviceSize(m.first_point) * 16, VkDeviceSize(n) * 32);
+        gather_kernel().dispatch(cmd, n, GatherPush{n}, {m.positions, m.areas, m.ao, m.point_order, points_window});
+        gpu::compute_barrier(cmd);
+        mark("gather");
+        if (!m.exact) {
+            for (size_t l = 0; l + 1 < m.level_offsets.size(); ++l) {
+                const uint32_t first = m.level_offsets[l], count = m.level_offsets[l + 1] - first;
+                refit_kernel().dispatch(cmd, count, RefitPush{count, first}, {m.nodes, m.node_levels, nodes_window, points_window});
+                gpu::compute_barrier(cmd);
+            }
+            mark("refit");
+            vkCmdFillBuffer(cmd, m.resume.handle(), 0, VK_WHOLE_SIZE, 0);
+        }
+        for (const auto& w : m.near_windows) {
+            const uint32_t first = std::max(w.first_slot, slot_begin), end = std::min(w.first_slot + w.slot_count, slot_end);
+            if (first >= end) continue;
+            near_kernel(m.variant).dispatch(cmd, end - first, NearPush{first, end - first, w.index_base},
+                                            {m.profiles, m.positions, m.areas, m.ao, m.near_offsets,
+                                             gpu::Binding(m.near_indices.handle(), VkDeviceSize(w.index_base) * 4, w.bytes),
+                                             m.point_order, m.partial_sum, m.partial_comp, m.tm});
+        }
+        gpu::compute_barrier(cmd);
+        mark("t_m near field");
+        if (m.exact) {
+            const auto& kernel = exact_kernel(m.variant, s.tm_float64_sums);
+            for (uint32_t begin = 0; begin < n; begin += kExactSourcesPerDispatch) {
+                ExactPush push{n, begin, std::min(n, begin + kExactSourcesPerDispatch)};
+                kernel.dispatch(cmd, n, push, {m.profiles, m.point_texels, m.partial_sum, m.partial_comp, m.tm});
+                gpu::compute_barrier(cmd);
+            }
+            mark("t_m far field (all pairs)");
+            return;
+        }
+        const auto& kernel = cluster_kernel(m.variant);
+        // Every thread visits each node and each source at most once: this many dispatches finish
+        // every traversal; threads that are done return at once.
+        const uint32_t dispatches = (m.node_count + n) / kClusterWorkPerDispatch + 1;
+        ClusterPush push{n, m.node_count, s.tm_epsilon, kClusterWorkPerDispatch, m.first_point, slot_begin, slot_end};
+        for (uint32_t d = 0; d < dispatches; ++d) {
+            kernel.dispatch(cmd, slot_end - slot_begin, push, {m.profiles, m.tree_texels, m.point_order, m.resume, m.partial_sum, m.partial_comp, m.tm});
+            gpu::compute_barrier(cmd);
+        }
+        mark("t_m far field (clustered)");
+    }
+};
+
+}  // namespace jade

@@ -1,0 +1,154 @@
+// bake/dynamic_bake.cpp - the per-frame re-bake of a deforming mesh (jade::DynamicBake): the
+// static bake's passes (baker_impl.hpp) recorded every frame after refitting both trees on the
+// GPU, optionally a slice of the work per frame (jade::Amortisation).
+#include "bake/baker_impl.hpp"
+
+#include <jade/bake.hpp>
+
+namespace jade {
+
+struct DynamicBake::State {
+    Baker::Impl& impl;
+    BakeSettings settings;
+    Baker::Impl::MeshState mesh;
+    Amortisation amortisation;
+    uint64_t frame = 0;       // record() calls since the last full re-bake
+    bool stale = true;        // the next record() re-bakes everything
+    State(Baker::Impl& i, const BakeSettings& s) : impl(i), settings(s) {}
+
+    // Tree slots [begin, end) of t_m slice `k`: boundaries on multiples of 64 (a work group),
+    // so the lanes of a subgroup stay neighbours in the tree (tm_cluster.comp).
+    std::pair<uint32_t, uint32_t> tm_slice(uint32_t k) const
+    {
+        const uint64_t n = mesh.vertex_count, groups = (n + 63) / 64;
+        const uint64_t slices = std::min<uint64_t>(amortisation.tm_slices, groups);
+        const uint64_t begin = groups * (k % slices) / slices * 64, end = groups * (k % slices + 1) / slices * 64;
+        return {uint32_t(std::min(begin, n)), uint32_t(std::min(end, n))};
+    }
+};
+
+DynamicBake::DynamicBake(Baker& baker, const PreparedMesh& rest, const Material& material, const BakeSettings& settings)
+    : state_(std::make_unique<State>(*baker.impl_, settings))
+{
+    validate_ao_settings(settings.ao);
+    auto& impl = state_->impl;
+    // Deformers write the inputs on the GPU (or the host uploads them): transfer and storage.
+    impl.upload_mesh(state_->mesh, rest, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    impl.prepare_ao(state_->mesh, rest, true);
+    impl.prepare_tm(state_->mesh, rest, material, settings, kDynamicNearMargin);
+}
+
+DynamicBake::~DynamicBake() = default;
+
+DynamicBake::Buffers DynamicBake::buffers() const
+{
+    const auto& m = state_->mesh;
+    return {m.positions.handle(), m.normals.handle(), m.areas.handle(), m.ao.handle(), m.tm.handle(), m.vertex_count};
+}
+
+void DynamicBake::record(VkCommandBuffer cmd) { record_timed(cmd, nullptr); }
+
+void DynamicBake::record(VkCommandBuffer cmd, VkBuffer positions, VkBuffer normals, VkBuffer areas)
+{
+    copy_inputs(cmd, {positions, normals, areas});
+    record_timed(cmd, nullptr);  // begins with the barrier that orders the copies before the refit
+}
+
+void DynamicBake::copy_inputs(VkCommandBuffer cmd, const BakeInputs& in)
+{
+    auto& m = state_->mesh;
+    gpu::compute_barrier(cmd);  // the caller's writes before the copies read them
+    const VkDeviceSize n = m.vertex_count;
+    const VkBufferCopy vec3s{0, 0, n * 12}, floats{0, 0, n * 4};
+    vkCmdCopyBuffer(cmd, in.positions, m.positions.handle(), 1, &vec3s);
+    vkCmdCopyBuffer(cmd, in.normals, m.normals.handle(), 1, &vec3s);
+    vkCmdCopyBuffer(cmd, in.areas, m.areas.handle(), 1, &floats);
+}
+
+void DynamicBake::record_timed(VkCommandBuffer cmd, void* timer_ptr)
+{
+    auto* timer = static_cast<gpu::GpuTimer*>(timer_ptr);
+    auto& impl = state_->impl;
+    auto& m = state_->mesh;
+    gpu::compute_barrier(cmd);  // the inputs' writes (transfer or compute) before the refit reads them
+    impl.record_ray_refit(cmd, m);
+    if (timer) timer->mark(cmd, "BVH refit");
+    // Amortised: one AO slice and one t_m slice per record(), in turn; everything when stale.
+    const bool full = state_->stale;
+    const uint64_t frame = state_->frame;
+    state_->stale = false;
+    state_->frame = full ? 1 : frame + 1;
+    if (full) impl.record_ao(cmd, m, state_->settings.ao);
+    else impl.record_ao(cmd, m, state_->settings.ao, uint32_t(frame % m.ao_slices), 1);
+    gpu::compute_barrier(cmd);
+    if (timer) timer->mark(cmd, "ao");
+    const auto [begin, end] = full ? std::pair<uint32_t, uint32_t>{0, m.vertex_count}
+                                   : state_->tm_slice(uint32_t(frame % state_->amortisation.tm_slices));
+    impl.record_tm(cmd, m, state_->settings, timer, begin, end);
+}
+
+void DynamicBake::set_amortisation(const Amortisation& a)
+{
+    const uint32_t rays = state_->settings.ao.rays;
+    if (a.ao_slices == 0 || rays % a.ao_slices != 0)
+        throw Error("DynamicBake: Amortisation::ao_slices (" + std::to_string(a.ao_slices) + ") must be ≥ 1 and divide the " +
+                    std::to_string(rays) + " AO rays per vertex");
+    if (a.tm_slices == 0) throw Error("DynamicBake: Amortisation::tm_slices must be ≥ 1");
+    auto& m = state_->mesh;
+    if (a.ao_slices != m.ao_slices) {
+        vkDeviceWaitIdle(state_->impl.ctx.device());  // recorded frames may still use the hit counts
+        m.hits = gpu::Buffer(state_->impl.ctx, VkDeviceSize(m.vertex_count) * a.ao_slices * sizeof(uint32_t), kStorageUsage,
+                             "ao hit counts (per ray slice)");
+        m.ao_slices = a.ao_slices;
+    }
+    state_->amortisation = a;
+    state_->stale = true;
+}
+
+const Amortisation& DynamicBake::amortisation() const { return state_->amortisation; }
+
+BakeResult DynamicBake::bake(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
+                             std::span<const float> areas)
+{
+    auto& m = state_->mesh;
+    if (positions.size() != m.vertex_count || normals.size() != m.vertex_count || areas.size() != m.vertex_count)
+        throw Error("DynamicBake::bake: " + std::to_string(positions.size()) + " positions, " + std::to_string(normals.size()) +
+                    " normals and " + std::to_string(areas.size()) + " areas for a mesh of " + std::to_string(m.vertex_count) +
+                    " vertices");
+    for (size_t i = 0; i < positions.size(); ++i)
+        if (!std::isfinite(positions[i].x) || !std::isfinite(positions[i].y) || !std::isfinite(positions[i].z) ||
+            !std::isfinite(areas[i]) || areas[i] < 0)
+            throw Error("DynamicBake::bake: vertex " + std::to_string(i) + " has a non-finite position or a negative area");
+    auto t0 = Clock::now();
+    m.positions.upload(positions.data(), positions.size_bytes());
+    m.normals.upload(normals.data(), normals.size_bytes());
+    m.areas.upload(areas.data(), areas.size_bytes());
+    return submit_timed(nullptr, t0, true);
+}
+
+BakeResult DynamicBake::bake(VkBuffer positions, VkBuffer normals, VkBuffer areas, bool read_back)
+{
+    const BakeInputs inputs{positions, normals, areas};
+    return submit_timed(&inputs, Clock::now(), read_back);
+}
+
+BakeResult DynamicBake::submit_timed(const BakeInputs* inputs, std::chrono::steady_clock::time_point t0, bool read_back)
+{
+    auto& m = state_->mesh;
+    gpu::GpuTimer timer(state_->impl.ctx);
+    state_->impl.ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+        timer.begin(cmd);
+        if (inputs) copy_inputs(cmd, *inputs);
+        record_timed(cmd, &timer);
+    });
+    BakeResult r;
+    if (read_back) {
+        r.ao = m.ao.read<float>(m.vertex_count);
+        r.tm = m.tm.read<glm::vec3>(m.vertex_count);
+    }
+    r.method_used = m.exact ? TmMethod::Exact : TmMethod::Clustered;
+    finish_timings(r.timings, timer, 0, t0);
+    return r;
+}
+
+}  // namespace jade
