@@ -203,6 +203,7 @@ std::shared_ptr<TranslucencyLut> shared_translucency_lut(gpu::Context& ctx, cons
     static std::mutex mutex;
     static std::map<std::tuple<VkDevice, uint32_t, uint32_t>, std::weak_ptr<TranslucencyLut>> registry;
     const std::lock_guard lock(mutex);
+    std::erase_if(registry, [](const auto& entry) { return entry.second.expired(); });  // devices long gone
     auto& slot = registry[{ctx.device(), layout.width, layout.height}];
     if (auto lut = slot.lock()) return lut;
     auto lut = std::make_shared<TranslucencyLut>(ctx, layout);
