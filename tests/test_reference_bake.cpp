@@ -83,15 +83,17 @@ TEST(Bvh, StructureOrderAndEscapePointers)
 {
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> u(-10.0f, 10.0f), s(0.0f, 0.5f);
+    for (const bake::BvhSplit split : {bake::BvhSplit::Median, bake::BvhSplit::Sah})
     for (uint32_t n : {0u, 1u, 2u, 5u, 64u, 1000u, 1001u}) {
         for (uint32_t leaf : {1u, 4u, 7u}) {
+            const bool median = split == bake::BvhSplit::Median;
             std::vector<glm::vec3> lo(n), hi(n);
             for (uint32_t i = 0; i < n; ++i) {
                 lo[i] = {u(rng), u(rng), (i % 3 == 0) ? 1.0f : u(rng)};  // some coincident coordinates
                 hi[i] = lo[i] + glm::vec3(s(rng), s(rng), s(rng));
             }
-            const bake::Bvh bvh = bake::build_bvh(lo, hi, leaf);
-            SCOPED_TRACE("n = " + std::to_string(n) + ", leaf_size = " + std::to_string(leaf));
+            const bake::Bvh bvh = bake::build_bvh(lo, hi, leaf, split);
+            SCOPED_TRACE("n = " + std::to_string(n) + ", leaf_size = " + std::to_string(leaf) + (median ? ", median" : ", SAH"));
             ASSERT_EQ(bvh.nodes.size(), bvh.counts.size());
             ASSERT_EQ(bvh.order.size(), n);
             if (n == 0) {
@@ -105,7 +107,8 @@ TEST(Bvh, StructureOrderAndEscapePointers)
             const uint32_t count = uint32_t(bvh.nodes.size());
             EXPECT_EQ(bvh.nodes[0].escape, count);
             EXPECT_EQ(bvh.counts[0], n);
-            EXPECT_LE(bvh.depth, uint32_t(std::ceil(std::log2(std::max(1.0, double(n) / leaf)))) + 1);
+            if (median) EXPECT_LE(bvh.depth, uint32_t(std::ceil(std::log2(std::max(1.0, double(n) / leaf)))) + 1);
+            else EXPECT_LE(bvh.depth, 48u + uint32_t(std::ceil(std::log2(std::max(1.0, double(n))))));
 
             std::vector<int> seen(n, 0);
             for (uint32_t i = 0; i < count; ++i) {
@@ -134,7 +137,7 @@ TEST(Bvh, StructureOrderAndEscapePointers)
                     EXPECT_EQ(bvh.nodes[a].first(), first);
                     EXPECT_EQ(bvh.nodes[b].first(), first + bvh.counts[a]);
                     EXPECT_EQ(bvh.counts[a] + bvh.counts[b], c);
-                    EXPECT_LE(bvh.counts[b] - bvh.counts[a], 1u) << "median split";
+                    if (median) EXPECT_LE(bvh.counts[b] - bvh.counts[a], 1u) << "median split";
                     EXPECT_EQ(bvh.nodes[b].escape, node.escape);
                 }
             }
@@ -159,6 +162,42 @@ TEST(Bvh, StructureOrderAndEscapePointers)
             EXPECT_EQ(stackless, recursive);
         }
     }
+}
+
+namespace {
+
+/// The SAH cost of a tree in units of one traversal step (a node or a primitive, as in the AO
+/// shader): Σ over nodes of P(visit) · (1 + primitives if a leaf), P = area / root area.
+double sah_cost(const bake::Bvh& bvh)
+{
+    auto area = [](const bake::BvhNode& n) {
+        const glm::vec3 e = n.hi - n.lo;
+        return double(e.x) * e.y + double(e.y) * e.z + double(e.z) * e.x;
+    };
+    double cost = 0;
+    for (size_t i = 0; i < bvh.nodes.size(); ++i)
+        cost += area(bvh.nodes[i]) / area(bvh.nodes[0]) * (1.0 + (bvh.nodes[i].leaf() ? bvh.counts[i] : 0));
+    return cost;
+}
+
+}  // namespace
+
+TEST(Bvh, SahTreeIsCheaperThanMedianTreeOnTheBunny)
+{
+    // The AO tree is built with BvhSplit::Sah: its expected traversal cost must be clearly
+    // below the median split's (measured on the bunny: 6 % fewer steps per AO ray).
+    const PreparedMesh p = prepare_mesh(load_mesh(test::asset("bunny00.off")));
+    std::vector<glm::vec3> lo(p.triangle_count()), hi(p.triangle_count());
+    for (size_t t = 0; t < p.triangle_count(); ++t) {
+        const glm::vec3 a = p.positions[p.indices[3 * t]], b = p.positions[p.indices[3 * t + 1]],
+                        c = p.positions[p.indices[3 * t + 2]];
+        lo[t] = glm::min(a, glm::min(b, c));
+        hi[t] = glm::max(a, glm::max(b, c));
+    }
+    const double median = sah_cost(bake::build_bvh(lo, hi, 4, bake::BvhSplit::Median));
+    const double sah = sah_cost(bake::build_bvh(lo, hi, 4, bake::BvhSplit::Sah));
+    std::printf("SAH cost: median split %.1f, binned SAH %.1f (%.1f %% lower)\n", median, sah, 100.0 * (1.0 - sah / median));
+    EXPECT_LT(sah, 0.9 * median);
 }
 
 // ---------------------------------------------------------------------------------------------

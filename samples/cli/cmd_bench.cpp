@@ -3,6 +3,7 @@
 // jade bench render --scene SCENE.gltf: frame time of a cached static scene against the same
 // scene never baked (t_m = 0: the same draws), measured alternately in one run.
 #include "commands.hpp"
+#include "embree_ao.hpp"
 
 #include <jade/io.hpp>
 #include <jade/scene.hpp>
@@ -25,6 +26,7 @@ double max_rel_error(const std::vector<glm::vec3>& gpu, const std::vector<glm::d
         for (int c = 0; c < 3; ++c) e = std::max(e, std::abs(gpu[at[k]][c] - ref[k][c]) / std::max(ref[k][c], 1e-12));
     return e;
 }
+
 
 int bench_bake(const Args& args)
 {
@@ -80,6 +82,7 @@ int bench_bake(const Args& args)
                 format_ms(cpu_ao_ms).c_str(), cpu_ao_ms / ao_ms, 100.0 * same / n);
     std::printf("float64 CPU t_m       %10s   (extrapolated from %zu vertices; GPU clustered is %.0fx faster)\n",
                 format_ms(cpu_tm_ms).c_str(), at.size(), cpu_tm_ms / tm_ms);
+    print_embree_line(p, s.ao, ao_ms, best.ao);
     std::printf("\nmax relative t_m error vs float64 on %zu vertices: clustered %.2e, all-pairs %.2e\n", at.size(),
                 max_rel_error(best.tm, ref_tm, at), max_rel_error(ex.tm, ref_tm, at));
     return 0;

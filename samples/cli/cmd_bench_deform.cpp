@@ -6,6 +6,7 @@
 // settings), so "full" shows what refitting costs in accuracy and the amortised rows what
 // re-baking a part per frame adds to it.
 #include "commands.hpp"
+#include "embree_ao.hpp"
 #include "deform_sweep.hpp"
 
 #include <cstdio>
@@ -66,6 +67,8 @@ void bench_mesh(const Args& args, Context& ctx, const std::string& path, const s
     };
     const SweepStats full = sweep.run({}, &renderer, size);
     print("full re-bake (refit)", full);
+    std::printf("rest pose, for scale: ");
+    print_embree_line(rest, settings.ao, full.ao);
     for (uint32_t s : slice_counts) {
         const std::string label = "amortised 1/" + std::to_string(s);
         if (settings.ao.rays % s != 0) {

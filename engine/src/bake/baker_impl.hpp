@@ -44,6 +44,7 @@ constexpr VkBufferUsageFlags kStorageUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
 constexpr VkBufferUsageFlags kTexelUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
 constexpr uint32_t kTriangleLeafSize = 4;
 constexpr uint32_t kPointLeafSize = 8;
+static_assert(kPointLeafSize <= 8, "cluster_refit.comp scans at most 8 sources per leaf");
 // Near-field list margins (bake/near_field.hpp): a static bake only needs to cover rounding;
 // a deforming mesh's lists, made at rest, must hold every pair that may come within 4ρ.
 constexpr float kStaticNearMargin = 1.05f;
@@ -296,7 +297,7 @@ struct Baker::Impl {
             lo[t] = glm::min(a, glm::min(b, c));
             hi[t] = glm::max(a, glm::max(b, c));
         }
-        bake::Bvh bvh = bake::build_bvh(lo, hi, kTriangleLeafSize);
+        bake::Bvh bvh = bake::build_bvh(lo, hi, kTriangleLeafSize, bake::BvhSplit::Sah);
         bake::RayItems items = bake::flatten_ray_items(bvh, mesh);
         m.item_count = items.count();
         // Fetched as texels; bound whole as a storage buffer only by a refit (checked below).
