@@ -239,3 +239,22 @@ TEST_F(GpuTest, ThinSlabIsMoreTranslucentThanThickBlock)
     float slab = top_centre_tm(0.1f), block = top_centre_tm(4.0f);
     EXPECT_GT(slab, block * 1.2f) << "slab " << slab << " block " << block;
 }
+
+// `jade bench bake` measures the AO pass against Embree on the same rays: the yardstick is only
+// fair if Embree traces exactly those rays, so nearly every vertex's AO must agree (both trace
+// in float32; a ray grazing an edge may differ).
+TEST(BenchCli, BakeComparesTheGpuAoWithEmbreeOnTheSameRays)
+{
+    const auto r = test::run_cli({"bench", "bake", test::asset("ChineseDragon-10kv.off").string(), "--ao-rays", "8",
+                                  "--repeat", "1", "--sample", "4"});
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    if (r.output.find("not built in (install libembree-dev") != std::string::npos)
+        GTEST_SKIP() << "this build has no Embree (libembree-dev)";
+    const size_t at = r.output.find("GPU / Embree time");
+    ASSERT_NE(at, std::string::npos) << r.output;
+    const size_t semicolon = r.output.find("; ", at);
+    ASSERT_NE(semicolon, std::string::npos) << r.output;
+    const double identical = std::stod(r.output.substr(semicolon + 2));
+    EXPECT_GE(identical, 99.5) << r.output;
+    EXPECT_LE(identical, 100.0);
+}

@@ -82,7 +82,8 @@ int bench_bake(const Args& args)
                 format_ms(cpu_ao_ms).c_str(), cpu_ao_ms / ao_ms, 100.0 * same / n);
     std::printf("float64 CPU t_m       %10s   (extrapolated from %zu vertices; GPU clustered is %.0fx faster)\n",
                 format_ms(cpu_tm_ms).c_str(), at.size(), cpu_tm_ms / tm_ms);
-    print_embree_line(p, s.ao, ao_ms, best.ao);
+    std::printf("\n");
+    compare_ao_with_embree(baker, p, s.ao, std::max(5u, reps));
     std::printf("\nmax relative t_m error vs float64 on %zu vertices: clustered %.2e, all-pairs %.2e\n", at.size(),
                 max_rel_error(best.tm, ref_tm, at), max_rel_error(ex.tm, ref_tm, at));
     return 0;

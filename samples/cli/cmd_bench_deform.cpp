@@ -67,8 +67,8 @@ void bench_mesh(const Args& args, Context& ctx, const std::string& path, const s
     };
     const SweepStats full = sweep.run({}, &renderer, size);
     print("full re-bake (refit)", full);
-    std::printf("rest pose, for scale: ");
-    print_embree_line(rest, settings.ao, full.ao);
+    std::printf("for scale, the rest pose's ");
+    compare_ao_with_embree(baker, rest, settings.ao, 3);
     for (uint32_t s : slice_counts) {
         const std::string label = "amortised 1/" + std::to_string(s);
         if (settings.ao.rays % s != 0) {

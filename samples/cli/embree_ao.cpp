@@ -15,22 +15,21 @@
 #include <embree3/rtcore.h>
 
 #include <glm/geometric.hpp>
-
-#include <memory>
 #endif
 
 namespace jade::cli {
-
-#ifndef JADE_CLI_HAVE_EMBREE
-
-std::optional<EmbreeAo> embree_ao(const PreparedMesh&, const AoSettings&, unsigned) { return std::nullopt; }
-
-#else
-
 namespace {
 
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+double quantile(std::vector<double> v, double q)
+{
+    std::sort(v.begin(), v.end());
+    return v[size_t(q * double(v.size() - 1) + 0.5)];
+}
+
+#ifdef JADE_CLI_HAVE_EMBREE
 
 // One owner per Embree handle.
 struct DeviceDeleter {
@@ -39,8 +38,6 @@ struct DeviceDeleter {
 struct SceneDeleter {
     void operator()(RTCScene s) const { rtcReleaseScene(s); }
 };
-using DeviceHandle = std::unique_ptr<RTCDeviceTy, DeviceDeleter>;
-using SceneHandle = std::unique_ptr<RTCSceneTy, SceneDeleter>;
 
 void check(RTCDevice device, const char* what)
 {
@@ -48,48 +45,47 @@ void check(RTCDevice device, const char* what)
     if (e != RTC_ERROR_NONE) throw Error(std::string("Embree: ") + what + " failed (RTCError " + std::to_string(int(e)) + ")");
 }
 
-}  // namespace
+class EmbreeAoImpl final : public EmbreeAo {
+public:
+    explicit EmbreeAoImpl(const PreparedMesh& mesh) : mesh_(mesh)
+    {
+        version = RTC_VERSION_STRING;
+        threads = std::max(1u, std::thread::hardware_concurrency());
+        device_.reset(rtcNewDevice(nullptr));
+        if (!device_) throw Error("Embree: rtcNewDevice failed");
+        const auto t0 = Clock::now();
+        scene_.reset(rtcNewScene(device_.get()));
+        check(device_.get(), "rtcNewScene");
+        rtcSetSceneBuildQuality(scene_.get(), RTC_BUILD_QUALITY_HIGH);  // a static bake: the best tree
+        RTCGeometry geometry = rtcNewGeometry(device_.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+        // rtcSetNewGeometryBuffer pads the vertex buffer for Embree's 16-byte loads.
+        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                                     3 * sizeof(float), mesh.vertex_count()));
+        auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+            geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.triangle_count()));
+        check(device_.get(), "rtcSetNewGeometryBuffer");
+        for (size_t i = 0; i < mesh.vertex_count(); ++i)
+            for (int c = 0; c < 3; ++c) vertices[3 * i + c] = mesh.positions[i][c];
+        std::copy(mesh.indices.begin(), mesh.indices.end(), indices);
+        rtcCommitGeometry(geometry);
+        rtcAttachGeometry(scene_.get(), geometry);
+        rtcReleaseGeometry(geometry);
+        rtcCommitScene(scene_.get());
+        check(device_.get(), "rtcCommitScene");
+        build_ms = ms_since(t0);
+    }
 
-std::optional<EmbreeAo> embree_ao(const PreparedMesh& mesh, const AoSettings& settings, unsigned repeat)
-{
-    EmbreeAo out;
-    out.version = RTC_VERSION_STRING;
-    const size_t n = mesh.vertex_count();
-    DeviceHandle device(rtcNewDevice(nullptr));
-    if (!device) throw Error("Embree: rtcNewDevice failed");
-
-    auto t0 = Clock::now();
-    SceneHandle scene(rtcNewScene(device.get()));
-    check(device.get(), "rtcNewScene");
-    rtcSetSceneBuildQuality(scene.get(), RTC_BUILD_QUALITY_HIGH);  // a static bake: best tree
-    RTCGeometry geometry = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
-    // rtcSetNewGeometryBuffer pads the vertex buffer for Embree's 16-byte loads.
-    auto* vertices = static_cast<float*>(
-        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), n));
-    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                   3 * sizeof(unsigned), mesh.triangle_count()));
-    check(device.get(), "rtcSetNewGeometryBuffer");
-    for (size_t i = 0; i < n; ++i)
-        for (int c = 0; c < 3; ++c) vertices[3 * i + c] = mesh.positions[i][c];
-    std::copy(mesh.indices.begin(), mesh.indices.end(), indices);
-    rtcCommitGeometry(geometry);
-    rtcAttachGeometry(scene.get(), geometry);
-    rtcReleaseGeometry(geometry);
-    rtcCommitScene(scene.get());
-    check(device.get(), "rtcCommitScene");
-    out.build_ms = ms_since(t0);
-
-    const float eps = settings.epsilon_rel * mesh.diagonal;           // mesh units
-    const float t_max = settings.max_distance_rel * mesh.diagonal;    // mesh units
-    out.threads = std::max(1u, std::thread::hardware_concurrency());
-    out.ao.assign(n, 0.0f);
-    // The ray directions are made before the clock starts: Embree is timed on the queries
-    // alone (the GPU pass's time includes making its rays), the strictest yardstick.
-    std::vector<glm::vec3> directions(n * settings.rays);
-    for (size_t v = 0; v < n; ++v)
-        for (uint32_t k = 0; k < settings.rays; ++k)
-            directions[v * settings.rays + k] = ao_ray_direction(mesh.normals[v], uint32_t(v), k, settings);
-    for (unsigned rep = 0; rep < std::max(1u, repeat); ++rep) {
+    std::vector<float> trace(const AoSettings& settings, double& trace_ms) override
+    {
+        const size_t n = mesh_.vertex_count();
+        const uint32_t rays = settings.rays;
+        const float eps = settings.epsilon_rel * mesh_.diagonal;         // mesh units
+        const float t_max = settings.max_distance_rel * mesh_.diagonal;  // mesh units
+        std::vector<glm::vec3> directions(n * rays);
+        for (size_t v = 0; v < n; ++v)
+            for (uint32_t k = 0; k < rays; ++k)
+                directions[v * rays + k] = ao_ray_direction(mesh_.normals[v], uint32_t(v), k, settings);
+        std::vector<float> ao(n, 0.0f);
         std::atomic<size_t> next{0};
         auto worker = [&] {
             RTCIntersectContext context;
@@ -97,55 +93,82 @@ std::optional<EmbreeAo> embree_ao(const PreparedMesh& mesh, const AoSettings& se
             constexpr size_t kChunk = 64;
             for (size_t b; (b = next.fetch_add(kChunk)) < n;)
                 for (size_t v = b, e = std::min(n, b + kChunk); v < e; ++v) {
-                    const glm::vec3 normal = mesh.normals[v];
-                    const glm::vec3 origin = mesh.positions[v] + eps * normal;
+                    const glm::vec3 origin = mesh_.positions[v] + eps * mesh_.normals[v];
                     uint32_t hits = 0;
-                    for (uint32_t k = 0; k < settings.rays; ++k) {
-                        const glm::vec3 d = directions[v * settings.rays + k];
+                    for (uint32_t k = 0; k < rays; ++k) {
+                        const glm::vec3 d = directions[v * rays + k];
                         RTCRay ray{};
                         ray.org_x = origin.x, ray.org_y = origin.y, ray.org_z = origin.z;
                         ray.dir_x = d.x, ray.dir_y = d.y, ray.dir_z = d.z;
                         ray.tnear = 0.0f;
                         ray.tfar = t_max;
                         ray.mask = ~0u;
-                        rtcOccluded1(scene.get(), &context, &ray);
+                        rtcOccluded1(scene_.get(), &context, &ray);
                         hits += ray.tfar < 0.0f ? 1u : 0u;  // Embree sets tfar to -inf on a hit
                     }
-                    out.ao[v] = float(double(hits) / double(settings.rays));
+                    ao[v] = float(double(hits) / double(rays));
                 }
         };
-        t0 = Clock::now();
+        const auto t0 = Clock::now();
         std::vector<std::thread> pool;
-        for (unsigned t = 1; t < out.threads; ++t) pool.emplace_back(worker);
+        for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
         worker();
         for (auto& t : pool) t.join();
-        const double ms = ms_since(t0);
-        out.trace_ms = rep == 0 ? ms : std::min(out.trace_ms, ms);
+        trace_ms = ms_since(t0);
+        check(device_.get(), "rtcOccluded1");
+        return ao;
     }
-    check(device.get(), "rtcOccluded1");
-    return out;
-}
+
+private:
+    const PreparedMesh& mesh_;
+    std::unique_ptr<RTCDeviceTy, DeviceDeleter> device_;
+    std::unique_ptr<RTCSceneTy, SceneDeleter> scene_;
+};
 
 #endif
 
-void print_embree_line(const PreparedMesh& p, const AoSettings& ao, double gpu_ao_ms, std::span<const float> gpu_ao)
+}  // namespace
+
+std::unique_ptr<EmbreeAo> EmbreeAo::create([[maybe_unused]] const PreparedMesh& mesh)
 {
-    const auto embree = embree_ao(p, ao);
+#ifdef JADE_CLI_HAVE_EMBREE
+    return std::make_unique<EmbreeAoImpl>(mesh);
+#else
+    return nullptr;
+#endif
+}
+
+void compare_ao_with_embree(Baker& baker, const PreparedMesh& mesh, const AoSettings& settings, unsigned pairs)
+{
+    const auto embree = EmbreeAo::create(mesh);
     if (!embree) {
-        std::printf("Embree CPU AO          (not built in: install libembree-dev and reconfigure)\n");
+        std::printf("AO vs Embree: not built in (install libembree-dev and reconfigure)\n");
         return;
     }
-    const double rays = double(p.vertex_count()) * ao.rays;
-    std::printf("Embree %s CPU AO   %10s   %.2f Mrays/s, %u rays/vertex on %u threads (BVH build %s not counted); "
-                "GPU AO takes %.2fx Embree's time",
-                embree->version.c_str(), format_ms(embree->trace_ms).c_str(), rays / (embree->trace_ms * 1e3), ao.rays,
-                embree->threads, format_ms(embree->build_ms).c_str(), gpu_ao_ms / embree->trace_ms);
-    if (gpu_ao.size() == embree->ao.size()) {
-        size_t same = 0;
-        for (size_t i = 0; i < gpu_ao.size(); ++i) same += embree->ao[i] == gpu_ao[i];
-        std::printf("; %.2f%% of vertices identical", 100.0 * double(same) / double(gpu_ao.size()));
+    std::vector<double> gpu_ms, cpu_ms, ratio;
+    std::vector<float> gpu_ao, cpu_ao;
+    for (unsigned i = 0; i < std::max(1u, pairs); ++i) {
+        BakeTimings timings;
+        gpu_ao = baker.bake_ao(mesh, settings, &timings);
+        double embree_ms = 0;
+        cpu_ao = embree->trace(settings, embree_ms);
+        gpu_ms.push_back(timings.gpu_total_ms);
+        cpu_ms.push_back(embree_ms);
+        ratio.push_back(timings.gpu_total_ms / embree_ms);
     }
-    std::printf("\n");
+    size_t same = 0;
+    for (size_t v = 0; v < gpu_ao.size(); ++v) same += gpu_ao[v] == cpu_ao[v];
+    const double rays = double(mesh.vertex_count()) * settings.rays;
+    std::printf("AO vs Embree %s on the same %u rays/vertex, %zu alternating runs (Embree: %u threads, queries only, "
+                "BVH build %s not counted):\n",
+                embree->version.c_str(), settings.rays, ratio.size(), embree->threads, format_ms(embree->build_ms).c_str());
+    std::printf("  GPU AO pass          %10s median (min %s)   %.2f Mrays/s\n", format_ms(quantile(gpu_ms, 0.5)).c_str(),
+                format_ms(quantile(gpu_ms, 0.0)).c_str(), rays / (quantile(gpu_ms, 0.5) * 1e3));
+    std::printf("  Embree CPU           %10s median (min %s)   %.2f Mrays/s\n", format_ms(quantile(cpu_ms, 0.5)).c_str(),
+                format_ms(quantile(cpu_ms, 0.0)).c_str(), rays / (quantile(cpu_ms, 0.5) * 1e3));
+    std::printf("  GPU / Embree time    %10.2fx median of the per-run ratios (quartiles %.2f-%.2f); %.2f%% of vertices "
+                "identical\n",
+                quantile(ratio, 0.5), quantile(ratio, 0.25), quantile(ratio, 0.75), 100.0 * double(same) / double(gpu_ao.size()));
 }
 
 }  // namespace jade::cli
