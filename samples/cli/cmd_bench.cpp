@@ -27,7 +27,6 @@ double max_rel_error(const std::vector<glm::vec3>& gpu, const std::vector<glm::d
     return e;
 }
 
-
 int bench_bake(const Args& args)
 {
     TriangleMesh mesh = load_mesh_arg(args.positional().size() > 1 ? args.positional()[1] : "bunny");
@@ -87,12 +86,6 @@ int bench_bake(const Args& args)
     std::printf("\nmax relative t_m error vs float64 on %zu vertices: clustered %.2e, all-pairs %.2e\n", at.size(),
                 max_rel_error(best.tm, ref_tm, at), max_rel_error(ex.tm, ref_tm, at));
     return 0;
-}
-
-double quantile(std::vector<double> v, double q)
-{
-    std::sort(v.begin(), v.end());
-    return v[size_t(std::lround(q * double(v.size() - 1)))];
 }
 
 int bench_render_scene(const Args& args)

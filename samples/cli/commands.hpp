@@ -53,6 +53,8 @@ void check_output_file(const Args& args, const std::string& flag, const std::fil
 void check_output_folder(const std::string& flag, const std::filesystem::path& folder);
 
 std::string format_ms(double ms);
+/// The q-quantile (0 = min, 0.5 = median, 1 = max) of a non-empty sample, nearest rank.
+double quantile(std::vector<double> v, double q);
 
 // Scenes (cmd_scene.cpp): --cache, --mode and the bake options as SceneSettings.
 std::vector<OptionSpec> scene_options();

@@ -168,6 +168,12 @@ void check_output_folder(const std::string& flag, const std::filesystem::path& f
     probe_writable(flag, folder / "jade-write-probe", folder);
 }
 
+double quantile(std::vector<double> v, double q)
+{
+    std::sort(v.begin(), v.end());
+    return v[size_t(std::lround(q * double(v.size() - 1)))];
+}
+
 std::string format_ms(double ms)
 {
     char buf[32];

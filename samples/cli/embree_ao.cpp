@@ -9,7 +9,10 @@
 #include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <memory>
+#include <string>
 #include <thread>
+#include <vector>
 
 #ifdef JADE_CLI_HAVE_EMBREE
 #include <embree3/rtcore.h>
@@ -20,16 +23,10 @@
 namespace jade::cli {
 namespace {
 
+#ifdef JADE_CLI_HAVE_EMBREE
+
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
-
-double quantile(std::vector<double> v, double q)
-{
-    std::sort(v.begin(), v.end());
-    return v[size_t(q * double(v.size() - 1) + 0.5)];
-}
-
-#ifdef JADE_CLI_HAVE_EMBREE
 
 // One owner per Embree handle.
 struct DeviceDeleter {
@@ -45,9 +42,10 @@ void check(RTCDevice device, const char* what)
     if (e != RTC_ERROR_NONE) throw Error(std::string("Embree: ") + what + " failed (RTCError " + std::to_string(int(e)) + ")");
 }
 
-class EmbreeAoImpl final : public EmbreeAo {
+/// A mesh's triangles in an Embree scene (high-quality build), ready to trace AO rays.
+class EmbreeAo {
 public:
-    explicit EmbreeAoImpl(const PreparedMesh& mesh) : mesh_(mesh)
+    explicit EmbreeAo(const PreparedMesh& mesh) : mesh_(mesh)
     {
         version = RTC_VERSION_STRING;
         threads = std::max(1u, std::thread::hardware_concurrency());
@@ -75,7 +73,8 @@ public:
         build_ms = ms_since(t0);
     }
 
-    std::vector<float> trace(const AoSettings& settings, double& trace_ms) override
+    /// A_o per bake vertex, as Baker::bake_ao; trace_ms: the queries' wall time.
+    std::vector<float> trace(const AoSettings& settings, double& trace_ms)
     {
         const size_t n = mesh_.vertex_count();
         const uint32_t rays = settings.rays;
@@ -119,6 +118,10 @@ public:
         return ao;
     }
 
+    double build_ms = 0;  ///< the scene (BVH) build, wall
+    unsigned threads = 1;
+    std::string version;
+
 private:
     const PreparedMesh& mesh_;
     std::unique_ptr<RTCDeviceTy, DeviceDeleter> device_;
@@ -129,29 +132,25 @@ private:
 
 }  // namespace
 
-std::unique_ptr<EmbreeAo> EmbreeAo::create([[maybe_unused]] const PreparedMesh& mesh)
+#ifndef JADE_CLI_HAVE_EMBREE
+
+void compare_ao_with_embree(Baker&, const PreparedMesh&, const AoSettings&, unsigned)
 {
-#ifdef JADE_CLI_HAVE_EMBREE
-    return std::make_unique<EmbreeAoImpl>(mesh);
-#else
-    return nullptr;
-#endif
+    std::printf("AO vs Embree: not built in (install libembree-dev and reconfigure)\n");
 }
+
+#else
 
 void compare_ao_with_embree(Baker& baker, const PreparedMesh& mesh, const AoSettings& settings, unsigned pairs)
 {
-    const auto embree = EmbreeAo::create(mesh);
-    if (!embree) {
-        std::printf("AO vs Embree: not built in (install libembree-dev and reconfigure)\n");
-        return;
-    }
+    EmbreeAo embree(mesh);
     std::vector<double> gpu_ms, cpu_ms, ratio;
     std::vector<float> gpu_ao, cpu_ao;
     for (unsigned i = 0; i < std::max(1u, pairs); ++i) {
         BakeTimings timings;
         gpu_ao = baker.bake_ao(mesh, settings, &timings);
         double embree_ms = 0;
-        cpu_ao = embree->trace(settings, embree_ms);
+        cpu_ao = embree.trace(settings, embree_ms);
         gpu_ms.push_back(timings.gpu_total_ms);
         cpu_ms.push_back(embree_ms);
         ratio.push_back(timings.gpu_total_ms / embree_ms);
@@ -161,7 +160,7 @@ void compare_ao_with_embree(Baker& baker, const PreparedMesh& mesh, const AoSett
     const double rays = double(mesh.vertex_count()) * settings.rays;
     std::printf("AO vs Embree %s on the same %u rays/vertex, %zu alternating runs (Embree: %u threads, queries only, "
                 "BVH build %s not counted):\n",
-                embree->version.c_str(), settings.rays, ratio.size(), embree->threads, format_ms(embree->build_ms).c_str());
+                embree.version.c_str(), settings.rays, ratio.size(), embree.threads, format_ms(embree.build_ms).c_str());
     std::printf("  GPU AO pass          %10s median (min %s)   %.2f Mrays/s\n", format_ms(quantile(gpu_ms, 0.5)).c_str(),
                 format_ms(quantile(gpu_ms, 0.0)).c_str(), rays / (quantile(gpu_ms, 0.5) * 1e3));
     std::printf("  Embree CPU           %10s median (min %s)   %.2f Mrays/s\n", format_ms(quantile(cpu_ms, 0.5)).c_str(),
@@ -170,5 +169,7 @@ void compare_ao_with_embree(Baker& baker, const PreparedMesh& mesh, const AoSett
                 "identical\n",
                 quantile(ratio, 0.5), quantile(ratio, 0.25), quantile(ratio, 0.75), 100.0 * double(same) / double(gpu_ao.size()));
 }
+
+#endif
 
 }  // namespace jade::cli

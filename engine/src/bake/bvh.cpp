@@ -32,10 +32,16 @@ struct Builder {
     Bvh bvh;
 
     struct SahChoice {
-        int axis = -1;       // -1: no bin boundary separates the centroids
-        float position = 0;  // centroid coordinate: primitives below it go left
+        int axis = -1;  // -1: no bin boundary separates the centroids
+        int bin = 0;    // primitives in bins below it go left
         float cost = INFINITY;
     };
+
+    /// The bin of primitive p along axis, of kSahBins over the centroid bounds [c_lo, c_lo + extent].
+    int sah_bin(uint32_t p, int axis, float c_lo, float scale) const
+    {
+        return std::min(kSahBins - 1, int((centroid[p][axis] - c_lo) * scale));
+    }
 
     /// The best binned-SAH split of order[first, first + count): cost = 1 + (A_l·N_l + A_r·N_r)/A,
     /// in units of one traversal step (a node or a triangle each cost one loop iteration of the
@@ -57,7 +63,7 @@ struct Builder {
             const float scale = float(kSahBins) / extent;
             for (uint32_t k = first; k < first + count; ++k) {
                 const uint32_t p = bvh.order[k];
-                const int b = std::min(kSahBins - 1, int((centroid[p][axis] - c_lo[axis]) * scale));
+                const int b = sah_bin(p, axis, c_lo[axis], scale);
                 bins[b].lo = glm::min(bins[b].lo, lo[p]);
                 bins[b].hi = glm::max(bins[b].hi, hi[p]);
                 ++bins[b].count;
@@ -80,7 +86,7 @@ struct Builder {
                 l_count += bins[b].count;
                 if (l_count == 0 || l_count == count) continue;
                 const float cost = 1.0f + (half_area(l_lo, l_hi) * float(l_count) + right_cost[b + 1]) / area;
-                if (cost < best.cost) best = {axis, c_lo[axis] + float(b + 1) / scale, cost};
+                if (cost < best.cost) best = {axis, b + 1, cost};
             }
         }
         return best;
@@ -106,18 +112,20 @@ struct Builder {
         const bool leaf = count <= leaf_size;
         if (split == BvhSplit::Sah && level < kMaxSahLevel && !leaf) {
             const SahChoice choice = best_sah_split(first, count, box_lo, box_hi, c_lo, c_hi);
-            auto begin = bvh.order.begin() + first;
             if (choice.axis >= 0) {
-                // Stable, so the tree does not depend on the standard library's partition.
+                // By the same bin index the cost was computed with, so both sides are non-empty;
+                // stable, so the tree does not depend on the standard library's partition.
+                const int a = choice.axis;
+                const float scale = float(kSahBins) / (c_hi[a] - c_lo[a]);
+                auto begin = bvh.order.begin() + first;
                 const auto mid = std::stable_partition(
-                    begin, begin + count, [&](uint32_t p) { return centroid[p][choice.axis] < choice.position; });
+                    begin, begin + count, [&](uint32_t p) { return sah_bin(p, a, c_lo[a], scale) < choice.bin; });
                 const uint32_t left = uint32_t(mid - begin);
-                if (left > 0 && left < count) {
-                    build(first, left, level + 1);
-                    build(first + left, count - left, level + 1);
-                    finish(index, box_lo, box_hi, first, count, false);
-                    return;
-                }
+                assert(left > 0 && left < count);
+                build(first, left, level + 1);
+                build(first + left, count - left, level + 1);
+                finish(index, box_lo, box_hi, first, count, false);
+                return;
             }
             // No bin boundary separates the centroids: the median split below.
         }
