@@ -7,6 +7,7 @@
 
 layout(constant_id = 0) const uint MODE = 2;      // 0 Lambert, 1 curvature, 2 t_m, 3 t_m false colour
 layout(constant_id = 1) const uint CHANNELS = 3;  // 1: grey material, one LUT fetch per light
+layout(constant_id = 2) const uint TRANSMISSION = 0;  // 1: light through thin parts (t_m mode only)
 
 const uint kLambert = 0, kCurvature = 1, kTm = 2, kFalseColor = 3;
 
@@ -18,6 +19,7 @@ layout(location = 0) in vec3 in_position;
 layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec3 in_tm;
 layout(location = 3) in float in_curvature;
+layout(location = 4) in float in_thickness;
 
 layout(location = 0) out vec4 out_color;
 
@@ -71,6 +73,19 @@ float specular_lobe(vec3 n, vec3 v, vec3 l, float n_dot_l)
     return d * vis * f * n_dot_l;
 }
 
+// Light from behind through the thickness (jade/material.hpp Transmission): ballistic
+// transmittance e^{−σ_t t̄} into the forward lobe (n + 1)/(2π)·max(V·(−L), 0)^n, following
+// −N·L by normal_mix.
+vec3 transmitted(vec3 n, vec3 v, vec3 l, float n_dot_l, vec3 attenuation)
+{
+    float mu = -dot(v, l);
+    if (mu <= 0.0) return vec3(0.0);
+    vec4 shape = data.transmission_shape;
+    float lobe = shape.y * pow(mu, shape.x);
+    float follow = (1.0 - shape.z) + shape.z * max(-n_dot_l, 0.0);
+    return data.transmission.w * lobe * follow * attenuation;
+}
+
 vec3 false_color(float x)
 {
     float s = clamp(x, 0.0, 1.0) * float(kColorMapStops - 1);
@@ -102,6 +117,9 @@ void main()
     }
     float kappa_scaled = max(in_curvature, 0.0) * data.params.y;  // concave: treated as flat
 
+    // σ_t ≤ 3e38 and t̄ finite ≥ 0: the product is finite or +Inf, never NaN; e^{−Inf} = 0.
+    vec3 attenuation = TRANSMISSION == 1u ? exp(-data.transmission.rgb * max(in_thickness, 0.0)) : vec3(0.0);
+
     vec3 color = vec3(0.0);
     for (uint k = 0; k < frame.light_count; ++k) {
         GpuLight light = data.lights[k];
@@ -116,6 +134,7 @@ void main()
         float c = dot(n, l);
         color += albedo * (1.0 / JADE_PI) * diffuse_response(c, rows, kappa_scaled) * e;
         if (c > 0.0 && data.specular.z > 0.0) color += data.specular.z * specular_lobe(n, v, l, c) * e;
+        if (TRANSMISSION == 1u) color += transmitted(n, v, l, c, attenuation) * e;
     }
     out_color = vec4(color, 1.0);
 }

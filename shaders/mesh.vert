@@ -7,11 +7,13 @@ layout(location = 0) in vec3 in_position;   // mesh units
 layout(location = 1) in vec3 in_normal;     // unit, outward
 layout(location = 2) in vec3 in_tm;         // translucency magnitude, linear RGB, unitless
 layout(location = 3) in float in_curvature; // signed mean curvature, 1/mesh units
+layout(location = 4) in float in_thickness; // mean inward distance, mesh units
 
 layout(location = 0) out vec3 out_position;
 layout(location = 1) out vec3 out_normal;
 layout(location = 2) out vec3 out_tm;
 layout(location = 3) out float out_curvature;
+layout(location = 4) out float out_thickness;
 
 void main()
 {
@@ -19,5 +21,6 @@ void main()
     out_normal = in_normal;
     out_tm = in_tm;
     out_curvature = in_curvature;
+    out_thickness = in_thickness;
     gl_Position = frame.view_proj * vec4(in_position, 1.0);
 }

@@ -107,12 +107,13 @@ struct Scene {
     PreparedMesh prepared;
     Material material;
     std::vector<glm::vec3> tm;  ///< per bake vertex when baked here, else empty
+    std::vector<float> thickness;  ///< per bake vertex when baked here with transmission, else empty
 };
 
 void set_scene(Renderer& renderer, const Scene& s)
 {
-    if (!s.mesh.baked_tm.empty()) renderer.set_mesh(s.mesh, s.mesh.baked_tm);  // per render vertex
-    else renderer.set_mesh(s.prepared, s.tm);
+    if (!s.mesh.baked_tm.empty()) renderer.set_mesh(s.mesh, s.mesh.baked_tm, s.mesh.baked_thickness);  // per render vertex
+    else renderer.set_mesh(s.prepared, s.tm, s.thickness);
     renderer.set_material(s.material);
 }
 
@@ -131,6 +132,7 @@ Scene load_scene(const Args& args, Context& ctx, const std::string& path, bool n
         BakeResult r = baker.bake(s.prepared, s.material, settings);
         std::fprintf(stderr, "jade: baked in %s\n", format_ms(r.timings.wall_ms).c_str());
         s.tm = std::move(r.tm);
+        s.thickness = std::move(r.thickness);
     }
     return s;
 }

@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include <unistd.h>
 
@@ -28,7 +29,12 @@ std::vector<OptionSpec> material_options()
     return {{"material", "NAME", "material preset (default jade); see jade info --materials"},
             {"mm-per-unit", "X", "millimetres per mesh unit (default: the object is 100 mm across)"},
             {"d", "F", "Burley profile: mean scattering distance d as a fraction of the diagonal"},
-            {"strength", "S", "Gaussian variance per unit t_m (rad^2; default 1, as in the paper)"}};
+            {"strength", "S", "Gaussian variance per unit t_m (rad^2; default: the material's)"},
+            {"medium", "SR,SG,SB:AR,AG,AB[:G]", "a physical medium instead of --material: scattering and absorption "
+                                               "coefficients per mesh unit (linear RGB) and the HG mean cosine g"},
+            {"ior", "N", "with --medium: the boundary's relative index of refraction (default 1.5)"},
+            {"roughness", "R", "with --medium: the boundary's GGX roughness, alpha = R^2 as in glTF (default 0.6)"},
+            {"no-transmission", "", "leave out the light through thin parts (the poster's model alone)"}};
 }
 
 std::vector<OptionSpec> bake_options()
@@ -52,17 +58,56 @@ std::unique_ptr<Context> make_context(const Args& args)
     return std::make_unique<Context>(o);
 }
 
+Medium medium_from_args(const Args& args)
+{
+    const std::string spec = args.get_or("medium", "");
+    auto fail = [&](const std::string& why) {
+        args.fail("--medium " + spec + ": " + why + " (expected SR,SG,SB:AR,AG,AB[:G], coefficients per mesh unit)");
+    };
+    std::vector<std::string> parts;
+    std::stringstream ss(spec);
+    for (std::string p; std::getline(ss, p, ':');) parts.push_back(p);
+    if (parts.size() != 2 && parts.size() != 3) fail("need two or three ':'-separated parts");
+    auto number = [&](const std::string& text, const char* what) {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (text.empty() || *end || !std::isfinite(v)) fail(std::string(what) + " '" + text + "' is not a finite number");
+        return v;
+    };
+    auto rgb = [&](const std::string& text, const char* what) {
+        glm::dvec3 v;
+        std::stringstream cs(text);
+        std::string n;
+        int i = 0;
+        for (; i < 3 && std::getline(cs, n, ','); ++i) v[i] = number(n, what);
+        if (i != 3 || std::getline(cs, n, ',')) fail(std::string(what) + " needs three comma-separated values");
+        return v;
+    };
+    Medium m;
+    m.sigma_s = rgb(parts[0], "sigma_s");
+    m.sigma_a = rgb(parts[1], "sigma_a");
+    if (parts.size() == 3) m.g = number(parts[2], "g");
+    m.ior = args.number("ior", m.ior, 0.2, 5.0);
+    m.roughness = args.number("roughness", m.roughness, 0.0, 1.0);
+    return m;
+}
+
 Material material_from_args(const Args& args, const PreparedMesh& mesh)
 {
     double default_mm = mesh.diagonal > 0 ? 100.0 / mesh.diagonal : 1.0;
     double mm_per_unit = args.number("mm-per-unit", default_mm, 1e-30, 1e30);
     Material m;
+    if (args.get("medium") && args.get("material")) args.fail("--medium and --material: give one of them");
+    if (!args.get("medium") && (args.get("ior") || args.get("roughness")))
+        args.fail("--ior and --roughness describe a --medium's boundary; give --medium too");
     try {
-        m = material_preset(args.get_or("material", "jade"), mm_per_unit);
+        if (args.get("medium")) m = Material::from_medium(medium_from_args(args), {}, "medium");
+        else m = material_preset(args.get_or("material", "jade"), mm_per_unit);
     } catch (const Error& e) {
-        // An unknown --material is a command-line mistake: exit code 2, naming the flag.
-        args.fail(std::string("--material: ") + e.what());
+        // An unknown --material or a bad medium is a command-line mistake: exit code 2, naming the flag.
+        args.fail(std::string(args.get("medium") ? "--medium: " : "--material: ") + e.what());
     }
+    if (args.flag("no-transmission")) m.transmission.weight = 0.0f;
     if (auto d = args.get("d")) {
         double rel = args.number("d", 0.05, 1e-9, 1e9);
         // Keep the preset's colour ratios, scale so the channels' mean d is rel × diagonal.

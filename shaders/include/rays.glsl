@@ -39,18 +39,33 @@ vec2 ray_sample(uint vertex, uint k, uint n, uint seed, bool low_discrepancy)
     return vec2(float(a), float(b)) * (1.0 / 16777216.0);
 }
 
-// Cosine-weighted direction about the unit normal n (frame of Duff et al. 2017).
-vec3 ray_direction(vec3 n, vec2 u)
+// `local` (z along n) in the orthonormal frame of the unit vector n (Duff et al. 2017).
+vec3 in_frame(vec3 n, vec3 local)
 {
-    float rr = sqrt(u.x);
-    float phi = 2.0 * JADE_PI * u.y;
-    vec3 local = vec3(rr * cos(phi), rr * sin(phi), sqrt(max(0.0, 1.0 - u.x)));
     float s = n.z >= 0.0 ? 1.0 : -1.0;
     float a = -1.0 / (s + n.z);
     float b = n.x * n.y * a;
     vec3 t = vec3(1.0 + s * n.x * n.x * a, s * b, -s * n.x);
     vec3 bt = vec3(b, s + n.y * n.y * a, -n.y);
     return normalize(local.x * t + local.y * bt + local.z * n);
+}
+
+// Cosine-weighted direction about the unit normal n (the AO rays).
+vec3 ray_direction(vec3 n, vec2 u)
+{
+    float rr = sqrt(u.x);
+    float phi = 2.0 * JADE_PI * u.y;
+    return in_frame(n, vec3(rr * cos(phi), rr * sin(phi), sqrt(max(0.0, 1.0 - u.x))));
+}
+
+// Uniform in solid angle in the cone of half-angle acos(cos_cone) about the unit axis (the
+// thickness rays): cos θ = 1 − u1·(1 − cos_cone), φ = 2π·u2.
+vec3 cone_direction(vec3 axis, vec2 u, float cos_cone)
+{
+    float c = 1.0 - u.x * (1.0 - cos_cone);
+    float s = sqrt(max(0.0, 1.0 - c * c));
+    float phi = 2.0 * JADE_PI * u.y;
+    return in_frame(axis, vec3(s * cos(phi), s * sin(phi), c));
 }
 
 #endif

@@ -27,6 +27,8 @@ layout(binding = 0, scalar) readonly buffer FrameData {
                             // row (t / t_max)^¼ · z, z = H − 1; w = H − 2 the last row of quads
     vec4 curvature_map;     // curvature LUT:    u = cos θ · x + y, v = s / (1 + s) · z + w
     vec4 params;            // 1 / t_max, d̄ (curvature length, mesh units), false-colour min, 1 / range
+    vec4 transmission;      // σ_t (linear RGB, 1/mesh unit), weight (jade/material.hpp Transmission)
+    vec4 transmission_shape; // lobe exponent n, (n + 1)/(2π), normal_mix, unused
     vec4 color_map[kColorMapStops];  // false-colour stops, linear RGB
     GpuLight lights[];
 } data;

@@ -46,6 +46,30 @@ struct AoSettings {
     float epsilon_rel = 1e-4f;       ///< ray origin offset along the normal, × the diagonal
 };
 
+/// The per-vertex thickness t̄(x): the mean distance, mesh units, from x (offset against the
+/// normal by ε) to the nearest surface (either face) along `rays` rays inwards, uniform in solid
+/// angle in the cone of half-angle `cone_degrees` about −n (the shape-diameter-function idea,
+/// Shapira et al. 2008, without its outlier rejection: t̄ feeds e^{−σ_t t̄}, where a long ray
+/// should count). A ray that meets nothing within max_distance counts as max_distance. Rays: the
+/// AO pass's Hammersley set with a per-vertex rotation (seed), mapped to the cone; distances are
+/// summed in fixed point (2^-22 × max_distance), so the result is deterministic.
+struct ThicknessSettings {
+    uint32_t rays = 32;              ///< rays per vertex, 0..1023; 0: no thickness pass
+    float cone_degrees = 60.0f;      ///< half-angle of the cone about −n, (0, 90]
+    float max_distance_rel = 1.0f;   ///< cap on a ray's distance, × the mesh diagonal
+    float epsilon_rel = 1e-4f;       ///< ray origin offset against the normal, × the diagonal
+    uint32_t seed = 2;
+    bool enabled() const { return rays > 0; }
+};
+
+/// float64 CPU reference of the thickness pass: the same rays, intersected in double precision
+/// (nearest hit) over a BVH. `vertices` as in reference_ao.
+std::vector<double> reference_thickness(const PreparedMesh& mesh, const ThicknessSettings& settings,
+                                        std::span<const uint32_t> vertices = {});
+
+/// The direction of thickness ray k of `vertex` (unit, world space, in the cone about −normal).
+glm::vec3 thickness_ray_direction(glm::vec3 normal, uint32_t vertex, uint32_t k, const ThicknessSettings& settings);
+
 /// float64 CPU reference of the AO pass: the same rays as the GPU pass, intersected in double
 /// precision over a BVH, on all hardware threads. `vertices` limits it to a subset (empty = all);
 /// the result then holds one value per listed vertex.
@@ -82,6 +106,9 @@ enum class Quality { Draft, Default, High };
 
 struct BakeSettings {
     AoSettings ao;
+    /// The thickness pass, run only for a material whose transmission is enabled (it is what
+    /// the term reads). Quality presets: 16 / 32 / 64 rays.
+    ThicknessSettings thickness;
     TmMethod method = TmMethod::Auto;
     /// The far field's accuracy knob θ, an opening ratio: a node of the cluster tree with radius
     /// s at distance r is summed as one monopole + quadrupole when s ≤ θ·min(r, ℓ), ℓ = R/|R'|
@@ -108,6 +135,7 @@ struct BakeTimings {
 struct BakeResult {
     std::vector<float> ao;           ///< per bake vertex, [0,1]
     std::vector<glm::vec3> tm;       ///< per bake vertex, linear RGB, unitless
+    std::vector<float> thickness;    ///< per bake vertex, mesh units; empty without the pass
     BakeTimings timings;
     TmMethod method_used = TmMethod::Exact;
 };
@@ -125,7 +153,8 @@ public:
     Baker(const Baker&) = delete;
     Baker& operator=(const Baker&) = delete;
 
-    /// AO then t_m (the material's profiles, per channel; one channel when grey()).
+    /// AO, the thickness (when settings.thickness.enabled()) then t_m (the material's profiles,
+    /// per channel; one channel when grey()).
     BakeResult bake(const PreparedMesh& mesh, const Material& material, const BakeSettings& settings = {});
     /// t_m only, from given AO (one value per bake vertex).
     BakeResult bake_tm(const PreparedMesh& mesh, std::span<const float> ao, const Material& material,
@@ -141,7 +170,7 @@ private:
 
 /// How much of the re-bake one DynamicBake::record() does (amortisation over frames).
 ///
-/// AO: the rays of AoSettings are split into `ao_slices` interleaved slices (ray k belongs to
+/// AO (and the thickness rays, the same way): the rays of AoSettings are split into `ao_slices` interleaved slices (ray k belongs to
 /// slice k mod ao_slices, so each slice is itself a stratified set); a record() re-traces one
 /// slice, in turn, and keeps the other slices' hit counts from the frames that traced them.
 /// t_m: the vertices, in the point tree's order (so each slice is a few compact patches of the
@@ -154,7 +183,7 @@ private:
 /// vertices) always re-evaluate every vertex's t_m. `jade bench deform` measures the error
 /// this adds against a from-scratch bake of each frame.
 struct Amortisation {
-    uint32_t ao_slices = 1;  ///< ≥ 1 and divides AoSettings::rays; 1: every ray every frame
+    uint32_t ao_slices = 1;  ///< ≥ 1, divides AoSettings::rays and ThicknessSettings::rays; 1: every ray every frame
     uint32_t tm_slices = 1;  ///< ≥ 1; 1: every vertex's t_m every frame
 };
 
@@ -176,10 +205,12 @@ public:
 
     /// The GPU buffers, one entry per bake vertex, tightly packed: positions and normals
     /// (float3, mesh units, unit normals), areas (float, units²) - written by a deformer (usage:
-    /// storage, transfer destination) - and the results ao (float) and t_m (float3).
+    /// storage, transfer destination) - and the results ao (float), t_m (float3) and thickness
+    /// (float, mesh units; VK_NULL_HANDLE when BakeSettings::thickness is off).
     struct Buffers {
         VkBuffer positions, normals, areas, ao, tm;
         uint32_t vertex_count;
+        VkBuffer thickness = VK_NULL_HANDLE;
     };
     Buffers buffers() const;
 

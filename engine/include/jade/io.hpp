@@ -13,7 +13,7 @@ namespace jade {
 
 /// Loads a triangle mesh, choosing the reader by extension (case-insensitive):
 ///   .gltf / .glb  glTF 2.0: every triangle primitive of the default scene (or scene 0), node
-///                 transforms applied, indexed or not; reads `_AO`/`_TM` if present.
+///                 transforms applied, indexed or not; reads `_AO`/`_TM`/`_THICKNESS` if present.
 ///   .off          OFF (polygons are fan-triangulated)
 ///   .ply          PLY, ASCII or binary little-endian (faces fan-triangulated)
 ///   .obj          Wavefront OBJ (via tinyobjloader)
@@ -37,11 +37,13 @@ void save_animation(const std::filesystem::path& path, int width, int height, co
 struct BakedAttributes {
     std::vector<float> ao;            ///< per render vertex, [0,1]
     std::vector<glm::vec3> tm;        ///< per render vertex, linear RGB, unitless
+    std::vector<float> thickness;     ///< per render vertex, mesh units (empty: not written)
     std::string extras_json;          ///< a JSON object stored as the asset's `extras`
 };
 
 /// Writes `mesh` as binary glTF (.glb) or glTF with embedded buffer (.gltf) with the extra
-/// vertex attributes `_AO` (SCALAR float) and `_TM` (VEC3 float). Written to a temporary file
+/// vertex attributes `_AO` (SCALAR float), `_TM` (VEC3 float) and `_THICKNESS` (SCALAR float,
+/// mesh units). Written to a temporary file
 /// in the same folder and renamed, so a failure never leaves a half-written file.
 void save_baked_gltf(const std::filesystem::path& path, const TriangleMesh& mesh, const BakedAttributes& baked);
 

@@ -59,6 +59,57 @@ struct ChannelProfile {
     bool operator==(const ChannelProfile&) const = default;
 };
 
+/// A homogeneous scattering medium behind a dielectric boundary, the physical description that
+/// Material::from_medium turns into the renderer's parameters. Coefficients are linear RGB, per
+/// mesh unit (multiply coefficients per millimetre by mm_per_unit, the millimetres one mesh unit
+/// stands for). The boundary is a rough dielectric: GGX with α = roughness², as in glTF.
+struct Medium {
+    glm::dvec3 sigma_s{0.0};  ///< scattering coefficient σ_s ≥ 0, 1/mesh unit
+    glm::dvec3 sigma_a{0.0};  ///< absorption coefficient σ_a ≥ 0, 1/mesh unit
+    double g = 0.0;           ///< Henyey–Greenstein mean cosine, (−1, 1)
+    double ior = 1.5;         ///< relative index of refraction of the boundary, > 0
+    double roughness = 0.6;   ///< perceptual GGX roughness of the boundary, [0, 1]
+
+    /// The same medium for a mesh unit `factor` times longer (coefficients × factor).
+    Medium scaled(double factor) const;
+};
+
+/// Light that crosses the object from a light behind it (thin parts glowing), evaluated per
+/// fragment from the per-vertex thickness t̄ (mesh units, jade/bake.hpp ThicknessSettings):
+///   L_t = weight · T_boundary · e^{−σ_t·t̄} · lobe(μ) · ((1 − normal_mix) + normal_mix·max(−N·L, 0)) · E
+///   lobe(μ) = (n + 1)/(2π) · max(μ, 0)^n,  μ = V·(−L),  n = `lobe`
+/// the ballistic (unscattered) transmittance of the medium's extinction σ_t = σ_s + σ_a through
+/// the thickness, spread into a forward lobe (normalised over the hemisphere about −L) by the
+/// rough boundary and low-order forward scattering. Grey when σ_t is grey, as measured: thin
+/// parts of a grey-σ_t medium glow white-grey whatever its colour. weight = 0 turns it off.
+struct Transmission {
+    glm::vec3 sigma_t{0.0f};   ///< extinction, 1/mesh unit
+    float weight = 0.0f;       ///< includes the boundary's transmittance T_boundary; 0: no term
+    float lobe = 2.0f;         ///< exponent n of the forward lobe, ≥ 0
+    float normal_mix = 0.3f;   ///< how much the term follows max(−N·L, 0), [0, 1]
+    bool enabled() const { return weight > 0.0f; }
+};
+
+/// The constants of Material::from_medium that the model leaves free, fitted to a volumetric path
+/// tracer (Mitsuba 3) on the training scenes of tools/groundtruth (fit: tools/groundtruth/fit.py,
+/// results and validation: docs/fidelity.md). The defaults are the fitted values.
+struct MediumFit {
+    double albedo_scale = 0.8;          ///< k_d = albedo_scale · R_d(α', η)
+    double strength = 0.8;              ///< Material::strength (rad² per unit t_m)
+    double transmission_weight = 0.6;   ///< Transmission::weight / T_boundary
+    double lobe = 2.0;                  ///< Transmission::lobe
+    double normal_mix = 0.3;            ///< Transmission::normal_mix
+};
+
+/// The multiple-scattering (diffuse) reflectance of a semi-infinite medium behind a boundary of
+/// relative IOR η, from the reduced albedo α' = σ_s'/(σ_s' + σ_a), σ_s' = σ_s(1 − g): the
+/// classical dipole's total diffuse reflectance (Jensen et al. 2001, eq. 13, with the boundary
+/// term A = (1 + F_dr)/(1 − F_dr) and Egan–Hilgeman's F_dr):
+///   R_d = (α'/2) (1 + e^{−(4/3)A·√(3(1−α'))}) e^{−√(3(1−α'))}
+/// in [0, 1]; 0 for α' = 0, 1 for α' = 1 (no absorption). Throws jade::Error for α' ∉ [0, 1] or
+/// η out of (0.2, 5).
+double diffuse_reflectance(double reduced_albedo, double eta);
+
 /// A translucent (or opaque) material.
 struct Material {
     std::string name;                       ///< preset or user name, used in messages and reports
@@ -69,6 +120,22 @@ struct Material {
     float roughness = 0.25f;                ///< GGX roughness (perceptual, squared in the shader)
     float specular = 1.0f;                  ///< specular weight (0 turns the lobe off)
     bool opaque = false;                    ///< true: no bake, Lambert shading
+    Transmission transmission;              ///< light through thin parts (off unless set)
+
+    /// Every parameter the renderer uses, derived from a physical medium (per mesh unit):
+    /// - albedo k_d = fit.albedo_scale · diffuse_reflectance(α', η) per channel;
+    /// - profile: Burley per channel with d = ℓ/s(A), ℓ = 1/σ_t' the reduced mean free path,
+    ///   A = diffuse_reflectance(α', η), s(A) = 1.85 − A + 7|A − 0.8|³ (Christensen & Burley
+    ///   2015, searchlight configuration; ℓ is clamped to [1e-12, 1e12] mesh units);
+    /// - strength = fit.strength;
+    /// - transmission: σ_t = σ_s + σ_a, weight = fit.transmission_weight · (1 − F0)² with
+    ///   F0 = ((η − 1)/(η + 1))² (entering and leaving), lobe and normal_mix from the fit;
+    /// - ior and roughness of the specular lobe from the boundary.
+    /// Limits (all finite): σ_s = 0 gives k_d = 0 and only transmission; σ_a = 0 gives R_d = 1;
+    /// σ_s = σ_a = 0 is a clear medium (k_d = 0, transmittance 1). Throws jade::Error naming the
+    /// field for negative or non-finite coefficients, |g| ≥ 1, an IOR outside (0.2, 5) or a
+    /// roughness outside [0, 1].
+    static Material from_medium(const Medium& medium, const MediumFit& fit = {}, std::string name = "medium");
 
     /// True when the three channels have the same profile: one channel is baked and fetched.
     bool grey() const { return profile[0] == profile[1] && profile[1] == profile[2]; }

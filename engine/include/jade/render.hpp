@@ -125,6 +125,10 @@ struct RenderSettings {
     /// max ≤ min (the default 0, 0) it spans the mesh's range. render() draws a colour bar.
     float false_color_min = 0.0f, false_color_max = 0.0f;
     bool legend = true;               ///< TmFalseColor: draw the colour bar (render() only)
+    /// Tm: add the material's Transmission term (light through thin parts) when the material
+    /// has one, the mesh has a thickness, and a light is behind the object as the camera sees
+    /// it; otherwise the pipeline without it is drawn (no cost). false: the poster's model alone.
+    bool transmission = true;
 };
 
 /// The translucency LUT's parameterisation (texel i, j of a W × H R32_SFLOAT texture):
@@ -173,6 +177,11 @@ struct RenderTarget {
     bool keep = false;
 };
 
+/// What the renderer keeps per vertex (position, normal, t_m, curvature, thickness: floats) and
+/// its per-draw constants with 64 lights, in bytes: for memory plans (jade/scene.hpp).
+inline constexpr uint64_t kRendererVertexBytes = 44;
+inline constexpr uint64_t kRendererFrameDataBytes = 2304;
+
 /// Draws one mesh with one material. Owns its GPU buffers, LUT images and pipelines (created
 /// lazily per mode, sample count and format). Threading and lifetime as in the header comment.
 class Renderer {
@@ -190,10 +199,14 @@ public:
     /// Curvature). Shading uses the prepared mesh's area-weighted vertex normals (so normal
     /// seams of the input are smoothed over). Computes the mean curvature. Waits for the GPU to be idle first, so command
     /// buffers recorded earlier must have completed or not be submitted again.
-    void set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm = {});
-    /// A mesh as loaded, with t_m per render vertex (e.g. TriangleMesh::baked_tm). It is
-    /// prepared (welded) and t_m is averaged over the render vertices of each bake vertex.
-    void set_mesh(const TriangleMesh& mesh, std::span<const glm::vec3> tm_per_render_vertex);
+    /// `thickness` (mesh units, per bake vertex, BakeResult::thickness; empty: none, and no
+    /// transmission is drawn) feeds Material::transmission.
+    void set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm = {}, std::span<const float> thickness = {});
+    /// A mesh as loaded, with t_m (and optionally the thickness) per render vertex (e.g.
+    /// TriangleMesh::baked_tm, baked_thickness). It is prepared (welded) and the values are
+    /// averaged over the render vertices of each bake vertex.
+    void set_mesh(const TriangleMesh& mesh, std::span<const glm::vec3> tm_per_render_vertex,
+                  std::span<const float> thickness_per_render_vertex = {});
     /// A deforming mesh, kept on the GPU: records a compute pass that copies new positions,
     /// normals and t_m - tightly packed float3 per bake vertex of the mesh given to set_mesh,
     /// in storage buffers such as MeshDeformer::positions_buffer()/normals_buffer() and
@@ -202,10 +215,13 @@ public:
     /// that fit the near/far planes, the false-colour range. Synchronisation, in `cmd`: a barrier
     /// after earlier compute-shader and transfer writes to the inputs (and earlier draws' vertex
     /// reads), and one before the vertex input of later draws on the same queue (record() or
-    /// render() after it). Throws jade::Error without a mesh or with a null buffer.
-    void record_vertex_update(VkCommandBuffer cmd, VkBuffer positions, VkBuffer normals, VkBuffer tm);
+    /// render() after it). `thickness` (float per bake vertex, DynamicBake::buffers().thickness)
+    /// is optional: VK_NULL_HANDLE keeps the thickness set_mesh was given. Throws jade::Error
+    /// without a mesh or with a null positions, normals or t_m buffer.
+    void record_vertex_update(VkCommandBuffer cmd, VkBuffer positions, VkBuffer normals, VkBuffer tm,
+                              VkBuffer thickness = VK_NULL_HANDLE);
     /// The same in a submission of its own (waits).
-    void update_vertices(VkBuffer positions, VkBuffer normals, VkBuffer tm);
+    void update_vertices(VkBuffer positions, VkBuffer normals, VkBuffer tm, VkBuffer thickness = VK_NULL_HANDLE);
     /// Albedo, strength, specular parameters and profiles (the curvature LUT is rebuilt, on
     /// the CPU in float64, when the profiles change). Waits for the GPU like set_mesh.
     void set_material(const Material& material);

@@ -6,6 +6,8 @@
 //   positions, indices                                      -> ray_refit      -> ray items (dynamic only)
 //   positions, normals, ray items (BVH nodes + triangles)   -> ao_trace       -> hit counts
 //   hit counts                                              -> ao_resolve     -> ao
+//   positions, normals, ray items                           -> thickness_trace -> distance sums (optional)
+//   distance sums                                           -> thickness_resolve -> thickness
 //   positions, areas, ao, point-tree order                  -> gather_sources -> sources (tree order)
 //   sources                                                 -> cluster_refit  -> cluster nodes (per level)
 //   positions, areas, ao, near lists                        -> tm_near        -> partial sums (disk pairs, self)
@@ -22,9 +24,9 @@ BakeSettings BakeSettings::preset(Quality q)
 {
     BakeSettings s;
     switch (q) {
-    case Quality::Draft: s.ao.rays = 16, s.tm_epsilon = 1.6f; break;
-    case Quality::Default: s.ao.rays = 64, s.tm_epsilon = 1.2f; break;
-    case Quality::High: s.ao.rays = 256, s.tm_epsilon = 0.4f; break;
+    case Quality::Draft: s.ao.rays = 16, s.thickness.rays = 16, s.tm_epsilon = 1.6f; break;
+    case Quality::Default: s.ao.rays = 64, s.thickness.rays = 32, s.tm_epsilon = 1.2f; break;
+    case Quality::High: s.ao.rays = 256, s.thickness.rays = 64, s.tm_epsilon = 0.4f; break;
     }
     return s;
 }
@@ -76,13 +78,15 @@ BakeResult Baker::bake_tm(const PreparedMesh& mesh, std::span<const float> ao, c
     return r;
 }
 
-BakeResult Baker::bake(const PreparedMesh& mesh, const Material& material, const BakeSettings& settings)
+BakeResult Baker::bake(const PreparedMesh& mesh, const Material& material, const BakeSettings& requested)
 {
-    validate_ao_settings(settings.ao);
+    validate_ao_settings(requested.ao);
+    const BakeSettings settings = bake::without_unused_passes(requested, material);
     auto t0 = Clock::now();
     Impl::MeshState m;
     impl_->upload_mesh(m, mesh);
     impl_->prepare_ao(m, mesh, false);
+    impl_->prepare_thickness(m, settings.thickness);
     impl_->prepare_tm(m, mesh, material, settings, kStaticNearMargin);
     double setup = ms_since(t0);
     gpu::GpuTimer timer(impl_->ctx);
@@ -91,10 +95,16 @@ BakeResult Baker::bake(const PreparedMesh& mesh, const Material& material, const
         impl_->record_ao(cmd, m, settings.ao);
         gpu::compute_barrier(cmd);
         timer.mark(cmd, "ao");
+        if (settings.thickness.enabled()) {
+            impl_->record_thickness(cmd, m, settings.thickness);
+            gpu::compute_barrier(cmd);
+            timer.mark(cmd, "thickness");
+        }
         impl_->record_tm(cmd, m, settings, &timer);
     });
     BakeResult r;
     r.ao = m.ao.read<float>(mesh.vertex_count());
+    if (settings.thickness.enabled()) r.thickness = m.thickness.read<float>(mesh.vertex_count());
     r.tm = m.tm.read<glm::vec3>(mesh.vertex_count());
     r.method_used = m.exact ? TmMethod::Exact : TmMethod::Clustered;
     finish_timings(r.timings, timer, setup, t0);

@@ -64,6 +64,12 @@ struct AoPush {
     uint32_t item_count, slices, slice;
 };
 struct AoResolvePush { uint32_t vertex_count, rays, slices; };
+struct ThicknessPush {
+    uint32_t vertex_count, rays, seed;
+    float cos_cone, epsilon, max_distance;
+    uint32_t item_count, slices, slice;
+};
+struct ThicknessResolvePush { uint32_t vertex_count, rays, slices; float max_distance; };
 struct GatherPush { uint32_t vertex_count; };
 struct RefitPush { uint32_t count, first; };
 struct RayRefitPush { uint32_t count, first, mode; };
@@ -92,6 +98,23 @@ inline void validate_ao_settings(const AoSettings& s)
     if (!(s.max_distance_rel > 0) || !std::isfinite(s.max_distance_rel))
         throw Error("AO: max distance must be a positive fraction of the diagonal");
     if (!(s.epsilon_rel >= 0) || !std::isfinite(s.epsilon_rel)) throw Error("AO: epsilon must be ≥ 0");
+}
+
+inline void validate_thickness_settings(const ThicknessSettings& s)
+{
+    if (s.rays > 1023) throw Error("thickness: rays per vertex must be in 0..1023, got " + std::to_string(s.rays));
+    if (!(s.cone_degrees > 0.0f && s.cone_degrees <= 90.0f))
+        throw Error("thickness: cone half-angle must be in (0, 90] degrees, got " + std::to_string(s.cone_degrees));
+    if (!(s.max_distance_rel > 0) || !std::isfinite(s.max_distance_rel))
+        throw Error("thickness: max distance must be a positive fraction of the diagonal");
+    if (!(s.epsilon_rel >= 0) || !std::isfinite(s.epsilon_rel)) throw Error("thickness: epsilon must be ≥ 0");
+}
+
+// The thickness only feeds the transmission term: a material without one does not trace it.
+inline BakeSettings without_unused_passes(BakeSettings s, const Material& material)
+{
+    if (!material.transmission.enabled()) s.thickness.rays = 0;
+    return s;
 }
 
 inline void validate_tm_settings(const BakeSettings& s, const gpu::Context& ctx)
@@ -127,6 +150,9 @@ using bake::kExactSourcesPerDispatch;
 using bake::kClusterWorkPerDispatch;
 using bake::AoPush;
 using bake::AoResolvePush;
+using bake::ThicknessPush;
+using bake::ThicknessResolvePush;
+using bake::validate_thickness_settings;
 using bake::GatherPush;
 using bake::RefitPush;
 using bake::RayRefitPush;
@@ -143,7 +169,7 @@ using bake::finish_timings;
 struct Baker::Impl {
     gpu::Context& ctx;
     // Pipelines are made on first use: a scene that never needs one never creates it.
-    std::optional<gpu::Kernel> ao_trace, ao_resolve, gather, refit, ray_refit;
+    std::optional<gpu::Kernel> ao_trace, ao_resolve, gather, refit, ray_refit, thickness_trace, thickness_resolve;
     // t_m kernels per [grey (1 channel) or RGB][profile kind: Burley, dipole, Gaussians, mixed].
     std::optional<gpu::Kernel> tm_near[2][4], tm_exact[2][4], tm_cluster[2][4];
     std::optional<gpu::Kernel> tm_exact_f64[2][4];  // BakeSettings::tm_float64_sums
@@ -163,6 +189,16 @@ struct Baker::Impl {
     const gpu::Kernel& ao_resolve_kernel()
     {
         return kernel(ao_resolve, {"ao_resolve", shaders::ao_resolve_comp(), storage_bindings(2), sizeof(AoResolvePush), 64, {}});
+    }
+    const gpu::Kernel& thickness_kernel()
+    {
+        return kernel(thickness_trace, {"thickness_trace", shaders::thickness_trace_comp(),
+                                        {kStorage, kStorage, kTexels, kStorage}, sizeof(ThicknessPush), 64, {}});
+    }
+    const gpu::Kernel& thickness_resolve_kernel()
+    {
+        return kernel(thickness_resolve, {"thickness_resolve", shaders::thickness_resolve_comp(), storage_bindings(2),
+                                          sizeof(ThicknessResolvePush), 64, {}});
     }
     const gpu::Kernel& gather_kernel()
     {
@@ -226,6 +262,7 @@ struct Baker::Impl {
         uint32_t ao_slices = 1;
         gpu::TexelView ray_item_texels;
         gpu::Buffer indices, item_origin, ray_work;  // dynamic only
+        gpu::Buffer thickness_sums, thickness;      // thickness pass: per ray slice, per vertex; result
         std::vector<uint32_t> ray_work_offsets;     // [0, triangles) then one range per level
         // t_m.
         bool exact = false;
@@ -360,6 +397,40 @@ struct Baker::Impl {
         }
         gpu::compute_barrier(cmd);
         ao_resolve_kernel().dispatch(cmd, m.vertex_count, AoResolvePush{m.vertex_count, s.rays, m.ao_slices}, {m.hits, m.ao});
+    }
+
+    // The thickness pass traces the AO pass's ray items (prepare_ao first).
+    void prepare_thickness(MeshState& m, const ThicknessSettings& s)
+    {
+        validate_thickness_settings(s);
+        if (!s.enabled()) return;
+        m.thickness_sums = gpu::Buffer(ctx, VkDeviceSize(m.vertex_count) * m.ao_slices * sizeof(uint32_t), kStorageUsage,
+                                       "thickness sums (per ray slice)");
+        m.thickness = gpu::Buffer(ctx, VkDeviceSize(m.vertex_count) * sizeof(float), kStorageUsage, "thickness");
+    }
+
+    // Traces the thickness ray slices [first, first + count) of m.ao_slices, then resolves the
+    // mean distance from the sums of every slice.
+    void record_thickness(VkCommandBuffer cmd, MeshState& m, const ThicknessSettings& s, uint32_t first = 0, uint32_t count = 0)
+    {
+        if (!s.enabled()) return;
+        if (count == 0) count = m.ao_slices;
+        const VkDeviceSize slice_bytes = VkDeviceSize(m.vertex_count) * sizeof(uint32_t);
+        vkCmdFillBuffer(cmd, m.thickness_sums.handle(), first * slice_bytes, count * slice_bytes, 0);
+        gpu::compute_barrier(cmd);
+        const float max_distance = s.max_distance_rel * m.diagonal;
+        const float cos_cone = float(std::cos(double(s.cone_degrees) * 3.14159265358979323846 / 180.0));
+        const uint32_t rays_in_slice = s.rays / m.ao_slices;
+        for (uint32_t slice = first; slice < first + count; ++slice) {
+            ThicknessPush push{m.vertex_count, s.rays, s.seed, cos_cone, s.epsilon_rel * m.diagonal, max_distance,
+                               m.item_count, m.ao_slices, slice};
+            thickness_kernel().dispatch(cmd, uint64_t(m.vertex_count) * rays_in_slice, push,
+                                        {m.positions, m.normals, m.ray_item_texels, m.thickness_sums});
+        }
+        gpu::compute_barrier(cmd);
+        thickness_resolve_kernel().dispatch(cmd, m.vertex_count,
+                                            ThicknessResolvePush{m.vertex_count, s.rays, m.ao_slices, max_distance},
+                                            {m.thickness_sums, m.thickness});
     }
 
     // Sets up gather → near field → (all pairs | refit → clustered), reading m.ao, writing

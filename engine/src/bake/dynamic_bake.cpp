@@ -28,13 +28,14 @@ struct DynamicBake::State {
 };
 
 DynamicBake::DynamicBake(Baker& baker, const PreparedMesh& rest, const Material& material, const BakeSettings& settings)
-    : state_(std::make_unique<State>(*baker.impl_, settings))
+    : state_(std::make_unique<State>(*baker.impl_, bake::without_unused_passes(settings, material)))
 {
     validate_ao_settings(settings.ao);
     auto& impl = state_->impl;
     // Deformers write the inputs on the GPU (or the host uploads them): transfer and storage.
     impl.upload_mesh(state_->mesh, rest, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     impl.prepare_ao(state_->mesh, rest, true);
+    impl.prepare_thickness(state_->mesh, state_->settings.thickness);
     impl.prepare_tm(state_->mesh, rest, material, settings, kDynamicNearMargin);
 }
 
@@ -43,7 +44,8 @@ DynamicBake::~DynamicBake() = default;
 DynamicBake::Buffers DynamicBake::buffers() const
 {
     const auto& m = state_->mesh;
-    return {m.positions.handle(), m.normals.handle(), m.areas.handle(), m.ao.handle(), m.tm.handle(), m.vertex_count};
+    return {m.positions.handle(), m.normals.handle(), m.areas.handle(), m.ao.handle(), m.tm.handle(), m.vertex_count,
+            m.thickness ? m.thickness.handle() : VK_NULL_HANDLE};
 }
 
 void DynamicBake::record(VkCommandBuffer cmd) { record_timed(cmd, nullptr); }
@@ -82,6 +84,12 @@ void DynamicBake::record_timed(VkCommandBuffer cmd, void* timer_ptr)
     else impl.record_ao(cmd, m, state_->settings.ao, uint32_t(frame % m.ao_slices), 1);
     gpu::compute_barrier(cmd);
     if (timer) timer->mark(cmd, "ao");
+    if (state_->settings.thickness.enabled()) {
+        if (full) impl.record_thickness(cmd, m, state_->settings.thickness);
+        else impl.record_thickness(cmd, m, state_->settings.thickness, uint32_t(frame % m.ao_slices), 1);
+        gpu::compute_barrier(cmd);
+        if (timer) timer->mark(cmd, "thickness");
+    }
     const auto [begin, end] = full ? std::pair<uint32_t, uint32_t>{0, m.vertex_count}
                                    : state_->tm_slice(uint32_t(frame % state_->amortisation.tm_slices));
     impl.record_tm(cmd, m, state_->settings, timer, begin, end);
@@ -94,12 +102,19 @@ void DynamicBake::set_amortisation(const Amortisation& a)
         throw Error("DynamicBake: Amortisation::ao_slices (" + std::to_string(a.ao_slices) + ") must be ≥ 1 and divide the " +
                     std::to_string(rays) + " AO rays per vertex");
     if (a.tm_slices == 0) throw Error("DynamicBake: Amortisation::tm_slices must be ≥ 1");
+    const uint32_t thickness_rays = state_->settings.thickness.rays;
+    if (thickness_rays > 0 && thickness_rays % a.ao_slices != 0)
+        throw Error("DynamicBake: Amortisation::ao_slices (" + std::to_string(a.ao_slices) + ") must divide the " +
+                    std::to_string(thickness_rays) + " thickness rays per vertex too");
     auto& m = state_->mesh;
     if (a.ao_slices != m.ao_slices) {
         vkDeviceWaitIdle(state_->impl.ctx.device());  // recorded frames may still use the hit counts
         m.hits = gpu::Buffer(state_->impl.ctx, VkDeviceSize(m.vertex_count) * a.ao_slices * sizeof(uint32_t), kStorageUsage,
                              "ao hit counts (per ray slice)");
         m.ao_slices = a.ao_slices;
+        if (thickness_rays > 0)
+            m.thickness_sums = gpu::Buffer(state_->impl.ctx, VkDeviceSize(m.vertex_count) * a.ao_slices * sizeof(uint32_t),
+                                           kStorageUsage, "thickness sums (per ray slice)");
     }
     state_->amortisation = a;
     state_->stale = true;
@@ -145,6 +160,7 @@ BakeResult DynamicBake::submit_timed(const BakeInputs* inputs, std::chrono::stea
     if (read_back) {
         r.ao = m.ao.read<float>(m.vertex_count);
         r.tm = m.tm.read<glm::vec3>(m.vertex_count);
+        if (m.thickness) r.thickness = m.thickness.read<float>(m.vertex_count);
     }
     r.method_used = m.exact ? TmMethod::Exact : TmMethod::Clustered;
     finish_timings(r.timings, timer, 0, t0);

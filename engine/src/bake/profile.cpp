@@ -261,6 +261,7 @@ Material Material::scaled(double factor) const
 {
     Material m = *this;
     for (auto& p : m.profile) p = p.scaled(factor);
+    m.transmission.sigma_t /= float(factor);  // 1/mesh unit: the mesh grows, the same medium per unit thins
     return m;
 }
 
@@ -296,17 +297,18 @@ constexpr JensenEntry kJensen[] = {
 };
 constexpr double kJensenEta = 1.3;
 
-struct BurleyEntry {
+// Media of Jade's own presets, per millimetre (an object of ~100 mm: σ_t ≈ 20 per object size
+// for the jewel, the medium of the path-traced references in tools/groundtruth/scenes.json).
+struct MediumEntry {
     const char* name;
-    float albedo[3];
-    double mfp_mm[3];  // mean free path per channel, mm
-    float roughness, ior;
+    double sigma_s[3], sigma_a[3];  // mm^-1, RGB
+    double g, ior, roughness;
 };
 
-constexpr BurleyEntry kBurley[] = {
-    {"jade", {0.30f, 0.72f, 0.45f}, {2.0, 6.0, 3.0}, 0.25f, 1.66f},
-    {"blue-jewel", {0.10f, 0.30f, 0.85f}, {1.5, 3.0, 8.0}, 0.08f, 1.6f},
-    {"wax", {0.85f, 0.75f, 0.55f}, {4.0, 3.0, 2.0}, 0.35f, 1.45f},
+constexpr MediumEntry kMedia[] = {
+    {"jade", {0.10, 0.16, 0.11}, {0.06, 0.01, 0.04}, 0.3, 1.66, 0.25},
+    {"blue-jewel", {0.12, 0.15, 0.196}, {0.08, 0.05, 0.004}, 0.0, 1.6, 0.08},
+    {"wax", {0.30, 0.26, 0.22}, {0.006, 0.025, 0.07}, 0.0, 1.45, 0.35},
 };
 
 // d'Eon, Luebke, Enderton 2007: six Gaussians for skin; variances in mm², weights per RGB.
@@ -322,7 +324,7 @@ constexpr double kSkinWeight[3][6] = {
 std::vector<std::string> material_preset_names()
 {
     std::vector<std::string> names;
-    for (const auto& e : kBurley) names.emplace_back(e.name);
+    for (const auto& e : kMedia) names.emplace_back(e.name);
     for (const auto& e : kJensen) names.emplace_back(e.name);
     names.emplace_back("skin");
     names.emplace_back("opaque");
@@ -335,23 +337,23 @@ Material material_preset(std::string_view name, double mm_per_unit)
         throw Error("material_preset: mm_per_unit = " + fmt(mm_per_unit) + " must be finite and > 0");
     Material m;
     m.name = std::string(name);
-    for (const auto& e : kBurley) {
+    for (const auto& e : kMedia) {
         if (name != e.name) continue;
-        for (int c = 0; c < 3; ++c)
-            m.profile[c] = ChannelProfile::burley_from_albedo(e.albedo[c], e.mfp_mm[c] / mm_per_unit);
-        m.albedo = {e.albedo[0], e.albedo[1], e.albedo[2]};
-        m.roughness = e.roughness;
-        m.ior = e.ior;
-        return m;
+        Medium medium;
+        for (int c = 0; c < 3; ++c) medium.sigma_s[c] = e.sigma_s[c], medium.sigma_a[c] = e.sigma_a[c];
+        medium.g = e.g, medium.ior = e.ior, medium.roughness = e.roughness;
+        return Material::from_medium(medium.scaled(mm_per_unit), {}, std::string(name));  // mm^-1 × mm/unit
     }
     for (const auto& e : kJensen) {
         if (name != e.name) continue;
-        for (int c = 0; c < 3; ++c) {
-            // mm^-1 × mm/unit = 1/unit
+        // The measured reduced coefficients, with g = 0 (σ_s' is all the table gives); the
+        // dipole profile of the same coefficients replaces from_medium's Burley fit.
+        Medium medium;
+        for (int c = 0; c < 3; ++c) medium.sigma_s[c] = e.sigma_s_prime[c], medium.sigma_a[c] = e.sigma_a[c];
+        medium.ior = kJensenEta, medium.roughness = 0.25;
+        m = Material::from_medium(medium.scaled(mm_per_unit), {}, std::string(name));
+        for (int c = 0; c < 3; ++c)
             m.profile[c] = ChannelProfile::dipole(e.sigma_s_prime[c] * mm_per_unit, e.sigma_a[c] * mm_per_unit, kJensenEta);
-            m.albedo[c] = float(std::clamp(m.profile[c].dipole_total, 0.02, 0.98));  // total diffuse reflectance
-        }
-        m.ior = float(kJensenEta);
         return m;
     }
     if (name == "skin") {

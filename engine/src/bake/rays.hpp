@@ -78,17 +78,31 @@ inline RaySample ray_sample(VertexHashes h, uint32_t k, uint32_t n, bool low_dis
     return {fixed24_to_float(U1), fixed24_to_float(U2)};
 }
 
-/// The cosine-weighted direction of sample (u1, u2) about the unit normal n, in double.
-inline glm::dvec3 cosine_direction(glm::dvec3 n, double u1, double u2)
+/// `local` (z along the unit vector n) in n's frame (Duff et al. 2017), in double.
+inline glm::dvec3 in_frame(glm::dvec3 n, double lx, double ly, double lz)
 {
-    const double rr = std::sqrt(u1), phi = 2.0 * std::numbers::pi * u2;
-    const double lx = rr * std::cos(phi), ly = rr * std::sin(phi), lz = std::sqrt(std::max(0.0, 1.0 - u1));
     const double s = std::copysign(1.0, n.z);
     const double a = -1.0 / (s + n.z);
     const double b = n.x * n.y * a;
     const glm::dvec3 t(1.0 + s * n.x * n.x * a, s * b, -s * n.x);
     const glm::dvec3 bt(b, s + n.y * n.y * a, -n.y);
     return lx * t + ly * bt + lz * n;
+}
+
+/// The cosine-weighted direction of sample (u1, u2) about the unit normal n (the AO rays).
+inline glm::dvec3 cosine_direction(glm::dvec3 n, double u1, double u2)
+{
+    const double rr = std::sqrt(u1), phi = 2.0 * std::numbers::pi * u2;
+    return in_frame(n, rr * std::cos(phi), rr * std::sin(phi), std::sqrt(std::max(0.0, 1.0 - u1)));
+}
+
+/// Uniform in solid angle in the cone of half-angle acos(cos_cone) about the unit axis (the
+/// thickness rays): cos θ = 1 − u1·(1 − cos_cone), φ = 2π·u2.
+inline glm::dvec3 cone_direction(glm::dvec3 axis, double u1, double u2, double cos_cone)
+{
+    const double c = 1.0 - u1 * (1.0 - cos_cone), sn = std::sqrt(std::max(0.0, 1.0 - c * c));
+    const double phi = 2.0 * std::numbers::pi * u2;
+    return in_frame(axis, sn * std::cos(phi), sn * std::sin(phi), c);
 }
 
 }  // namespace jade::bake

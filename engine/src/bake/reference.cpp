@@ -155,7 +155,44 @@ struct TriangleScene {
         }
         return false;
     }
+
+    /// The nearest hit distance in (0, t_max), or t_max when there is none (d unit).
+    double nearest_hit(const glm::dvec3& o, const glm::dvec3& d, double t_max) const
+    {
+        const glm::dvec3 inv(1.0 / d.x, 1.0 / d.y, 1.0 / d.z);
+        const uint32_t count = uint32_t(bvh.nodes.size());
+        for (uint32_t i = 0; i < count;) {
+            const bake::BvhNode& node = bvh.nodes[i];
+            if (!overlaps(node, o, d, inv, t_max)) {
+                i = node.escape;
+                continue;
+            }
+            if (node.leaf()) {
+                const uint32_t first = node.first();
+                for (uint32_t k = first; k < first + bvh.counts[i]; ++k) {
+                    const double t = intersect(k, o, d);
+                    if (t > 0.0 && t < t_max) t_max = t;
+                }
+                i = node.escape;
+            } else {
+                ++i;
+            }
+        }
+        return t_max;
+    }
 };
+
+void check_thickness_settings(const ThicknessSettings& s, const char* where)
+{
+    const std::string w(where);
+    if (s.rays == 0 || s.rays > 1023) throw Error(w + ": ThicknessSettings.rays must be in 1..1023");
+    if (!(s.cone_degrees > 0.0f && s.cone_degrees <= 90.0f)) throw Error(w + ": ThicknessSettings.cone_degrees must be in (0, 90]");
+    if (!(std::isfinite(s.max_distance_rel) && s.max_distance_rel > 0.0f))
+        throw Error(w + ": ThicknessSettings.max_distance_rel must be finite and > 0");
+    if (!(std::isfinite(s.epsilon_rel) && s.epsilon_rel >= 0.0f)) throw Error(w + ": ThicknessSettings.epsilon_rel must be >= 0");
+}
+
+double cos_cone(const ThicknessSettings& s) { return std::cos(double(s.cone_degrees) * std::numbers::pi / 180.0); }
 
 }  // namespace
 
@@ -168,6 +205,41 @@ glm::vec3 ao_ray_direction(glm::vec3 normal, uint32_t vertex, uint32_t k, const 
     const bake::RaySample s =
         bake::ray_sample(bake::vertex_hashes(settings.seed, vertex), k, settings.rays, settings.low_discrepancy);
     return glm::vec3(bake::cosine_direction(glm::normalize(glm::dvec3(normal)), s.u1, s.u2));
+}
+
+glm::vec3 thickness_ray_direction(glm::vec3 normal, uint32_t vertex, uint32_t k, const ThicknessSettings& settings)
+{
+    check_thickness_settings(settings, "thickness_ray_direction");
+    if (k >= settings.rays)
+        throw Error("thickness_ray_direction: ray " + std::to_string(k) + " out of range for " +
+                    std::to_string(settings.rays) + " rays");
+    const bake::RaySample s = bake::ray_sample(bake::vertex_hashes(settings.seed, vertex), k, settings.rays, true);
+    return glm::vec3(bake::cone_direction(-glm::normalize(glm::dvec3(normal)), s.u1, s.u2, cos_cone(settings)));
+}
+
+std::vector<double> reference_thickness(const PreparedMesh& mesh, const ThicknessSettings& settings,
+                                        std::span<const uint32_t> vertices)
+{
+    check_thickness_settings(settings, "reference_thickness");
+    const std::vector<uint32_t> list = resolve_subset(mesh, vertices, "reference_thickness");
+    const TriangleScene scene(mesh);
+    const double diagonal = double(mesh.diagonal);
+    const double eps = double(settings.epsilon_rel) * diagonal, t_max = double(settings.max_distance_rel) * diagonal;
+    const double c = cos_cone(settings);
+    std::vector<double> thickness(list.size());
+    parallel_for(list.size(), 16, [&](size_t idx) {
+        const uint32_t v = list[idx];
+        const glm::dvec3 normal = glm::normalize(glm::dvec3(mesh.normals[v]));
+        const glm::dvec3 origin = glm::dvec3(mesh.positions[v]) - eps * normal;
+        const bake::VertexHashes h = bake::vertex_hashes(settings.seed, v);
+        double sum = 0.0;
+        for (uint32_t k = 0; k < settings.rays; ++k) {
+            const bake::RaySample s = bake::ray_sample(h, k, settings.rays, true);
+            sum += scene.nearest_hit(origin, bake::cone_direction(-normal, s.u1, s.u2, c), t_max);
+        }
+        thickness[idx] = sum / double(settings.rays);
+    });
+    return thickness;
 }
 
 std::vector<float> reference_ao(const PreparedMesh& mesh, const AoSettings& settings, std::span<const uint32_t> vertices)

@@ -153,6 +153,7 @@ public:
         if (!all_normals_) mesh_.normals.clear();
         if (!all_ao_) mesh_.baked_ao.clear();
         if (!all_tm_) mesh_.baked_tm.clear();
+        if (!all_thickness_) mesh_.baked_thickness.clear();
         return std::move(mesh_);
     }
 
@@ -204,6 +205,8 @@ private:
         for (size_t i = 0; i < n; ++i) mesh_.baked_ao.push_back(ao ? ao->scalar(i) : 0.0f);
         const auto tm = optional_attribute(where, prim, "_TM", TINYGLTF_TYPE_VEC3, n, all_tm_);
         for (size_t i = 0; i < n; ++i) mesh_.baked_tm.push_back(tm ? tm->vec3(i) : glm::vec3(0.0f));
+        const auto thickness = optional_attribute(where, prim, "_THICKNESS", TINYGLTF_TYPE_SCALAR, n, all_thickness_);
+        for (size_t i = 0; i < n; ++i) mesh_.baked_thickness.push_back(thickness ? thickness->scalar(i) : 0.0f);
     }
 
     /// A float attribute with one value per vertex, or nullopt (clearing `all`) when absent.
@@ -275,7 +278,7 @@ private:
     const tinygltf::Model& model_;
     AccessorReader accessors_;
     TriangleMesh mesh_;
-    bool all_normals_ = true, all_ao_ = true, all_tm_ = true;
+    bool all_normals_ = true, all_ao_ = true, all_tm_ = true, all_thickness_ = true;
 };
 
 }  // namespace

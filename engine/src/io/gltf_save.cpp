@@ -40,6 +40,7 @@ void check_input(const std::string& name, const TriangleMesh& mesh, const BakedA
     };
     check_size(baked.ao.size(), "_AO");
     check_size(baked.tm.size(), "_TM");
+    check_size(baked.thickness.size(), "_THICKNESS");
 }
 
 json parse_extras(const std::string& name, const std::string& text)
@@ -111,6 +112,7 @@ json build_json(const TriangleMesh& mesh, const BakedAttributes& baked, json ext
     if (!mesh.normals.empty()) attributes["NORMAL"] = doc.add_floats(&mesh.normals[0].x, mesh.normals.size(), 3);
     if (!baked.ao.empty()) attributes["_AO"] = doc.add_floats(baked.ao.data(), baked.ao.size(), 1);
     if (!baked.tm.empty()) attributes["_TM"] = doc.add_floats(&baked.tm[0].x, baked.tm.size(), 3);
+    if (!baked.thickness.empty()) attributes["_THICKNESS"] = doc.add_floats(baked.thickness.data(), baked.thickness.size(), 1);
     const int indices = doc.add_indices(mesh.indices);
 
     json asset = {{"version", "2.0"}, {"generator", "Jade"}};

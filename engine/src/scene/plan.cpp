@@ -30,8 +30,6 @@ constexpr double kPointNodesPerVertex = 0.3;
 constexpr double kNearEntriesPerVertex = 20.0;
 constexpr double kStaticNearMargin = 1.05, kDynamicNearMargin = 1.5;  // bake/baker.cpp
 constexpr size_t kExactBelow = 2048;                                 // bake/baker.cpp: TmMethod::Auto
-constexpr uint64_t kRendererVertexBytes = 40;    // shading/renderer.cpp Vertex {pos, normal, t_m, curvature}
-constexpr uint64_t kFrameDataBytes = 2272;       // shading/renderer.cpp FrameData (64 lights)
 
 uint64_t at_least_16(double bytes) { return std::max<uint64_t>(16, uint64_t(bytes + 0.5)); }
 
@@ -94,7 +92,7 @@ std::vector<BufferEstimate> draw_buffers(size_t n, size_t tris)
 {
     return {{"mesh vertices", at_least_16(double(kRendererVertexBytes) * n)},
             {"mesh indices", at_least_16(12.0 * tris)},
-            {"frame data", kFrameDataBytes},
+            {"frame data", kRendererFrameDataBytes},
             {"curvature LUT placeholder (image)", 16, true}};
 }
 

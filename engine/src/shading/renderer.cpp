@@ -1,8 +1,8 @@
 // shading/renderer.cpp - jade::Renderer: one draw of the mesh with mesh.vert/mesh.frag into
 // MSAA colour + depth, resolved, read back (render) or left to the caller (record).
 //
-// Per draw the GPU sees: the vertex buffer {position, normal, t_m, curvature} (40 bytes a
-// vertex), the index buffer, push constants {view-projection, eye, light count}, and one
+// Per draw the GPU sees: the vertex buffer {position, normal, t_m, curvature, thickness} (44
+// bytes a vertex), the index buffer, push constants {view-projection, eye, light count}, and one
 // storage buffer FrameData {material, LUT mappings, colour map, lights} written with
 // vkCmdUpdateBuffer inside the command buffer (so record() needs no per-frame buffers).
 #include "gpu/buffer.hpp"
@@ -31,6 +31,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <numbers>
 #include <optional>
 
 namespace jade {
@@ -50,7 +51,7 @@ struct GpuLight {
     glm::vec4 vector, color;
 };
 struct FrameData {
-    glm::vec4 albedo_strength, specular, lut_map, curvature_map, params;
+    glm::vec4 albedo_strength, specular, lut_map, curvature_map, params, transmission, transmission_shape;
     glm::vec4 color_map[9];
     GpuLight lights[kMaxLights];
 };
@@ -58,9 +59,9 @@ static_assert(sizeof(FramePush) == 80 && sizeof(GpuLight) == 32);
 
 struct Vertex {
     glm::vec3 position, normal, tm;
-    float curvature;
+    float curvature, thickness;
 };
-static_assert(sizeof(Vertex) == 40);
+static_assert(sizeof(Vertex) == kRendererVertexBytes && sizeof(FrameData) == kRendererFrameDataBytes);
 
 VkFormat color_format(const RenderSettings& s) { return s.float32 ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT; }
 
@@ -100,7 +101,7 @@ struct Renderer::Impl {
     glm::vec3 bbox_min{0.0f}, bbox_max{0.0f};
     std::vector<float> curvature;
     float tm_min_mean = 0.0f, tm_max_mean = 0.0f;  // range of mean(t_m) over the vertices
-    bool has_mesh = false;
+    bool has_mesh = false, has_thickness = false;
 
     std::optional<Material> material;
     gpu::Buffer frame_data;
@@ -127,15 +128,17 @@ struct Renderer::Impl {
     Impl(const Impl&) = delete;
     Impl& operator=(const Impl&) = delete;
 
-    static uint64_t pipeline_key(ShadingMode mode, uint32_t channels, VkFormat format, uint32_t samples)
+    static uint64_t pipeline_key(ShadingMode mode, uint32_t channels, bool transmission, VkFormat format, uint32_t samples)
     {
-        return uint64_t(mode) | uint64_t(channels) << 8 | uint64_t(samples) << 16 | uint64_t(format) << 32;
+        return uint64_t(mode) | uint64_t(channels) << 8 | uint64_t(transmission) << 12 | uint64_t(samples) << 16 |
+               uint64_t(format) << 32;
     }
 
-    const gpu::GraphicsPipeline& pipeline(ShadingMode mode, uint32_t channels, VkFormat format, uint32_t samples)
+    const gpu::GraphicsPipeline& pipeline(ShadingMode mode, uint32_t channels, bool transmission, VkFormat format,
+                                          uint32_t samples)
     {
-        if (mode != ShadingMode::Tm) channels = 3;  // only the t_m path reads the channel count
-        auto [it, inserted] = pipelines.try_emplace(pipeline_key(mode, channels, format, samples));
+        if (mode != ShadingMode::Tm) channels = 3, transmission = false;  // only the t_m path reads them
+        auto [it, inserted] = pipelines.try_emplace(pipeline_key(mode, channels, transmission, format, samples));
         if (inserted) {
             try {
                 gpu::GraphicsPipelineDesc d;
@@ -149,11 +152,12 @@ struct Renderer::Impl {
                 d.attributes = {{0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
                                 {1, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
                                 {2, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, tm)},
-                                {3, VK_FORMAT_R32_SFLOAT, offsetof(Vertex, curvature)}};
+                                {3, VK_FORMAT_R32_SFLOAT, offsetof(Vertex, curvature)},
+                                {4, VK_FORMAT_R32_SFLOAT, offsetof(Vertex, thickness)}};
                 d.bindings = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,
                               VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
                 d.push_size = sizeof(FramePush);
-                d.constants = {uint32_t(mode), channels};
+                d.constants = {uint32_t(mode), channels, transmission ? 1u : 0u};
                 it->second = gpu::GraphicsPipeline(ctx, d);
             } catch (...) {
                 pipelines.erase(it);
@@ -207,6 +211,27 @@ struct Renderer::Impl {
         return {fitted.view_projection(float(width) / float(height)), cam.eye, light_count};
     }
 
+    // The transmission variant is drawn only when it can add light: the material has the term,
+    // the mesh a thickness, and some light is behind the object as the camera sees it, i.e. the
+    // forward lobe max(V·(−L), 0) is non-zero for some V towards the eye from the bounding
+    // sphere (exact for directional lights; point lights always count).
+    bool transmission_reaches_camera(const Camera& cam, std::span<const Light> lights, const RenderSettings& s) const
+    {
+        if (s.mode != ShadingMode::Tm || !s.transmission || !has_thickness || !material->transmission.enabled()) return false;
+        const glm::vec3 centre = 0.5f * (bbox_min + bbox_max);
+        const float radius = 0.5f * glm::length(bbox_max - bbox_min), distance = glm::length(cam.eye - centre);
+        if (!(distance > radius)) return true;  // the eye inside the bounds sees every direction
+        const glm::vec3 to_eye = (cam.eye - centre) / distance;
+        const float sin_spread = radius / distance;
+        for (const Light& l : lights) {
+            if (l.type == Light::Type::Point) return true;
+            // The cone of V about to_eye with half-angle asin(r/D) reaches μ > 0 iff the angle
+            // between to_eye and −L is below 90° + asin(r/D).
+            if (glm::dot(to_eye, -glm::normalize(l.vector)) > -sin_spread) return true;
+        }
+        return false;
+    }
+
     std::pair<float, float> false_color_range(const RenderSettings& s) const
     {
         if (s.false_color_max > s.false_color_min) return {s.false_color_min, s.false_color_max};
@@ -239,6 +264,9 @@ struct Renderer::Impl {
         d.params = glm::vec4(float(1.0 / LutLayout::kMaxVariance), curvature_lut ? float(curvature_lut->scale()) : 0.0f, lo,
                              // finite: the shader multiplies (t_m − lo) by it, 0 · Inf would be NaN
                              float(std::min(1.0 / (double(hi) - double(lo)), double(FLT_MAX))));
+        const Transmission& tr = m.transmission;
+        d.transmission = glm::vec4(glm::min(tr.sigma_t, glm::vec3(3.0e38f)), tr.weight);
+        d.transmission_shape = glm::vec4(tr.lobe, (tr.lobe + 1.0f) / (2.0f * float(std::numbers::pi)), tr.normal_mix, 0.0f);
         for (int i = 0; i < 9; ++i) d.color_map[i] = glm::vec4(false_color(float(i) / 8.0f), 1.0f);
         for (size_t k = 0; k < lights.size(); ++k)
             d.lights[k] = {glm::vec4(lights[k].vector, lights[k].type == Light::Type::Point ? 1.0f : 0.0f),
@@ -257,7 +285,8 @@ struct Renderer::Impl {
         const gpu::Image& curvature =
             s.mode == ShadingMode::Curvature ? curvature_image() : curvature_lut ? curvature_lut->image() : placeholder;
         const FrameData data = frame_constants(lights, s);
-        const auto& pipe = pipeline(s.mode, material->grey() ? 1 : 3, color_format(s), s.samples);
+        const auto& pipe =
+            pipeline(s.mode, material->grey() ? 1 : 3, transmission_reaches_camera(cam, lights, s), color_format(s), s.samples);
 
         // The frame constants are rewritten in the command stream: wait for the previous draw's
         // shader reads (write-after-read), then make the new values visible to this draw.
@@ -366,11 +395,14 @@ struct Renderer::Impl {
 Renderer::Renderer(Context& context, const RendererOptions& options) : impl_(std::make_unique<Impl>(context.gpu(), options)) {}
 Renderer::~Renderer() = default;
 
-void Renderer::set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm)
+void Renderer::set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm, std::span<const float> thickness)
 {
     const size_t n = mesh.vertex_count();
     if (!tm.empty() && tm.size() != n)
         throw Error("Renderer::set_mesh: " + std::to_string(tm.size()) + " t_m values for " + std::to_string(n) + " vertices");
+    if (!thickness.empty() && thickness.size() != n)
+        throw Error("Renderer::set_mesh: " + std::to_string(thickness.size()) + " thickness values for " + std::to_string(n) +
+                    " vertices");
     if (mesh.normals.size() != n || mesh.indices.empty())
         throw Error("Renderer::set_mesh: the mesh is empty or not prepared (use prepare_mesh)");
     std::vector<float> curvature = mean_curvature(mesh, impl_->options.curvature_smoothing);
@@ -382,7 +414,10 @@ void Renderer::set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm)
         // are valid (the shader clamps strength · t_m to the LUT's range).
         if (!(std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.z)) || t.x < 0 || t.y < 0 || t.z < 0)
             throw Error("Renderer::set_mesh: t_m of vertex " + std::to_string(i) + " is negative or not finite");
-        vertices[i] = {mesh.positions[i], mesh.normals[i], t, curvature[i]};
+        const float th = thickness.empty() ? 0.0f : thickness[i];
+        if (!(std::isfinite(th) && th >= 0.0f))
+            throw Error("Renderer::set_mesh: thickness of vertex " + std::to_string(i) + " is negative or not finite");
+        vertices[i] = {mesh.positions[i], mesh.normals[i], t, curvature[i], th};
         const float mean = t.x / 3.0f + t.y / 3.0f + t.z / 3.0f;
         tm_min = std::min(tm_min, mean);
         tm_max = std::max(tm_max, mean);
@@ -399,36 +434,50 @@ void Renderer::set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm)
     m.curvature = std::move(curvature);
     m.tm_min_mean = tm_min, m.tm_max_mean = tm_max;
     m.has_mesh = true;
+    m.has_thickness = !thickness.empty();
 }
 
-void Renderer::set_mesh(const TriangleMesh& mesh, std::span<const glm::vec3> tm_per_render_vertex)
+namespace {
+
+// Per render vertex to per bake vertex: render vertices welded into one bake vertex carry the
+// same baked value up to rounding; their mean.
+template <class T>
+std::vector<T> average_per_bake_vertex(const TriangleMesh& mesh, const PreparedMesh& prepared, std::span<const T> values,
+                                       const char* what)
 {
-    if (!tm_per_render_vertex.empty() && tm_per_render_vertex.size() != mesh.positions.size())
-        throw Error("Renderer::set_mesh: " + mesh.name + ": " + std::to_string(tm_per_render_vertex.size()) +
-                    " t_m values for " + std::to_string(mesh.positions.size()) + " render vertices");
-    PreparedMesh prepared = prepare_mesh(mesh);
-    std::vector<glm::vec3> tm;
-    if (!tm_per_render_vertex.empty()) {
-        // Render vertices welded into one bake vertex carry the same baked value up to rounding.
-        tm.assign(prepared.vertex_count(), glm::vec3(0.0f));
-        std::vector<uint32_t> count(prepared.vertex_count(), 0);
-        for (size_t i = 0; i < prepared.render_to_bake.size(); ++i)
-            if (uint32_t b = prepared.render_to_bake[i]; b != PreparedMesh::kUnused) tm[b] += tm_per_render_vertex[i], ++count[b];
-        for (size_t b = 0; b < tm.size(); ++b)
-            if (count[b]) tm[b] /= float(count[b]);
-    }
-    set_mesh(prepared, tm);
+    if (values.empty()) return {};
+    if (values.size() != mesh.positions.size())
+        throw Error("Renderer::set_mesh: " + mesh.name + ": " + std::to_string(values.size()) + " " + what + " values for " +
+                    std::to_string(mesh.positions.size()) + " render vertices");
+    std::vector<T> out(prepared.vertex_count(), T(0.0f));
+    std::vector<uint32_t> count(prepared.vertex_count(), 0);
+    for (size_t i = 0; i < prepared.render_to_bake.size(); ++i)
+        if (uint32_t b = prepared.render_to_bake[i]; b != PreparedMesh::kUnused) out[b] += values[i], ++count[b];
+    for (size_t b = 0; b < out.size(); ++b)
+        if (count[b]) out[b] /= float(count[b]);
+    return out;
 }
 
-void Renderer::record_vertex_update(VkCommandBuffer cmd, VkBuffer positions, VkBuffer normals, VkBuffer tm)
+}  // namespace
+
+void Renderer::set_mesh(const TriangleMesh& mesh, std::span<const glm::vec3> tm_per_render_vertex,
+                        std::span<const float> thickness_per_render_vertex)
+{
+    PreparedMesh prepared = prepare_mesh(mesh);
+    const auto tm = average_per_bake_vertex(mesh, prepared, tm_per_render_vertex, "t_m");
+    const auto thickness = average_per_bake_vertex(mesh, prepared, thickness_per_render_vertex, "thickness");
+    set_mesh(prepared, tm, thickness);
+}
+
+void Renderer::record_vertex_update(VkCommandBuffer cmd, VkBuffer positions, VkBuffer normals, VkBuffer tm, VkBuffer thickness)
 {
     Impl& m = *impl_;
     if (!m.has_mesh) throw Error("Renderer::record_vertex_update: no mesh (call set_mesh first)");
     if (!positions || !normals || !tm) throw Error("Renderer::record_vertex_update: a buffer is VK_NULL_HANDLE");
-    struct PackPush { uint32_t vertex_count; };
+    struct PackPush { uint32_t vertex_count, has_thickness; };
     if (!m.pack_vertices)
         m.pack_vertices.emplace(m.ctx, gpu::KernelDesc{"pack_vertices", shaders::pack_vertices_comp(),
-                                                      std::vector<VkDescriptorType>(4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
+                                                      std::vector<VkDescriptorType>(5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
                                                       sizeof(PackPush), 64, {}});
     const VkDeviceSize stream = VkDeviceSize(m.vertex_count) * 12;
     // Earlier compute or transfer writes to the inputs, and earlier draws' reads of the vertices.
@@ -436,16 +485,18 @@ void Renderer::record_vertex_update(VkCommandBuffer cmd, VkBuffer positions, VkB
                                  VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT,
                         VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                         VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT);
-    m.pack_vertices->dispatch(cmd, m.vertex_count, PackPush{m.vertex_count},
+    // Without a thickness stream the binding gets the t_m stream (never read: has_thickness = 0).
+    m.pack_vertices->dispatch(cmd, m.vertex_count, PackPush{m.vertex_count, thickness ? 1u : 0u},
                               {gpu::Binding(positions, 0, stream), gpu::Binding(normals, 0, stream), gpu::Binding(tm, 0, stream),
-                               m.vertices});
+                               m.vertices, gpu::Binding(thickness ? thickness : tm, 0, stream / 3)});
+    if (thickness) m.has_thickness = true;
     gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_WRITE_BIT,
                         VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT, VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT);
 }
 
-void Renderer::update_vertices(VkBuffer positions, VkBuffer normals, VkBuffer tm)
+void Renderer::update_vertices(VkBuffer positions, VkBuffer normals, VkBuffer tm, VkBuffer thickness)
 {
-    impl_->ctx.submit_and_wait([&](VkCommandBuffer cmd) { record_vertex_update(cmd, positions, normals, tm); });
+    impl_->ctx.submit_and_wait([&](VkCommandBuffer cmd) { record_vertex_update(cmd, positions, normals, tm, thickness); });
 }
 
 void Renderer::set_material(const Material& material)

@@ -1,0 +1,26 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Thickness t̄ = the mean inward ray distance per vertex, mesh units: the fixed-point sums of
+// thickness_trace.comp added over the ray slices, divided by the ray count.
+#include "common.glsl"
+
+layout(push_constant, scalar) uniform Push {
+    uint vertex_count;
+    uint rays;
+    uint slices;
+    float max_distance;  // mesh units: one kQuantum of fixed point
+} pc;
+
+layout(binding = 0, scalar) readonly buffer Sums { uint sums[]; };  // [slice][vertex]
+layout(binding = 1, scalar) writeonly buffer Thickness { float thickness[]; };
+
+const float kQuantum = 4194304.0;  // thickness_trace.comp
+
+void main()
+{
+    uint v = jade_thread_index();
+    if (v >= pc.vertex_count) return;
+    uint total = 0u;
+    for (uint s = 0u; s < pc.slices; ++s) total += sums[s * pc.vertex_count + v];
+    thickness[v] = float(double(total) / (double(pc.rays) * double(kQuantum))) * pc.max_distance;
+}
