@@ -117,8 +117,10 @@ void main()
     }
     float kappa_scaled = max(in_curvature, 0.0) * data.params.y;  // concave: treated as flat
 
-    // σ_t ≤ 3e38 and t̄ finite ≥ 0: the product is finite or +Inf, never NaN; e^{−Inf} = 0.
-    vec3 attenuation = TRANSMISSION == 1u ? exp(-data.transmission.rgb * max(in_thickness, 0.0)) : vec3(0.0);
+    // σ_t ≤ 3e38 and t̄ > 0: the product is finite or +Inf, never NaN, and e^{−Inf} = 0. A zero
+    // (or, extrapolated at a multisample edge, NaN) thickness transmits fully without the product:
+    // lavapipe turned 3e38 · 0 into a NaN there (tests/test_thickness.cpp).
+    vec3 attenuation = TRANSMISSION == 1u && in_thickness > 0.0 ? exp(-data.transmission.rgb * in_thickness) : vec3(1.0);
 
     vec3 color = vec3(0.0);
     for (uint k = 0; k < frame.light_count; ++k) {

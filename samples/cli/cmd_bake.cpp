@@ -87,6 +87,7 @@ int cmd_bake(int argc, char** argv)
     BakedAttributes baked;
     baked.ao = to_render_vertices(prepared, r.ao, 0.0f);
     baked.tm = to_render_vertices(prepared, r.tm, glm::vec3(0.0f));
+    if (!r.thickness.empty()) baked.thickness = to_render_vertices(prepared, r.thickness, 0.0f);
     baked.extras_json = extras_json(material, settings, r);
     save_baked_gltf(*out, mesh, baked);
     std::printf("wrote %s\n", out->c_str());

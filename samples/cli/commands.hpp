@@ -27,6 +27,7 @@ int cmd_deform(int argc, char** argv);
 int cmd_bench_deform(int argc, char** argv);
 int cmd_plan(int argc, char** argv);
 int cmd_scene(int argc, char** argv);
+int cmd_fidelity(int argc, char** argv);
 
 // Options most commands take.
 std::vector<OptionSpec> device_options();

@@ -25,6 +25,7 @@ const char* kUsage =
     "  figure1            the poster's Figure 1: the blue-jewel bunny in four shading modes\n"
     "  bench render MESH  frame time of t_m shading against Lambert at 512^2 and 1024^2\n"
     "  report [MESH...]   error of every approximation against GPU and wall time (--out DIR)\n"
+    "  fidelity           the shading modes against the committed path-traced references (LDR FLIP)\n"
     "  deform [MESH]      deforming mesh demo: GPU deform, re-bake, t_m frames and a GIF\n"
     "  bench deform       frames per second of the per-frame re-bake, full and amortised, with errors\n"
     "  plan SCENE.gltf    the passes, shader variants and GPU memory a glTF scene needs (--cache DIR)\n"
@@ -88,6 +89,7 @@ int main(int argc, char** argv)
         if (command == "deform") return jade::cli::cmd_deform(argc, argv);
         if (command == "plan") return jade::cli::cmd_plan(argc, argv);
         if (command == "scene") return jade::cli::cmd_scene(argc, argv);
+        if (command == "fidelity") return jade::cli::cmd_fidelity(argc, argv);
         if (command == "view") return exec_viewer(argc, argv);
         std::fprintf(stderr, "jade: unknown command '%s'\n\n%s", command.c_str(), kUsage);
         return 2;

@@ -113,14 +113,16 @@ void Scene::update(const ViewState& state)
 void Scene::bake_static(const ViewState& state)
 {
     std::vector<glm::vec3> tm;
+    std::vector<float> thickness;
     if (!material_.opaque) {
         const jade::BakeResult r = baker_.bake(rest_, material_, jade::BakeSettings::preset(state.quality));
         times_.bake_wall_ms = r.timings.wall_ms;
         for (const auto& [name, ms] : r.timings.gpu_stages) times_.stages.emplace_back("bake " + name, ms);
         tm = r.tm;
+        thickness = r.thickness;
     }
     const double t0 = now_ms();
-    renderer_.set_mesh(rest_, tm);
+    renderer_.set_mesh(rest_, tm, thickness);
     times_.stages.emplace_back("set_mesh (CPU)", now_ms() - t0);
 }
 

@@ -51,8 +51,9 @@ struct AoSettings {
 /// angle in the cone of half-angle `cone_degrees` about −n (the shape-diameter-function idea,
 /// Shapira et al. 2008, without its outlier rejection: t̄ feeds e^{−σ_t t̄}, where a long ray
 /// should count). A ray that meets nothing within max_distance counts as max_distance. Rays: the
-/// AO pass's Hammersley set with a per-vertex rotation (seed), mapped to the cone; distances are
-/// summed in fixed point (2^-22 × max_distance), so the result is deterministic.
+/// AO pass's Hammersley set with a per-vertex rotation (seed), mapped to the cone. Distances are
+/// measured from x itself (the offset's ε/cos θ is added back) and summed in fixed point
+/// (2^-22 × max_distance), so the result is deterministic.
 struct ThicknessSettings {
     uint32_t rays = 32;              ///< rays per vertex, 0..1023; 0: no thickness pass
     float cone_degrees = 60.0f;      ///< half-angle of the cone about −n, (0, 90]

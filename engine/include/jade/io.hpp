@@ -52,4 +52,16 @@ void save_baked_gltf(const std::filesystem::path& path, const TriangleMesh& mesh
 /// Alpha is straight (not premultiplied) and stored linearly; PNG values are clamped to [0,1].
 void save_image(const std::filesystem::path& path, int width, int height, const std::vector<float>& rgba);
 
+/// An image read by load_image: linear RGBA floats, rows top to bottom.
+struct LoadedImage {
+    int width = 0, height = 0;
+    std::vector<float> rgba;  ///< width*height*4, linear (8-bit files are sRGB-decoded; alpha as stored)
+    bool srgb_8bit = false;   ///< the file held 8-bit sRGB values (PNG), decoded here
+};
+
+/// Reads a .png (8-bit sRGB, decoded to linear with the IEC 61966-2-1 curve) or .exr (linear)
+/// through OpenImageIO; 1 to 4 channels (grey is copied to RGB, missing alpha is 1). Throws
+/// jade::Error naming the file.
+LoadedImage load_image(const std::filesystem::path& path);
+
 }  // namespace jade

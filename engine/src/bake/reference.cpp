@@ -235,7 +235,8 @@ std::vector<double> reference_thickness(const PreparedMesh& mesh, const Thicknes
         double sum = 0.0;
         for (uint32_t k = 0; k < settings.rays; ++k) {
             const bake::RaySample s = bake::ray_sample(h, k, settings.rays, true);
-            sum += scene.nearest_hit(origin, bake::cone_direction(-normal, s.u1, s.u2, c), t_max);
+            const glm::dvec3 d = bake::cone_direction(-normal, s.u1, s.u2, c);
+            sum += std::min(scene.nearest_hit(origin, d, t_max) + eps / std::max(glm::dot(d, -normal), 0.05), t_max);
         }
         thickness[idx] = sum / double(settings.rays);
     });

@@ -136,4 +136,33 @@ void save_image(const std::filesystem::path& path, int width, int height, const 
     });
 }
 
+LoadedImage load_image(const std::filesystem::path& path)
+{
+    const std::string name = path.string();
+    auto in = OIIO::ImageInput::open(name);
+    if (!in) io::fail(name, "cannot open: " + OIIO::geterror());
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels < 1 || spec.nchannels > 4)
+        io::fail(name, "unsupported image: " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + ", " +
+                           std::to_string(spec.nchannels) + " channels");
+    const int channels = spec.nchannels;
+    LoadedImage img;
+    img.width = spec.width, img.height = spec.height;
+    img.srgb_8bit = spec.format == OIIO::TypeDesc::UINT8;
+    std::vector<float> pixels(size_t(img.width) * img.height * channels);
+    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data())) io::fail(name, "cannot read: " + in->geterror());
+    in->close();
+    auto decode = [&](float v) {
+        if (!img.srgb_8bit) return std::isfinite(v) ? v : 0.0f;
+        return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+    };
+    img.rgba.resize(size_t(img.width) * img.height * 4);
+    for (size_t i = 0, n = size_t(img.width) * img.height; i < n; ++i) {
+        const float* p = &pixels[i * channels];
+        for (int c = 0; c < 3; ++c) img.rgba[4 * i + c] = decode(p[channels >= 3 ? c : 0]);
+        img.rgba[4 * i + 3] = channels == 4 ? p[3] : channels == 2 ? p[1] : 1.0f;
+    }
+    return img;
+}
+
 }  // namespace jade

@@ -115,7 +115,7 @@ struct SceneRenderer::Impl {
                 o.dynamic_bake->record(cmd, o.mesh_deformer->positions_buffer(), o.mesh_deformer->normals_buffer(),
                                        o.mesh_deformer->areas_buffer());
                 o.renderer->record_vertex_update(cmd, o.mesh_deformer->positions_buffer(), o.mesh_deformer->normals_buffer(),
-                                                 o.dynamic_bake->buffers().tm);
+                                                 o.dynamic_bake->buffers().tm, o.dynamic_bake->buffers().thickness);
             });
             const double deform_and_bake_ms = ms_since(t0);
             passes.push_back({plan.objects[k].name, PassKind::Deform, 0, "t = " + std::to_string(t) + " s"});

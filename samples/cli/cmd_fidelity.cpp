@@ -1,0 +1,290 @@
+// jade fidelity: Jade's shading modes against the committed path-traced references of
+// tools/groundtruth (Mitsuba 3, a homogeneous medium behind a rough dielectric): LDR FLIP per
+// scene and light, the mean linear radiance over the thin region, and each mode's frame time.
+// `--components DIR` writes the separate terms the calibration (tools/groundtruth/fit.py) fits.
+#include "commands.hpp"
+
+#include <jade/io.hpp>
+#include <jade/render.hpp>
+
+#include "flip.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace jade::cli {
+namespace {
+
+using json = nlohmann::json;
+
+glm::vec3 vec3_of(const json& j) { return glm::vec3(j.at(0).get<float>(), j.at(1).get<float>(), j.at(2).get<float>()); }
+glm::dvec3 dvec3_of(const json& j) { return glm::dvec3(j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()); }
+
+json read_json(const std::filesystem::path& path)
+{
+    std::ifstream f(path);
+    if (!f) throw Error(path.string() + ": cannot open");
+    try {
+        return json::parse(f);
+    } catch (const json::exception& e) {
+        throw Error(path.string() + ": not valid JSON: " + e.what());
+    }
+}
+
+/// One committed reference: the scene record, its images and masks.
+struct Reference {
+    std::string name, set, mesh, light;
+    json record;
+    LoadedImage image;                  // linear (from the EXR)
+    flip::Image srgb;                   // the 8-bit PNG, for FLIP
+    std::vector<uint8_t> mask, thin;    // object and thin-region masks, 0/1 per pixel
+};
+
+std::vector<uint8_t> read_mask(const std::filesystem::path& path, int width, int height)
+{
+    const LoadedImage m = load_image(path);
+    if (m.width != width || m.height != height) throw Error(path.string() + ": mask size differs from the reference");
+    std::vector<uint8_t> out(size_t(width) * height);
+    for (size_t i = 0; i < out.size(); ++i) out[i] = m.rgba[4 * i] > 0.5f ? 1 : 0;
+    return out;
+}
+
+Reference load_reference(const std::filesystem::path& dir, const std::filesystem::path& record_path)
+{
+    Reference r;
+    r.record = read_json(record_path);
+    try {
+        r.name = r.record.at("scene"), r.set = r.record.at("set"), r.mesh = r.record.at("mesh"), r.light = r.record.at("light_name");
+        const json& files = r.record.at("files");
+        r.image = load_image(dir / files.at("exr").get<std::string>());
+        const LoadedImage png = load_image(dir / files.at("png").get<std::string>());
+        r.srgb = flip::from_linear(uint32_t(png.width), uint32_t(png.height), png.rgba.data(), 4);
+        r.mask = read_mask(dir / files.at("mask").get<std::string>(), r.image.width, r.image.height);
+        r.thin = read_mask(dir / files.at("thin").get<std::string>(), r.image.width, r.image.height);
+    } catch (const json::exception& e) {
+        throw Error(record_path.string() + ": " + e.what());
+    }
+    return r;
+}
+
+/// The mean linear RGB over the pixels where `mask` is set (0 when it is empty).
+glm::dvec3 region_mean(const std::vector<float>& rgba, const std::vector<uint8_t>& mask)
+{
+    glm::dvec3 sum(0.0);
+    size_t n = 0;
+    for (size_t i = 0; i < mask.size(); ++i)
+        if (mask[i]) sum += glm::dvec3(rgba[4 * i], rgba[4 * i + 1], rgba[4 * i + 2]), ++n;
+    return n ? sum / double(n) : sum;
+}
+
+MediumFit fit_from_args(const Args& args)
+{
+    MediumFit fit;
+    if (auto path = args.get("fit")) {
+        const json j = read_json(*path);
+        try {
+            fit.albedo_scale = j.value("albedo_scale", fit.albedo_scale);
+            fit.strength = j.value("strength", fit.strength);
+            fit.transmission_weight = j.value("transmission_weight", fit.transmission_weight);
+            fit.lobe = j.value("lobe", fit.lobe);
+            fit.normal_mix = j.value("normal_mix", fit.normal_mix);
+        } catch (const json::exception& e) {
+            args.fail("--fit " + *path + ": " + e.what());
+        }
+    }
+    return fit;
+}
+
+Medium medium_of(const json& record)
+{
+    const json& m = record.at("medium");
+    Medium medium;
+    medium.sigma_s = dvec3_of(m.at("sigma_s"));
+    medium.sigma_a = dvec3_of(m.at("sigma_a"));
+    medium.g = m.at("g"), medium.ior = m.at("ior"), medium.roughness = m.at("roughness");
+    return medium;
+}
+
+/// A mesh baked once per medium and reused by every light of it.
+struct BakedMesh {
+    TriangleMesh mesh;
+    PreparedMesh prepared;
+    BakeResult bake;
+};
+
+struct Mode {
+    const char* name;
+    ShadingMode mode;
+    bool transmission;
+};
+constexpr Mode kModes[] = {{"lambert", ShadingMode::Lambert, false},
+                           {"curvature", ShadingMode::Curvature, false},
+                           {"tm", ShadingMode::Tm, false},
+                           {"default", ShadingMode::Tm, true}};
+
+}  // namespace
+
+int cmd_fidelity(int argc, char** argv)
+{
+    Args args("fidelity",
+              [] {
+                  auto o = device_options();
+                  for (auto& b : bake_options()) o.push_back(b);
+                  o.push_back({"references", "DIR", "the committed references (default tools/groundtruth/references)"});
+                  o.push_back({"root", "DIR", "where the records' mesh paths start (default: three folders above DIR)"});
+                  o.push_back({"set", "S", "train | validation | all (default all)"});
+                  o.push_back({"scene", "TEXT", "only scenes whose name contains TEXT"});
+                  o.push_back({"fit", "FILE", "JSON of MediumFit values instead of the built-in defaults"});
+                  o.push_back({"json", "FILE", "write every number as JSON"});
+                  o.push_back({"components", "DIR", "also write each scene's separate terms as EXR (for fit.py)"});
+                  o.push_back({"strengths", "LIST", "with --components: strengths of the diffuse terms (default 0.25,0.5,0.8,1.2,2)"});
+                  o.push_back({"lobes", "LIST", "with --components: lobe exponents of the transmission terms (default 1,2,4,8)"});
+                  return o;
+              }(),
+              argc, argv, 2);
+    if (args.flag("help")) {
+        std::printf("jade fidelity [options]\n\nRenders every committed path-traced reference scene with lambert, curvature, tm\n"
+                    "(the poster's model) and the default (tm with transmission), all with the albedo derived\n"
+                    "from the scene's medium, and prints LDR FLIP against the reference, whole and inside\n"
+                    "the object, the thin region's mean linear radiance, and the GPU time per mode.\n\n%s",
+                    args.help().c_str());
+        return 0;
+    }
+    const std::filesystem::path dir = args.get_or("references", "tools/groundtruth/references");
+    const std::filesystem::path root = args.get_or("root", (std::filesystem::absolute(dir) / ".." / ".." / "..").string());
+    const std::string set = args.get_or("set", "all"), filter = args.get_or("scene", "");
+    if (set != "train" && set != "validation" && set != "all") args.fail("--set: '" + set + "' is not train, validation or all");
+    const MediumFit fit = fit_from_args(args);
+    BakeSettings bake_settings = bake_settings_from_args(args);
+    const auto components = args.get("components");
+    if (components) check_output_folder("components", *components);
+    auto list = [&](const char* flag, const char* fallback) {
+        std::vector<double> v;
+        std::stringstream ss(args.get_or(flag, fallback));
+        for (std::string t; std::getline(ss, t, ',');) v.push_back(std::stod(t));
+        return v;
+    };
+    const std::vector<double> strengths = list("strengths", "0.25,0.5,0.8,1.2,2"), lobes = list("lobes", "1,2,4,8");
+
+    std::vector<std::filesystem::path> records;
+    if (!std::filesystem::is_directory(dir)) throw Error("--references " + dir.string() + ": no such folder");
+    for (const auto& e : std::filesystem::directory_iterator(dir)) {
+        const auto name = e.path().filename().string();
+        if (e.path().extension() == ".json" && name.find("_masks") == std::string::npos && name.find("silhouette") == std::string::npos &&
+            name.find("noise") == std::string::npos && name.find("summary") == std::string::npos)
+            records.push_back(e.path());
+    }
+    std::sort(records.begin(), records.end());
+
+    auto ctx = make_context(args);
+    Baker baker(*ctx);
+    Renderer renderer(*ctx);
+    std::map<std::string, BakedMesh> baked;  // key: mesh + medium
+    json out = json::array();
+    std::printf("%-26s %8s %8s %8s %8s   thin region mean (ref | default)\n", "scene (LDR FLIP, masked)", "lambert",
+                "curvature", "tm", "default");
+    for (const auto& path : records) {
+        const json peek = read_json(path);
+        if (!peek.contains("scene") || !peek.contains("set")) continue;
+        if ((set != "all" && peek["set"] != set) || peek["scene"].get<std::string>().find(filter) == std::string::npos) continue;
+        Reference ref = load_reference(dir, path);
+        const json& rec = ref.record;
+        const std::string key = rec.at("mesh").get<std::string>() + "/" + rec.at("medium_name").get<std::string>();
+        const Medium medium = medium_of(rec);
+        const Material material = Material::from_medium(medium, fit, rec.at("medium_name").get<std::string>());
+        if (!baked.count(key)) {
+            BakedMesh b;
+            b.mesh = load_mesh(root / rec.at("mesh_file").get<std::string>());
+            b.prepared = prepare_mesh(b.mesh);
+            b.bake = baker.bake(b.prepared, material, bake_settings);
+            baked.emplace(key, std::move(b));
+        }
+        const BakedMesh& b = baked.at(key);
+        renderer.set_mesh(b.prepared, b.bake.tm, b.bake.thickness);
+        Camera camera;
+        camera.eye = vec3_of(rec.at("camera").at("eye"));
+        camera.target = vec3_of(rec.at("camera").at("target"));
+        camera.up = vec3_of(rec.at("camera").at("up"));
+        camera.fov_y_degrees = rec.at("camera").at("fov_y_degrees").get<float>();
+        const std::vector<Light> lights = {
+            Light::directional(vec3_of(rec.at("light").at("towards_light")), vec3_of(rec.at("light").at("irradiance")))};
+        RenderSettings rs;
+        rs.width = uint32_t(ref.image.width), rs.height = uint32_t(ref.image.height);
+        rs.float32 = true;
+        json row = {{"scene", ref.name}, {"set", ref.set}, {"mesh", ref.mesh}, {"light", ref.light},
+                    {"medium", rec.at("medium_name")}};
+        const glm::dvec3 ref_thin = region_mean(ref.image.rgba, ref.thin);
+        row["thin_reference"] = {ref_thin.x, ref_thin.y, ref_thin.z};
+        std::printf("%-26s", ref.name.c_str());
+        renderer.set_material(material);
+        glm::dvec3 thin_default(0.0);
+        for (const Mode& mode : kModes) {
+            rs.mode = mode.mode;
+            rs.transmission = mode.transmission;
+            RenderedImage img = renderer.render(camera, lights, rs);
+            const flip::Image test = flip::from_linear(img.width, img.height, img.rgba.data(), 4);
+            const double whole = flip::ldr_flip(ref.srgb, test), masked = flip::ldr_flip(ref.srgb, test, flip::pixels_per_degree(), &ref.mask);
+            const glm::dvec3 thin = region_mean(img.rgba, ref.thin);
+            row[mode.name] = {{"flip", whole}, {"flip_masked", masked}, {"gpu_ms", img.gpu_ms}, {"thin", {thin.x, thin.y, thin.z}}};
+            if (std::string(mode.name) == "default") thin_default = thin;
+            std::printf(" %8.4f", masked);
+        }
+        std::printf("   %.3f %.3f %.3f | %.3f %.3f %.3f\n", ref_thin.x, ref_thin.y, ref_thin.z, thin_default.x, thin_default.y,
+                    thin_default.z);
+        std::fflush(stdout);
+        out.push_back(row);
+        if (!components) continue;
+        // The separate terms: diffuse (albedo R_d, albedo_scale 1) per strength, specular, and
+        // transmission (weight 1) per lobe with normal_mix 0 and 1; the image is linear in the rest.
+        rs.mode = ShadingMode::Tm;
+        auto write = [&](const Material& m, bool transmission, const std::string& term) {
+            renderer.set_material(m);
+            rs.transmission = transmission;
+            RenderedImage img = renderer.render(camera, lights, rs);
+            save_image(std::filesystem::path(*components) / (ref.name + "__" + term + ".exr"), int(img.width), int(img.height),
+                       img.rgba);
+        };
+        MediumFit unit = fit;
+        unit.albedo_scale = 1.0, unit.transmission_weight = 1.0;
+        Material base = Material::from_medium(medium, unit);
+        for (double s : strengths) {
+            Material m = base;
+            m.strength = float(s), m.specular = 0.0f;
+            char term[32];
+            std::snprintf(term, sizeof term, "diffuse_s%g", s);
+            write(m, false, term);
+        }
+        Material spec = base;
+        spec.albedo = glm::vec3(0.0f);
+        write(spec, false, "specular");
+        for (double n : lobes)
+            for (int mix = 0; mix <= 1; ++mix) {
+                Material m = spec;
+                m.specular = 0.0f, m.transmission.lobe = float(n), m.transmission.normal_mix = float(mix);
+                char term[32];
+                std::snprintf(term, sizeof term, "transmission_n%g_m%d", n, mix);
+                write(m, true, term);
+            }
+    }
+    if (out.empty()) throw Error("--references " + dir.string() + ": no reference scene matched");
+    if (auto path = args.get("json")) {
+        const std::filesystem::path p(*path), tmp = p.string() + ".tmp";
+        {
+            std::ofstream f(tmp);
+            f << json{{"fit", {{"albedo_scale", fit.albedo_scale}, {"strength", fit.strength},
+                               {"transmission_weight", fit.transmission_weight}, {"lobe", fit.lobe}, {"normal_mix", fit.normal_mix}}},
+                      {"scenes", out}}
+                     .dump(1);
+            if (!f) throw Error(tmp.string() + ": cannot write");
+        }
+        std::filesystem::rename(tmp, p);
+    }
+    return 0;
+}
+
+}  // namespace jade::cli
