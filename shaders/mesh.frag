@@ -14,6 +14,7 @@ const uint kLambert = 0, kCurvature = 1, kTm = 2, kFalseColor = 3;
 // f(cos θ, t) as (W − 1) × (H − 1) quads: cell (i, j) = texels (i, j), (i+1, j), (i, j+1), (i+1, j+1).
 layout(binding = 1) uniform samplerBuffer translucency_quads;
 layout(binding = 2) uniform sampler2D curvature_lut;     // RGBA32F, D_c(cos θ, κ) per channel
+layout(binding = 3) uniform sampler2D light_depth_atlas; // D32: depth nearest to each light, one tile per light
 
 layout(location = 0) in vec3 in_position;
 layout(location = 1) in vec3 in_normal;
@@ -73,13 +74,39 @@ float specular_lobe(vec3 n, vec3 v, vec3 l, float n_dot_l)
     return d * vis * f * n_dot_l;
 }
 
+// How far light from directional light `tile` (1-based) travels inside the object before it
+// reaches this point, mesh units: this point's depth along the light minus the depth of the
+// surface nearest to the light, bilinear between the four nearest texels of its tile.
+float light_path(uint tile)
+{
+    vec4 p = data.light_depth[tile - 1u] * vec4(in_position, 1.0);
+    float size = data.light_depth_map.x;
+    vec2 xy = clamp(p.xy * 0.5 + 0.5, 0.0, 1.0) * size - 0.5;
+    vec2 f = fract(xy);
+    ivec2 base = ivec2(floor(xy)), lo = ivec2(0), hi = ivec2(int(size) - 1);
+    int x0 = int(tile - 1u) * int(size);
+    float d00 = texelFetch(light_depth_atlas, ivec2(x0, 0) + clamp(base, lo, hi), 0).r;
+    float d10 = texelFetch(light_depth_atlas, ivec2(x0, 0) + clamp(base + ivec2(1, 0), lo, hi), 0).r;
+    float d01 = texelFetch(light_depth_atlas, ivec2(x0, 0) + clamp(base + ivec2(0, 1), lo, hi), 0).r;
+    float d11 = texelFetch(light_depth_atlas, ivec2(x0, 0) + clamp(base + ivec2(1, 1), lo, hi), 0).r;
+    float entry = mix(mix(d00, d10, f.x), mix(d01, d11, f.x), f.y);
+    return max(p.z - entry, 0.0) * data.light_depth_map.z;
+}
+
 // Light from behind through the thickness (jade/material.hpp Transmission): ballistic
 // transmittance e^{−σ_t t̄} into the forward lobe (n + 1)/(2π)·max(V·(−L), 0)^n, following
 // −N·L by normal_mix.
-vec3 transmitted(vec3 n, vec3 v, vec3 l, float n_dot_l, vec3 attenuation)
+vec3 transmitted(vec3 n, vec3 v, vec3 l, float n_dot_l, uint tile)
 {
     float mu = -dot(v, l);
     if (mu <= 0.0) return vec3(0.0);
+    // The longer of the local thickness and the path from where the light enters: a thin part
+    // that the body shadows from the light is dark. σ_t ≤ 3e38 and t > 0: the product is finite
+    // or +Inf, never NaN, and e^{−Inf} = 0. A zero (or, extrapolated at a multisample edge, NaN)
+    // thickness transmits fully without the product: lavapipe turned 3e38 · 0 into a NaN there
+    // (tests/test_thickness.cpp).
+    float t = tile != 0u ? max(in_thickness, light_path(tile)) : in_thickness;
+    vec3 attenuation = t > 0.0 ? exp(-data.transmission.rgb * t) : vec3(1.0);
     vec4 shape = data.transmission_shape;
     float lobe = shape.y * pow(mu, shape.x);
     float follow = (1.0 - shape.z) + shape.z * max(-n_dot_l, 0.0);
@@ -117,11 +144,6 @@ void main()
     }
     float kappa_scaled = max(in_curvature, 0.0) * data.params.y;  // concave: treated as flat
 
-    // σ_t ≤ 3e38 and t̄ > 0: the product is finite or +Inf, never NaN, and e^{−Inf} = 0. A zero
-    // (or, extrapolated at a multisample edge, NaN) thickness transmits fully without the product:
-    // lavapipe turned 3e38 · 0 into a NaN there (tests/test_thickness.cpp).
-    vec3 attenuation = TRANSMISSION == 1u && in_thickness > 0.0 ? exp(-data.transmission.rgb * in_thickness) : vec3(1.0);
-
     vec3 color = vec3(0.0);
     for (uint k = 0; k < frame.light_count; ++k) {
         GpuLight light = data.lights[k];
@@ -136,7 +158,7 @@ void main()
         float c = dot(n, l);
         color += albedo * (1.0 / JADE_PI) * diffuse_response(c, rows, kappa_scaled) * e;
         if (c > 0.0 && data.specular.z > 0.0) color += data.specular.z * specular_lobe(n, v, l, c) * e;
-        if (TRANSMISSION == 1u) color += transmitted(n, v, l, c, attenuation) * e;
+        if (TRANSMISSION == 1u) color += transmitted(n, v, l, c, uint(light.color.w)) * e;
     }
     out_color = vec4(color, 1.0);
 }

@@ -15,7 +15,7 @@ layout(push_constant, scalar) uniform FramePush {
 
 struct GpuLight {
     vec4 vector;        // xyz: towards the light (w = 0) or its position (w = 1)
-    vec4 color;         // rgb: irradiance (directional) or intensity (point)
+    vec4 color;         // rgb: irradiance (directional) or intensity (point); w: light-depth tile + 1, 0 none
 };
 
 const uint kColorMapStops = 9;
@@ -29,6 +29,8 @@ layout(binding = 0, scalar) readonly buffer FrameData {
     vec4 params;            // 1 / t_max, d̄ (curvature length, mesh units), false-colour min, 1 / range
     vec4 transmission;      // σ_t (linear RGB, 1/mesh unit), weight (jade/material.hpp Transmission)
     vec4 transmission_shape; // lobe exponent n, (n + 1)/(2π), normal_mix, unused
+    vec4 light_depth_map;   // light-depth tile size (texels), tiles in the atlas, depth range (mesh units), unused
+    mat4 light_depth[4];    // world → light clip space of each tile (shading/light_depth.hpp)
     vec4 color_map[kColorMapStops];  // false-colour stops, linear RGB
     GpuLight lights[];
 } data;

@@ -155,6 +155,9 @@ struct RendererOptions {
     uint32_t curvature_lut_width = 129, curvature_lut_height = 64;
     /// Mean curvature smoothing: iterations of 1-ring averaging after the cotangent Laplacian.
     uint32_t curvature_smoothing = 2;
+    /// Transmission: texels of one light's depth tile (how far light travels inside the object
+    /// before it reaches a point; 4 directional lights at most, D32, 4·size² bytes each).
+    uint32_t light_depth_size = 1024;
 };
 
 /// Where record() draws: the caller's images, described by views.
@@ -180,7 +183,7 @@ struct RenderTarget {
 /// What the renderer keeps per vertex (position, normal, t_m, curvature, thickness: floats) and
 /// its per-draw constants with 64 lights, in bytes: for memory plans (jade/scene.hpp).
 inline constexpr uint64_t kRendererVertexBytes = 44;
-inline constexpr uint64_t kRendererFrameDataBytes = 2304;
+inline constexpr uint64_t kRendererFrameDataBytes = 2576;
 
 /// Draws one mesh with one material. Owns its GPU buffers, LUT images and pipelines (created
 /// lazily per mode, sample count and format). Threading and lifetime as in the header comment.

@@ -11,6 +11,7 @@
 #include "gpu/kernel.hpp"
 #include "gpu/pipeline.hpp"
 #include "gpu/timer.hpp"
+#include "shading/light_depth.hpp"
 #include "shading/lut.hpp"
 
 #include <jade/context.hpp>
@@ -51,7 +52,8 @@ struct GpuLight {
     glm::vec4 vector, color;
 };
 struct FrameData {
-    glm::vec4 albedo_strength, specular, lut_map, curvature_map, params, transmission, transmission_shape;
+    glm::vec4 albedo_strength, specular, lut_map, curvature_map, params, transmission, transmission_shape, light_depth_map;
+    glm::mat4 light_depth[shading::LightDepth::kMaxLights];
     glm::vec4 color_map[9];
     GpuLight lights[kMaxLights];
 };
@@ -88,7 +90,7 @@ float half_to_float(uint16_t h)
 struct Renderer::Impl {
     gpu::Context& ctx;
     RendererOptions options;
-    gpu::OwnedSampler sampler;
+    gpu::OwnedSampler sampler, nearest;
     std::shared_ptr<shading::TranslucencyLut> lut;        // shared by the Renderers of this device and layout
     std::optional<shading::CurvatureLut> curvature_lut;    // made on demand: curvature_image()
     std::array<ChannelProfile, 3> curvature_lut_profiles;  // what curvature_lut was built for
@@ -103,6 +105,7 @@ struct Renderer::Impl {
     float tm_min_mean = 0.0f, tm_max_mean = 0.0f;  // range of mean(t_m) over the vertices
     bool has_mesh = false, has_thickness = false;
 
+    std::optional<shading::LightDepth> light_depth;  // made on the first draw with transmission
     std::optional<Material> material;
     gpu::Buffer frame_data;
     std::map<uint64_t, gpu::GraphicsPipeline> pipelines;  // key: pipeline_key()
@@ -117,7 +120,8 @@ struct Renderer::Impl {
     std::optional<gpu::GpuTimer> timer;
 
     Impl(gpu::Context& c, const RendererOptions& o)
-        : ctx(c), options(o), sampler(shading::make_lut_sampler(c)), lut(shading::shared_translucency_lut(c, o.lut)),
+        : ctx(c), options(o), sampler(shading::make_lut_sampler(c)),
+          nearest(gpu::make_sampler(c, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "light depth sampler")), lut(shading::shared_translucency_lut(c, o.lut)),
           placeholder(c, {"curvature LUT placeholder", 1, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_SAMPLED_BIT}),
           frame_data(c, sizeof(FrameData), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "frame data")
     {
@@ -155,7 +159,7 @@ struct Renderer::Impl {
                                 {3, VK_FORMAT_R32_SFLOAT, offsetof(Vertex, curvature)},
                                 {4, VK_FORMAT_R32_SFLOAT, offsetof(Vertex, thickness)}};
                 d.bindings = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,
-                              VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
+                              VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
                 d.push_size = sizeof(FramePush);
                 d.constants = {uint32_t(mode), channels, transmission ? 1u : 0u};
                 it->second = gpu::GraphicsPipeline(ctx, d);
@@ -218,18 +222,37 @@ struct Renderer::Impl {
     bool transmission_reaches_camera(const Camera& cam, std::span<const Light> lights, const RenderSettings& s) const
     {
         if (s.mode != ShadingMode::Tm || !s.transmission || !has_thickness || !material->transmission.enabled()) return false;
+        for (const Light& l : lights)
+            if (light_is_behind(cam, l)) return true;
+        return false;
+    }
+    bool light_is_behind(const Camera& cam, const Light& l) const
+    {
         const glm::vec3 centre = 0.5f * (bbox_min + bbox_max);
         const float radius = 0.5f * glm::length(bbox_max - bbox_min), distance = glm::length(cam.eye - centre);
-        if (!(distance > radius)) return true;  // the eye inside the bounds sees every direction
-        const glm::vec3 to_eye = (cam.eye - centre) / distance;
-        const float sin_spread = radius / distance;
-        for (const Light& l : lights) {
-            if (l.type == Light::Type::Point) return true;
-            // The cone of V about to_eye with half-angle asin(r/D) reaches μ > 0 iff the angle
-            // between to_eye and −L is below 90° + asin(r/D).
-            if (glm::dot(to_eye, -glm::normalize(l.vector)) > -sin_spread) return true;
-        }
-        return false;
+        if (!(distance > radius) || l.type == Light::Type::Point) return true;  // every direction may be seen
+        // The cone of V about to_eye with half-angle asin(r/D) reaches μ > 0 iff the angle
+        // between to_eye and −L is below 90° + asin(r/D).
+        return glm::dot((cam.eye - centre) / distance, -glm::normalize(l.vector)) > -radius / distance;
+    }
+
+    // The light-depth tiles of the directional lights behind the object (the first
+    // LightDepth::kMaxLights of them; the others, and point lights, use the local thickness
+    // alone). Returns each light's tile + 1, 0 for none.
+    std::vector<uint32_t> record_light_depth(VkCommandBuffer cmd, const Camera& cam, std::span<const Light> lights)
+    {
+        std::vector<uint32_t> tile(lights.size(), 0);
+        std::vector<glm::vec3> towards;
+        for (size_t k = 0; k < lights.size() && towards.size() < shading::LightDepth::kMaxLights; ++k)
+            if (lights[k].type == Light::Type::Directional && light_is_behind(cam, lights[k])) {
+                towards.push_back(lights[k].vector);
+                tile[k] = uint32_t(towards.size());
+            }
+        if (towards.empty()) return tile;
+        if (!light_depth) light_depth.emplace(ctx, options.light_depth_size);
+        light_depth->record(cmd, towards, vertices.handle(), sizeof(Vertex), indices.handle(), index_count,
+                            0.5f * (bbox_min + bbox_max), 0.5f * glm::length(bbox_max - bbox_min));
+        return tile;
     }
 
     std::pair<float, float> false_color_range(const RenderSettings& s) const
@@ -251,7 +274,7 @@ struct Renderer::Impl {
         return curvature_lut ? curvature_lut->image() : placeholder;
     }
 
-    FrameData frame_constants(std::span<const Light> lights, const RenderSettings& s) const
+    FrameData frame_constants(std::span<const Light> lights, const RenderSettings& s, std::span<const uint32_t> tiles) const
     {
         const Material& m = *material;
         FrameData d{};
@@ -267,10 +290,15 @@ struct Renderer::Impl {
         const Transmission& tr = m.transmission;
         d.transmission = glm::vec4(glm::min(tr.sigma_t, glm::vec3(3.0e38f)), tr.weight);
         d.transmission_shape = glm::vec4(tr.lobe, (tr.lobe + 1.0f) / (2.0f * float(std::numbers::pi)), tr.normal_mix, 0.0f);
+        if (light_depth) {
+            d.light_depth_map = glm::vec4(float(light_depth->tile_size()), float(shading::LightDepth::kMaxLights),
+                                          light_depth->depth_range(), 0.0f);
+            for (uint32_t k = 0; k < shading::LightDepth::kMaxLights; ++k) d.light_depth[k] = light_depth->view_projection(k);
+        }
         for (int i = 0; i < 9; ++i) d.color_map[i] = glm::vec4(false_color(float(i) / 8.0f), 1.0f);
         for (size_t k = 0; k < lights.size(); ++k)
             d.lights[k] = {glm::vec4(lights[k].vector, lights[k].type == Light::Type::Point ? 1.0f : 0.0f),
-                           glm::vec4(lights[k].color, 0.0f)};
+                           glm::vec4(lights[k].color, tiles.empty() ? 0.0f : float(tiles[k]))};
         return d;
     }
 
@@ -284,9 +312,12 @@ struct Renderer::Impl {
         const FramePush push = push_constants(cam, s.width, s.height, uint32_t(lights.size()));
         const gpu::Image& curvature =
             s.mode == ShadingMode::Curvature ? curvature_image() : curvature_lut ? curvature_lut->image() : placeholder;
-        const FrameData data = frame_constants(lights, s);
-        const auto& pipe =
-            pipeline(s.mode, material->grey() ? 1 : 3, transmission_reaches_camera(cam, lights, s), color_format(s), s.samples);
+        const bool transmission = transmission_reaches_camera(cam, lights, s);
+        const std::vector<uint32_t> tiles = transmission ? record_light_depth(cmd, cam, lights) : std::vector<uint32_t>{};
+        const FrameData data = frame_constants(lights, s, tiles);
+        const auto& pipe = pipeline(s.mode, material->grey() ? 1 : 3, transmission, color_format(s), s.samples);
+        const bool depth_tiles = std::any_of(tiles.begin(), tiles.end(), [](uint32_t t) { return t != 0; });
+        const gpu::Image& light_depth_image = depth_tiles ? light_depth->atlas() : placeholder;
 
         // The frame constants are rewritten in the command stream: wait for the previous draw's
         // shader reads (write-after-read), then make the new values visible to this draw.
@@ -326,7 +357,8 @@ struct Renderer::Impl {
         vkCmdBeginRendering(cmd, &ri);
         pipe.bind(cmd, {s.width, s.height}, push,
                   {frame_data, lut->quads(),
-                   gpu::Binding::image(curvature.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler)});
+                   gpu::Binding::image(curvature.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler),
+                   gpu::Binding::image(light_depth_image.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, nearest)});
         VkBuffer vb = vertices.handle();
         VkDeviceSize offset = 0;
         vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);

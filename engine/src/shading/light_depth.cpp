@@ -1,0 +1,75 @@
+// shading/light_depth.cpp - the light-depth atlas of the transmission term (light_depth.hpp).
+#include "shading/light_depth.hpp"
+
+#include "gpu/context.hpp"
+
+#include "jade_shaders.hpp"
+
+#include <glm/ext/matrix_clip_space.hpp>
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/geometric.hpp>
+
+#include <cmath>
+
+namespace jade::shading {
+
+LightDepth::LightDepth(gpu::Context& ctx, uint32_t tile_size)
+    : ctx_(ctx), tile_(tile_size),
+      atlas_(ctx, {"light depth atlas", tile_size * kMaxLights, tile_size, VK_FORMAT_D32_SFLOAT,
+                   VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT})
+{
+}
+
+void LightDepth::record(VkCommandBuffer cmd, std::span<const glm::vec3> towards_light, VkBuffer vertices,
+                        uint32_t vertex_stride, VkBuffer indices, uint32_t index_count, glm::vec3 centre, float radius)
+{
+    if (!pipeline_) {
+        gpu::GraphicsPipelineDesc d;
+        d.name = "light depth";
+        d.vertex_spirv = shaders::light_depth_vert();
+        d.fragment_spirv = shaders::light_depth_frag();
+        d.color_formats = {};
+        d.samples = VK_SAMPLE_COUNT_1_BIT;
+        d.cull = VK_CULL_MODE_NONE;  // the surface nearest to the light, facing it or not
+        d.vertex_stride = vertex_stride;
+        d.attributes = {{0, VK_FORMAT_R32G32B32_SFLOAT, 0}};
+        d.push_size = sizeof(glm::mat4);
+        pipeline_.emplace(ctx_, d);
+    }
+    // The orthographic box holds the bounding sphere: 2r across, depth from r in front of it to r
+    // behind; a little margin for a deforming mesh that leaves its rest bounds.
+    const float r = std::max(radius, 1e-20f) * 1.1f;
+    depth_range_ = 2.0f * r;  // near r, far 3r
+    atlas_.transition(cmd, gpu::use::kDepthAttachment, true);
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depth.imageView = atlas_.view();
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    depth.clearValue.depthStencil = {1.0f, 0};
+    VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    ri.renderArea = {{0, 0}, {atlas_.width(), atlas_.height()}};
+    ri.layerCount = 1;
+    ri.pDepthAttachment = &depth;
+    vkCmdBeginRendering(cmd, &ri);
+    const VkDeviceSize offset = 0;
+    for (uint32_t k = 0; k < towards_light.size() && k < kMaxLights; ++k) {
+        const glm::vec3 l = glm::normalize(towards_light[k]);
+        const glm::vec3 up = std::abs(l.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+        const glm::mat4 view = glm::lookAtRH(centre + 2.0f * r * l, centre, up);
+        view_proj_[k] = glm::orthoRH_ZO(-r, r, -r, r, r, 3.0f * r) * view;
+        pipeline_->bind(cmd, {tile_, tile_}, view_proj_[k], {});
+        // Tile k: viewport and scissor moved to its column of the atlas.
+        const VkViewport vp{float(k * tile_), 0.0f, float(tile_), float(tile_), 0.0f, 1.0f};
+        const VkRect2D sc{{int32_t(k * tile_), 0}, {tile_, tile_}};
+        vkCmdSetViewport(cmd, 0, 1, &vp);
+        vkCmdSetScissor(cmd, 0, 1, &sc);
+        vkCmdBindVertexBuffers(cmd, 0, 1, &vertices, &offset);
+        vkCmdBindIndexBuffer(cmd, indices, 0, VK_INDEX_TYPE_UINT32);
+        vkCmdDrawIndexed(cmd, index_count, 1, 0, 0, 0);
+    }
+    vkCmdEndRendering(cmd);
+    atlas_.transition(cmd, gpu::use::kSampled);
+}
+
+}  // namespace jade::shading

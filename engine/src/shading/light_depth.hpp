@@ -1,0 +1,48 @@
+// shading/light_depth.hpp - how far light travels inside the object before it reaches a point,
+// for the transmission term: per directional light behind the object, the depth of the surface
+// nearest to the light, rendered orthographically along the light into one tile of a D32 atlas.
+// The fragment shader turns it into t_L = (its own depth − that depth) along the light, the
+// distance from where the light enters the object, so parts the body shadows from the light
+// (a paw behind the body) are thick even where their local thickness t̄ is small.
+#pragma once
+
+#include "gpu/image.hpp"
+#include "gpu/pipeline.hpp"
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include <array>
+#include <optional>
+
+namespace jade::shading {
+
+class LightDepth {
+public:
+    static constexpr uint32_t kMaxLights = 4;  ///< lights with a depth tile; others use t̄ alone
+
+    LightDepth(gpu::Context& ctx, uint32_t tile_size);
+
+    /// Renders the tiles of `towards_light` (unit vectors, at most kMaxLights) of the mesh in the
+    /// bounding sphere (centre, radius), into the atlas. Records outside any rendering scope; the
+    /// atlas is left ready for fragment-shader reads.
+    void record(VkCommandBuffer cmd, std::span<const glm::vec3> towards_light, VkBuffer vertices, uint32_t vertex_stride,
+                VkBuffer indices, uint32_t index_count, glm::vec3 centre, float radius);
+
+    /// World → light clip space of tile k (x, y ∈ [−1, 1] over the tile, depth ∈ [0, 1]).
+    const glm::mat4& view_projection(uint32_t k) const { return view_proj_[k]; }
+    /// Mesh units per unit of stored depth (the orthographic depth range).
+    float depth_range() const { return depth_range_; }
+    uint32_t tile_size() const { return tile_; }
+    const gpu::Image& atlas() const { return atlas_; }
+
+private:
+    gpu::Context& ctx_;
+    uint32_t tile_;
+    gpu::Image atlas_;  // kMaxLights tiles side by side
+    std::optional<gpu::GraphicsPipeline> pipeline_;
+    std::array<glm::mat4, kMaxLights> view_proj_{};
+    float depth_range_ = 1.0f;
+};
+
+}  // namespace jade::shading

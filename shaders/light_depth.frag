@@ -1,0 +1,3 @@
+#version 460
+// light_depth.frag - depth only: nothing to shade.
+void main() {}
