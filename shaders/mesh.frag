@@ -93,8 +93,8 @@ float light_path(uint tile)
     return max(p.z - entry, 0.0) * data.light_depth_map.z;
 }
 
-// Light from behind through the thickness (jade/material.hpp Transmission): ballistic
-// transmittance e^{−σ_t t̄} into the forward lobe (n + 1)/(2π)·max(V·(−L), 0)^n, following
+// Light from behind through the object (jade/material.hpp Transmission): ballistic and diffused
+// transmittance along the path t into the forward lobe (n + 1)/(2π)·max(V·(−L), 0)^n, following
 // −N·L by normal_mix.
 vec3 transmitted(vec3 n, vec3 v, vec3 l, float n_dot_l, uint tile)
 {
@@ -106,11 +106,13 @@ vec3 transmitted(vec3 n, vec3 v, vec3 l, float n_dot_l, uint tile)
     // thickness transmits fully without the product: lavapipe turned 3e38 · 0 into a NaN there
     // (tests/test_thickness.cpp).
     float t = tile != 0u ? max(in_thickness, light_path(tile)) : in_thickness;
-    vec3 attenuation = t > 0.0 ? exp(-data.transmission.rgb * t) : vec3(1.0);
+    vec3 ballistic = t > 0.0 ? exp(-data.transmission.rgb * t) : vec3(1.0);
+    vec3 diffused = t > 0.0 ? (1.0 - exp(-data.transmission_scatter.rgb * t)) * exp(-data.transmission_diffusion.rgb * t) : vec3(0.0);
+    vec3 attenuation = data.transmission.w * ballistic + data.transmission_diffusion.w * diffused;
     vec4 shape = data.transmission_shape;
     float lobe = shape.y * pow(mu, shape.x);
     float follow = (1.0 - shape.z) + shape.z * max(-n_dot_l, 0.0);
-    return data.transmission.w * lobe * follow * attenuation;
+    return lobe * follow * attenuation;
 }
 
 vec3 false_color(float x)

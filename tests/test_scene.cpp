@@ -116,11 +116,14 @@ TEST(SceneMaterials, VolumeAndDiffuseTransmissionBecomeABurleyProfilePerChannel)
     for (int c = 0; c < 3; ++c) {
         const double mfp = 0.02 * T[c] / (1.0 - std::log(a[c]));  // metres
         EXPECT_EQ(m.profile[c].kind, ProfileKind::Burley);
-        EXPECT_NEAR(m.profile[c].d, mfp / burley_s(A[c]), 1e-9 * mfp) << "channel " << c;
+        // The medium whose derived albedo is A (medium_from_appearance): R_d = A / albedo_scale.
+        const double rd = std::min(A[c] / MediumFit{}.albedo_scale, 1.0);
+        EXPECT_NEAR(m.profile[c].d, mfp / burley_s(rd), 1e-6 * mfp) << "channel " << c;
+        EXPECT_NEAR(m.transmission.sigma_t[c], 1.0 / mfp, 1e-5 / mfp) << "channel " << c;
         EXPECT_NEAR(m.albedo[c], A[c], 1e-6);
     }
-    // e.g. red: ℓ = 0.02 / (1 + ln 2) = 11.81 mm, s(0.5) = 1.539, d = 7.675 mm.
-    EXPECT_NEAR(m.profile[0].d, 0.0076748, 1e-6);
+    // e.g. red: ℓ = 0.02 / (1 + ln 2) = 11.81 mm, R_d = 0.5 / 0.7, s(0.714) = 1.1405, d = 10.357 mm.
+    EXPECT_NEAR(m.profile[0].d, 0.011812322 / (1.85 - 0.5 / 0.7 + 7.0 * std::pow(0.8 - 0.5 / 0.7, 3.0)), 1e-8);
     EXPECT_NEAR(m.strength, 0.5 * 1.5, 1e-6);  // diffuseTransmissionFactor × extras strength
     EXPECT_NEAR(m.roughness, 0.3, 1e-6);
 }
@@ -250,8 +253,8 @@ TEST(ScenePlan, MixedSceneGetsOnlyThePassesEachObjectNeeds)
     EXPECT_TRUE(bar.passes[0].per_frame && bar.passes[1].per_frame && bar.passes[1].resident);
     EXPECT_EQ(bar.variant.channels, 3u);
 
-    // Vertex buffer of the draw: 40 bytes per bake vertex (position, normal, t_m, curvature).
-    EXPECT_EQ(grey.passes.back().buffers[0].bytes, 40u * grey.bake_vertices);
+    // Vertex buffer of the draw: 44 bytes per bake vertex (position, normal, t_m, curvature, thickness).
+    EXPECT_EQ(grey.passes.back().buffers[0].bytes, 44u * grey.bake_vertices);
     const std::string text = plan.describe();
     EXPECT_NE(text.find("shader variant: mode tm, CHANNELS=1"), std::string::npos) << text;
     EXPECT_NE(text.find("pass dynamic bake (every frame)"), std::string::npos);

@@ -108,7 +108,7 @@ TEST_F(Thickness, OpenMeshesCountMissesAsTheMaximumAndNoMediumMeansNoPass)
     const BakeResult r = baker.bake(grid, translucent(), s);
     for (float t : r.thickness) EXPECT_NEAR(t, s.thickness.max_distance_rel * grid.diagonal, 1e-6 * grid.diagonal);
     Material no_transmission = translucent();
-    no_transmission.transmission.weight = 0.0f;
+    no_transmission.transmission.weight = no_transmission.transmission.diffusion_weight = 0.0f;
     EXPECT_TRUE(baker.bake(grid, no_transmission, s).thickness.empty());
     s.thickness.rays = 2000;
     EXPECT_THROW(baker.bake(grid, translucent(), s), Error);
@@ -145,7 +145,8 @@ TEST_F(Thickness, BackLitSlabShowsTheBallisticTransmittance)
     Material m = translucent();
     m.albedo = glm::vec3(0.0f), m.specular = 0.0f;
     m.transmission.sigma_t = {5.0f, 10.0f, 20.0f};
-    m.transmission.weight = 0.7f, m.transmission.lobe = 3.0f, m.transmission.normal_mix = 0.4f;
+    m.transmission.weight = 0.7f, m.transmission.diffusion_weight = 0.0f, m.transmission.lobe = 3.0f;
+    m.transmission.normal_mix = 0.4f;
     const BakeResult r = baker.bake(slab, m, settings(64));
     Renderer renderer(context());
     renderer.set_mesh(slab, r.tm, r.thickness);
@@ -161,6 +162,17 @@ TEST_F(Thickness, BackLitSlabShowsTheBallisticTransmittance)
     for (int c = 0; c < 3; ++c) {
         const double expected = 0.7 * lobe * std::exp(-double(m.transmission.sigma_t[c]) * t) * 2.0;
         EXPECT_NEAR(centre[c], expected, 0.01 * expected) << "channel " << c;
+    }
+    // The diffused part alone: (1 − e^{−σ_s' t}) e^{−σ_tr t}.
+    m.transmission.weight = 0.0f, m.transmission.diffusion_weight = 0.5f;
+    m.transmission.sigma_s_reduced = {10.0f, 5.0f, 2.0f};
+    m.transmission.sigma_tr = {1.0f, 3.0f, 9.0f};
+    renderer.set_material(m);
+    const RenderedImage diffused = renderer.render(cam, lights, rs);
+    for (int c = 0; c < 3; ++c) {
+        const double s = m.transmission.sigma_s_reduced[c], tr = m.transmission.sigma_tr[c];
+        const double expected = 0.5 * lobe * (1.0 - std::exp(-s * t)) * std::exp(-tr * t) * 2.0;
+        EXPECT_NEAR(diffused.pixel(16, 16)[c], expected, 0.01 * expected) << "diffused, channel " << c;
     }
     // Off when no light is behind the object, and with RenderSettings::transmission = false.
     rs.transmission = false;

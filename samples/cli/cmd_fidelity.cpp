@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -91,6 +92,7 @@ MediumFit fit_from_args(const Args& args)
             fit.albedo_scale = j.value("albedo_scale", fit.albedo_scale);
             fit.strength = j.value("strength", fit.strength);
             fit.transmission_weight = j.value("transmission_weight", fit.transmission_weight);
+            fit.diffusion_weight = j.value("diffusion_weight", fit.diffusion_weight);
             fit.lobe = j.value("lobe", fit.lobe);
             fit.normal_mix = j.value("normal_mix", fit.normal_mix);
         } catch (const json::exception& e) {
@@ -199,7 +201,11 @@ int cmd_fidelity(int argc, char** argv)
         const Material material = Material::from_medium(medium, fit, rec.at("medium_name").get<std::string>());
         if (!baked.count(key)) {
             BakedMesh b;
-            b.mesh = load_mesh(root / rec.at("mesh_file").get<std::string>());
+            // The record's path from the repository root, else the same file in JADE_ASSETS.
+            std::filesystem::path file = root / rec.at("mesh_file").get<std::string>();
+            if (const char* assets = std::getenv("JADE_ASSETS"); assets && !std::filesystem::exists(file))
+                file = std::filesystem::path(assets) / file.filename();
+            b.mesh = load_mesh(file);
             b.prepared = prepare_mesh(b.mesh);
             b.bake = baker.bake(b.prepared, material, bake_settings);
             baked.emplace(key, std::move(b));
@@ -239,8 +245,9 @@ int cmd_fidelity(int argc, char** argv)
         std::fflush(stdout);
         out.push_back(row);
         if (!components) continue;
-        // The separate terms: diffuse (albedo R_d, albedo_scale 1) per strength, specular, and
-        // transmission (weight 1) per lobe with normal_mix 0 and 1; the image is linear in the rest.
+        // The separate terms: diffuse (albedo R_d, albedo_scale 1) per strength, specular, and the
+        // ballistic and diffused transmission (weight 1) per lobe with normal_mix 0 and 1; the image
+        // is linear in the rest.
         rs.mode = ShadingMode::Tm;
         auto write = [&](const Material& m, bool transmission, const std::string& term) {
             renderer.set_material(m);
@@ -250,7 +257,7 @@ int cmd_fidelity(int argc, char** argv)
                        img.rgba);
         };
         MediumFit unit = fit;
-        unit.albedo_scale = 1.0, unit.transmission_weight = 1.0;
+        unit.albedo_scale = 1.0, unit.transmission_weight = 1.0, unit.diffusion_weight = 1.0;
         Material base = Material::from_medium(medium, unit);
         for (double s : strengths) {
             Material m = base;
@@ -263,13 +270,15 @@ int cmd_fidelity(int argc, char** argv)
         spec.albedo = glm::vec3(0.0f);
         write(spec, false, "specular");
         for (double n : lobes)
-            for (int mix = 0; mix <= 1; ++mix) {
-                Material m = spec;
-                m.specular = 0.0f, m.transmission.lobe = float(n), m.transmission.normal_mix = float(mix);
-                char term[32];
-                std::snprintf(term, sizeof term, "transmission_n%g_m%d", n, mix);
-                write(m, true, term);
-            }
+            for (int mix = 0; mix <= 1; ++mix)
+                for (int part = 0; part < 2; ++part) {  // ballistic, diffused
+                    Material m = spec;
+                    m.specular = 0.0f, m.transmission.lobe = float(n), m.transmission.normal_mix = float(mix);
+                    (part == 0 ? m.transmission.diffusion_weight : m.transmission.weight) = 0.0f;
+                    char term[48];
+                    std::snprintf(term, sizeof term, "transmission_%s_n%g_m%d", part == 0 ? "b" : "d", n, mix);
+                    write(m, true, term);
+                }
     }
     if (out.empty()) throw Error("--references " + dir.string() + ": no reference scene matched");
     if (auto path = args.get("json")) {
@@ -277,7 +286,8 @@ int cmd_fidelity(int argc, char** argv)
         {
             std::ofstream f(tmp);
             f << json{{"fit", {{"albedo_scale", fit.albedo_scale}, {"strength", fit.strength},
-                               {"transmission_weight", fit.transmission_weight}, {"lobe", fit.lobe}, {"normal_mix", fit.normal_mix}}},
+                               {"transmission_weight", fit.transmission_weight}, {"diffusion_weight", fit.diffusion_weight},
+                               {"lobe", fit.lobe}, {"normal_mix", fit.normal_mix}}},
                       {"scenes", out}}
                      .dump(1);
             if (!f) throw Error(tmp.string() + ": cannot write");

@@ -267,6 +267,8 @@ int cmd_bench_render(int argc, char** argv)
     Args args("bench render", all_options({device_options(), material_options(), bake_options(),
                                            {{"repeat", "N", "frame pairs (lambert, tm) per size, alternating (default 30)"},
                                             {"samples", "N", "MSAA samples 1, 2, 4, 8 (default 4, as jade render)"},
+                                            {"lights", "PRESET", "default (front key + fill) | figure1 (back light: tm "
+                                                                 "draws the transmission term too)"},
                                             {"sizes", "N,N", "square image sizes (default 512,1024)"}}}),
               argc, argv, 3);
     if (args.flag("help")) {
@@ -291,12 +293,17 @@ int cmd_bench_render(int argc, char** argv)
     auto ctx = make_context(args);
     Scene scene = load_scene(args, *ctx, args.positional().empty() ? "bunny" : args.positional()[0], true);
     Camera camera = Camera::framing(scene.prepared.bbox_min, scene.prepared.bbox_max);
-    std::vector<Light> lights = default_lights(camera);
+    const std::string rig = args.get_or("lights", "default");
+    if (rig != "default" && rig != "figure1") args.fail("--lights: '" + rig + "' is not default or figure1");
+    std::vector<Light> lights = rig == "figure1" ? figure1_lights(camera) : default_lights(camera);
     Renderer renderer(*ctx);
     set_scene(renderer, scene);
-    std::printf("mesh %s: %zu vertices, %zu triangles; material %s (%s); device %s\n", scene.mesh.name.c_str(),
-                scene.prepared.vertex_count(), scene.prepared.triangle_count(), scene.material.name.c_str(),
-                scene.material.grey() ? "grey: 1 LUT fetch" : "RGB: 3 LUT fetches", ctx->device_info().name.c_str());
+    std::printf("mesh %s: %zu vertices, %zu triangles; material %s (%s; transmission %s); device %s\n",
+                scene.mesh.name.c_str(), scene.prepared.vertex_count(), scene.prepared.triangle_count(),
+                scene.material.name.c_str(), scene.material.grey() ? "grey: 1 LUT fetch" : "RGB: 3 LUT fetches",
+                !scene.material.transmission.enabled() || scene.thickness.empty() ? "off"
+                : rig == "figure1" ? "drawn: a light is behind" : "skipped: no light behind",
+                ctx->device_info().name.c_str());
     std::printf("same camera, %zu default lights, %ux MSAA, RGBA16F target, specular on in both modes; %u frame pairs "
                 "per size after 2 warm-up pairs\n",
                 lights.size(), samples, repeat);

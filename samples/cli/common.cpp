@@ -107,7 +107,7 @@ Material material_from_args(const Args& args, const PreparedMesh& mesh)
         // An unknown --material or a bad medium is a command-line mistake: exit code 2, naming the flag.
         args.fail(std::string(args.get("medium") ? "--medium: " : "--material: ") + e.what());
     }
-    if (args.flag("no-transmission")) m.transmission.weight = 0.0f;
+    if (args.flag("no-transmission")) m.transmission.weight = m.transmission.diffusion_weight = 0.0f;
     if (auto d = args.get("d")) {
         double rel = args.number("d", 0.05, 1e-9, 1e9);
         // Keep the preset's colour ratios, scale so the channels' mean d is rel × diagonal.

@@ -74,31 +74,54 @@ struct Medium {
     Medium scaled(double factor) const;
 };
 
+struct MediumFit;
+
+/// The medium an artist describes by its look (glTF's KHR_materials_volume and
+/// diffuse_transmission map here): the diffuse colour `albedo` ∈ [0, 1] that
+/// Material::from_medium(result, fit) gives back exactly (up to fit.albedo_scale · 1, the
+/// largest reachable), and the mean free path ℓ (mesh units) of the extinction, σ_t = 1/ℓ. The
+/// reduced albedo α' solves fit.albedo_scale · diffuse_reflectance(α', η) = albedo (bisection);
+/// σ_s = α'σ_t, σ_a = (1 − α')σ_t, g = 0. Throws jade::Error naming the value for an albedo
+/// outside [0, 1] or a non-positive mean free path.
+Medium medium_from_appearance(glm::dvec3 albedo, glm::dvec3 mean_free_path, double ior, double roughness,
+                              const MediumFit& fit);
+
 /// Light that crosses the object from a light behind it (thin parts glowing), evaluated per
-/// fragment from the per-vertex thickness t̄ (mesh units, jade/bake.hpp ThicknessSettings):
-///   L_t = weight · T_boundary · e^{−σ_t·t̄} · lobe(μ) · ((1 − normal_mix) + normal_mix·max(−N·L, 0)) · E
+/// fragment from the path length t inside the object (mesh units): the longer of the per-vertex
+/// thickness t̄ (jade/bake.hpp ThicknessSettings) and the light's path from where it enters the
+/// object (a depth map along each directional light behind the object, so parts the body shadows
+/// stay dark):
+///   L_t = [weight · e^{−σ_t·t} + diffusion_weight · (1 − e^{−σ_s'·t}) · e^{−σ_tr·t}]
+///         · lobe(μ) · ((1 − normal_mix) + normal_mix·max(−N·L, 0)) · E
 ///   lobe(μ) = (n + 1)/(2π) · max(μ, 0)^n,  μ = V·(−L),  n = `lobe`
-/// the ballistic (unscattered) transmittance of the medium's extinction σ_t = σ_s + σ_a through
-/// the thickness, spread into a forward lobe (normalised over the hemisphere about −L) by the
-/// rough boundary and low-order forward scattering. Grey when σ_t is grey, as measured: thin
-/// parts of a grey-σ_t medium glow white-grey whatever its colour. weight = 0 turns it off.
+/// The first part is the ballistic (unscattered) transmittance of the extinction σ_t = σ_s + σ_a:
+/// grey when σ_t is grey, as measured, so thin parts of a grey-σ_t medium glow white-grey
+/// whatever its colour. The second is light that scattered (1 − e^{−σ_s'·t}) and then diffused,
+/// decaying with the diffusion's effective extinction σ_tr = √(3σ_a(σ_a + σ_s')), the part that
+/// makes thin parts of a dense, little-absorbing medium (marble, milk, wax) glow in its colour.
+/// Both are spread into a forward lobe (normalised over the hemisphere about −L) by the rough
+/// boundary and forward scattering. weight = diffusion_weight = 0 turns the term off.
 struct Transmission {
-    glm::vec3 sigma_t{0.0f};   ///< extinction, 1/mesh unit
-    float weight = 0.0f;       ///< includes the boundary's transmittance T_boundary; 0: no term
-    float lobe = 2.0f;         ///< exponent n of the forward lobe, ≥ 0
-    float normal_mix = 0.3f;   ///< how much the term follows max(−N·L, 0), [0, 1]
-    bool enabled() const { return weight > 0.0f; }
+    glm::vec3 sigma_t{0.0f};         ///< extinction σ_s + σ_a, 1/mesh unit
+    glm::vec3 sigma_s_reduced{0.0f}; ///< σ_s' = σ_s(1 − g), 1/mesh unit
+    glm::vec3 sigma_tr{0.0f};        ///< √(3σ_a(σ_a + σ_s')), 1/mesh unit
+    float weight = 0.0f;             ///< ballistic part, including the boundary's transmittance
+    float diffusion_weight = 0.0f;   ///< diffused part, including the boundary's transmittance
+    float lobe = 2.0f;               ///< exponent n of the forward lobe, ≥ 0
+    float normal_mix = 0.3f;         ///< how much the term follows max(−N·L, 0), [0, 1]
+    bool enabled() const { return weight > 0.0f || diffusion_weight > 0.0f; }
 };
 
 /// The constants of Material::from_medium that the model leaves free, fitted to a volumetric path
 /// tracer (Mitsuba 3) on the training scenes of tools/groundtruth (fit: tools/groundtruth/fit.py,
 /// results and validation: docs/fidelity.md). The defaults are the fitted values.
 struct MediumFit {
-    double albedo_scale = 0.8;          ///< k_d = albedo_scale · R_d(α', η)
-    double strength = 0.8;              ///< Material::strength (rad² per unit t_m)
-    double transmission_weight = 0.6;   ///< Transmission::weight / T_boundary
-    double lobe = 2.0;                  ///< Transmission::lobe
-    double normal_mix = 0.3;            ///< Transmission::normal_mix
+    double albedo_scale = 0.7;          ///< k_d = albedo_scale · R_d(α', η)
+    double strength = 0.5;              ///< Material::strength (rad² per unit t_m)
+    double transmission_weight = 0.9;   ///< Transmission::weight / T_boundary
+    double diffusion_weight = 0.063;    ///< Transmission::diffusion_weight / T_boundary
+    double lobe = 16.0;                 ///< Transmission::lobe
+    double normal_mix = 1.0;            ///< Transmission::normal_mix
 };
 
 /// The multiple-scattering (diffuse) reflectance of a semi-infinite medium behind a boundary of
@@ -128,8 +151,9 @@ struct Material {
     ///   A = diffuse_reflectance(α', η), s(A) = 1.85 − A + 7|A − 0.8|³ (Christensen & Burley
     ///   2015, searchlight configuration; ℓ is clamped to [1e-12, 1e12] mesh units);
     /// - strength = fit.strength;
-    /// - transmission: σ_t = σ_s + σ_a, weight = fit.transmission_weight · (1 − F0)² with
-    ///   F0 = ((η − 1)/(η + 1))² (entering and leaving), lobe and normal_mix from the fit;
+    /// - transmission: σ_t = σ_s + σ_a, σ_s', σ_tr; weight = fit.transmission_weight · T_b and
+    ///   diffusion_weight = fit.diffusion_weight · T_b with T_b = (1 − F0)², F0 = ((η − 1)/(η + 1))²
+    ///   (entering and leaving); lobe and normal_mix from the fit;
     /// - ior and roughness of the specular lobe from the boundary.
     /// Limits (all finite): σ_s = 0 gives k_d = 0 and only transmission; σ_a = 0 gives R_d = 1;
     /// σ_s = σ_a = 0 is a clear medium (k_d = 0, transmittance 1). Throws jade::Error naming the

@@ -53,6 +53,31 @@ double diffuse_reflectance(double reduced_albedo, double eta)
     return std::clamp(0.5 * reduced_albedo * (1.0 + std::exp(-4.0 / 3.0 * a * root)) * std::exp(-root), 0.0, 1.0);
 }
 
+Medium medium_from_appearance(glm::dvec3 albedo, glm::dvec3 mean_free_path, double ior, double roughness,
+                              const MediumFit& fit)
+{
+    check_eta("medium_from_appearance", ior);
+    Medium m;
+    m.ior = ior, m.roughness = roughness;
+    for (int c = 0; c < 3; ++c) {
+        if (!(albedo[c] >= 0.0 && albedo[c] <= 1.0))
+            throw Error("medium_from_appearance: albedo[" + std::to_string(c) + "] = " + fmt(albedo[c]) + " must be in [0, 1]");
+        if (!(mean_free_path[c] > 0.0 && std::isfinite(mean_free_path[c])))
+            throw Error("medium_from_appearance: mean free path[" + std::to_string(c) + "] = " + fmt(mean_free_path[c]) +
+                        " must be finite and > 0");
+        const double target = fit.albedo_scale > 0.0 ? std::min(albedo[c] / fit.albedo_scale, 1.0) : 0.0;
+        double lo = 0.0, hi = 1.0;  // diffuse_reflectance rises monotonically in α'
+        for (int k = 0; k < 60; ++k) {
+            const double mid = 0.5 * (lo + hi);
+            (diffuse_reflectance(mid, ior) < target ? lo : hi) = mid;
+        }
+        const double sigma_t = 1.0 / mean_free_path[c];
+        m.sigma_s[c] = hi * sigma_t;
+        m.sigma_a[c] = (1.0 - hi) * sigma_t;
+    }
+    return m;
+}
+
 Material Material::from_medium(const Medium& medium, const MediumFit& fit, std::string name)
 {
     const std::string where = "material '" + name + "' from a medium";
@@ -75,6 +100,7 @@ Material Material::from_medium(const Medium& medium, const MediumFit& fit, std::
     check_fit("albedo_scale", fit.albedo_scale, 0.0, 1.0);
     check_fit("strength", fit.strength, 0.0, 1e6);
     check_fit("transmission_weight", fit.transmission_weight, 0.0, 1e3);
+    check_fit("diffusion_weight", fit.diffusion_weight, 0.0, 1e3);
     check_fit("lobe", fit.lobe, 0.0, 1e3);
     check_fit("normal_mix", fit.normal_mix, 0.0, 1.0);
 
@@ -89,10 +115,13 @@ Material Material::from_medium(const Medium& medium, const MediumFit& fit, std::
         const double path = t_reduced > 0.0 ? std::clamp(1.0 / t_reduced, kMinPath, kMaxPath) : kMaxPath;
         m.profile[c] = ChannelProfile::burley_from_albedo(reflectance, path);
         m.transmission.sigma_t[c] = float(std::min(medium.sigma_s[c] + medium.sigma_a[c], 3.0e38));
+        m.transmission.sigma_s_reduced[c] = float(std::min(s_reduced, 3.0e38));
+        m.transmission.sigma_tr[c] = float(std::min(std::sqrt(3.0 * medium.sigma_a[c] * t_reduced), 3.0e38));
     }
     const double f0 = (medium.ior - 1.0) * (medium.ior - 1.0) / ((medium.ior + 1.0) * (medium.ior + 1.0));
     m.strength = float(fit.strength);
     m.transmission.weight = float(fit.transmission_weight * (1.0 - f0) * (1.0 - f0));
+    m.transmission.diffusion_weight = float(fit.diffusion_weight * (1.0 - f0) * (1.0 - f0));
     m.transmission.lobe = float(fit.lobe);
     m.transmission.normal_mix = float(fit.normal_mix);
     m.ior = float(medium.ior);

@@ -261,7 +261,9 @@ Material Material::scaled(double factor) const
 {
     Material m = *this;
     for (auto& p : m.profile) p = p.scaled(factor);
-    m.transmission.sigma_t /= float(factor);  // 1/mesh unit: the mesh grows, the same medium per unit thins
+    m.transmission.sigma_t /= float(factor);
+    m.transmission.sigma_s_reduced /= float(factor);
+    m.transmission.sigma_tr /= float(factor);  // 1/mesh unit: the mesh grows, the same medium per unit thins
     return m;
 }
 

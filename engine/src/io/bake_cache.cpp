@@ -41,13 +41,18 @@ struct Header {
 };
 static_assert(sizeof(Header) == 40);
 
-uint64_t payload_checksum(const std::vector<float>& ao, const std::vector<glm::vec3>& tm)
+uint64_t payload_checksum(const BakeResult& r)
 {
     Fnv f;
-    f.bytes(ao.data(), ao.size() * sizeof(float));
-    f.bytes(tm.data(), tm.size() * sizeof(glm::vec3));
+    f.bytes(r.ao.data(), r.ao.size() * sizeof(float));
+    f.bytes(r.tm.data(), r.tm.size() * sizeof(glm::vec3));
+    f.bytes(r.thickness.data(), r.thickness.size() * sizeof(float));
     return f.h;
 }
+
+// Header::method_used holds the TmMethod in its low 16 bits and this flag: a thickness per
+// vertex follows t_m.
+constexpr uint32_t kHasThickness = 1u << 16;
 
 }  // namespace
 
@@ -79,6 +84,16 @@ uint64_t bake_key(const PreparedMesh& mesh, const Material& material, const Bake
     f.value(s.method);
     f.value(s.tm_epsilon);
     f.value(s.tm_float64_sums);
+    // The thickness pass runs only for a material with transmission (jade/bake.hpp).
+    const bool thickness = material.transmission.enabled() && s.thickness.enabled();
+    f.value(thickness);
+    if (thickness) {
+        f.value(s.thickness.rays);
+        f.value(s.thickness.cone_degrees);
+        f.value(s.thickness.max_distance_rel);
+        f.value(s.thickness.epsilon_rel);
+        f.value(s.thickness.seed);
+    }
     return f.h;
 }
 
@@ -113,16 +128,19 @@ std::optional<BakeResult> BakeCache::load(uint64_t key, size_t vertex_count, std
     if (h.key != key) return fail("key mismatch");
     if (h.vertex_count != vertex_count)
         return fail("vertex count " + std::to_string(h.vertex_count) + ", expected " + std::to_string(vertex_count));
-    if (h.method_used > uint32_t(TmMethod::Clustered)) return fail("bad method");
+    const uint32_t method = h.method_used & ~kHasThickness;
+    if (method > uint32_t(TmMethod::Clustered)) return fail("bad method");
     BakeResult r;
     r.ao.resize(vertex_count);
     r.tm.resize(vertex_count);
+    if (h.method_used & kHasThickness) r.thickness.resize(vertex_count);
     if (!in.read(reinterpret_cast<char*>(r.ao.data()), std::streamsize(vertex_count * sizeof(float))) ||
-        !in.read(reinterpret_cast<char*>(r.tm.data()), std::streamsize(vertex_count * sizeof(glm::vec3))))
+        !in.read(reinterpret_cast<char*>(r.tm.data()), std::streamsize(vertex_count * sizeof(glm::vec3))) ||
+        !in.read(reinterpret_cast<char*>(r.thickness.data()), std::streamsize(r.thickness.size() * sizeof(float))))
         return fail("truncated");
     if (in.peek() != std::char_traits<char>::eof()) return fail("trailing bytes");
-    if (payload_checksum(r.ao, r.tm) != h.checksum) return fail("checksum mismatch");
-    r.method_used = TmMethod(h.method_used);
+    if (payload_checksum(r) != h.checksum) return fail("checksum mismatch");
+    r.method_used = TmMethod(method);
     if (why) why->clear();
     return r;
 }
@@ -130,16 +148,16 @@ std::optional<BakeResult> BakeCache::load(uint64_t key, size_t vertex_count, std
 void BakeCache::store(uint64_t key, const BakeResult& r) const
 {
     const std::filesystem::path path = entry_path(key);
-    if (r.ao.size() != r.tm.size())
-        throw Error(path.string() + ": cannot store a bake with " + std::to_string(r.ao.size()) + " AO and " +
-                    std::to_string(r.tm.size()) + " t_m values");
+    if (r.ao.size() != r.tm.size() || (!r.thickness.empty() && r.thickness.size() != r.ao.size()))
+        throw Error(path.string() + ": cannot store a bake with " + std::to_string(r.ao.size()) + " AO, " +
+                    std::to_string(r.tm.size()) + " t_m and " + std::to_string(r.thickness.size()) + " thickness values");
     Header h{};
     std::memcpy(h.magic, kMagic, sizeof kMagic);
     h.version = kBakeCacheVersion;
-    h.method_used = uint32_t(r.method_used);
+    h.method_used = uint32_t(r.method_used) | (r.thickness.empty() ? 0u : kHasThickness);
     h.key = key;
     h.vertex_count = r.ao.size();
-    h.checksum = payload_checksum(r.ao, r.tm);
+    h.checksum = payload_checksum(r);
     // Unique per process, so concurrent writers never share a temporary file.
     const std::filesystem::path tmp = path.string() + ".tmp" + std::to_string(::getpid());
     {
@@ -147,6 +165,7 @@ void BakeCache::store(uint64_t key, const BakeResult& r) const
         out.write(reinterpret_cast<const char*>(&h), sizeof h);
         out.write(reinterpret_cast<const char*>(r.ao.data()), std::streamsize(r.ao.size() * sizeof(float)));
         out.write(reinterpret_cast<const char*>(r.tm.data()), std::streamsize(r.tm.size() * sizeof(glm::vec3)));
+        out.write(reinterpret_cast<const char*>(r.thickness.data()), std::streamsize(r.thickness.size() * sizeof(float)));
         out.flush();
         if (!out) {
             std::error_code ec;

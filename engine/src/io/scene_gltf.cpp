@@ -7,13 +7,14 @@
 //   albedo       pbrMetallicRoughness.baseColorFactor (rgb, clamped to [0, 1])
 //   roughness    pbrMetallicRoughness.roughnessFactor
 //   strength     diffuseTransmissionFactor × extras.jade.strength (default 1)
-//   profile      extras.jade.preset (with extras.jade.mm_per_unit, default 1000: glTF is in
-//                metres) when given; else Burley per channel c:
-//                  ℓ_c = L · T_c / (1 − ln a_c)      mean free path, metres (= mesh units)
-//                  d_c = ℓ_c / s(A_c), s(A) = 1.85 − A + 7|A − 0.8|³   (burley_from_albedo)
-//                L = KHR_materials_volume.attenuationDistance (default 0.01 m), a =
-//                attenuationColor clamped to [1e-4, 1], T = diffuseTransmissionColorFactor
-//                clamped to [1e-3, 1], A = the albedo.
+//   medium       extras.jade.preset (with extras.jade.mm_per_unit, default 1000: glTF is in
+//                metres) when given; else the medium of medium_from_appearance (jade/material.hpp)
+//                with per channel c the extinction mean free path
+//                  ℓ_c = L · T_c / (1 − ln a_c)      metres (= mesh units)
+//                and the albedo A, through Material::from_medium (profile, transmission); L =
+//                KHR_materials_volume.attenuationDistance (default 0.01 m), a = attenuationColor
+//                clamped to [1e-4, 1], T = diffuseTransmissionColorFactor clamped to [1e-3, 1],
+//                η = KHR_materials_ior.ior (default 1.5).
 //   extras.jade.opaque = true forces Lambert. Node extras {"jade": {"deform": "bend"}} (or
 //   twist, squash, wave; optional "axis" 0..2) make the node's objects deforming, with
 //   ProceduralDeformer::fit.
@@ -115,6 +116,13 @@ public:
             transmission_color = color("diffuseTransmissionColorFactor", *dt, 1e-3);
         }
 
+        // KHR_materials_ior.
+        double ior = 1.5;
+        if (const tinygltf::Value* e = extension(g, "KHR_materials_ior"); e && e->Has("ior")) {
+            ior = number("KHR_materials_ior.ior", e->Get("ior"), 1.5);
+            if (!(ior > 0.2 && ior < 5.0)) warn("KHR_materials_ior.ior " + num(ior) + " is outside (0.2, 5); 1.5 used"), ior = 1.5;
+        }
+
         // KHR_materials_volume.
         double distance = kDefaultMeanFreePath;
         glm::dvec3 attenuation(1.0);
@@ -150,12 +158,17 @@ public:
                      num(strength));
             if (transmission > 0.0) strength *= transmission;
         } else if (translucent) {
-            glm::dvec3 d;
-            for (int c = 0; c < 3; ++c) {
-                const double mfp = distance * transmission_color[c] / (1.0 - std::log(attenuation[c]));
-                d[c] = ChannelProfile::burley_from_albedo(albedo[c], mfp).d;
+            // The medium whose derived diffuse colour is the base colour, with the mean free path
+            // of the table above (Material::from_medium, jade/material.hpp).
+            glm::dvec3 mfp;
+            for (int c = 0; c < 3; ++c) mfp[c] = distance * transmission_color[c] / (1.0 - std::log(attenuation[c]));
+            const double roughness = clamped("roughnessFactor", g.pbrMetallicRoughness.roughnessFactor, 0.0, 1.0, 1.0);
+            const MediumFit fit;
+            try {
+                m = Material::from_medium(medium_from_appearance(albedo, mfp, ior, roughness, fit), fit);
+            } catch (const Error& e) {
+                throw Error(file_ + ": " + where_ + ": " + e.what());
             }
-            m = burley_material(d, glm::vec3(albedo));
             strength *= transmission;
         } else {
             m = material_preset("opaque", 1000.0);

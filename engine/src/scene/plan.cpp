@@ -33,8 +33,9 @@ constexpr size_t kExactBelow = 2048;                                 // bake/bak
 
 uint64_t at_least_16(double bytes) { return std::max<uint64_t>(16, uint64_t(bytes + 0.5)); }
 
-// The buffers of Baker::Impl::MeshState (bake/baker.cpp upload_mesh, prepare_ao, prepare_tm).
-std::vector<BufferEstimate> bake_buffers(size_t n, size_t tris, const BakeSettings& s, bool dynamic)
+// The buffers of Baker::Impl::MeshState (bake/baker.cpp upload_mesh, prepare_ao,
+// prepare_thickness when the material has a transmission term, prepare_tm).
+std::vector<BufferEstimate> bake_buffers(size_t n, size_t tris, const BakeSettings& s, bool dynamic, bool thickness)
 {
     const double ray_nodes = kRayNodesPerTriangle * double(tris);
     const double ray_items = ray_nodes + double(tris);
@@ -56,6 +57,10 @@ std::vector<BufferEstimate> bake_buffers(size_t n, size_t tris, const BakeSettin
         {"near-field sources", at_least_16(4.0 * (near_entries + 64))},
         {"point order", at_least_16(4.0 * n)},
     };
+    if (thickness && s.thickness.enabled()) {
+        b.push_back({"thickness sums (per ray slice)", at_least_16(4.0 * n)});
+        b.push_back({"thickness", at_least_16(4.0 * n)});
+    }
     if (exact) {
         b.push_back({"t_m sources", at_least_16(32.0 * n)});
     } else {
@@ -265,14 +270,14 @@ ScenePlan plan_scene(const Scene& scene, const SceneSettings& settings, const St
             if (o.deforming) {
                 auto deform = deform_buffers(n, tris);
                 o.passes.push_back({PassKind::Deform, true, true, std::move(deform)});
-                o.passes.push_back({PassKind::DynamicBake, true, true, bake_buffers(n, tris, settings.bake, true)});
+                o.passes.push_back({PassKind::DynamicBake, true, true, bake_buffers(n, tris, settings.bake, true, obj.material.transmission.enabled())});
             } else {
                 if (source.lookup) {
                     const auto found = source.lookup(prepared, obj.material, settings.bake);
                     o.bake_key = found.key, o.cached = found.holds;
                 }
                 if (o.cached) o.passes.push_back({PassKind::CacheRead, false, false, {}});
-                else o.passes.push_back({PassKind::StaticBake, false, false, bake_buffers(n, tris, settings.bake, false)});
+                else o.passes.push_back({PassKind::StaticBake, false, false, bake_buffers(n, tris, settings.bake, false, obj.material.transmission.enabled())});
             }
         }
         o.passes.push_back({PassKind::Draw, true, true, draw_buffers(n, tris)});

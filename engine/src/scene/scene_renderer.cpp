@@ -37,6 +37,7 @@ struct SceneRenderer::Impl {
     struct Object {
         PreparedMesh rest;
         mutable std::vector<glm::vec3> tm;  // deforming: read back from the GPU by tm() only
+        std::vector<float> thickness;       // static objects with transmission
         std::unique_ptr<Renderer> renderer;
         // Deforming objects only.
         std::optional<ProceduralDeformer> deformer;
@@ -83,6 +84,7 @@ struct SceneRenderer::Impl {
                     r.kind = b.source == BakeSource::Cache ? PassKind::CacheRead : PassKind::StaticBake;
                     r.note = b.note;
                     o.tm = std::move(b.result.tm);
+                    o.thickness = std::move(b.result.thickness);
                 } else if (p.kind == PassKind::Deform) {
                     o.deformer = *so.deformer;
                     o.mesh_deformer = std::make_unique<MeshDeformer>(context, o.rest);
@@ -96,7 +98,7 @@ struct SceneRenderer::Impl {
                 passes.push_back(std::move(r));
             }
             o.renderer = std::make_unique<Renderer>(context, settings.renderer);
-            o.renderer->set_mesh(o.rest, o.tm);
+            o.renderer->set_mesh(o.rest, o.tm, o.thickness);
             o.renderer->set_material(so.material);
             objects.push_back(std::move(o));
         }

@@ -52,7 +52,8 @@ struct GpuLight {
     glm::vec4 vector, color;
 };
 struct FrameData {
-    glm::vec4 albedo_strength, specular, lut_map, curvature_map, params, transmission, transmission_shape, light_depth_map;
+    glm::vec4 albedo_strength, specular, lut_map, curvature_map, params;
+    glm::vec4 transmission, transmission_diffusion, transmission_scatter, transmission_shape, light_depth_map;
     glm::mat4 light_depth[shading::LightDepth::kMaxLights];
     glm::vec4 color_map[9];
     GpuLight lights[kMaxLights];
@@ -289,6 +290,8 @@ struct Renderer::Impl {
                              float(std::min(1.0 / (double(hi) - double(lo)), double(FLT_MAX))));
         const Transmission& tr = m.transmission;
         d.transmission = glm::vec4(glm::min(tr.sigma_t, glm::vec3(3.0e38f)), tr.weight);
+        d.transmission_diffusion = glm::vec4(glm::min(tr.sigma_tr, glm::vec3(3.0e38f)), tr.diffusion_weight);
+        d.transmission_scatter = glm::vec4(glm::min(tr.sigma_s_reduced, glm::vec3(3.0e38f)), 0.0f);
         d.transmission_shape = glm::vec4(tr.lobe, (tr.lobe + 1.0f) / (2.0f * float(std::numbers::pi)), tr.normal_mix, 0.0f);
         if (light_depth) {
             d.light_depth_map = glm::vec4(float(light_depth->tile_size()), float(shading::LightDepth::kMaxLights),
