@@ -8,9 +8,11 @@
 #include <jade/render.hpp>
 
 #include "flip.hpp"
+#include "report.hpp"
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <cstdio>
@@ -129,6 +131,40 @@ constexpr Mode kModes[] = {{"lambert", ShadingMode::Lambert, false},
                            {"tm", ShadingMode::Tm, false},
                            {"default", ShadingMode::Tm, true}};
 
+std::string fidelity_markdown(const json& rows, const std::string& device)
+{
+    std::ostringstream md;
+    char line[512];
+    md << "| scene | set | lambert | curvature | tm (poster) | **default** | GPU ms lambert / default | thin region, "
+          "path tracer | thin region, default |\n|---|---|---|---|---|---|---|---|---|\n";
+    std::map<std::string, std::array<double, 5>> mean;  // light → 4 modes, count
+    for (const json& r : rows) {
+        auto f = [&](const char* m) { return r[m]["flip_masked"].get<double>(); };
+        auto rgb = [&](const json& v) {
+            char b[64];
+            std::snprintf(b, sizeof b, "%.3f %.3f %.3f", v[0].get<double>(), v[1].get<double>(), v[2].get<double>());
+            return std::string(b);
+        };
+        const bool back = r["light"] == "back";
+        std::snprintf(line, sizeof line, "| %s | %s | %.3f | %.3f | %.3f | **%.3f** | %.0f / %.0f | %s | %s |\n",
+                      r["scene"].get<std::string>().c_str(), r["set"].get<std::string>().c_str(), f("lambert"), f("curvature"),
+                      f("tm"), f("default"), r["lambert"]["gpu_ms"].get<double>(), r["default"]["gpu_ms"].get<double>(),
+                      back ? rgb(r["thin_reference"]).c_str() : "", back ? rgb(r["default"]["thin"]).c_str() : "");
+        md << line;
+        auto& m = mean[r["light"].get<std::string>()];
+        m[0] += f("lambert"), m[1] += f("curvature"), m[2] += f("tm"), m[3] += f("default"), m[4] += 1;
+    }
+    md << "\nMean masked LDR FLIP per light (lower is closer to the path tracer):\n\n"
+          "| light | lambert | curvature | tm (poster) | **default** |\n|---|---|---|---|---|\n";
+    for (const auto& [light, m] : mean) {
+        std::snprintf(line, sizeof line, "| %s | %.3f | %.3f | %.3f | **%.3f** |\n", light.c_str(), m[0] / m[4], m[1] / m[4],
+                      m[2] / m[4], m[3] / m[4]);
+        md << line;
+    }
+    md << "\nDevice: " << device << " (256x256, 4x MSAA, GPU time of one frame per mode).\n";
+    return md.str();
+}
+
 }  // namespace
 
 int cmd_fidelity(int argc, char** argv)
@@ -143,6 +179,8 @@ int cmd_fidelity(int argc, char** argv)
                   o.push_back({"scene", "TEXT", "only scenes whose name contains TEXT"});
                   o.push_back({"fit", "FILE", "JSON of MediumFit values instead of the built-in defaults"});
                   o.push_back({"json", "FILE", "write every number as JSON"});
+                  o.push_back({"markdown", "FILE", "write the tables as Markdown (docs/fidelity.md's)"});
+                  o.push_back({"images", "DIR", "also save each scene's image per mode as SCENE__MODE.png"});
                   o.push_back({"components", "DIR", "also write each scene's separate terms as EXR (for fit.py)"});
                   o.push_back({"strengths", "LIST", "with --components: strengths of the diffuse terms (default 0.25,0.5,0.8,1.2,2)"});
                   o.push_back({"lobes", "LIST", "with --components: lobe exponents of the transmission terms (default 1,2,4,8)"});
@@ -163,8 +201,9 @@ int cmd_fidelity(int argc, char** argv)
     if (set != "train" && set != "validation" && set != "all") args.fail("--set: '" + set + "' is not train, validation or all");
     const MediumFit fit = fit_from_args(args);
     BakeSettings bake_settings = bake_settings_from_args(args);
-    const auto components = args.get("components");
+    const auto components = args.get("components"), images = args.get("images");
     if (components) check_output_folder("components", *components);
+    if (images) check_output_folder("images", *images);
     auto list = [&](const char* flag, const char* fallback) {
         std::vector<double> v;
         std::stringstream ss(args.get_or(flag, fallback));
@@ -238,6 +277,9 @@ int cmd_fidelity(int argc, char** argv)
             const glm::dvec3 thin = region_mean(img.rgba, ref.thin);
             row[mode.name] = {{"flip", whole}, {"flip_masked", masked}, {"gpu_ms", img.gpu_ms}, {"thin", {thin.x, thin.y, thin.z}}};
             if (std::string(mode.name) == "default") thin_default = thin;
+            if (images)
+                save_image(std::filesystem::path(*images) / (ref.name + "__" + mode.name + ".png"), int(img.width),
+                           int(img.height), img.rgba);
             std::printf(" %8.4f", masked);
         }
         std::printf("   %.3f %.3f %.3f | %.3f %.3f %.3f\n", ref_thin.x, ref_thin.y, ref_thin.z, thin_default.x, thin_default.y,
@@ -281,6 +323,7 @@ int cmd_fidelity(int argc, char** argv)
                 }
     }
     if (out.empty()) throw Error("--references " + dir.string() + ": no reference scene matched");
+    if (auto path = args.get("markdown")) report::write_atomically(*path, fidelity_markdown(out, ctx->device_info().name));
     if (auto path = args.get("json")) {
         const std::filesystem::path p(*path), tmp = p.string() + ".tmp";
         {

@@ -204,6 +204,16 @@ int cmd_report(int argc, char** argv)
                  format_ms(std::chrono::duration<double, std::milli>(Clock::now() - t0).count()).c_str(),
                  (dir / "report.csv").string().c_str(), (dir / "summary.md").string().c_str());
     if (!args.flag("no-plot")) run_plots(dir);
+    // How close the shading modes come to the committed path-traced references (when this runs
+    // from the repository, where they are).
+    if (fs::is_directory("tools/groundtruth/references", ec)) {
+        const std::string md = (dir / "fidelity.md").string(), json = (dir / "fidelity.json").string();
+        std::vector<std::string> words = {"jade", "fidelity", "--markdown", md, "--json", json};
+        if (args.get("device")) words.insert(words.end(), {"--device", *args.get("device")});
+        std::vector<char*> argv2;
+        for (auto& w : words) argv2.push_back(w.data());
+        cmd_fidelity(int(argv2.size()), argv2.data());
+    }
     return 0;
 }
 

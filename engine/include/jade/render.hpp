@@ -157,7 +157,7 @@ struct RendererOptions {
     uint32_t curvature_smoothing = 2;
     /// Transmission: texels of one light's depth tile (how far light travels inside the object
     /// before it reaches a point; 4 directional lights at most, D32, 4·size² bytes each).
-    uint32_t light_depth_size = 1024;
+    uint32_t light_depth_size = 512;
 };
 
 /// Where record() draws: the caller's images, described by views.
