@@ -131,8 +131,10 @@ struct TriangleScene {
         return true;
     }
 
-    /// Any hit with 0 < t ≤ t_max (d unit): stackless pre-order traversal with escape pointers.
-    bool any_hit(const glm::dvec3& o, const glm::dvec3& d, double t_max) const
+    /// Stackless pre-order traversal with escape pointers (d unit). `any`: stops at the first hit
+    /// with 0 < t ≤ t_max and returns its t, or −1 for none; otherwise returns the nearest hit in
+    /// (0, t_max), or t_max when there is none (the box tests shrink with it).
+    double walk(const glm::dvec3& o, const glm::dvec3& d, double t_max, bool any) const
     {
         const glm::dvec3 inv(1.0 / d.x, 1.0 / d.y, 1.0 / d.z);
         const uint32_t count = uint32_t(bvh.nodes.size());
@@ -146,40 +148,18 @@ struct TriangleScene {
                 const uint32_t first = node.first();
                 for (uint32_t k = first; k < first + bvh.counts[i]; ++k) {
                     const double t = intersect(k, o, d);
-                    if (t > 0.0 && t <= t_max) return true;
+                    if (any && t > 0.0 && t <= t_max) return t;
+                    if (!any && t > 0.0 && t < t_max) t_max = t;
                 }
                 i = node.escape;
             } else {
                 ++i;
             }
         }
-        return false;
+        return any ? -1.0 : t_max;
     }
-
-    /// The nearest hit distance in (0, t_max), or t_max when there is none (d unit).
-    double nearest_hit(const glm::dvec3& o, const glm::dvec3& d, double t_max) const
-    {
-        const glm::dvec3 inv(1.0 / d.x, 1.0 / d.y, 1.0 / d.z);
-        const uint32_t count = uint32_t(bvh.nodes.size());
-        for (uint32_t i = 0; i < count;) {
-            const bake::BvhNode& node = bvh.nodes[i];
-            if (!overlaps(node, o, d, inv, t_max)) {
-                i = node.escape;
-                continue;
-            }
-            if (node.leaf()) {
-                const uint32_t first = node.first();
-                for (uint32_t k = first; k < first + bvh.counts[i]; ++k) {
-                    const double t = intersect(k, o, d);
-                    if (t > 0.0 && t < t_max) t_max = t;
-                }
-                i = node.escape;
-            } else {
-                ++i;
-            }
-        }
-        return t_max;
-    }
+    bool any_hit(const glm::dvec3& o, const glm::dvec3& d, double t_max) const { return walk(o, d, t_max, true) >= 0.0; }
+    double nearest_hit(const glm::dvec3& o, const glm::dvec3& d, double t_max) const { return walk(o, d, t_max, false); }
 };
 
 void check_thickness_settings(const ThicknessSettings& s, const char* where)
