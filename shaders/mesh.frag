@@ -115,6 +115,15 @@ vec3 transmitted(vec3 n, vec3 v, vec3 l, float n_dot_l, uint tile)
     return lobe * follow * attenuation;
 }
 
+// The share of light that crosses the rough dielectric boundary at cos θ (entering from the light,
+// leaving towards the eye: the F_t(η, ω) factors of Jensen et al. 2001's BSSRDF): 1 − Schlick's
+// Fresnel with the roughness-damped grazing value max(1 − α, F0).
+float boundary_transmittance(float cos_theta)
+{
+    float f0 = data.specular.x, grazing = max(1.0 - data.specular.y, f0);
+    return 1.0 - (f0 + (grazing - f0) * pow(1.0 - clamp(cos_theta, 0.0, 1.0), 5.0));
+}
+
 vec3 false_color(float x)
 {
     float s = clamp(x, 0.0, 1.0) * float(kColorMapStops - 1);
@@ -130,6 +139,8 @@ void main()
     }
     vec3 n = normalize(in_normal);
     vec3 v = normalize(frame.eye - in_position);
+    // Leaving towards the eye: the same for every light.
+    float exit_transmittance = MODE == kTm && data.transmission_shape.w > 0.0 ? boundary_transmittance(dot(n, v)) : 1.0;
     vec3 albedo = data.albedo_strength.rgb;
     // Row y = (t / t_max)^¼ · (H − 1) with t = strength · t_m, interpolated t_m as the poster
     // (not the row: docs/shading.md); past t_max the last row. t_m is capped below +Inf first,
@@ -158,7 +169,9 @@ void main()
         }
         l = normalize(l);
         float c = dot(n, l);
-        color += albedo * (1.0 / JADE_PI) * diffuse_response(c, rows, kappa_scaled) * e;
+        vec3 diffuse = albedo * (1.0 / JADE_PI) * diffuse_response(c, rows, kappa_scaled) * e;
+        if (MODE == kTm && data.transmission_shape.w > 0.0) diffuse *= boundary_transmittance(c) * exit_transmittance;
+        color += diffuse;
         if (c > 0.0 && data.specular.z > 0.0) color += data.specular.z * specular_lobe(n, v, l, c) * e;
         if (TRANSMISSION == 1u) color += transmitted(n, v, l, c, uint(light.color.w)) * e;
     }

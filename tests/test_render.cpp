@@ -167,6 +167,9 @@ TEST_F(Render, TmWithZeroStrengthIsLambert)
     r.set_mesh(unit_sphere(), tm);
     Material m = material_preset("blue-jewel", 100.0 / 3.46);  // coloured profiles: the 3-fetch path
     m.strength = 0.0f;
+    // The poster's limit: no boundary transmittance (a medium's material multiplies the diffuse
+    // term by it, so t_m = 0 is Lambert × T(N·L)·T(N·V) there, tests/test_thickness.cpp).
+    m.boundary_transmittance = false;
     r.set_material(m);
     const auto lights = default_lights(kFront);
     RenderedImage lambert = r.render(kFront, lights, settings(128, ShadingMode::Lambert));

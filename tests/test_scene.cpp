@@ -122,8 +122,8 @@ TEST(SceneMaterials, VolumeAndDiffuseTransmissionBecomeABurleyProfilePerChannel)
         EXPECT_NEAR(m.transmission.sigma_t[c], 1.0 / mfp, 1e-5 / mfp) << "channel " << c;
         EXPECT_NEAR(m.albedo[c], A[c], 1e-6);
     }
-    // e.g. red: ℓ = 0.02 / (1 + ln 2) = 11.81 mm, R_d = 0.5 / 0.7, s(0.714) = 1.1405, d = 10.357 mm.
-    EXPECT_NEAR(m.profile[0].d, 0.011812322 / (1.85 - 0.5 / 0.7 + 7.0 * std::pow(0.8 - 0.5 / 0.7, 3.0)), 1e-8);
+    // e.g. red: ℓ = 0.02 / (1 + ln 2) = 11.81 mm, R_d = 0.5 / 0.95 = 0.526, s(0.526) = 1.468, d = 8.051 mm.
+    EXPECT_NEAR(m.profile[0].d, 0.011812322 / (1.85 - 0.5 / 0.95 + 7.0 * std::pow(0.8 - 0.5 / 0.95, 3.0)), 1e-8);
     EXPECT_NEAR(m.strength, 0.5 * 1.5, 1e-6);  // diffuseTransmissionFactor × extras strength
     EXPECT_NEAR(m.roughness, 0.3, 1e-6);
 }

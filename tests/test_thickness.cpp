@@ -205,3 +205,29 @@ TEST_F(Thickness, ExtremeThicknessAndExtinctionStayFinite)
     EXPECT_THROW(renderer.set_mesh(slab, {}, std::vector<float>(slab.vertex_count(), INFINITY)), Error);
     EXPECT_THROW(renderer.set_mesh(slab, {}, std::vector<float>(slab.vertex_count(), -1.0f)), Error);
 }
+
+TEST_F(Thickness, BoundaryTransmittanceIsTheFresnelOfBothCrossings)
+{
+    // Diffuse light that enters at cos θ_l and leaves at cos θ_v is scaled by
+    // T(θ_l)·T(θ_v), T(μ) = 1 − (F0 + (max(1 − α, F0) − F0)(1 − μ)^5): the slab's centre seen
+    // head-on (μ_v = 1) under a light at 45°, t_m = 0 and strength 0 (so the rest is Lambert).
+    const PreparedMesh slab = prepare_mesh(procedural::box({-5.0f, -5.0f, -0.05f}, {5.0f, 5.0f, 0.05f}, 16));
+    Renderer renderer(context());
+    renderer.set_mesh(slab);
+    Material m = translucent();
+    m.specular = 0.0f, m.strength = 0.0f;
+    Camera cam;
+    cam.eye = {0.0f, 0.0f, 3.0f}, cam.fov_y_degrees = 10.0f;
+    const std::vector<Light> lights = {Light::directional({1.0f, 0.0f, 1.0f}, glm::vec3(1.0f))};
+    RenderSettings rs;
+    rs.width = rs.height = 33, rs.float32 = true;
+    renderer.set_material(m);
+    const float with = renderer.render(cam, lights, rs).pixel(16, 16)[0];
+    m.boundary_transmittance = false;
+    renderer.set_material(m);
+    const float without = renderer.render(cam, lights, rs).pixel(16, 16)[0];
+    const double f0 = std::pow((m.ior - 1.0) / (m.ior + 1.0), 2.0), grazing = std::max(1.0 - double(m.roughness) * m.roughness, f0);
+    auto t = [&](double mu) { return 1.0 - (f0 + (grazing - f0) * std::pow(1.0 - mu, 5.0)); };
+    EXPECT_NEAR(without, m.albedo.r / std::numbers::pi * std::sqrt(0.5), 2e-3 * without);
+    EXPECT_NEAR(with / without, t(std::sqrt(0.5)) * t(1.0), 1e-3);
+}

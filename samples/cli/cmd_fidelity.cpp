@@ -271,6 +271,10 @@ int cmd_fidelity(int argc, char** argv)
         for (const Mode& mode : kModes) {
             rs.mode = mode.mode;
             rs.transmission = mode.transmission;
+            // The poster's model alone: no boundary transmittance either.
+            Material as_drawn = material;
+            as_drawn.boundary_transmittance = mode.transmission;
+            renderer.set_material(as_drawn);
             RenderedImage img = renderer.render(camera, lights, rs);
             const flip::Image test = flip::from_linear(img.width, img.height, img.rgba.data(), 4);
             const double whole = flip::ldr_flip(ref.srgb, test), masked = flip::ldr_flip(ref.srgb, test, flip::pixels_per_degree(), &ref.mask);

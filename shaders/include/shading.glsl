@@ -30,7 +30,7 @@ layout(binding = 0, scalar) readonly buffer FrameData {
     vec4 transmission;      // σ_t (linear RGB, 1/mesh unit), weight (jade/material.hpp Transmission)
     vec4 transmission_diffusion;  // σ_tr (1/mesh unit), diffusion weight
     vec4 transmission_scatter;    // σ_s' (1/mesh unit), unused
-    vec4 transmission_shape; // lobe exponent n, (n + 1)/(2π), normal_mix, unused
+    vec4 transmission_shape; // lobe exponent n, (n + 1)/(2π), normal_mix, 1: diffuse × boundary transmittance
     vec4 light_depth_map;   // light-depth tile size (texels), tiles in the atlas, depth range (mesh units), unused
     mat4 light_depth[4];    // world → light clip space of each tile (shading/light_depth.hpp)
     vec4 color_map[kColorMapStops];  // false-colour stops, linear RGB

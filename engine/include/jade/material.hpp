@@ -116,12 +116,12 @@ struct Transmission {
 /// tracer (Mitsuba 3) on the training scenes of tools/groundtruth (fit: tools/groundtruth/fit.py,
 /// results and validation: docs/fidelity.md). The defaults are the fitted values.
 struct MediumFit {
-    double albedo_scale = 0.7;          ///< k_d = albedo_scale · R_d(α', η)
-    double strength = 0.5;              ///< Material::strength (rad² per unit t_m)
-    double transmission_weight = 0.9;   ///< Transmission::weight / T_boundary
-    double diffusion_weight = 0.063;    ///< Transmission::diffusion_weight / T_boundary
+    double albedo_scale = 0.95;         ///< k_d = albedo_scale · R_d(α', η)
+    double strength = 1.2;              ///< Material::strength (rad² per unit t_m)
+    double transmission_weight = 0.65;  ///< Transmission::weight / T_boundary
+    double diffusion_weight = 0.046;    ///< Transmission::diffusion_weight / T_boundary
     double lobe = 16.0;                 ///< Transmission::lobe
-    double normal_mix = 1.0;            ///< Transmission::normal_mix
+    double normal_mix = 0.25;           ///< Transmission::normal_mix
 };
 
 /// The multiple-scattering (diffuse) reflectance of a semi-infinite medium behind a boundary of
@@ -144,6 +144,11 @@ struct Material {
     float specular = 1.0f;                  ///< specular weight (0 turns the lobe off)
     bool opaque = false;                    ///< true: no bake, Lambert shading
     Transmission transmission;              ///< light through thin parts (off unless set)
+    /// Tm shading: the diffuse light enters and leaves through the dielectric boundary, so it is
+    /// multiplied by T(N·L)·T(N·V), T = 1 − Schlick's Fresnel (F0 from ior, grazing value
+    /// max(1 − α, F0), α = roughness²): the F_t factors of Jensen et al. 2001's BSSRDF. Dims the
+    /// terminator and the silhouettes as a rough dielectric does. from_medium sets it.
+    bool boundary_transmittance = false;
 
     /// Every parameter the renderer uses, derived from a physical medium (per mesh unit):
     /// - albedo k_d = fit.albedo_scale · diffuse_reflectance(α', η) per channel;
@@ -154,7 +159,7 @@ struct Material {
     /// - transmission: σ_t = σ_s + σ_a, σ_s', σ_tr; weight = fit.transmission_weight · T_b and
     ///   diffusion_weight = fit.diffusion_weight · T_b with T_b = (1 − F0)², F0 = ((η − 1)/(η + 1))²
     ///   (entering and leaving); lobe and normal_mix from the fit;
-    /// - ior and roughness of the specular lobe from the boundary.
+    /// - ior and roughness of the specular lobe from the boundary, and boundary_transmittance on.
     /// Limits (all finite): σ_s = 0 gives k_d = 0 and only transmission; σ_a = 0 gives R_d = 1;
     /// σ_s = σ_a = 0 is a clear medium (k_d = 0, transmittance 1). Throws jade::Error naming the
     /// field for negative or non-finite coefficients, |g| ≥ 1, an IOR outside (0.2, 5) or a

@@ -126,6 +126,7 @@ Material Material::from_medium(const Medium& medium, const MediumFit& fit, std::
     m.transmission.normal_mix = float(fit.normal_mix);
     m.ior = float(medium.ior);
     m.roughness = float(medium.roughness);
+    m.boundary_transmittance = true;
     return m;
 }
 

@@ -292,7 +292,8 @@ struct Renderer::Impl {
         d.transmission = glm::vec4(glm::min(tr.sigma_t, glm::vec3(3.0e38f)), tr.weight);
         d.transmission_diffusion = glm::vec4(glm::min(tr.sigma_tr, glm::vec3(3.0e38f)), tr.diffusion_weight);
         d.transmission_scatter = glm::vec4(glm::min(tr.sigma_s_reduced, glm::vec3(3.0e38f)), 0.0f);
-        d.transmission_shape = glm::vec4(tr.lobe, (tr.lobe + 1.0f) / (2.0f * float(std::numbers::pi)), tr.normal_mix, 0.0f);
+        d.transmission_shape = glm::vec4(tr.lobe, (tr.lobe + 1.0f) / (2.0f * float(std::numbers::pi)), tr.normal_mix,
+                                         m.boundary_transmittance ? 1.0f : 0.0f);
         if (light_depth) {
             d.light_depth_map = glm::vec4(float(light_depth->tile_size()), float(shading::LightDepth::kMaxLights),
                                           light_depth->depth_range(), 0.0f);
