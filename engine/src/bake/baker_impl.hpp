@@ -399,39 +399,11 @@ struct Baker::Impl {
         ao_resolve_kernel().dispatch(cmd, m.vertex_count, AoResolvePush{m.vertex_count, s.rays, m.ao_slices}, {m.hits, m.ao});
     }
 
-    // The thickness pass traces the AO pass's ray items (prepare_ao first).
-    void prepare_thickness(MeshState& m, const ThicknessSettings& s)
-    {
-        validate_thickness_settings(s);
-        if (!s.enabled()) return;
-        m.thickness_sums = gpu::Buffer(ctx, VkDeviceSize(m.vertex_count) * m.ao_slices * sizeof(uint32_t), kStorageUsage,
-                                       "thickness sums (per ray slice)");
-        m.thickness = gpu::Buffer(ctx, VkDeviceSize(m.vertex_count) * sizeof(float), kStorageUsage, "thickness");
-    }
-
-    // Traces the thickness ray slices [first, first + count) of m.ao_slices, then resolves the
-    // mean distance from the sums of every slice.
-    void record_thickness(VkCommandBuffer cmd, MeshState& m, const ThicknessSettings& s, uint32_t first = 0, uint32_t count = 0)
-    {
-        if (!s.enabled()) return;
-        if (count == 0) count = m.ao_slices;
-        const VkDeviceSize slice_bytes = VkDeviceSize(m.vertex_count) * sizeof(uint32_t);
-        vkCmdFillBuffer(cmd, m.thickness_sums.handle(), first * slice_bytes, count * slice_bytes, 0);
-        gpu::compute_barrier(cmd);
-        const float max_distance = s.max_distance_rel * m.diagonal;
-        const float cos_cone = float(std::cos(double(s.cone_degrees) * 3.14159265358979323846 / 180.0));
-        const uint32_t rays_in_slice = s.rays / m.ao_slices;
-        for (uint32_t slice = first; slice < first + count; ++slice) {
-            ThicknessPush push{m.vertex_count, s.rays, s.seed, cos_cone, s.epsilon_rel * m.diagonal, max_distance,
-                               m.item_count, m.ao_slices, slice};
-            thickness_kernel().dispatch(cmd, uint64_t(m.vertex_count) * rays_in_slice, push,
-                                        {m.positions, m.normals, m.ray_item_texels, m.thickness_sums});
-        }
-        gpu::compute_barrier(cmd);
-        thickness_resolve_kernel().dispatch(cmd, m.vertex_count,
-                                            ThicknessResolvePush{m.vertex_count, s.rays, m.ao_slices, max_distance},
-                                            {m.thickness_sums, m.thickness});
-    }
+    // The thickness pass (bake/thickness.cpp) traces the AO pass's ray items: prepare_ao first.
+    void prepare_thickness(MeshState& m, const ThicknessSettings& s);
+    // Traces the thickness ray slices [first, first + count) of m.ao_slices (all by default),
+    // then resolves the mean distance from the sums of every slice.
+    void record_thickness(VkCommandBuffer cmd, MeshState& m, const ThicknessSettings& s, uint32_t first = 0, uint32_t count = 0);
 
     // Sets up gather → near field → (all pairs | refit → clustered), reading m.ao, writing
     // m.tm. `near_margin` (bake/near_field.hpp) covers how much closer vertices may come.

@@ -20,9 +20,27 @@ LightDepth::LightDepth(gpu::Context& ctx, uint32_t tile_size)
 {
 }
 
-void LightDepth::record(VkCommandBuffer cmd, std::span<const glm::vec3> towards_light, VkBuffer vertices,
-                        uint32_t vertex_stride, VkBuffer indices, uint32_t index_count, glm::vec3 centre, float radius)
+bool LightDepth::may_transmit(glm::vec3 eye, const Light& light, glm::vec3 centre, float radius)
 {
+    const float distance = glm::length(eye - centre);
+    if (!(distance > radius) || light.type == Light::Type::Point) return true;
+    // The cone of V about the direction to the eye with half-angle asin(r/D) reaches μ > 0 iff
+    // the angle between that direction and −L is below 90° + asin(r/D).
+    return glm::dot((eye - centre) / distance, -glm::normalize(light.vector)) > -radius / distance;
+}
+
+std::vector<uint32_t> LightDepth::record(VkCommandBuffer cmd, glm::vec3 eye, std::span<const Light> lights,
+                                         VkBuffer vertices, uint32_t vertex_stride, VkBuffer indices, uint32_t index_count,
+                                         glm::vec3 centre, float radius)
+{
+    std::vector<uint32_t> tile(lights.size(), 0);
+    std::vector<glm::vec3> towards_light;
+    for (size_t k = 0; k < lights.size() && towards_light.size() < kMaxLights; ++k)
+        if (lights[k].type == Light::Type::Directional && may_transmit(eye, lights[k], centre, radius)) {
+            towards_light.push_back(lights[k].vector);
+            tile[k] = uint32_t(towards_light.size());
+        }
+    if (towards_light.empty()) return tile;
     if (!pipeline_) {
         gpu::GraphicsPipelineDesc d;
         d.name = "light depth";
@@ -53,7 +71,7 @@ void LightDepth::record(VkCommandBuffer cmd, std::span<const glm::vec3> towards_
     ri.pDepthAttachment = &depth;
     vkCmdBeginRendering(cmd, &ri);
     const VkDeviceSize offset = 0;
-    for (uint32_t k = 0; k < towards_light.size() && k < kMaxLights; ++k) {
+    for (uint32_t k = 0; k < towards_light.size(); ++k) {
         const glm::vec3 l = glm::normalize(towards_light[k]);
         const glm::vec3 up = std::abs(l.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
         const glm::mat4 view = glm::lookAtRH(centre + 2.0f * r * l, centre, up);
@@ -70,6 +88,7 @@ void LightDepth::record(VkCommandBuffer cmd, std::span<const glm::vec3> towards_
     }
     vkCmdEndRendering(cmd);
     atlas_.transition(cmd, gpu::use::kSampled);
+    return tile;
 }
 
 }  // namespace jade::shading

@@ -9,11 +9,15 @@
 #include "gpu/image.hpp"
 #include "gpu/pipeline.hpp"
 
+#include <jade/render.hpp>
+
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
 #include <array>
 #include <optional>
+#include <span>
+#include <vector>
 
 namespace jade::shading {
 
@@ -23,11 +27,18 @@ public:
 
     LightDepth(gpu::Context& ctx, uint32_t tile_size);
 
-    /// Renders the tiles of `towards_light` (unit vectors, at most kMaxLights) of the mesh in the
-    /// bounding sphere (centre, radius), into the atlas. Records outside any rendering scope; the
-    /// atlas is left ready for fragment-shader reads.
-    void record(VkCommandBuffer cmd, std::span<const glm::vec3> towards_light, VkBuffer vertices, uint32_t vertex_stride,
-                VkBuffer indices, uint32_t index_count, glm::vec3 centre, float radius);
+    /// Whether light from `light` can reach the eye through an object in the bounding sphere
+    /// (centre, radius), i.e. the forward lobe max(V·(−L), 0) is non-zero for some V from the
+    /// sphere towards the eye: exact for directional lights; point lights, and an eye inside the
+    /// sphere, always count.
+    static bool may_transmit(glm::vec3 eye, const Light& light, glm::vec3 centre, float radius);
+
+    /// The tiles of the directional lights that may transmit (the first kMaxLights of them),
+    /// rendered from the mesh into the atlas; returns each light's tile + 1, 0 for none (and
+    /// records nothing when every entry is 0). Records outside any rendering scope; the atlas is
+    /// left ready for fragment-shader reads.
+    std::vector<uint32_t> record(VkCommandBuffer cmd, glm::vec3 eye, std::span<const Light> lights, VkBuffer vertices,
+                                 uint32_t vertex_stride, VkBuffer indices, uint32_t index_count, glm::vec3 centre, float radius);
 
     /// World → light clip space of tile k (x, y ∈ [−1, 1] over the tile, depth ∈ [0, 1]).
     const glm::mat4& view_projection(uint32_t k) const { return view_proj_[k]; }

@@ -223,37 +223,25 @@ struct Renderer::Impl {
     bool transmission_reaches_camera(const Camera& cam, std::span<const Light> lights, const RenderSettings& s) const
     {
         if (s.mode != ShadingMode::Tm || !s.transmission || !has_thickness || !material->transmission.enabled()) return false;
-        for (const Light& l : lights)
-            if (light_is_behind(cam, l)) return true;
-        return false;
-    }
-    bool light_is_behind(const Camera& cam, const Light& l) const
-    {
         const glm::vec3 centre = 0.5f * (bbox_min + bbox_max);
-        const float radius = 0.5f * glm::length(bbox_max - bbox_min), distance = glm::length(cam.eye - centre);
-        if (!(distance > radius) || l.type == Light::Type::Point) return true;  // every direction may be seen
-        // The cone of V about to_eye with half-angle asin(r/D) reaches μ > 0 iff the angle
-        // between to_eye and −L is below 90° + asin(r/D).
-        return glm::dot((cam.eye - centre) / distance, -glm::normalize(l.vector)) > -radius / distance;
+        const float radius = 0.5f * glm::length(bbox_max - bbox_min);
+        return std::any_of(lights.begin(), lights.end(),
+                           [&](const Light& l) { return shading::LightDepth::may_transmit(cam.eye, l, centre, radius); });
     }
 
-    // The light-depth tiles of the directional lights behind the object (the first
-    // LightDepth::kMaxLights of them; the others, and point lights, use the local thickness
-    // alone). Returns each light's tile + 1, 0 for none.
+    // The light-depth tiles of the directional lights behind the object (shading/light_depth.hpp);
+    // each light's tile + 1, 0 for none. The atlas is made on the first draw that needs it.
     std::vector<uint32_t> record_light_depth(VkCommandBuffer cmd, const Camera& cam, std::span<const Light> lights)
     {
-        std::vector<uint32_t> tile(lights.size(), 0);
-        std::vector<glm::vec3> towards;
-        for (size_t k = 0; k < lights.size() && towards.size() < shading::LightDepth::kMaxLights; ++k)
-            if (lights[k].type == Light::Type::Directional && light_is_behind(cam, lights[k])) {
-                towards.push_back(lights[k].vector);
-                tile[k] = uint32_t(towards.size());
-            }
-        if (towards.empty()) return tile;
+        const glm::vec3 centre = 0.5f * (bbox_min + bbox_max);
+        const float radius = 0.5f * glm::length(bbox_max - bbox_min);
+        const bool any = std::any_of(lights.begin(), lights.end(), [&](const Light& l) {
+            return l.type == Light::Type::Directional && shading::LightDepth::may_transmit(cam.eye, l, centre, radius);
+        });
+        if (!any) return std::vector<uint32_t>(lights.size(), 0);
         if (!light_depth) light_depth.emplace(ctx, options.light_depth_size);
-        light_depth->record(cmd, towards, vertices.handle(), sizeof(Vertex), indices.handle(), index_count,
-                            0.5f * (bbox_min + bbox_max), 0.5f * glm::length(bbox_max - bbox_min));
-        return tile;
+        return light_depth->record(cmd, cam.eye, lights, vertices.handle(), sizeof(Vertex), indices.handle(), index_count,
+                                   centre, radius);
     }
 
     std::pair<float, float> false_color_range(const RenderSettings& s) const
@@ -471,38 +459,6 @@ void Renderer::set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm,
     m.tm_min_mean = tm_min, m.tm_max_mean = tm_max;
     m.has_mesh = true;
     m.has_thickness = !thickness.empty();
-}
-
-namespace {
-
-// Per render vertex to per bake vertex: render vertices welded into one bake vertex carry the
-// same baked value up to rounding; their mean.
-template <class T>
-std::vector<T> average_per_bake_vertex(const TriangleMesh& mesh, const PreparedMesh& prepared, std::span<const T> values,
-                                       const char* what)
-{
-    if (values.empty()) return {};
-    if (values.size() != mesh.positions.size())
-        throw Error("Renderer::set_mesh: " + mesh.name + ": " + std::to_string(values.size()) + " " + what + " values for " +
-                    std::to_string(mesh.positions.size()) + " render vertices");
-    std::vector<T> out(prepared.vertex_count(), T(0.0f));
-    std::vector<uint32_t> count(prepared.vertex_count(), 0);
-    for (size_t i = 0; i < prepared.render_to_bake.size(); ++i)
-        if (uint32_t b = prepared.render_to_bake[i]; b != PreparedMesh::kUnused) out[b] += values[i], ++count[b];
-    for (size_t b = 0; b < out.size(); ++b)
-        if (count[b]) out[b] /= float(count[b]);
-    return out;
-}
-
-}  // namespace
-
-void Renderer::set_mesh(const TriangleMesh& mesh, std::span<const glm::vec3> tm_per_render_vertex,
-                        std::span<const float> thickness_per_render_vertex)
-{
-    PreparedMesh prepared = prepare_mesh(mesh);
-    const auto tm = average_per_bake_vertex(mesh, prepared, tm_per_render_vertex, "t_m");
-    const auto thickness = average_per_bake_vertex(mesh, prepared, thickness_per_render_vertex, "thickness");
-    set_mesh(prepared, tm, thickness);
 }
 
 void Renderer::record_vertex_update(VkCommandBuffer cmd, VkBuffer positions, VkBuffer normals, VkBuffer tm, VkBuffer thickness)
