@@ -1,4 +1,4 @@
-// The bake cache (issue 7, item 4): a second run of a static mesh reads the cache and creates
+// The bake cache: a second run of a static mesh reads the cache and creates
 // no bake pipelines or buffers (counted by the Context); stale and corrupt entries are detected
 // and re-baked; opaque materials bake nothing.
 #include "gpu_fixture.hpp"

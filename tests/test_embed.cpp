@@ -1,4 +1,4 @@
-// Embedding (issue 7): a jade::Context that adopts a host's Vulkan objects, and samples/embed,
+// Embedding: a jade::Context that adopts a host's Vulkan objects, and samples/embed,
 // the host program that draws its own ground and Jade's sphere into one frame.
 // The host instance here has the validation layer on and every test fails on any message.
 #include "test_support.hpp"

@@ -1,4 +1,4 @@
-// GPU bake against the float64 CPU reference and analytic limits (issue: GPU bake).
+// GPU bake against the float64 CPU reference and analytic limits.
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 

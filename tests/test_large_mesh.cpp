@@ -1,4 +1,4 @@
-// A mesh of more than a million vertices (issue 6: stability): the Stanford bunny subdivided
+// A mesh of more than a million vertices: the Stanford bunny subdivided
 // three times, 2.4 M vertices and 4.8 M triangles. It crosses lavapipe's limits, so every
 // pass must chunk: 2.4 M × 4 rays is 150,000 work groups of 64 (maxComputeWorkGroupCount is
 // 65,535 per dimension), and the near-field lists (~50 entries a vertex) outgrow one 128 MiB

@@ -1,4 +1,4 @@
-// The renderer (issue: Shading - the graphics pipeline): analytic values on a sphere, the
+// The renderer: analytic values on a sphere, the
 // t_m path against Lambert, the strength's effect past the terminator, golden images of the
 // bunny in the four modes, errors, and the CLI.
 #include "gpu_fixture.hpp"

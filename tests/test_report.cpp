@@ -1,4 +1,4 @@
-// `jade report` (issue: Error against run time): a --tiny run on a small procedural scene (a
+// `jade report`: a --tiny run on a small procedural scene (a
 // ball resting over a slab, so AO is not zero) writes report.csv and summary.md with the
 // expected columns and tables, and its errors fall with more rays and a smaller ε.
 #include "test_support.hpp"

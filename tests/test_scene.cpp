@@ -1,4 +1,4 @@
-// Scenes and plans (issue 7, items 4 and 5): glTF materials mapped to Jade materials with the
+// Scenes and plans: glTF materials mapped to Jade materials with the
 // numbers of docs/scene.md, warnings and errors for bad values, the plan of a mixed scene, and
 // proof that skipped work is skipped (counted with Context::created_objects()).
 #include "gpu_fixture.hpp"

@@ -1,4 +1,4 @@
-// Stability on stiff and extreme cases (issue 6, item 3), through the public API only: the
+// Stability on stiff and extreme cases, through the public API only: the
 // bake and the shading must stay finite, non-negative and right where the inputs are extreme —
 // tiny and huge meshes, scattering distances from 1e-6 to 1e+6 × the diagonal, t_m of 0, 1e-30
 // and 1e30, and meshes that are degenerate, non-manifold, open or a single triangle. Every

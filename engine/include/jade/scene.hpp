@@ -1,4 +1,4 @@
-// jade/scene.hpp - a scene that pays only for what it uses (issue 7, items 4 and 5).
+// jade/scene.hpp - a scene that pays only for what it uses.
 //
 // A Scene is a list of objects (mesh, material, static or deforming). plan_scene() analyses it
 // once into a ScenePlan: per object the passes it needs, the shader variant it is drawn with and
