@@ -1,5 +1,5 @@
-// The translucency LUT built on the GPU against the float64 reference jade::lut_reference
-//: every texel, and the error of the linearly filtered LUT over the
+// The translucency LUT built on the GPU against the float64 reference jade::lut_reference:
+// every texel, and the error of the linearly filtered LUT over the
 // whole domain, for the default size and a table of others.
 #include "gpu_fixture.hpp"
 
