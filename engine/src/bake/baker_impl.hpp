@@ -100,16 +100,6 @@ inline void validate_ao_settings(const AoSettings& s)
     if (!(s.epsilon_rel >= 0) || !std::isfinite(s.epsilon_rel)) throw Error("AO: epsilon must be ≥ 0");
 }
 
-inline void validate_thickness_settings(const ThicknessSettings& s)
-{
-    if (s.rays > 1023) throw Error("thickness: rays per vertex must be in 0..1023, got " + std::to_string(s.rays));
-    if (!(s.cone_degrees > 0.0f && s.cone_degrees <= 90.0f))
-        throw Error("thickness: cone half-angle must be in (0, 90] degrees, got " + std::to_string(s.cone_degrees));
-    if (!(s.max_distance_rel > 0) || !std::isfinite(s.max_distance_rel))
-        throw Error("thickness: max distance must be a positive fraction of the diagonal");
-    if (!(s.epsilon_rel >= 0) || !std::isfinite(s.epsilon_rel)) throw Error("thickness: epsilon must be ≥ 0");
-}
-
 // The thickness only feeds the transmission term: a material without one does not trace it.
 inline BakeSettings without_unused_passes(BakeSettings s, const Material& material)
 {
@@ -152,7 +142,6 @@ using bake::AoPush;
 using bake::AoResolvePush;
 using bake::ThicknessPush;
 using bake::ThicknessResolvePush;
-using bake::validate_thickness_settings;
 using bake::GatherPush;
 using bake::RefitPush;
 using bake::RayRefitPush;

@@ -6,6 +6,19 @@
 #include <numbers>
 
 namespace jade {
+namespace {
+
+void validate_thickness_settings(const ThicknessSettings& s)
+{
+    if (s.rays > 1023) throw Error("thickness: rays per vertex must be in 0..1023, got " + std::to_string(s.rays));
+    if (!(s.cone_degrees > 0.0f && s.cone_degrees <= 90.0f))
+        throw Error("thickness: cone half-angle must be in (0, 90] degrees, got " + std::to_string(s.cone_degrees));
+    if (!(s.max_distance_rel > 0) || !std::isfinite(s.max_distance_rel))
+        throw Error("thickness: max distance must be a positive fraction of the diagonal");
+    if (!(s.epsilon_rel >= 0) || !std::isfinite(s.epsilon_rel)) throw Error("thickness: epsilon must be ≥ 0");
+}
+
+}  // namespace
 
 void Baker::Impl::prepare_thickness(MeshState& m, const ThicknessSettings& s)
 {

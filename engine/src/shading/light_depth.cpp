@@ -31,7 +31,7 @@ bool LightDepth::may_transmit(glm::vec3 eye, const Light& light, glm::vec3 centr
 
 std::vector<uint32_t> LightDepth::record(VkCommandBuffer cmd, glm::vec3 eye, std::span<const Light> lights,
                                          VkBuffer vertices, uint32_t vertex_stride, VkBuffer indices, uint32_t index_count,
-                                         glm::vec3 centre, float radius)
+                                         glm::vec3 centre, float radius, uint64_t geometry_version)
 {
     std::vector<uint32_t> tile(lights.size(), 0);
     std::vector<glm::vec3> towards_light;
@@ -41,6 +41,9 @@ std::vector<uint32_t> LightDepth::record(VkCommandBuffer cmd, glm::vec3 eye, std
             tile[k] = uint32_t(towards_light.size());
         }
     if (towards_light.empty()) return tile;
+    Contents wanted{geometry_version, towards_light, centre, radius};
+    if (wanted == contents_) return tile;
+    contents_ = std::move(wanted);
     if (!pipeline_) {
         gpu::GraphicsPipelineDesc d;
         d.name = "light depth";

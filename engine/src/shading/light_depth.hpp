@@ -35,10 +35,13 @@ public:
 
     /// The tiles of the directional lights that may transmit (the first kMaxLights of them),
     /// rendered from the mesh into the atlas; returns each light's tile + 1, 0 for none (and
-    /// records nothing when every entry is 0). Records outside any rendering scope; the atlas is
-    /// left ready for fragment-shader reads.
+    /// records nothing when every entry is 0). `geometry_version` changes whenever the vertices
+    /// may have: with the same version, lights and bounds as the last call the atlas still holds
+    /// the right depths and nothing is recorded (a still mesh under still lights costs no pass).
+    /// Records outside any rendering scope; the atlas is left ready for fragment-shader reads.
     std::vector<uint32_t> record(VkCommandBuffer cmd, glm::vec3 eye, std::span<const Light> lights, VkBuffer vertices,
-                                 uint32_t vertex_stride, VkBuffer indices, uint32_t index_count, glm::vec3 centre, float radius);
+                                 uint32_t vertex_stride, VkBuffer indices, uint32_t index_count, glm::vec3 centre, float radius,
+                                 uint64_t geometry_version);
 
     /// World → light clip space of tile k (x, y ∈ [−1, 1] over the tile, depth ∈ [0, 1]).
     const glm::mat4& view_projection(uint32_t k) const { return view_proj_[k]; }
@@ -54,6 +57,14 @@ private:
     std::optional<gpu::GraphicsPipeline> pipeline_;
     std::array<glm::mat4, kMaxLights> view_proj_{};
     float depth_range_ = 1.0f;
+    // What the atlas holds now.
+    struct Contents {
+        uint64_t geometry_version = ~uint64_t(0);
+        std::vector<glm::vec3> towards_light;
+        glm::vec3 centre{0.0f};
+        float radius = -1.0f;
+        bool operator==(const Contents&) const = default;
+    } contents_;
 };
 
 }  // namespace jade::shading

@@ -105,6 +105,7 @@ struct Renderer::Impl {
     std::vector<float> curvature;
     float tm_min_mean = 0.0f, tm_max_mean = 0.0f;  // range of mean(t_m) over the vertices
     bool has_mesh = false, has_thickness = false;
+    uint64_t geometry_version = 0;  // changes with set_mesh and record_vertex_update (light-depth reuse)
 
     std::optional<shading::LightDepth> light_depth;  // made on the first draw with transmission
     std::optional<Material> material;
@@ -241,7 +242,7 @@ struct Renderer::Impl {
         if (!any) return std::vector<uint32_t>(lights.size(), 0);
         if (!light_depth) light_depth.emplace(ctx, options.light_depth_size);
         return light_depth->record(cmd, cam.eye, lights, vertices.handle(), sizeof(Vertex), indices.handle(), index_count,
-                                   centre, radius);
+                                   centre, radius, geometry_version);
     }
 
     std::pair<float, float> false_color_range(const RenderSettings& s) const
@@ -458,6 +459,7 @@ void Renderer::set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm,
     m.curvature = std::move(curvature);
     m.tm_min_mean = tm_min, m.tm_max_mean = tm_max;
     m.has_mesh = true;
+    ++m.geometry_version;
     m.has_thickness = !thickness.empty();
 }
 
@@ -482,6 +484,7 @@ void Renderer::record_vertex_update(VkCommandBuffer cmd, VkBuffer positions, VkB
                               {gpu::Binding(positions, 0, stream), gpu::Binding(normals, 0, stream), gpu::Binding(tm, 0, stream),
                                m.vertices, gpu::Binding(thickness ? thickness : tm, 0, stream / 3)});
     if (thickness) m.has_thickness = true;
+    ++m.geometry_version;
     gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_WRITE_BIT,
                         VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT, VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT);
 }
