@@ -8,11 +8,6 @@
 
 namespace jade::cli {
 
-static const char* method_name(TmMethod m)
-{
-    return m == TmMethod::Exact ? "exact" : m == TmMethod::Clustered ? "clustered" : "auto";
-}
-
 static std::string profile_json(const ChannelProfile& p)
 {
     std::ostringstream os;
@@ -45,7 +40,7 @@ static std::string extras_json(const Material& m, const BakeSettings& s, const B
        << profile_json(m.profile[2]) << "]},"
        << "\"settings\":{\"ao_rays\":" << s.ao.rays << ",\"ao_low_discrepancy\":" << (s.ao.low_discrepancy ? "true" : "false")
        << ",\"ao_seed\":" << s.ao.seed << ",\"ao_max_distance_rel\":" << s.ao.max_distance_rel
-       << ",\"ao_epsilon_rel\":" << s.ao.epsilon_rel << ",\"tm_method\":\"" << method_name(r.method_used)
+       << ",\"ao_epsilon_rel\":" << s.ao.epsilon_rel << ",\"tm_method\":\"" << tm_method_name(r.method_used)
        << "\",\"tm_epsilon\":" << s.tm_epsilon << "},"
        << "\"timings_ms\":{\"wall\":" << r.timings.wall_ms << ",\"gpu\":" << r.timings.gpu_total_ms;
     for (auto& [stage, ms] : r.timings.gpu_stages) os << ",\"" << stage << "\":" << ms;
