@@ -441,7 +441,14 @@ struct Baker::Impl {
         // whose bounds are vast for its vertex spacing): docs/bake.md, "Choosing the far field".
         std::optional<bake::GridPlan> grid_plan;
         if (!m.exact && (s.method == TmMethod::Grid || s.method == TmMethod::Auto))
-            grid_plan = plan_grid(mesh, material, m.variant, s, near_margin);
+            grid_plan = bake::plan_grid(mesh, material, m.variant.grey ? 1 : 3, s.tm_grid_resolution,
+                                        near_margin > kStaticNearMargin, near_margin);
+        if (grid_plan && s.method == TmMethod::Grid && !grid_plan->feasible)
+            throw Error("t_m grid: " + std::to_string(n) + " vertices spread over these bounds need " +
+                        std::to_string(grid_plan->cells_needed) + " grid cells at resolution " +
+                        std::to_string(s.tm_grid_resolution) + ", beyond the limit of " + std::to_string(bake::kGridMaxCells) +
+                        " even with the near field 1.5x wider: use the clustered far field (TmMethod::Clustered, "
+                        "--method clustered) or a lower resolution");
         m.grid = grid_plan && (s.method == TmMethod::Grid || !grid_plan->coarsened);
         auto profiles = bake::to_gpu(material);
         if (!m.exact && !m.grid) {
@@ -532,8 +539,6 @@ struct Baker::Impl {
 
     // The grid far field (bake/tm_grid.cpp): plans and allocates the grids (before the near
     // lists, whose reach is the plan's r_cut), and records splat, blur and gather.
-    static bake::GridPlan plan_grid(const PreparedMesh& mesh, const Material& material, const TmVariant& variant,
-                                    const BakeSettings& s, float near_margin);
     void prepare_grid(MeshState& m, const bake::GridPlan& plan);
     void record_grid(VkCommandBuffer cmd, MeshState& m, gpu::GpuTimer* timer, uint32_t slot_begin, uint32_t slot_end);
 

@@ -1,5 +1,7 @@
 #include "bake/grid_field.hpp"
 
+#include "bake/near_field.hpp"
+
 #include <jade/error.hpp>
 
 #include <glm/common.hpp>
@@ -161,6 +163,12 @@ SmoothFit fit_smooth_part(const Material& material, int channels, double r_cut, 
     return fit;
 }
 
+uint64_t GridPlan::near_entries(size_t vertices, double margin) const
+{
+    // Sources within margin·r_cut on a surface of that spacing, plus the disk pairs (~18).
+    return uint64_t(double(vertices) * (std::numbers::pi * std::pow(margin * r_cut / spacing, 2) + 18.0 * margin * margin));
+}
+
 uint64_t GridPlan::bytes() const
 {
     // Fixed-point splats of the two finest grids, every grid's cells, two buffers for the
@@ -210,8 +218,6 @@ std::vector<GpuGridLevel> make_levels(const PreparedMesh& mesh, const SmoothFit&
         levels.push_back(l);
         if (cells > (1ull << 31)) return levels;  // the caller coarsens the plan
     }
-    // Fixed-point scale per grid: the densest cell's area at rest, ×19 for the B-spline's reach
-    // (64 cells, weight ≤ (2/3)³ each), with headroom, fills 2^32.
     for (size_t g = 0; g < levels.size(); ++g) {
         GpuGridLevel& l = levels[g];
         const double h = fit.sigma[g] / resolution;
@@ -225,7 +231,18 @@ std::vector<GpuGridLevel> make_levels(const PreparedMesh& mesh, const SmoothFit&
         }
         for (uint32_t k = 0; k <= l.half_width; ++k) l.blur[k] = float(l.blur[k] / sum);
         l.weight = glm::vec3(fit.weight[g] * std::sqrt(2 * kPi) * resolution / (h * h));
-        if (g >= kSplatLevels) continue;  // restricted from the grid two below (grid_axis.comp)
+    }
+    (void)area;
+    return levels;
+}
+
+// Fixed-point scale of the splatted grids: the densest cell's area at rest, ×19 for the
+// B-spline's reach (64 cells, weight ≤ (2/3)³ each), with headroom, fills 2^32.
+void set_splat_scales(std::vector<GpuGridLevel>& levels, const PreparedMesh& mesh)
+{
+    for (size_t g = 0; g < std::min<size_t>(levels.size(), kSplatLevels); ++g) {
+        GpuGridLevel& l = levels[g];
+        const double h = 1.0 / double(l.inv_h);
         std::vector<float> bins(size_t(l.dims.x) * l.dims.y * l.dims.z, 0.0f);
         double densest = 0;
         for (size_t i = 0; i < mesh.vertex_count(); ++i) {
@@ -237,15 +254,16 @@ std::vector<GpuGridLevel> make_levels(const PreparedMesh& mesh, const SmoothFit&
         }
         l.splat_scale = float(4294967296.0 / (19.0 * kSplatHeadroom * std::max(densest, 1e-300)));
     }
-    (void)area;
-    return levels;
 }
 
 }  // namespace
 
 GridPlan plan_grid(const PreparedMesh& mesh, const Material& material, int channels, double resolution, bool deforming,
-                   double max_near_reach)
+                   double near_margin)
 {
+    float max_disk = 0;  // the near lists' widest disk reach: the table covers it
+    for (float a : mesh.areas) max_disk = std::max(max_disk, kNearFactor * std::sqrt(a / std::numbers::pi_v<float>));
+    const double max_near_reach = near_margin * max_disk;
     if (!(resolution >= 1.5 && resolution <= 4.0))
         throw Error("t_m grid: resolution (cells per Gaussian σ) must be in [1.5, 4], got " + std::to_string(resolution));
     // The mean vertex spacing. A list's length goes as r_cut²/A_i: on a mesh much denser in
@@ -255,17 +273,25 @@ GridPlan plan_grid(const PreparedMesh& mesh, const Material& material, int chann
     for (float a : mesh.areas) area += a;
     const double spacing = std::sqrt(area / double(mesh.vertex_count()));
     GridPlan plan;
+    plan.spacing = spacing;
     plan.cube_side = deforming ? kDeformingCube * mesh.diagonal : 0.0;
     const double r_max = deforming ? std::sqrt(3.0) * plan.cube_side : double(mesh.diagonal);
-    plan.r_cut = kCutSpacingsPerResolution * resolution * spacing;
+    const double r_cut = kCutSpacingsPerResolution * resolution * spacing;
+    plan.r_cut = r_cut;
     for (int attempt = 0;; ++attempt) {
         plan.fit = fit_smooth_part(material, channels, plan.r_cut, r_max, resolution);
         plan.levels = make_levels(mesh, plan.fit, resolution, plan.cube_side, plan.cells, plan.max_level_cells);
+        if (attempt == 0) plan.cells_needed = plan.cells;
         if (plan.cells <= kGridMaxCells) break;
-        if (attempt > 20) throw Error("t_m grid: cannot fit the grids in memory");
-        plan.r_cut *= 1.05 * std::cbrt(double(plan.cells) / double(kGridMaxCells));
         plan.coarsened = true;
+        if (plan.r_cut > kGridMaxCoarsening * r_cut) {  // near lists past ~2.25× their length
+            plan.feasible = false;
+            plan.levels.clear();
+            return plan;
+        }
+        plan.r_cut *= 1.02 * std::cbrt(double(plan.cells) / double(kGridMaxCells));
     }
+    set_splat_scales(plan.levels, mesh);
     plan.table_range = std::max(plan.r_cut, max_near_reach) * 1.01;
     plan.table.resize(2 * kGridTableSize);
     for (uint32_t k = 0; k < kGridTableSize; ++k) {

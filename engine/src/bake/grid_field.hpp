@@ -34,6 +34,7 @@ namespace jade::bake {
 constexpr uint32_t kGridMaxHalfWidth = 16;    // = GRID_MAX_HALF_WIDTH in shaders/include/grid.glsl
 constexpr uint32_t kGridTableSize = 1024;     // samples of S(r) for the near pass, over [0, table_range]
 constexpr uint64_t kGridMaxCells = 1ull << 25; // all grids together; past it r_cut grows (see plan_grid)
+constexpr double kGridMaxCoarsening = 1.5;      // ... by at most this factor (the near lists by its square)
 // Grids the sources are splatted into; grid g ≥ 2 is restricted from grid g − 2 (twice finer).
 constexpr uint32_t kSplatLevels = 2;
 constexpr double kDeformingCube = 1.1;  // a deforming mesh's grids: cubes of this × the rest diagonal
@@ -75,7 +76,11 @@ struct GridPlan {
     double cube_side = 0;      // > 0: a deforming mesh's grids (plan_grid)
     uint64_t cells = 0, max_level_cells = 0;
     bool coarsened = false;                 // r_cut grew past its rule to fit kGridMaxCells
+    bool feasible = true;                   // false: it would have to grow past kGridMaxCoarsening
+    uint64_t cells_needed = 0;              // the grids at r_cut's rule
+    double spacing = 0;                     // the mesh's mean vertex spacing
     uint64_t bytes() const;                 // device memory of the grid passes
+    uint64_t near_entries(size_t vertices, double margin) const;  // the near lists' length, estimated
 };
 
 /// Plans the grids over the mesh's bounds, for pairs up to the diagonal apart. A deforming
@@ -83,10 +88,10 @@ struct GridPlan {
 /// its current bounds (grid_bounds.comp): they hold the rest pose turned any way, and stretches
 /// of 10 %; a vertex beyond counts at the cube's face. When the grids would exceed
 /// kGridMaxCells, r_cut grows until they fit (`coarsened`): fewer, coarser grids and longer
-/// near lists, never a silent error. `max_near_reach`: the largest disk reach of the near
-/// lists (the table covers it).
+/// near lists; past kGridMaxCoarsening the plan is not `feasible` (no levels). Never a silent
+/// error. `near_margin`: the near lists' (bake/near_field.hpp); the table covers their reach.
 GridPlan plan_grid(const PreparedMesh& mesh, const Material& material, int channels, double resolution, bool deforming,
-                   double max_near_reach);
+                   double near_margin);
 
 /// Solves min ‖A·x − b‖ subject to x ≥ 0 (Lawson–Hanson), A row-major rows × cols.
 std::vector<double> nnls(const std::vector<double>& A, const std::vector<double>& b, size_t rows, size_t cols);

@@ -8,17 +8,6 @@
 
 namespace jade {
 
-bake::GridPlan Baker::Impl::plan_grid(const PreparedMesh& mesh, const Material& material, const TmVariant& variant,
-                                      const BakeSettings& s, float near_margin)
-{
-    // A deforming mesh (near_margin > the static one's) gets grids that follow it.
-    const bool deforming = near_margin > kStaticNearMargin;
-    float max_disk = 0;
-    for (float a : mesh.areas) max_disk = std::max(max_disk, bake::kNearFactor * std::sqrt(a / std::numbers::pi_v<float>));
-    return bake::plan_grid(mesh, material, variant.grey ? 1 : 3, s.tm_grid_resolution, deforming,
-                           double(near_margin) * max_disk);
-}
-
 void Baker::Impl::prepare_grid(MeshState& m, const bake::GridPlan& plan)
 {
     m.grid_r_cut = plan.r_cut;

@@ -15,10 +15,12 @@
 #include <jade/scene.hpp>
 
 #include "bake/gpu_profile.hpp"
+#include "bake/grid_field.hpp"
 
 #include <jade/error.hpp>
 
 #include <algorithm>
+#include <optional>
 #include <cstdio>
 #include <sstream>
 
@@ -35,13 +37,22 @@ uint64_t at_least_16(double bytes) { return std::max<uint64_t>(16, uint64_t(byte
 
 // The buffers of Baker::Impl::MeshState (bake/baker.cpp upload_mesh, prepare_ao,
 // prepare_thickness when the material has a transmission term, prepare_tm).
-std::vector<BufferEstimate> bake_buffers(size_t n, size_t tris, const BakeSettings& s, bool dynamic, bool thickness)
+std::vector<BufferEstimate> bake_buffers(const PreparedMesh& mesh, const Material& material, const BakeSettings& s,
+                                         bool dynamic, bool thickness)
 {
+    const size_t n = mesh.vertex_count(), tris = mesh.triangle_count();
     const double ray_nodes = kRayNodesPerTriangle * double(tris);
     const double ray_items = ray_nodes + double(tris);
     const double margin = dynamic ? kDynamicNearMargin : kStaticNearMargin;
-    const double near_entries = kNearEntriesPerVertex * double(n) * (margin * margin) / (kStaticNearMargin * kStaticNearMargin);
+    double near_entries = kNearEntriesPerVertex * double(n) * (margin * margin) / (kStaticNearMargin * kStaticNearMargin);
     const bool exact = s.method == TmMethod::Exact || (s.method == TmMethod::Auto && n < kExactBelow);
+    // The grid far field: its own plan (bake/grid_field.hpp), as Baker::Impl::prepare_tm makes it.
+    std::optional<bake::GridPlan> grid;
+    if (!exact && (s.method == TmMethod::Grid || s.method == TmMethod::Auto)) {
+        grid = bake::plan_grid(mesh, material, material.grey() ? 1 : 3, s.tm_grid_resolution, dynamic, margin);
+        if (s.method == TmMethod::Auto && grid->coarsened) grid.reset();
+    }
+    if (grid) near_entries = double(grid->near_entries(n, margin));
     std::vector<BufferEstimate> b = {
         {"positions", at_least_16(12.0 * n)},
         {"normals", at_least_16(12.0 * n)},
@@ -54,6 +65,7 @@ std::vector<BufferEstimate> bake_buffers(size_t n, size_t tris, const BakeSettin
         {"t_m partial sums", at_least_16(12.0 * n)},
         {"t_m partial compensation", at_least_16(12.0 * n)},
         {"near-field offsets", at_least_16(4.0 * (n + 1))},
+        {"near-field disk candidates", at_least_16(4.0 * n)},
         {"near-field sources", at_least_16(4.0 * (near_entries + 64))},
         {"point order", at_least_16(4.0 * n)},
     };
@@ -63,6 +75,9 @@ std::vector<BufferEstimate> bake_buffers(size_t n, size_t tris, const BakeSettin
     }
     if (exact) {
         b.push_back({"t_m sources", at_least_16(32.0 * n)});
+    } else if (grid) {
+        b.push_back({"t_m sources", at_least_16(32.0 * n)});
+        b.push_back({"t_m grid", at_least_16(double(grid->bytes()))});
     } else {
         const double nodes = kPointNodesPerVertex * double(n);
         const double first_point = std::ceil(4.0 * nodes / 16.0) * 16.0;
@@ -270,14 +285,14 @@ ScenePlan plan_scene(const Scene& scene, const SceneSettings& settings, const St
             if (o.deforming) {
                 auto deform = deform_buffers(n, tris);
                 o.passes.push_back({PassKind::Deform, true, true, std::move(deform)});
-                o.passes.push_back({PassKind::DynamicBake, true, true, bake_buffers(n, tris, settings.bake, true, obj.material.transmission.enabled())});
+                o.passes.push_back({PassKind::DynamicBake, true, true, bake_buffers(prepared, obj.material, settings.bake, true, obj.material.transmission.enabled())});
             } else {
                 if (source.lookup) {
                     const auto found = source.lookup(prepared, obj.material, settings.bake);
                     o.bake_key = found.key, o.cached = found.holds;
                 }
                 if (o.cached) o.passes.push_back({PassKind::CacheRead, false, false, {}});
-                else o.passes.push_back({PassKind::StaticBake, false, false, bake_buffers(n, tris, settings.bake, false, obj.material.transmission.enabled())});
+                else o.passes.push_back({PassKind::StaticBake, false, false, bake_buffers(prepared, obj.material, settings.bake, false, obj.material.transmission.enabled())});
             }
         }
         o.passes.push_back({PassKind::Draw, true, true, draw_buffers(n, tris)});

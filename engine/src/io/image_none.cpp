@@ -1,0 +1,24 @@
+// io/image_none.cpp - jade::save_image and friends in a build without OpenImageIO
+// (JADE_WITH_OIIO=OFF, for a binary that must carry few shared libraries, such as the GPU
+// benchmark pack in tools/gpu_pack/): every image call fails with a clear message.
+#include <jade/io.hpp>
+
+#include "io/common.hpp"
+
+namespace jade {
+
+namespace {
+[[noreturn]] void no_images(const std::filesystem::path& path)
+{
+    io::fail(path.string(), "this build of Jade reads and writes no images (configured with JADE_WITH_OIIO=OFF)");
+}
+}  // namespace
+
+void save_animation(const std::filesystem::path& path, int, int, const std::vector<std::vector<float>>&, double)
+{
+    no_images(path);
+}
+void save_image(const std::filesystem::path& path, int, int, const std::vector<float>&) { no_images(path); }
+LoadedImage load_image(const std::filesystem::path& path) { no_images(path); }
+
+}  // namespace jade
