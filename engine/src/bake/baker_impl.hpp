@@ -52,6 +52,8 @@ constexpr float kStaticNearMargin = 1.05f;
 constexpr float kDynamicNearMargin = 1.5f;
 // Below this many vertices the all-pairs pass is as fast as building and walking the tree.
 constexpr size_t kExactBelow = 2048;
+// The grid far field's near lists beyond this are refused (TmMethod::Grid) or avoided (Auto).
+constexpr uint64_t kGridMaxNearBytes = 512ull << 20;
 
 // Sources per dispatch of the all-pairs pass (8 per loop iteration), and node visits per
 // dispatch of the clustered pass (one loop iteration each): lavapipe caps an invocation at
@@ -139,6 +141,7 @@ using bake::kPointLeafSize;
 using bake::kStaticNearMargin;
 using bake::kDynamicNearMargin;
 using bake::kExactBelow;
+using bake::kGridMaxNearBytes;
 using bake::kExactSourcesPerDispatch;
 using bake::kClusterWorkPerDispatch;
 using bake::AoPush;
@@ -437,19 +440,28 @@ struct Baker::Impl {
         const size_t n = mesh.vertex_count();
         m.variant = tm_variant(material);
         m.exact = s.method == TmMethod::Exact || (s.method == TmMethod::Auto && n < kExactBelow);
-        // Auto takes the grid unless its grids had to be coarsened to fit in memory (a mesh
-        // whose bounds are vast for its vertex spacing): docs/bake.md, "Choosing the far field".
+        bake::Bvh tree = bake::build_bvh(mesh.positions, mesh.positions, kPointLeafSize);
+        // Auto takes the grid unless its grids had to be coarsened to fit in memory or its near
+        // lists would be long (a mesh whose bounds are vast for its vertex spacing, or dense in
+        // patches): docs/bake.md, "Choosing the far field".
         std::optional<bake::GridPlan> grid_plan;
-        if (!m.exact && (s.method == TmMethod::Grid || s.method == TmMethod::Auto))
+        if (!m.exact && (s.method == TmMethod::Grid || s.method == TmMethod::Auto)) {
             grid_plan = bake::plan_grid(mesh, material, m.variant.grey ? 1 : 3, s.tm_grid_resolution,
                                         near_margin > kStaticNearMargin, near_margin);
-        if (grid_plan && s.method == TmMethod::Grid && !grid_plan->feasible)
-            throw Error("t_m grid: " + std::to_string(n) + " vertices spread over these bounds need " +
-                        std::to_string(grid_plan->cells_needed) + " grid cells at resolution " +
-                        std::to_string(s.tm_grid_resolution) + ", beyond the limit of " + std::to_string(bake::kGridMaxCells) +
-                        " even with the near field 1.5x wider: use the clustered far field (TmMethod::Clustered, "
-                        "--method clustered) or a lower resolution");
-        m.grid = grid_plan && (s.method == TmMethod::Grid || !grid_plan->coarsened);
+            const uint64_t entries = grid_plan->feasible ? bake::sample_near_entries(mesh, tree, near_margin, float(grid_plan->r_cut)) : 0;
+            const bool long_lists = entries * 4 > kGridMaxNearBytes;
+            if (s.method == TmMethod::Grid && (!grid_plan->feasible || long_lists))
+                throw Error("t_m grid: " + std::to_string(n) + " vertices spread over these bounds need " +
+                            std::to_string(grid_plan->cells_needed) + " grid cells at resolution " +
+                            std::to_string(s.tm_grid_resolution) + " (the limit is " + std::to_string(bake::kGridMaxCells) +
+                            ") or near lists of ~" + std::to_string(entries * 4 >> 20) + " MiB (the limit is " +
+                            std::to_string(kGridMaxNearBytes >> 20) + " MiB): use the clustered far field "
+                            "(TmMethod::Clustered, --method clustered) or a lower resolution");
+            if (s.method == TmMethod::Auto && (grid_plan->coarsened || long_lists ||
+                                                entries > 4 * grid_plan->near_entries(n, near_margin)))
+                grid_plan.reset();
+        }
+        m.grid = grid_plan.has_value();
         auto profiles = bake::to_gpu(material);
         if (!m.exact && !m.grid) {
             // The faint test of tm_cluster.comp against the total area (≥ the total weight, so
@@ -464,7 +476,6 @@ struct Baker::Impl {
         m.tm = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m");
         m.partial_sum = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m partial sums");
         m.partial_comp = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m partial compensation");
-        bake::Bvh tree = bake::build_bvh(mesh.positions, mesh.positions, kPointLeafSize);
         if (m.grid) prepare_grid(m, *grid_plan);
         else {
             m.smooth_table = gpu::Buffer(ctx, 16, kTexelUsage, "smooth-part table (unused)");

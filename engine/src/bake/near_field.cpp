@@ -10,47 +10,64 @@
 
 namespace jade::bake {
 
-NearLists build_near_lists(const PreparedMesh& mesh, const Bvh& tree, float margin, float min_reach)
+namespace {
+
+// Calls visit(i, j, is_disk_candidate) for every near-list entry of the vertices in [begin, end).
+template <class Visit>
+void walk_near_pairs(const PreparedMesh& mesh, const Bvh& tree, float margin, float min_reach, size_t begin, size_t end,
+                     size_t stride, Visit&& visit)
 {
-    const size_t n = mesh.vertex_count();
     auto disk_reach = [&](uint32_t j) { return margin * kNearFactor * std::sqrt(mesh.areas[j] / std::numbers::pi_v<float>); };
     auto reach = [&](uint32_t j) { return std::max(disk_reach(j), margin * min_reach); };
-
-    // Largest reach inside each node: its range of tree-ordered vertices.
     std::vector<float> node_reach(tree.nodes.size(), 0.0f);
     for (size_t k = 0; k < tree.nodes.size(); ++k) {
         uint32_t first = tree.nodes[k].first();
         for (uint32_t s = first; s < first + tree.counts[k]; ++s) node_reach[k] = std::max(node_reach[k], reach(tree.order[s]));
     }
+    for (size_t i = begin; i < end; i += stride) {
+        const glm::vec3 x = mesh.positions[i];
+        uint32_t k = 0;
+        while (k < tree.nodes.size()) {
+            const BvhNode& node = tree.nodes[k];
+            if (glm::distance(x, glm::clamp(x, node.lo, node.hi)) >= node_reach[k]) {
+                k = node.escape;
+                continue;
+            }
+            if (!node.leaf()) {
+                ++k;
+                continue;
+            }
+            for (uint32_t s = node.first(); s < node.first() + tree.counts[k]; ++s) {
+                const uint32_t j = tree.order[s];
+                if (j == i) continue;
+                const float r = glm::distance(x, mesh.positions[j]);
+                if (r < reach(j)) visit(i, j, r < disk_reach(j));
+            }
+            k = node.escape;
+        }
+    }
+}
 
+}  // namespace
+
+uint64_t sample_near_entries(const PreparedMesh& mesh, const Bvh& tree, float margin, float min_reach)
+{
+    const size_t n = mesh.vertex_count(), stride = std::max<size_t>(1, n / 1024);
+    uint64_t entries = 0, sampled = 0;
+    walk_near_pairs(mesh, tree, margin, min_reach, 0, n, stride, [&](size_t, uint32_t, bool) { ++entries; });
+    for (size_t i = 0; i < n; i += stride) ++sampled;
+    return uint64_t(double(entries) * double(n) / double(std::max<uint64_t>(sampled, 1)));
+}
+
+NearLists build_near_lists(const PreparedMesh& mesh, const Bvh& tree, float margin, float min_reach)
+{
+    const size_t n = mesh.vertex_count();
     // Per-target rows, found in parallel, then concatenated.
     std::vector<std::vector<uint32_t>> rows(n), points(n);
     auto work = [&](size_t begin, size_t end) {
-        for (size_t i = begin; i < end; ++i) {
-            const glm::vec3 x = mesh.positions[i];
-            uint32_t k = 0;
-            while (k < tree.nodes.size()) {
-                const BvhNode& node = tree.nodes[k];
-                glm::vec3 nearest = glm::clamp(x, node.lo, node.hi);
-                if (glm::distance(x, nearest) >= node_reach[k]) {
-                    k = node.escape;
-                    continue;
-                }
-                if (!node.leaf()) {
-                    ++k;
-                    continue;
-                }
-                uint32_t first = node.first();
-                for (uint32_t s = first; s < first + tree.counts[k]; ++s) {
-                    uint32_t j = tree.order[s];
-                    if (j == i) continue;
-                    const float r = glm::distance(x, mesh.positions[j]);
-                    if (r < disk_reach(j)) rows[i].push_back(j);
-                    else if (r < reach(j)) points[i].push_back(j);
-                }
-                k = node.escape;
-            }
-        }
+        walk_near_pairs(mesh, tree, margin, min_reach, begin, end, 1, [&](size_t i, uint32_t j, bool disk) {
+            (disk ? rows : points)[i].push_back(j);
+        });
     };
     unsigned threads = std::max(1u, std::thread::hardware_concurrency());
     std::vector<std::thread> pool;

@@ -35,6 +35,9 @@ struct NearLists {
 /// closer vertices may come than at rest.
 NearLists build_near_lists(const PreparedMesh& mesh, const Bvh& point_tree, float margin, float min_reach = 0);
 
+/// The entries build_near_lists would make, estimated from up to 1,024 evenly spread vertices.
+uint64_t sample_near_entries(const PreparedMesh& mesh, const Bvh& point_tree, float margin, float min_reach = 0);
+
 /// The same lists with rows in the order `order` (row k = the list of vertex order[k]).
 NearLists reorder_rows(const NearLists& lists, std::span<const uint32_t> order);
 
