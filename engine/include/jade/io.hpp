@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace jade {
@@ -32,6 +33,13 @@ AnimatedMesh load_animated_gltf(const std::filesystem::path& path);
 /// Atomic like save_image.
 void save_animation(const std::filesystem::path& path, int width, int height, const std::vector<std::vector<float>>& frames,
                     double fps);
+
+/// Writes `bytes` to `path` atomically, as every file writer here does: a temporary file
+/// "<path>.tmp-<pid>" in the same folder is written, synced to disk (fsync), renamed to `path`
+/// and the folder synced. A failure or a crash at any moment leaves the old file (or none) or
+/// the complete new one; a crash may leave the temporary file behind. Throws jade::Error
+/// naming the file.
+void write_file_atomically(const std::filesystem::path& path, std::string_view bytes);
 
 /// What `jade bake` stores next to the mesh.
 struct BakedAttributes {

@@ -14,7 +14,6 @@
 
 #include <cmath>
 #include <cstring>
-#include <fstream>
 
 namespace jade {
 
@@ -189,15 +188,6 @@ std::string to_gltf(json document, const std::vector<unsigned char>& buffer)
     return dump(document);
 }
 
-void write_bytes(const std::string& name, const std::filesystem::path& tmp, const std::string& bytes)
-{
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) io::fail(name, "cannot open " + tmp.string() + " for writing");
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    out.close();
-    if (!out) io::fail(name, "writing " + tmp.string() + " failed");
-}
-
 }  // namespace
 
 void save_baked_gltf(const std::filesystem::path& path, const TriangleMesh& mesh, const BakedAttributes& baked)
@@ -209,7 +199,7 @@ void save_baked_gltf(const std::filesystem::path& path, const TriangleMesh& mesh
     Document doc;
     const json document = build_json(mesh, baked, parse_extras(name, baked.extras_json), doc);
     const std::string bytes = ext == ".glb" ? to_glb(name, document, doc.buffer()) : to_gltf(document, doc.buffer());
-    io::write_atomically(path, [&](const std::filesystem::path& tmp) { write_bytes(name, tmp, bytes); });
+    write_file_atomically(path, bytes);
 }
 
 }  // namespace jade
