@@ -124,7 +124,7 @@ def cube_seams():
 
 def sparse_cube():
     """cube_seams with sparse accessors: POSITION moves vertices 3 and 7 to (0, 0, 5) and
-    (0, 0, -5); NORMAL has no bufferView (zeros) and sparse normals (0, 0, 1) on vertices 0..3."""
+    (0, 0, -5); _AO has no bufferView (zeros) and sparse values 0.25 on vertices 0..3."""
     g = cube_seams()
     doc = g.doc
 
@@ -140,10 +140,10 @@ def sparse_cube():
     positions["sparse"] = {"count": 2, "indices": {"bufferView": view("H", [3, 7]), "componentType": USHORT},
                            "values": {"bufferView": view("f", [0, 0, 5, 0, 0, -5])}}
     positions["min"][2], positions["max"][2] = -5.0, 5.0
-    normals = doc["accessors"][1]
-    del normals["bufferView"]
-    normals["sparse"] = {"count": 4, "indices": {"bufferView": view("B", [0, 1, 2, 3]), "componentType": UBYTE},
-                         "values": {"bufferView": view("f", [0, 0, 1] * 4)}}
+    doc["accessors"].append({"componentType": FLOAT, "count": 24, "type": "SCALAR",
+                             "sparse": {"count": 4, "indices": {"bufferView": view("B", [0, 1, 2, 3]), "componentType": UBYTE},
+                                        "values": {"bufferView": view("f", [0.25] * 4)}}})
+    doc["meshes"][0]["primitives"][0]["attributes"]["_AO"] = len(doc["accessors"]) - 1
     doc["meshes"][0]["name"] = "sparse_cube"
     return g
 
