@@ -55,9 +55,9 @@ void bake_asset(const Args& args, const std::filesystem::path& in, const std::fi
     std::string materials, bakes, settings_json;
     size_t vertices = 0;
     for (const auto& target : asset.targets()) {
-        const PreparedMesh prepared = prepare_mesh(target.mesh);
         const Material& material = target.material ? *target.material : fallback;
-        const BakeResult r = baker.bake(prepared, material, settings);
+        PreparedMesh prepared;
+        const BakeResult r = bake_at_unit_scale(baker, target.mesh, material, settings, prepared);
         std::fprintf(stderr, "jade: %s primitives %s: %zu vertices (%zu after welding), material %s [%s], in %s: %s\n",
                      target.mesh.name.c_str(), primitive_list(target.primitives).c_str(), target.mesh.positions.size(),
                      prepared.vertex_count(), material.name.c_str(), target.material_name.c_str(), target.space.c_str(),

@@ -3,6 +3,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
 #include <cmath>
 #include <sstream>
 
@@ -88,3 +91,32 @@ std::string timings(const BakeResult& r)
 }
 
 }  // namespace jade::cli::record
+
+namespace jade::cli {
+
+double diagonal(const TriangleMesh& mesh)
+{
+    if (mesh.positions.empty()) return 0.0;
+    glm::dvec3 lo(mesh.positions[0]), hi(mesh.positions[0]);
+    for (const auto& p : mesh.positions) lo = glm::min(lo, glm::dvec3(p)), hi = glm::max(hi, glm::dvec3(p));
+    return glm::length(hi - lo);
+}
+
+BakeResult bake_at_unit_scale(Baker& baker, const TriangleMesh& mesh, const Material& material, const BakeSettings& settings,
+                              PreparedMesh& prepared)
+{
+    const double d = diagonal(mesh);
+    const int k = d > 0.0 && std::isfinite(d) ? -int(std::lround(std::log2(d))) : 0;
+    if (k == 0) {
+        prepared = prepare_mesh(mesh);
+        return baker.bake(prepared, material, settings);
+    }
+    TriangleMesh scaled = mesh;
+    for (auto& p : scaled.positions) p = glm::vec3(std::ldexp(p.x, k), std::ldexp(p.y, k), std::ldexp(p.z, k));
+    prepared = prepare_mesh(scaled);
+    BakeResult r = baker.bake(prepared, material.scaled(std::ldexp(1.0, k)), settings);
+    for (auto& t : r.thickness) t = std::ldexp(t, -k);
+    return r;
+}
+
+}  // namespace jade::cli

@@ -23,14 +23,14 @@ void print_timings(const BakeResult& r)
 void bake_mesh(const Args& args, const std::string& in, const std::filesystem::path& out, const BakeSettings& settings)
 {
     TriangleMesh mesh = load_mesh_arg(in);
-    PreparedMesh prepared = prepare_mesh(mesh);
-    Material material = material_from_args(args, prepared);
+    Material material = material_from_args(args, diagonal(mesh));
     auto ctx = make_context(args);
     if (args.flag("verbose")) std::fprintf(stderr, "jade: device %s\n", ctx->device_info().name.c_str());
     Baker baker(*ctx);
-    std::fprintf(stderr, "jade: baking %zu vertices, %u AO rays each, material %s ...\n", prepared.vertex_count(),
+    std::fprintf(stderr, "jade: baking %zu vertices, %u AO rays each, material %s ...\n", mesh.positions.size(),
                  settings.ao.rays, material.name.c_str());
-    BakeResult r = baker.bake(prepared, material, settings);
+    PreparedMesh prepared;
+    BakeResult r = bake_at_unit_scale(baker, mesh, material, settings, prepared);
     print_timings(r);
 
     BakedAttributes baked;

@@ -113,6 +113,7 @@ void add_targets(GltfAsset::Impl& a, int mesh_index, const Placement& placement,
             warnings->push_back(a.name + ": " + mesh_name + " has no triangles; not baked");
         return;
     }
+    validate_mesh(merged);  // finite positions, indices in range; the message names file and mesh
     std::vector<int> order;  // group keys in order of first appearance
     for (int g : groups)
         if (g != -2 && std::find(order.begin(), order.end(), g) == order.end()) order.push_back(g);

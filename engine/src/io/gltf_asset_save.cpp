@@ -389,8 +389,8 @@ void check_baked(const GltfAsset::Impl& a, const std::string& out, const std::ve
                                   : !(std::isfinite(b.tm[v].x) && std::isfinite(b.tm[v].y) && std::isfinite(b.tm[v].z)) ? "_TM"
                                   : !b.thickness.empty() && !std::isfinite(b.thickness[v]) ? "_THICKNESS" : nullptr;
                 if (bad)
-                    fail(out, target + " primitive " + std::to_string(p) + " vertex " + std::to_string(v - span.first) + ": " + bad +
-                                  " is not finite; nothing was written");
+                    fail(a.name, target + " primitive " + std::to_string(p) + " vertex " + std::to_string(v - span.first) + ": " +
+                                     bad + " is not finite; nothing was written to " + out);
             }
         }
     }
