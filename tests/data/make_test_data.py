@@ -148,6 +148,46 @@ def sparse_cube():
     return g
 
 
+def asset_features():
+    """What the round trip of jade bake must keep (tests/test_gltf_roundtrip.cpp): cube_seams'
+    mesh with TEXCOORD_0 and COLOR_0 interleaved in one bufferView (byteStride 12, normalized
+    UNSIGNED_BYTE colours), a custom _CUSTOM attribute and a second LINES primitive sharing its
+    POSITION accessor; two instances (scale 2, and mirrored), a camera node, and extras and an
+    unknown extension on a node, the asset and the document."""
+    g = cube_seams()
+    doc = g.doc
+    while len(g.buffer) % 4:
+        g.buffer.append(0)
+    offset = len(g.buffer)
+    for v in range(24):
+        g.buffer += struct.pack("<ff", (v % 4) / 3.0, (v // 4) / 5.0) + struct.pack("<4B", 10 * v, 255 - 10 * v, 128, 255)
+    doc["bufferViews"].append({"buffer": 0, "byteOffset": offset, "byteLength": 24 * 12, "byteStride": 12,
+                               "target": ARRAY_BUFFER})
+    view = len(doc["bufferViews"]) - 1
+    doc["accessors"].append({"bufferView": view, "componentType": FLOAT, "count": 24, "type": "VEC2"})
+    uv = len(doc["accessors"]) - 1
+    doc["accessors"].append({"bufferView": view, "byteOffset": 8, "componentType": UBYTE, "normalized": True,
+                             "count": 24, "type": "VEC4"})
+    color = len(doc["accessors"]) - 1
+    custom = g.accessor("f", [0.5 * v for v in range(24)], FLOAT, "SCALAR", 24, ARRAY_BUFFER)
+    lines = g.indices([0, 1, 1, 2, 2, 3, 3, 0], UBYTE)
+    prim = doc["meshes"][0]["primitives"][0]
+    prim["attributes"].update(TEXCOORD_0=uv, COLOR_0=color, _CUSTOM=custom)
+    doc["meshes"][0]["primitives"].append({"attributes": {"POSITION": prim["attributes"]["POSITION"]}, "indices": lines,
+                                           "mode": 1})
+    doc["nodes"] = [{"mesh": 0, "name": "big", "scale": [2.0, 2.0, 2.0]},
+                    {"mesh": 0, "name": "mirrored", "scale": [-1.0, 1.0, 1.0], "translation": [5.0, 0.0, 0.0],
+                     "extras": {"note": "kept"}, "extensions": {"EXT_jade_test_unknown": {"level": 3}}},
+                    {"name": "eye", "camera": 0, "translation": [0.0, 0.0, 10.0]}]
+    doc["scenes"] = [{"nodes": [0, 1, 2], "name": "all"}]
+    doc["cameras"] = [{"type": "perspective", "perspective": {"yfov": 0.7, "znear": 0.1, "zfar": 100.0}}]
+    doc["extensionsUsed"] = ["EXT_jade_test_unknown"]
+    doc["extensions"] = {"EXT_jade_test_unknown": {"document": True}}
+    doc["extras"] = {"pipeline": {"stage": 2, "tags": ["a", None, 12345678901234]}}
+    doc["asset"]["extras"] = {"author": "make_test_data.py"}
+    return g
+
+
 # ------------------------------------------------------------------------- nodes_transforms --
 
 def nodes_transforms():
@@ -453,6 +493,7 @@ def main():
     write(os.path.join(HERE, "nodes_transforms.gltf"), dump(nodes_transforms().finish()))
     write(os.path.join(HERE, "strip_fan.gltf"), dump(strip_fan().finish()))
     write(os.path.join(HERE, "sparse_cube.gltf"), dump(sparse_cube().finish()))
+    write(os.path.join(HERE, "asset_features.gltf"), dump(asset_features().finish()))
     write(os.path.join(HERE, "skinned_morph_anim.gltf"), dump(skinned_morph_anim().finish()))
     # Not in bad/: those must all fail load_mesh, which ignores animations.
     os.makedirs(BAD_ANIMATION, exist_ok=True)

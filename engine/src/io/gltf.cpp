@@ -127,12 +127,20 @@ public:
         mesh_.name = name;
     }
 
+    /// Every triangle primitive of the instance. Points and lines are left out (a baked asset
+    /// may carry them); a file with nothing else fails naming the first of them (finish()).
     void add(const MeshInstance& instance)
     {
         const auto& mesh = model_.meshes[size_t(instance.mesh)];
-        for (size_t p = 0; p < mesh.primitives.size(); ++p)
-            add_primitive("mesh " + std::to_string(instance.mesh) + " primitive " + std::to_string(p) + ": ", mesh.primitives[p],
-                          instance.world);
+        for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+            const std::string where = "mesh " + std::to_string(instance.mesh) + " primitive " + std::to_string(p) + ": ";
+            if (const int mode = mesh.primitives[p].mode; !is_triangle_mode(mode)) {
+                if (skipped_.empty())
+                    skipped_ = where + "mode " + std::to_string(mode) + " (" + mode_name(mode) + ") is not supported (only triangles)";
+                continue;
+            }
+            add_primitive(where, mesh.primitives[p], instance.world);
+        }
     }
 
     /// Only primitive `p` of the instance (a scene object, io/scene_gltf.cpp).
@@ -144,6 +152,7 @@ public:
 
     TriangleMesh finish()
     {
+        if (mesh_.indices.empty() && !skipped_.empty()) fail(name_, skipped_);
         if (!all_normals_) mesh_.normals.clear();
         if (!all_ao_) mesh_.baked_ao.clear();
         if (!all_tm_) mesh_.baked_tm.clear();
@@ -273,6 +282,7 @@ private:
     AccessorReader accessors_;
     TriangleMesh mesh_;
     bool all_normals_ = true, all_ao_ = true, all_tm_ = true, all_thickness_ = true;
+    std::string skipped_;  ///< why the first non-triangle primitive was left out
 };
 
 }  // namespace
@@ -312,6 +322,7 @@ std::vector<GltfPrimitive> read_gltf_primitives(const std::string& name, const t
     for (const auto& instance : scene_mesh_instances(name, model)) {
         const auto& mesh = model.meshes[size_t(instance.mesh)];
         for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+            if (!is_triangle_mode(mesh.primitives[p].mode)) continue;  // points and lines are no objects
             MeshBuilder builder(name, model);
             builder.add(instance, p);
             out.push_back({builder.finish(), instance.node, instance.mesh, int(p), mesh.primitives[p].material});
