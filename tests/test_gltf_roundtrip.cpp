@@ -83,8 +83,8 @@ void expect_same_accessor(const GltfFile& in, const json& ia, const GltfFile& ou
     EXPECT_TRUE(in.elements(ia.get<int>()) == out.elements(ib.get<int>())) << where << ": accessor data differ";
 }
 
-/// Everything but the data-bearing properties must be equal JSON; data is compared through the
-/// accessors and images. `added` lists what the bake may add to an object.
+/// Every property of `a` but the data-bearing ones must be in `b` as equal JSON; the data are
+/// compared through the accessors and images.
 void expect_same_except(const json& a, const json& b, const std::set<std::string>& data_keys, const std::string& where)
 {
     for (const auto& [key, value] : a.items())

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 
@@ -29,8 +30,9 @@ static void print_device(const DeviceInfo& d)
 /// What `jade bake` recorded in a glTF's asset.extras.jade (bake_record.hpp), if anything.
 static void print_bake_record(const std::string& path)
 {
-    const auto ext = std::filesystem::path(path).extension().string();
-    if (ext != ".glb" && ext != ".gltf" && ext != ".GLB" && ext != ".GLTF") return;
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (ext != ".glb" && ext != ".gltf") return;
     const std::string text = GltfAsset::load(path).asset_extras_json();
     const auto extras = nlohmann::json::parse(text.empty() ? "{}" : text, nullptr, false);
     if (!extras.is_object() || !extras.contains("jade") || !extras["jade"].is_object()) {

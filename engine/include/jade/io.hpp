@@ -104,9 +104,10 @@ public:
     std::string asset_extras_json() const;
 
     struct Impl;
-    const Impl& impl() const { return *impl_; }
 
 private:
+    friend void save_baked_asset(const std::filesystem::path&, const GltfAsset&, const std::vector<BakedAttributes>&,
+                                 const std::string&);
     explicit GltfAsset(std::unique_ptr<Impl> impl);
     std::unique_ptr<Impl> impl_;
 };

@@ -404,7 +404,7 @@ void save_baked_asset(const std::filesystem::path& path, const GltfAsset& asset,
     const auto name = io::display_name(path);
     const auto ext = io::lower_extension(path);
     if (ext != ".glb" && ext != ".gltf") fail(name, "unsupported glTF extension '" + ext + "' (supported: .glb, .gltf)");
-    const auto& a = asset.impl();
+    const auto& a = *asset.impl_;
     const std::string bytes = io::naming_file(name, [&] {
         check_baked(a, name, baked);
         return Writer(a, name, ext == ".glb").write(baked, asset_extras_json);
