@@ -41,7 +41,7 @@ std::vector<uint32_t> every(size_t n, size_t count)
     return v;
 }
 
-void check_frames(Context& ctx, const char* asset, double d_rel)
+void check_frames(Context& ctx, const char* asset, double d_rel, TmMethod method = TmMethod::Auto)
 {
     const TriangleMesh source = load_mesh(test::asset(asset));
     const PreparedMesh rest = prepare_mesh(source);
@@ -49,6 +49,7 @@ void check_frames(Context& ctx, const char* asset, double d_rel)
     material.profile[0] = ChannelProfile::burley(d_rel * rest.diagonal * 0.5);  // coloured
     BakeSettings settings = BakeSettings::preset(Quality::Default);
     settings.ao.rays = 32;
+    settings.method = method;
     Baker baker(ctx);
     DynamicBake dynamic(baker, rest, material, settings);
 
@@ -58,6 +59,7 @@ void check_frames(Context& ctx, const char* asset, double d_rel)
         ASSERT_EQ(frame.vertex_count(), rest.vertex_count());
         frame.diagonal = rest.diagonal;  // DynamicBake keeps the rest pose's AO distances
         BakeResult refit = dynamic.bake(frame.positions, frame.normals, frame.areas);
+        if (method != TmMethod::Auto) ASSERT_EQ(refit.method_used, method);
 
         // AO: the same rays as the float64 reference over the deformed mesh.
         auto ao_ref = reference_ao(frame, settings.ao);
@@ -94,6 +96,30 @@ void check_frames(Context& ctx, const char* asset, double d_rel)
 
 TEST_F(GpuTest, DynamicBakeFollowsATwistedDragon) { check_frames(context(), "ChineseDragon-10kv.off", 0.05); }
 TEST_F(GpuTest, DynamicBakeFollowsATwistedBunny) { check_frames(context(), "bunny00.off", 0.05); }
+TEST_F(GpuTest, DynamicBakeWithTheGridFollowsATwistedDragon)
+{
+    check_frames(context(), "ChineseDragon-10kv.off", 0.05, TmMethod::Grid);
+}
+
+// The grid's fixed-point splat makes a re-bake of a still mesh bit for bit the same.
+TEST_F(GpuTest, GridReBakeOfAStillMeshIsBitIdentical)
+{
+    const PreparedMesh rest = prepare_mesh(load_mesh(test::asset("ChineseDragon-10kv.off")));
+    const Material material = burley_material(glm::dvec3(0.05 * rest.diagonal), glm::vec3(0.8f));
+    BakeSettings settings = BakeSettings::preset(Quality::Default);
+    settings.ao.rays = 8;
+    settings.method = TmMethod::Grid;
+    Baker baker(context());
+    DynamicBake dynamic(baker, rest, material, settings);
+    const BakeResult a = dynamic.bake(rest.positions, rest.normals, rest.areas);
+    const BakeResult b = dynamic.bake(rest.positions, rest.normals, rest.areas);
+    EXPECT_EQ(a.method_used, TmMethod::Grid);
+    EXPECT_EQ(a.tm, b.tm);
+    const BakeResult fresh = baker.bake_tm(rest, a.ao, material, settings);
+    double apart = 0;
+    for (size_t i = 0; i < a.tm.size(); ++i) apart = std::max(apart, double(std::abs(a.tm[i].x - fresh.tm[i].x) / fresh.tm[i].x));
+    EXPECT_LE(apart, 2e-3) << "the dynamic grid (padded bounds) against a static one";
+}
 
 TEST_F(GpuTest, DynamicBakeRejectsInputsOfTheWrongSize)
 {

@@ -92,7 +92,8 @@ TEST_F(GpuTest, AoMatchesReferenceOnBunny) { check_ao_against_reference(context(
 TEST_F(GpuTest, AoMatchesReferenceOnDragon) { check_ao_against_reference(context(), dragon(), 64); }
 
 // t_m on the dragon for d at 1 %, 5 % and 20 % of the diagonal: the all-pairs pass within
-// 1e-4 relative, the clustered default within 1 %, high within 0.1 % of the float64 reference.
+// 1e-4 relative; the clustered and the grid far fields within 1 % at the default quality and
+// 0.1 % at the high one, of the float64 reference.
 class TmAccuracy : public GpuTest, public ::testing::WithParamInterface<double> {};
 
 TEST_P(TmAccuracy, DragonAgainstFloat64)
@@ -112,14 +113,19 @@ TEST_P(TmAccuracy, DragonAgainstFloat64)
     auto e = relative_error(baker.bake_tm(mesh, ao, m, exact).tm, ref, at);
     EXPECT_LE(e.max, 1e-4) << "exact pass, rms " << e.rms;
 
-    auto def = baker.bake_tm(mesh, ao, m, BakeSettings::preset(Quality::Default));
-    EXPECT_EQ(def.method_used, TmMethod::Clustered);
-    expect_finite_nonnegative(def.tm);
-    e = relative_error(def.tm, ref, at);
-    EXPECT_LE(e.max, 1e-2) << "default quality, rms " << e.rms;
-
-    e = relative_error(baker.bake_tm(mesh, ao, m, BakeSettings::preset(Quality::High)).tm, ref, at);
-    EXPECT_LE(e.max, 1e-3) << "high quality, rms " << e.rms;
+    EXPECT_EQ(baker.bake_tm(mesh, ao, m, BakeSettings::preset(Quality::Default)).method_used, TmMethod::Grid)
+        << "auto: the grid far field";
+    for (TmMethod method : {TmMethod::Clustered, TmMethod::Grid})
+        for (Quality q : {Quality::Default, Quality::High}) {
+            BakeSettings settings = BakeSettings::preset(q);
+            settings.method = method;
+            const BakeResult r = baker.bake_tm(mesh, ao, m, settings);
+            EXPECT_EQ(r.method_used, method);
+            expect_finite_nonnegative(r.tm);
+            e = relative_error(r.tm, ref, at);
+            EXPECT_LE(e.max, q == Quality::High ? 1e-3 : 1e-2)
+                << tm_method_name(method) << ", " << (q == Quality::High ? "high" : "default") << " quality, rms " << e.rms;
+        }
 }
 
 INSTANTIATE_TEST_SUITE_P(ProfileWidth, TmAccuracy, ::testing::Values(0.01, 0.05, 0.2));
@@ -165,6 +171,80 @@ TEST_F(GpuTest, ClusteredMatchesReferenceOnBunny)
     EXPECT_LE(e.max, 1e-2) << "rms " << e.rms;
 }
 
+// The grid far field on the bunny, Burley RGB with d at 1 %, 5 % and 20 % of the diagonal:
+// default quality within 1 %, high within 0.1 % of the float64 reference.
+class GridAccuracy : public GpuTest, public ::testing::WithParamInterface<double> {};
+
+TEST_P(GridAccuracy, BunnyAgainstFloat64)
+{
+    const PreparedMesh& mesh = bunny();
+    const double d = GetParam() * mesh.diagonal;
+    const Material m = burley_material(glm::dvec3(d, 0.5 * d, 0.25 * d), glm::vec3(0.8f));
+    Baker baker(context());
+    AoSettings ao_settings;
+    ao_settings.rays = 16;
+    const auto ao = baker.bake_ao(mesh, ao_settings);
+    const auto at = sample_vertices(mesh.vertex_count(), 200);
+    const auto ref = reference_tm(mesh, ao, m, at);
+    for (Quality q : {Quality::Default, Quality::High}) {
+        BakeSettings grid = BakeSettings::preset(q);
+        grid.method = TmMethod::Grid;
+        const BakeResult g = baker.bake_tm(mesh, ao, m, grid);
+        expect_finite_nonnegative(g.tm);
+        const auto e = relative_error(g.tm, ref, at);
+        EXPECT_LE(e.max, q == Quality::High ? 1e-3 : 1e-2) << (q == Quality::High ? "high" : "default") << ", rms " << e.rms;
+        RecordProperty(q == Quality::High ? "high_max_error" : "default_max_error", std::to_string(e.max));
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(ProfileWidth, GridAccuracy, ::testing::Values(0.01, 0.05, 0.2));
+
+// A long thin mesh (1000:1) with a profile much shorter than it: the grids stay small (their
+// bounds, not a cube around the mesh) and the result matches the float64 reference.
+// A closed tube along x, `rings` rings of `segments` vertices, capped by two fans.
+TriangleMesh long_tube(float length, float radius, uint32_t rings, uint32_t segments)
+{
+    TriangleMesh t;
+    t.name = "tube";
+    for (uint32_t r = 0; r < rings; ++r)
+        for (uint32_t s = 0; s < segments; ++s) {
+            const float a = 2.0f * float(M_PI) * float(s) / float(segments);
+            t.positions.push_back({length * (float(r) / float(rings - 1) - 0.5f), radius * std::cos(a), radius * std::sin(a)});
+        }
+    for (uint32_t r = 0; r + 1 < rings; ++r)
+        for (uint32_t s = 0; s < segments; ++s) {
+            const uint32_t a = r * segments + s, b = r * segments + (s + 1) % segments, c = a + segments, d = b + segments;
+            t.indices.insert(t.indices.end(), {a, c, b, b, c, d});
+        }
+    const uint32_t end[2] = {uint32_t(t.positions.size()), uint32_t(t.positions.size()) + 1};
+    t.positions.push_back({-0.5f * length, 0, 0});
+    t.positions.push_back({0.5f * length, 0, 0});
+    for (uint32_t s = 0; s < segments; ++s) {
+        const uint32_t n = (s + 1) % segments, last = (rings - 1) * segments;
+        t.indices.insert(t.indices.end(), {end[0], s, n, end[1], last + n, last + s});
+    }
+    return t;
+}
+
+TEST_F(GpuTest, GridOnALongThinMeshStaysSmallAndRight)
+{
+    const PreparedMesh mesh = prepare_mesh(long_tube(1000.0f, 0.5f, 2001, 6));
+    const Material m = burley_material(glm::dvec3(2.0, 1.0, 0.5), glm::vec3(0.8f));
+    const std::vector<float> ao(mesh.vertex_count(), 0.2f);
+    Baker baker(context());
+    BakeSettings grid = BakeSettings::preset(Quality::Default);
+    grid.method = TmMethod::Grid;
+    const BakeResult g = baker.bake_tm(mesh, ao, m, grid);
+    EXPECT_LT(g.tm_bytes, 64u << 20) << "device memory of the t_m passes";
+    const auto at = sample_vertices(mesh.vertex_count(), 200);
+    EXPECT_LE(relative_error(g.tm, reference_tm(mesh, ao, m, at), at).max, 1e-2);
+    // A profile within the near field's reach needs no grid at all.
+    const Material stiff = burley_material(glm::dvec3(1e-3), glm::vec3(0.8f));
+    const BakeResult s = baker.bake_tm(mesh, ao, stiff, grid);
+    EXPECT_LT(s.tm_bytes, 16u << 20);
+    EXPECT_LE(relative_error(s.tm, reference_tm(mesh, ao, stiff, at), at).max, 1e-4);
+}
+
 // Stiff: the self disk holds all of the profile, t_m = 1 − A_o. At d = 1e-6 × diagonal that
 // holds for every vertex whose nearest neighbour is more than 200 d away (the dragon has
 // sliver pairs 4e-5 × diagonal apart, where the surface itself is still resolved); at
@@ -183,7 +263,8 @@ TEST_F(GpuTest, ExtremeProfileWidthsReachTheirLimits)
             float len = glm::distance(mesh.positions[a], mesh.positions[b]);
             nearest[a] = std::min(nearest[a], len), nearest[b] = std::min(nearest[b], len);
         }
-    for (TmMethod method : {TmMethod::Exact, TmMethod::Clustered}) {
+    for (TmMethod method : {TmMethod::Exact, TmMethod::Clustered, TmMethod::Grid}) {
+        SCOPED_TRACE(tm_method_name(method));
         BakeSettings s;
         s.method = method;
         for (double rel : {1e-6, 1e-8}) {

@@ -60,4 +60,20 @@ TEST_F(GpuTest, MillionVertexMeshBakesInChunksAndMatchesTheFloat64Reference)
     // Draft (theta 1.6) is documented at <= 1e-2 of float64 (docs/accuracy.md).
     EXPECT_LE(worst, 1e-2) << "t_m against float64";
     RecordProperty("max_rel_tm_error", std::to_string(worst));
+
+    // The grid far field on the same AO: bounded memory (r_cut grows when the grids would
+    // not fit, bake/grid_field.hpp), the same bound against float64.
+    BakeSettings grid = settings;
+    grid.method = TmMethod::Grid;
+    const BakeResult g = baker.bake_tm(mesh, r.ao, material, grid);
+    ASSERT_EQ(g.method_used, TmMethod::Grid);
+    EXPECT_LT(g.tm_bytes, uint64_t(2) << 30) << "device memory of the grid t_m passes";
+    double grid_worst = 0;
+    for (size_t k = 0; k < at.size(); ++k)
+        for (int c = 0; c < 3; ++c) {
+            ASSERT_TRUE(std::isfinite(g.tm[at[k]][c]) && g.tm[at[k]][c] >= 0.0f);
+            grid_worst = std::max(grid_worst, std::abs(g.tm[at[k]][c] - tm_ref[k][c]) / tm_ref[k][c]);
+        }
+    EXPECT_LE(grid_worst, 1e-2) << "grid t_m against float64";
+    RecordProperty("max_rel_tm_error_grid", std::to_string(grid_worst));
 }

@@ -246,16 +246,17 @@ TEST_F(GpuTest, ScatteringDistanceFromTinyToHugeStaysFiniteAndReachesItsLimits)
     AoSettings ao_settings;
     ao_settings.rays = 32;
     const auto ao = baker.bake_ao(mesh, ao_settings);
-    std::vector<glm::vec3> at_1e5[2];
-    double worst[2] = {0, 0};
+    const TmMethod methods[3] = {TmMethod::Exact, TmMethod::Clustered, TmMethod::Grid};
+    std::vector<glm::vec3> at_1e5[3];
+    double worst[3] = {0, 0, 0};
     for (int k = -6; k <= 6; ++k) {
         const double d = std::pow(10.0, k) * mesh.diagonal;
         const Material m = burley_material(glm::dvec3(d), glm::vec3(0.8f));
         const auto reference = reference_tm(mesh, ao, m);
-        for (int method = 0; method < 2; ++method) {
-            SCOPED_TRACE(std::string(method == 0 ? "exact" : "clustered") + ", d = 1e" + std::to_string(k) + " x diagonal");
+        for (int method = 0; method < 3; ++method) {
+            SCOPED_TRACE(std::string(tm_method_name(methods[method])) + ", d = 1e" + std::to_string(k) + " x diagonal");
             BakeSettings s = BakeSettings::preset(Quality::Default);
-            s.method = method == 0 ? TmMethod::Exact : TmMethod::Clustered;
+            s.method = methods[method];
             const auto tm = baker.bake_tm(mesh, ao, m, s).tm;
             ASSERT_TRUE(finite_nonnegative(ao, tm));
             const double e = max_relative(tm, reference, 1e-30);
@@ -271,8 +272,8 @@ TEST_F(GpuTest, ScatteringDistanceFromTinyToHugeStaysFiniteAndReachesItsLimits)
                 }
         }
     }
-    std::printf("max relative error against float64 over d = 1e-6..1e6 x diagonal: exact %.2e, clustered %.2e\n",
-                worst[0], worst[1]);
+    std::printf("max relative error against float64 over d = 1e-6..1e6 x diagonal: exact %.2e, clustered %.2e, grid %.2e\n",
+                worst[0], worst[1], worst[2]);
 }
 
 // ----------------------------------------------------------------------- t_m extremes --
@@ -432,8 +433,14 @@ TEST_F(GpuTest, OddMeshesBakeFiniteAndMatchTheFloat64Reference)
         ASSERT_TRUE(finite_nonnegative(r.ao, def));
         const double default_error = max_relative(def, ref_tm, 1e-12);
         EXPECT_LE(default_error, 1e-2);
-        std::printf("%-20s %4zu vertices: t_m max relative error exact %.1e, clustered %.1e\n", what.c_str(),
-                    mesh.vertex_count(), exact_error, default_error);
+        BakeSettings grid = clustered;
+        grid.method = TmMethod::Grid;
+        const auto by_grid = baker.bake_tm(mesh, r.ao, m, grid).tm;
+        ASSERT_TRUE(finite_nonnegative(r.ao, by_grid));
+        const double grid_error = max_relative(by_grid, ref_tm, 1e-12);
+        EXPECT_LE(grid_error, 1e-2);
+        std::printf("%-20s %4zu vertices: t_m max relative error exact %.1e, clustered %.1e, grid %.1e\n", what.c_str(),
+                    mesh.vertex_count(), exact_error, default_error, grid_error);
 
         if (what == "degenerate triangles") {
             EXPECT_EQ(mesh.dropped_triangles, 3u);

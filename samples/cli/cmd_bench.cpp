@@ -27,6 +27,42 @@ double max_rel_error(const std::vector<glm::vec3>& gpu, const std::vector<glm::d
     return e;
 }
 
+double median(std::vector<double> v)
+{
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+// The clustered and the grid far fields, alternately on the same AO, `pairs` times: GPU time of
+// the t_m passes, the median of the per-pair ratios, memory, and each one's error.
+void compare_far_fields(Baker& baker, const PreparedMesh& p, const std::vector<float>& ao, const Material& m,
+                        const BakeSettings& s, uint32_t pairs, const std::vector<glm::dvec3>& ref,
+                        const std::vector<uint32_t>& at)
+{
+    BakeSettings clustered = s, grid = s;
+    clustered.method = TmMethod::Clustered;
+    grid.method = TmMethod::Grid;
+    baker.bake_tm(p, ao, m, grid);  // warm-up: the grid pipelines
+    std::vector<double> tc, tg, ratio;
+    BakeResult rc, rg;
+    for (uint32_t i = 0; i < pairs; ++i) {
+        rc = baker.bake_tm(p, ao, m, clustered);
+        rg = baker.bake_tm(p, ao, m, grid);
+        tc.push_back(rc.timings.gpu_total_ms);
+        tg.push_back(rg.timings.gpu_total_ms);
+        ratio.push_back(tc.back() / tg.back());
+    }
+    std::printf("\nt_m far field, clustered (theta %g) and grid (resolution %g), %u alternating runs (GPU time of all "
+                "t_m passes, median):\n", double(s.tm_epsilon), double(s.tm_grid_resolution), pairs);
+    std::printf("  clustered  %10s   %7.2f MiB   max rel error %.2e\n", format_ms(median(tc)).c_str(),
+                double(rc.tm_bytes) / 1048576.0, max_rel_error(rc.tm, ref, at));
+    std::printf("  grid       %10s   %7.2f MiB   max rel error %.2e\n", format_ms(median(tg)).c_str(),
+                double(rg.tm_bytes) / 1048576.0, max_rel_error(rg.tm, ref, at));
+    std::printf("  grid is %.2fx faster (median of the per-run ratios)\n  grid stages:", median(ratio));
+    for (auto& [stage, ms] : rg.timings.gpu_stages) std::printf(" %s %s;", stage.c_str(), format_ms(ms).c_str());
+    std::printf("\n");
+}
+
 int bench_bake(const Args& args)
 {
     TriangleMesh mesh = load_mesh_arg(args.positional().size() > 1 ? args.positional()[1] : "bunny");
@@ -83,8 +119,9 @@ int bench_bake(const Args& args)
                 format_ms(cpu_tm_ms).c_str(), at.size(), cpu_tm_ms / tm_ms);
     std::printf("\n");
     compare_ao_with_embree(baker, p, s.ao, std::max(5u, reps));
-    std::printf("\nmax relative t_m error vs float64 on %zu vertices: clustered %.2e, all-pairs %.2e\n", at.size(),
-                max_rel_error(best.tm, ref_tm, at), max_rel_error(ex.tm, ref_tm, at));
+    std::printf("\nmax relative t_m error vs float64 on %zu vertices: %s %.2e, all-pairs %.2e\n", at.size(),
+                tm_method_name(best.method_used), max_rel_error(best.tm, ref_tm, at), max_rel_error(ex.tm, ref_tm, at));
+    compare_far_fields(baker, p, best.ao, m, s, std::max(5u, reps), ref_tm, at);
     return 0;
 }
 

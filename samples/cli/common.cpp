@@ -45,7 +45,8 @@ std::vector<OptionSpec> bake_options()
             {"ao-distance", "F", "AO max hit distance, fraction of the diagonal (default 0.1)"},
             {"ao-epsilon", "F", "AO ray origin offset, fraction of the diagonal (default 1e-4)"},
             {"seed", "N", "AO random seed (default 1)"},
-            {"method", "M", "t_m far field: auto | exact | clustered"},
+            {"method", "M", "t_m far field: auto | exact | clustered | grid"},
+            {"grid-resolution", "C", "grid far field: cells per Gaussian sigma, 1.5..4 (draft 1.5, default 2, high 3)"},
             {"epsilon", "T", "t_m far-field opening ratio theta (0.3: ~2e-5 error, 1: ~2e-3)"}};
 }
 
@@ -135,11 +136,14 @@ BakeSettings bake_settings_from_args(const Args& args)
     s.ao.max_distance_rel = float(args.number("ao-distance", s.ao.max_distance_rel, 1e-6, 1e6));
     s.ao.epsilon_rel = float(args.number("ao-epsilon", s.ao.epsilon_rel, 0.0, 1.0));
     s.ao.seed = args.count("seed", s.ao.seed, 0, 0xffffffffu);
-    std::string method = args.get_or("method", "auto");
-    if (method == "exact") s.method = TmMethod::Exact;
-    else if (method == "clustered") s.method = TmMethod::Clustered;
-    else if (method != "auto") args.fail("--method: '" + method + "' is not one of auto, exact, clustered");
+    const std::string method = args.get_or("method", "auto");
+    try {
+        s.method = parse_tm_method(method);
+    } catch (const Error&) {
+        args.fail("--method: '" + method + "' is not one of auto, exact, clustered, grid");
+    }
     s.tm_epsilon = float(args.number("epsilon", s.tm_epsilon, 1e-6, 4.0));
+    s.tm_grid_resolution = float(args.number("grid-resolution", s.tm_grid_resolution, 1.5, 4.0));
     return s;
 }
 

@@ -32,6 +32,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <span>
 #include <vector>
@@ -94,10 +95,15 @@ class Context;
 
 /// How t_m's far field is summed.
 enum class TmMethod {
-    Auto,       ///< clustered with the quality's ε (exact when the mesh is small)
+    Auto,       ///< the fastest that meets the quality's bound (rule: docs/bake.md, "Choosing the far field")
     Exact,      ///< all pairs, O(n²): the GPU ground truth
     Clustered,  ///< error-controlled Barnes–Hut far field, O(n log n)
+    Grid,       ///< the profile's smooth part on 3-D grids, the rest exact nearby: O(n + cells)
 };
+
+/// "auto", "exact", "clustered", "grid"; parse_tm_method throws jade::Error on anything else.
+const char* tm_method_name(TmMethod method);
+TmMethod parse_tm_method(std::string_view name);
 
 /// Quality presets: the AO ray count and the t_m accuracy knob ε (see shaders/tm_cluster.comp).
 ///   Draft: 16 rays, θ = 1.6   Default: 64 rays, θ = 1.2   High: 256 rays, θ = 0.4
@@ -117,6 +123,11 @@ struct BakeSettings {
     /// error on the bunny and the dragon (d = 5 % of the diagonal): θ = 1: 1.6e-3, 0.7: 4.7e-4,
     /// 0.5: 1.6e-4, 0.3: 1.6e-5.
     float tm_epsilon = 1.2f;
+    /// The grid far field's accuracy knob (TmMethod::Grid): grid cells per Gaussian σ, in
+    /// [1.5, 4]. It also sets how far the exact near field reaches (2.5·resolution mean vertex
+    /// spacings) and the finest Gaussian (that reach / resolution); memory grows as its cube.
+    /// Measured max relative error: docs/bake.md.
+    float tm_grid_resolution = 2.0f;
     /// All-pairs method only (TmMethod::Exact, or Auto on small meshes): accumulate the far
     /// field in float64 instead of compensated float32 sums (pair values stay float32). Needs
     /// DeviceInfo::float64 (jade::Error otherwise); for measuring what float32 sums cost in
@@ -139,6 +150,7 @@ struct BakeResult {
     std::vector<float> thickness;    ///< per bake vertex, mesh units; empty without the pass
     BakeTimings timings;
     TmMethod method_used = TmMethod::Exact;
+    uint64_t tm_bytes = 0;           ///< device memory of the t_m passes: near lists, far field, sums
 };
 
 /// Runs the AO and t_m passes on the GPU. Keeps its compute pipelines between bakes; create

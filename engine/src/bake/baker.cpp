@@ -24,11 +24,29 @@ BakeSettings BakeSettings::preset(Quality q)
 {
     BakeSettings s;
     switch (q) {
-    case Quality::Draft: s.ao.rays = 16, s.thickness.rays = 16, s.tm_epsilon = 1.6f; break;
-    case Quality::Default: s.ao.rays = 64, s.thickness.rays = 32, s.tm_epsilon = 1.2f; break;
-    case Quality::High: s.ao.rays = 256, s.thickness.rays = 64, s.tm_epsilon = 0.4f; break;
+    case Quality::Draft: s.ao.rays = 16, s.thickness.rays = 16, s.tm_epsilon = 1.6f, s.tm_grid_resolution = 1.5f; break;
+    case Quality::Default: s.ao.rays = 64, s.thickness.rays = 32, s.tm_epsilon = 1.2f, s.tm_grid_resolution = 2.0f; break;
+    case Quality::High: s.ao.rays = 256, s.thickness.rays = 64, s.tm_epsilon = 0.4f, s.tm_grid_resolution = 3.0f; break;
     }
     return s;
+}
+
+const char* tm_method_name(TmMethod method)
+{
+    switch (method) {
+    case TmMethod::Exact: return "exact";
+    case TmMethod::Clustered: return "clustered";
+    case TmMethod::Grid: return "grid";
+    case TmMethod::Auto: break;
+    }
+    return "auto";
+}
+
+TmMethod parse_tm_method(std::string_view name)
+{
+    for (TmMethod m : {TmMethod::Auto, TmMethod::Exact, TmMethod::Clustered, TmMethod::Grid})
+        if (name == tm_method_name(m)) return m;
+    throw Error("unknown t_m method '" + std::string(name) + "' (auto, exact, clustered or grid)");
 }
 
 
@@ -73,7 +91,8 @@ BakeResult Baker::bake_tm(const PreparedMesh& mesh, std::span<const float> ao, c
     BakeResult r;
     r.ao.assign(ao.begin(), ao.end());
     r.tm = m.tm.read<glm::vec3>(mesh.vertex_count());
-    r.method_used = m.exact ? TmMethod::Exact : TmMethod::Clustered;
+    r.method_used = m.method();
+    r.tm_bytes = m.tm_bytes();
     finish_timings(r.timings, timer, setup, t0);
     return r;
 }
@@ -106,7 +125,8 @@ BakeResult Baker::bake(const PreparedMesh& mesh, const Material& material, const
     r.ao = m.ao.read<float>(mesh.vertex_count());
     if (settings.thickness.enabled()) r.thickness = m.thickness.read<float>(mesh.vertex_count());
     r.tm = m.tm.read<glm::vec3>(mesh.vertex_count());
-    r.method_used = m.exact ? TmMethod::Exact : TmMethod::Clustered;
+    r.method_used = m.method();
+    r.tm_bytes = m.tm_bytes();
     finish_timings(r.timings, timer, setup, t0);
     return r;
 }

@@ -6,6 +6,7 @@
 
 #include "bake/bvh.hpp"
 #include "bake/gpu_profile.hpp"
+#include "bake/grid_field.hpp"
 #include "bake/near_field.hpp"
 #include "bake/ray_items.hpp"
 #include "gpu/buffer.hpp"
@@ -73,7 +74,9 @@ struct ThicknessResolvePush { uint32_t vertex_count, rays, slices; float max_dis
 struct GatherPush { uint32_t vertex_count; };
 struct RefitPush { uint32_t count, first; };
 struct RayRefitPush { uint32_t count, first, mode; };
-struct NearPush { uint32_t first_slot, slot_count, index_base; };
+struct NearPush { uint32_t first_slot, slot_count, index_base, source_base; float cut2, table_scale; };
+struct GridSplatPush { uint32_t vertex_count, level_count; float cube_side; };
+struct GridGatherPush { uint32_t level_count, slot_begin, slot_count; float cube_side; };
 struct ExactPush { uint32_t vertex_count, source_begin, source_end; };
 struct ClusterPush { uint32_t vertex_count, node_count; float epsilon; uint32_t work_budget, first_point, slot_begin, slot_end; };
 
@@ -146,6 +149,8 @@ using bake::GatherPush;
 using bake::RefitPush;
 using bake::RayRefitPush;
 using bake::NearPush;
+using bake::GridSplatPush;
+using bake::GridGatherPush;
 using bake::ExactPush;
 using bake::ClusterPush;
 using bake::storage_bindings;
@@ -160,7 +165,10 @@ struct Baker::Impl {
     // Pipelines are made on first use: a scene that never needs one never creates it.
     std::optional<gpu::Kernel> ao_trace, ao_resolve, gather, refit, ray_refit, thickness_trace, thickness_resolve;
     // t_m kernels per [grey (1 channel) or RGB][profile kind: Burley, dipole, Gaussians, mixed].
-    std::optional<gpu::Kernel> tm_near[2][4], tm_exact[2][4], tm_cluster[2][4];
+    std::optional<gpu::Kernel> tm_exact[2][4], tm_cluster[2][4];
+    std::optional<gpu::Kernel> tm_near[2][2][4];  // [grid far field][grey][kind]
+    std::optional<gpu::Kernel> grid_splat, grid_gather, grid_bounds;
+    std::optional<gpu::Kernel> grid_axis[2][2][bake::kGridMaxHalfWidth + 1];  // [fixed-point input][blur, restrict][half-width]
     std::optional<gpu::Kernel> tm_exact_f64[2][4];  // BakeSettings::tm_float64_sums
 
     explicit Impl(gpu::Context& c) : ctx(c) {}
@@ -203,10 +211,14 @@ struct Baker::Impl {
     }
     // Specialisation constants of the t_m kernels: channel count and profile kind.
     static std::vector<uint32_t> tm_constants(const TmVariant& v) { return {v.grey ? 1u : 3u, v.kind}; }
-    const gpu::Kernel& near_kernel(const TmVariant& v)
+    const gpu::Kernel& near_kernel(const TmVariant& v, bool grid)
     {
-        return kernel(tm_near[v.grey][v.kind],
-                      {"tm_near", shaders::tm_near_comp(), storage_bindings(10), sizeof(NearPush), 64, tm_constants(v)});
+        std::vector<uint32_t> constants = tm_constants(v);
+        constants.push_back(grid ? 1u : 0u);
+        return kernel(tm_near[grid][v.grey][v.kind],
+                      {"tm_near", shaders::tm_near_comp(),
+                       {kStorage, kTexels, kStorage, kStorage, kStorage, kStorage, kTexels, kStorage, kStorage, kStorage},
+                       sizeof(NearPush), 64, constants});
     }
     const gpu::Kernel& exact_kernel(const TmVariant& v, bool float64_sums)
     {
@@ -255,17 +267,40 @@ struct Baker::Impl {
         std::vector<uint32_t> ray_work_offsets;     // [0, triangles) then one range per level
         // t_m.
         bool exact = false;
+        bool grid = false;  // the grid far field (bake/tm_grid.cpp) instead of the cluster tree
         TmVariant variant{};
         uint32_t node_count = 0, first_point = 0;  // first_point: texel of source 0 in `points`
         gpu::Buffer profiles, point_order, points, nodes, node_levels, tm;
-        gpu::Buffer partial_sum, partial_comp, resume, near_offsets, near_indices;
+        gpu::Buffer partial_sum, partial_comp, resume, near_offsets, near_disks, near_indices;
         gpu::TexelView point_texels, tree_texels;
+        gpu::TexelView source_texels;  // the sources as RGBA32UI (the near pass), from texel source_base
+        uint32_t source_base = 0;
         std::vector<uint32_t> level_offsets;
         struct NearWindow {
             uint32_t first_slot, slot_count, index_base;
             VkDeviceSize bytes;
         };
         std::vector<NearWindow> near_windows;  // near-pass dispatches, each within one binding's range
+        // The grid far field: its plan's sizes, cells (fixed-point splats, blurred values), two
+        // blur buffers for the largest grid, the levels and S(r) table. smooth_table is a
+        // placeholder for the other methods (the near pass always binds one).
+        float grid_cut2 = 0, grid_table_scale = 0, grid_cube_side = 0;
+        std::vector<bake::GpuGridLevel> grid_plan_levels;
+        uint64_t grid_bytes = 0;
+        double grid_r_cut = 0;
+        gpu::Buffer grid_levels, grid_splat, grid_cells, grid_scratch[2], smooth_table, grid_bounds;
+        gpu::TexelView smooth_table_texels, grid_splat_texels, grid_cell_texels, grid_scratch_texels[2];
+        uint32_t grid_level_count() const { return uint32_t(grid_plan_levels.size()); }
+        TmMethod method() const { return exact ? TmMethod::Exact : grid ? TmMethod::Grid : TmMethod::Clustered; }
+        uint64_t tm_bytes() const
+        {
+            uint64_t b = 0;
+            for (const gpu::Buffer* x : {&profiles, &point_order, &points, &nodes, &node_levels, &tm, &partial_sum, &partial_comp,
+                                         &resume, &near_offsets, &near_disks, &near_indices, &grid_levels, &grid_splat,
+                                         &grid_cells, &grid_scratch[0], &grid_scratch[1], &smooth_table})
+                b += *x ? x->size() : 0;
+            return b;
+        }
     };
 
     // Buffers bound whole as storage buffers must fit one binding; say so before the GPU is touched.
@@ -402,8 +437,14 @@ struct Baker::Impl {
         const size_t n = mesh.vertex_count();
         m.variant = tm_variant(material);
         m.exact = s.method == TmMethod::Exact || (s.method == TmMethod::Auto && n < kExactBelow);
+        // Auto takes the grid unless its grids had to be coarsened to fit in memory (a mesh
+        // whose bounds are vast for its vertex spacing): docs/bake.md, "Choosing the far field".
+        std::optional<bake::GridPlan> grid_plan;
+        if (!m.exact && (s.method == TmMethod::Grid || s.method == TmMethod::Auto))
+            grid_plan = plan_grid(mesh, material, m.variant, s, near_margin);
+        m.grid = grid_plan && (s.method == TmMethod::Grid || !grid_plan->coarsened);
         auto profiles = bake::to_gpu(material);
-        if (!m.exact) {
+        if (!m.exact && !m.grid) {
             // The faint test of tm_cluster.comp against the total area (≥ the total weight, so
             // never laxer than against the weight).
             double area = 0;
@@ -417,7 +458,12 @@ struct Baker::Impl {
         m.partial_sum = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m partial sums");
         m.partial_comp = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m partial compensation");
         bake::Bvh tree = bake::build_bvh(mesh.positions, mesh.positions, kPointLeafSize);
-        bake::NearLists near = bake::build_near_lists(mesh, tree, near_margin);
+        if (m.grid) prepare_grid(m, *grid_plan);
+        else {
+            m.smooth_table = gpu::Buffer(ctx, 16, kTexelUsage, "smooth-part table (unused)");
+            m.smooth_table_texels = gpu::TexelView(ctx, m.smooth_table, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "smooth-part table");
+        }
+        bake::NearLists near = bake::build_near_lists(mesh, tree, near_margin, float(m.grid_r_cut));
         std::vector<uint32_t> identity;
         if (m.exact) {
             identity.resize(n);
@@ -425,21 +471,30 @@ struct Baker::Impl {
         }
         // Rows in slot order, so a range of slots has a contiguous window of entries.
         near = bake::reorder_rows(near, m.exact ? std::span<const uint32_t>(identity) : std::span<const uint32_t>(tree.order));
+        // Entries name source slots: the near pass reads the sources in slot order as texels.
+        if (!m.exact) {
+            std::vector<uint32_t> slot_of(n);
+            for (uint32_t k = 0; k < n; ++k) slot_of[tree.order[k]] = k;
+            for (uint32_t& j : near.indices) j = slot_of[j];
+        }
         plan_near_windows(m, near.offsets);
         m.near_offsets = gpu::Buffer::from(ctx, near.offsets, kStorageUsage, "near-field offsets");
+        m.near_disks = gpu::Buffer::from(ctx, near.disk_counts, kStorageUsage, "near-field disk candidates");
         near.indices.resize(near.indices.size() + 64, 0);  // room for a window's aligned start and minimum size
         // Bound in windows (plan_near_windows), so it may outgrow one binding.
         m.near_indices = gpu::Buffer(ctx, near.indices.size() * 4, kStorageUsage, "near-field sources", false,
                                      gpu::StorageBinding::Windows);
         m.near_indices.upload(near.indices.data(), near.indices.size() * 4);
-        if (m.exact) {
-            m.point_order = gpu::Buffer::from(ctx, identity, kStorageUsage, "identity order");
+        if (m.exact || m.grid) {
+            m.point_order = m.exact ? gpu::Buffer::from(ctx, identity, kStorageUsage, "identity order")
+                                    : gpu::Buffer::from(ctx, tree.order, kStorageUsage, "point tree order");
             m.points = gpu::Buffer(ctx, n * 32, kTexelUsage, "t_m sources");
             m.point_texels = gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "t_m sources (texels)");
+            m.source_texels = gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_UINT, 16, "t_m sources (integer texels)");
             return;
         }
-        m.node_count = uint32_t(tree.nodes.size());
         m.point_order = gpu::Buffer::from(ctx, tree.order, kStorageUsage, "point tree order");
+        m.node_count = uint32_t(tree.nodes.size());
         m.nodes = gpu::Buffer::from(ctx, tree.nodes, kStorageUsage, "point tree nodes");
         bake::BvhLevels levels = bake::bvh_levels(tree);
         m.node_levels = gpu::Buffer::from(ctx, levels.nodes, kStorageUsage, "point tree levels");
@@ -454,8 +509,33 @@ struct Baker::Impl {
         m.points = gpu::Buffer(ctx, VkDeviceSize(m.first_point) * 16 + n * 32, kTexelUsage, "t_m cluster tree and sources", false,
                                gpu::StorageBinding::Windows);  // bound as two windows, each checked above
         m.tree_texels = gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_UINT, 16, "t_m cluster tree and sources (texels)");
+        m.source_texels = gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_UINT, 16, "t_m cluster tree and sources (texels)");
+        m.source_base = m.first_point;
         m.resume = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m traversal resume state");
     }
+
+    // The near pass over tree slots [slot_begin, slot_end): starts every target's partial sums.
+    void record_near(VkCommandBuffer cmd, MeshState& m, uint32_t slot_begin, uint32_t slot_end)
+    {
+        for (const auto& w : m.near_windows) {
+            const uint32_t first = std::max(w.first_slot, slot_begin), end = std::min(w.first_slot + w.slot_count, slot_end);
+            if (first >= end) continue;
+            near_kernel(m.variant, m.grid)
+                .dispatch(cmd, end - first,
+                          NearPush{first, end - first, w.index_base, m.source_base, m.grid_cut2, m.grid_table_scale},
+                          {m.profiles, m.source_texels, m.near_offsets,
+                           gpu::Binding(m.near_indices.handle(), VkDeviceSize(w.index_base) * 4, w.bytes), m.near_disks,
+                           m.point_order, m.smooth_table_texels, m.partial_sum, m.partial_comp, m.tm});
+        }
+        gpu::compute_barrier(cmd);
+    }
+
+    // The grid far field (bake/tm_grid.cpp): plans and allocates the grids (before the near
+    // lists, whose reach is the plan's r_cut), and records splat, blur and gather.
+    static bake::GridPlan plan_grid(const PreparedMesh& mesh, const Material& material, const TmVariant& variant,
+                                    const BakeSettings& s, float near_margin);
+    void prepare_grid(MeshState& m, const bake::GridPlan& plan);
+    void record_grid(VkCommandBuffer cmd, MeshState& m, gpu::GpuTimer* timer, uint32_t slot_begin, uint32_t slot_end);
 
     // Gathers every source and refits the cluster tree, then evaluates t_m for the targets in
     // tree slots [slot_begin, slot_end) (every slot by default; the all-pairs method always
@@ -474,6 +554,12 @@ struct Baker::Impl {
         gather_kernel().dispatch(cmd, n, GatherPush{n}, {m.positions, m.areas, m.ao, m.point_order, points_window});
         gpu::compute_barrier(cmd);
         mark("gather");
+        if (m.grid) {
+            record_near(cmd, m, slot_begin, slot_end);
+            mark("t_m near field");
+            record_grid(cmd, m, timer, slot_begin, slot_end);
+            return;
+        }
         if (!m.exact) {
             for (size_t l = 0; l + 1 < m.level_offsets.size(); ++l) {
                 const uint32_t first = m.level_offsets[l], count = m.level_offsets[l + 1] - first;
@@ -483,15 +569,7 @@ struct Baker::Impl {
             mark("refit");
             vkCmdFillBuffer(cmd, m.resume.handle(), 0, VK_WHOLE_SIZE, 0);
         }
-        for (const auto& w : m.near_windows) {
-            const uint32_t first = std::max(w.first_slot, slot_begin), end = std::min(w.first_slot + w.slot_count, slot_end);
-            if (first >= end) continue;
-            near_kernel(m.variant).dispatch(cmd, end - first, NearPush{first, end - first, w.index_base},
-                                            {m.profiles, m.positions, m.areas, m.ao, m.near_offsets,
-                                             gpu::Binding(m.near_indices.handle(), VkDeviceSize(w.index_base) * 4, w.bytes),
-                                             m.point_order, m.partial_sum, m.partial_comp, m.tm});
-        }
-        gpu::compute_barrier(cmd);
+        record_near(cmd, m, slot_begin, slot_end);
         mark("t_m near field");
         if (m.exact) {
             const auto& kernel = exact_kernel(m.variant, s.tm_float64_sums);

@@ -162,7 +162,8 @@ BakeResult DynamicBake::submit_timed(const BakeInputs* inputs, std::chrono::stea
         r.tm = m.tm.read<glm::vec3>(m.vertex_count);
         if (m.thickness) r.thickness = m.thickness.read<float>(m.vertex_count);
     }
-    r.method_used = m.exact ? TmMethod::Exact : TmMethod::Clustered;
+    r.method_used = m.method();
+    r.tm_bytes = m.tm_bytes();
     finish_timings(r.timings, timer, 0, t0);
     return r;
 }

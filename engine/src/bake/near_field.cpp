@@ -10,10 +10,11 @@
 
 namespace jade::bake {
 
-NearLists build_near_lists(const PreparedMesh& mesh, const Bvh& tree, float margin)
+NearLists build_near_lists(const PreparedMesh& mesh, const Bvh& tree, float margin, float min_reach)
 {
     const size_t n = mesh.vertex_count();
-    auto reach = [&](uint32_t j) { return margin * kNearFactor * std::sqrt(mesh.areas[j] / std::numbers::pi_v<float>); };
+    auto disk_reach = [&](uint32_t j) { return margin * kNearFactor * std::sqrt(mesh.areas[j] / std::numbers::pi_v<float>); };
+    auto reach = [&](uint32_t j) { return std::max(disk_reach(j), margin * min_reach); };
 
     // Largest reach inside each node: its range of tree-ordered vertices.
     std::vector<float> node_reach(tree.nodes.size(), 0.0f);
@@ -23,7 +24,7 @@ NearLists build_near_lists(const PreparedMesh& mesh, const Bvh& tree, float marg
     }
 
     // Per-target rows, found in parallel, then concatenated.
-    std::vector<std::vector<uint32_t>> rows(n);
+    std::vector<std::vector<uint32_t>> rows(n), points(n);
     auto work = [&](size_t begin, size_t end) {
         for (size_t i = begin; i < end; ++i) {
             const glm::vec3 x = mesh.positions[i];
@@ -42,7 +43,10 @@ NearLists build_near_lists(const PreparedMesh& mesh, const Bvh& tree, float marg
                 uint32_t first = node.first();
                 for (uint32_t s = first; s < first + tree.counts[k]; ++s) {
                     uint32_t j = tree.order[s];
-                    if (j != i && glm::distance(x, mesh.positions[j]) < reach(j)) rows[i].push_back(j);
+                    if (j == i) continue;
+                    const float r = glm::distance(x, mesh.positions[j]);
+                    if (r < disk_reach(j)) rows[i].push_back(j);
+                    else if (r < reach(j)) points[i].push_back(j);
                 }
                 k = node.escape;
             }
@@ -55,9 +59,16 @@ NearLists build_near_lists(const PreparedMesh& mesh, const Bvh& tree, float marg
 
     NearLists lists;
     lists.offsets.resize(n + 1, 0);
-    for (size_t i = 0; i < n; ++i) lists.offsets[i + 1] = lists.offsets[i] + uint32_t(rows[i].size());
+    lists.disk_counts.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+        lists.disk_counts[i] = uint32_t(rows[i].size());
+        lists.offsets[i + 1] = lists.offsets[i] + uint32_t(rows[i].size() + points[i].size());
+    }
     lists.indices.reserve(lists.offsets[n]);
-    for (auto& r : rows) lists.indices.insert(lists.indices.end(), r.begin(), r.end());
+    for (size_t i = 0; i < n; ++i) {
+        lists.indices.insert(lists.indices.end(), rows[i].begin(), rows[i].end());
+        lists.indices.insert(lists.indices.end(), points[i].begin(), points[i].end());
+    }
     return lists;
 }
 
@@ -65,9 +76,11 @@ NearLists reorder_rows(const NearLists& lists, std::span<const uint32_t> order)
 {
     NearLists out;
     out.offsets.resize(order.size() + 1, 0);
+    out.disk_counts.resize(order.size());
     out.indices.reserve(lists.indices.size());
     for (size_t k = 0; k < order.size(); ++k) {
         const uint32_t v = order[k];
+        out.disk_counts[k] = lists.disk_counts[v];
         out.indices.insert(out.indices.end(), lists.indices.begin() + lists.offsets[v], lists.indices.begin() + lists.offsets[v + 1]);
         out.offsets[k + 1] = uint32_t(out.indices.size());
     }

@@ -18,18 +18,22 @@ namespace jade::bake {
 
 constexpr float kNearFactor = 4.0f;  // = NEAR_FACTOR in shaders/include/tm_common.glsl
 
-/// Compressed rows: the disk sources of target i are indices[offsets[i] .. offsets[i+1]).
+/// Compressed rows: the near sources of target i are indices[offsets[i] .. offsets[i+1]), the
+/// disk candidates (within margin·kNearFactor·ρ_j) first: disk_counts[i] of them. The others
+/// (only with a min_reach) are point pairs whatever the mesh does.
 struct NearLists {
     std::vector<uint32_t> offsets;
     std::vector<uint32_t> indices;
+    std::vector<uint32_t> disk_counts;
 };
 
-/// Finds, for every vertex i, all j ≠ i with |x_i − x_j| < margin·kNearFactor·√(A_j/π),
-/// walking `point_tree` (built over the vertex positions) with each node's largest disk radius.
+/// Finds, for every vertex i, all j ≠ i with |x_i − x_j| < margin·max(kNearFactor·√(A_j/π),
+/// min_reach), walking `point_tree` (built over the vertex positions) with each node's largest
+/// reach. min_reach: the grid far field's r_cut (bake/grid_field.hpp), else 0.
 /// The near pass decides with the current positions which entries are disk pairs, so the
 /// margin (> 1) covers float rounding at the boundary and, for a deforming mesh, how much
 /// closer vertices may come than at rest.
-NearLists build_near_lists(const PreparedMesh& mesh, const Bvh& point_tree, float margin);
+NearLists build_near_lists(const PreparedMesh& mesh, const Bvh& point_tree, float margin, float min_reach = 0);
 
 /// The same lists with rows in the order `order` (row k = the list of vertex order[k]).
 NearLists reorder_rows(const NearLists& lists, std::span<const uint32_t> order);

@@ -127,12 +127,30 @@ void push_bindings(const Context& ctx, VkCommandBuffer cmd, VkPipelineBindPoint 
     ctx.cmd_push_descriptor_set(cmd, point, layout, 0, uint32_t(writes.size()), writes.data());
 }
 
-void Kernel::dispatch(VkCommandBuffer cmd, uint64_t threads, const void* push, std::initializer_list<Binding> bindings) const
+void Kernel::bind(VkCommandBuffer cmd, const void* push, std::initializer_list<Binding> bindings) const
 {
-    if (threads == 0) return;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
     push_bindings(*ctx_, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, bindings_, bindings, name_);
     if (push_size_) vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, push_size_, push);
+}
+
+void Kernel::dispatch_3d(VkCommandBuffer cmd, glm::uvec3 threads, const void* push, std::initializer_list<Binding> bindings) const
+{
+    if (threads.x == 0 || threads.y == 0 || threads.z == 0) return;
+    const auto& lim = ctx_->limits();
+    const uint32_t gx = (threads.x + local_size_ - 1) / local_size_;
+    if (gx > lim.maxComputeWorkGroupCount[0] || threads.y > lim.maxComputeWorkGroupCount[1] ||
+        threads.z > lim.maxComputeWorkGroupCount[2])
+        throw Error(std::string("kernel ") + name_ + ": a " + std::to_string(threads.x) + "×" + std::to_string(threads.y) + "×" +
+                    std::to_string(threads.z) + " dispatch exceeds the device's work-group limits");
+    bind(cmd, push, bindings);
+    vkCmdDispatch(cmd, gx, threads.y, threads.z);
+}
+
+void Kernel::dispatch(VkCommandBuffer cmd, uint64_t threads, const void* push, std::initializer_list<Binding> bindings) const
+{
+    if (threads == 0) return;
+    bind(cmd, push, bindings);
 
     const auto& lim = ctx_->limits();
     uint64_t groups = (threads + local_size_ - 1) / local_size_;

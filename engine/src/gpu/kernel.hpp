@@ -9,6 +9,8 @@
 
 #include "gpu/vk.hpp"
 
+#include <glm/vec3.hpp>
+
 #include <cstdint>
 #include <initializer_list>
 #include <span>
@@ -65,12 +67,24 @@ public:
         dispatch(cmd, threads, static_cast<const void*>(&push), bindings);
     }
 
+    /// Records one dispatch of threads.x × threads.y × threads.z threads, groups of local_size
+    /// along x: shaders index cells with gl_GlobalInvocationID (x compared with a count they
+    /// receive), with no division to turn a linear index into three.
+    void dispatch_3d(VkCommandBuffer cmd, glm::uvec3 threads, const void* push, std::initializer_list<Binding> bindings) const;
+    template <class Push>
+    void dispatch_3d(VkCommandBuffer cmd, glm::uvec3 threads, const Push& push, std::initializer_list<Binding> bindings) const
+    {
+        check_push(sizeof(Push));
+        dispatch_3d(cmd, threads, static_cast<const void*>(&push), bindings);
+    }
+
     const char* name() const { return name_; }
     uint32_t local_size() const { return local_size_; }
     VkPipelineLayout layout() const { return layout_; }
 
 private:
     void check_push(size_t bytes) const;
+    void bind(VkCommandBuffer cmd, const void* push, std::initializer_list<Binding> bindings) const;
 
     Context* ctx_ = nullptr;
     const char* name_ = "";

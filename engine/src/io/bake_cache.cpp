@@ -83,6 +83,7 @@ uint64_t bake_key(const PreparedMesh& mesh, const Material& material, const Bake
     f.value(s.ao.epsilon_rel);
     f.value(s.method);
     f.value(s.tm_epsilon);
+    f.value(s.tm_grid_resolution);
     f.value(s.tm_float64_sums);
     // The thickness pass runs only for a material with transmission (jade/bake.hpp).
     const bool thickness = material.transmission.enabled() && s.thickness.enabled();
@@ -129,7 +130,7 @@ std::optional<BakeResult> BakeCache::load(uint64_t key, size_t vertex_count, std
     if (h.vertex_count != vertex_count)
         return fail("vertex count " + std::to_string(h.vertex_count) + ", expected " + std::to_string(vertex_count));
     const uint32_t method = h.method_used & ~kHasThickness;
-    if (method > uint32_t(TmMethod::Clustered)) return fail("bad method");
+    if (method > uint32_t(TmMethod::Grid)) return fail("bad method");
     BakeResult r;
     r.ao.resize(vertex_count);
     r.tm.resize(vertex_count);

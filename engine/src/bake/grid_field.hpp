@@ -1,0 +1,94 @@
+// bake/grid_field.hpp - the grid far field of t_m: the profile split into a short part, summed
+// exactly over each vertex's neighbourhood, and a smooth part, summed on 3-D grids.
+//
+//   R(r) = R_short(r) + S(r),   S(r) = Σ_g a_g · 1/(2πσ_g²) · e^{−r²/2σ_g²}   (per channel)
+//
+// S is fitted (non-negative least squares) to R over [r_cut, r_max], weighted by 2πr², the
+// share of t_m per unit of ln r, so R_short = R − S is negligible beyond r_cut. The near pass
+// (tm_near.comp) sums R_short exactly over every source within r_cut (disk pairs over their
+// disk), the grid passes sum S over every source:
+//   splat  (grid_splat.comp):  sources (1 − A_o)·area into the two finest grids with cubic
+//                              B-spline weights, fixed-point integer atomics (deterministic);
+//   restrict (grid_axis.comp): each coarser grid from the one of half its spacing, exactly
+//                              (the B-spline's two-scale relation);
+//   blur   (grid_axis.comp):   three 1-D passes of a sampled Gaussian of variance σ² − 2h²/3
+//                              (splat and gather each add h²/3, the B-spline's variance);
+//   gather (grid_gather.comp): the same B-spline at each target, weighted per channel.
+// Gaussian g has its own grid of spacing h_g = σ_g / resolution over the mesh's bounds; the
+// σ_g are √2 apart, from σ_min = r_cut / resolution, so the grids shrink by 2^{3/2} each and
+// the finest one sets the memory. r_cut = 2.5·resolution mean vertex spacings √(area/n).
+// Private to engine/src/bake.
+#pragma once
+
+#include <jade/material.hpp>
+#include <jade/mesh.hpp>
+
+#include <glm/vec3.hpp>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace jade::bake {
+
+constexpr uint32_t kGridMaxHalfWidth = 16;    // = GRID_MAX_HALF_WIDTH in shaders/include/grid.glsl
+constexpr uint32_t kGridTableSize = 1024;     // samples of S(r) for the near pass, over [0, table_range]
+constexpr uint64_t kGridMaxCells = 1ull << 25; // all grids together; past it r_cut grows (see plan_grid)
+// Grids the sources are splatted into; grid g ≥ 2 is restricted from grid g − 2 (twice finer).
+constexpr uint32_t kSplatLevels = 2;
+constexpr double kDeformingCube = 1.1;  // a deforming mesh's grids: cubes of this × the rest diagonal
+
+/// One Gaussian's grid, as the grid shaders read it (scalar layout, shaders/include/grid.glsl).
+struct GpuGridLevel {
+    glm::vec3 origin;     // world position of cell (0, 0, 0)'s centre
+    float inv_h;          // 1 / spacing
+    glm::uvec3 dims;      // cells per axis
+    uint32_t offset;      // first cell in the shared cell buffers
+    glm::vec3 weight;     // per channel: a_g·√(2π)·(σ/h)·(A/h²) / splat_scale, A the total area
+    uint32_t half_width;  // blur taps on each side of the centre
+    float splat_scale;    // fixed-point units per unit of (1 − A_o)·area
+    float blur[kGridMaxHalfWidth + 1];  // blur[|k|], the 1-D kernel, Σ over k in [−hw, hw] = 1
+};
+static_assert(sizeof(GpuGridLevel) == 120, "must match GridLevel in shaders/include/grid.glsl");
+
+/// The smooth part S of a material's profiles: Gaussians shared by the channels.
+struct SmoothFit {
+    std::vector<double> sigma;          // mesh units, ascending
+    std::vector<glm::dvec3> weight;     // a_g per channel (≥ 0)
+    glm::dvec3 residual{0};             // ∫_{r_cut}^{r_max} |R − S| 2πr dr per channel
+    double S(int channel, double r) const;
+};
+
+/// Fits S to the profiles over [r_cut, r_max] with Gaussians σ_min·√2^g (σ_min = r_cut/resolution)
+/// up to the profile's extent or 2·r_max; `channels` 1 fits channel 0 only (grey).
+SmoothFit fit_smooth_part(const Material& material, int channels, double r_cut, double r_max, double resolution);
+
+/// Everything the grid passes need for one mesh.
+struct GridPlan {
+    double r_cut = 0;          // mesh units: the near pass's exact radius
+    double table_range = 0;    // S is tabulated over [0, table_range] (≥ every near-list reach)
+    SmoothFit fit;
+    std::vector<GpuGridLevel> levels;       // one per Gaussian with a non-zero weight
+    // Per channel at r_k = k·table_range/(kGridTableSize − 1): S(r_k), then (R − S)(r_k)·r_k
+    // (the near pass's point pairs, with no exponential per pair).
+    std::vector<glm::vec3> table;
+    double cube_side = 0;      // > 0: a deforming mesh's grids (plan_grid)
+    uint64_t cells = 0, max_level_cells = 0;
+    bool coarsened = false;                 // r_cut grew past its rule to fit kGridMaxCells
+    uint64_t bytes() const;                 // device memory of the grid passes
+};
+
+/// Plans the grids over the mesh's bounds, for pairs up to the diagonal apart. A deforming
+/// mesh's grids are cubes of side kDeformingCube × the rest diagonal, placed each frame about
+/// its current bounds (grid_bounds.comp): they hold the rest pose turned any way, and stretches
+/// of 10 %; a vertex beyond counts at the cube's face. When the grids would exceed
+/// kGridMaxCells, r_cut grows until they fit (`coarsened`): fewer, coarser grids and longer
+/// near lists, never a silent error. `max_near_reach`: the largest disk reach of the near
+/// lists (the table covers it).
+GridPlan plan_grid(const PreparedMesh& mesh, const Material& material, int channels, double resolution, bool deforming,
+                   double max_near_reach);
+
+/// Solves min ‖A·x − b‖ subject to x ≥ 0 (Lawson–Hanson), A row-major rows × cols.
+std::vector<double> nnls(const std::vector<double>& A, const std::vector<double>& b, size_t rows, size_t cols);
+
+}  // namespace jade::bake

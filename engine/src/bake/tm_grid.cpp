@@ -1,0 +1,148 @@
+// bake/tm_grid.cpp - the grid far field of t_m (the maths and the plan: bake/grid_field.hpp):
+// splat every source into every Gaussian's grid, blur each grid along x, y and z, gather at
+// the targets into the near pass's partial sums. Recorded by the static bake and by DynamicBake
+// (which re-splats and re-blurs every frame, and gathers its t_m slice).
+#include "bake/baker_impl.hpp"
+
+#include <numbers>
+
+namespace jade {
+
+bake::GridPlan Baker::Impl::plan_grid(const PreparedMesh& mesh, const Material& material, const TmVariant& variant,
+                                      const BakeSettings& s, float near_margin)
+{
+    // A deforming mesh (near_margin > the static one's) gets grids that follow it.
+    const bool deforming = near_margin > kStaticNearMargin;
+    float max_disk = 0;
+    for (float a : mesh.areas) max_disk = std::max(max_disk, bake::kNearFactor * std::sqrt(a / std::numbers::pi_v<float>));
+    return bake::plan_grid(mesh, material, variant.grey ? 1 : 3, s.tm_grid_resolution, deforming,
+                           double(near_margin) * max_disk);
+}
+
+void Baker::Impl::prepare_grid(MeshState& m, const bake::GridPlan& plan)
+{
+    m.grid_r_cut = plan.r_cut;
+    m.grid_cube_side = float(plan.cube_side);
+    m.grid_bounds = gpu::Buffer(ctx, 24, kStorageUsage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, "t_m grid bounds");
+    m.grid_cut2 = float(plan.r_cut * plan.r_cut);
+    m.grid_table_scale = float((bake::kGridTableSize - 1) / plan.table_range);
+    m.grid_bytes = plan.bytes();
+    m.grid_plan_levels = plan.levels;
+    std::vector<glm::vec4> table(plan.table.size());
+    for (size_t k = 0; k < table.size(); ++k) table[k] = glm::vec4(plan.table[k], 0.0f);
+    m.smooth_table = gpu::Buffer(ctx, table.size() * 16, kTexelUsage, "t_m smooth-part table");
+    m.smooth_table.upload(table.data(), table.size() * 16);
+    m.smooth_table_texels = gpu::TexelView(ctx, m.smooth_table, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "t_m smooth-part table");
+    if (plan.levels.empty()) return;  // the profile is within r_cut: the near pass is all of t_m
+    m.grid_levels = gpu::Buffer::from(ctx, plan.levels, kStorageUsage, "t_m grid levels");
+    check_storage_range(plan.cells * 4, "t_m grid cells");
+    uint64_t splat_cells = 0;
+    for (uint32_t g = 0; g < std::min<uint32_t>(uint32_t(plan.levels.size()), bake::kSplatLevels); ++g)
+        splat_cells += uint64_t(plan.levels[g].dims.x) * plan.levels[g].dims.y * plan.levels[g].dims.z;
+    m.grid_splat = gpu::Buffer(ctx, splat_cells * 4, kTexelUsage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, "t_m grid splats");
+    m.grid_splat_texels = gpu::TexelView(ctx, m.grid_splat, VK_FORMAT_R32_UINT, 4, "t_m grid splats (texels)");
+    // Each grid's sources (restricted), then in place its blurred values.
+    m.grid_cells = gpu::Buffer(ctx, plan.cells * 4, kTexelUsage, "t_m grid cells");
+    m.grid_cell_texels = gpu::TexelView(ctx, m.grid_cells, VK_FORMAT_R32_SFLOAT, 4, "t_m grid cells (texels)");
+    for (int i = 0; i < 2; ++i) {
+        m.grid_scratch[i] = gpu::Buffer(ctx, plan.max_level_cells * 4, kTexelUsage, "t_m grid pass scratch");
+        m.grid_scratch_texels[i] = gpu::TexelView(ctx, m.grid_scratch[i], VK_FORMAT_R32_SFLOAT, 4, "t_m grid pass scratch (texels)");
+    }
+}
+
+namespace {
+
+// One separable pass of grid_axis.comp: blur (step 1) or restriction (step 2) along `axis`.
+struct AxisPass {
+    glm::uvec3 in_dims, out_dims;
+    uint32_t axis;
+    int32_t shift;
+    uint32_t in_offset, out_offset;
+    float inv_scale;
+    float w[bake::kGridMaxHalfWidth + 1];
+};
+
+constexpr uint32_t kAxisRun = 8;  // = RUN in grid_axis.comp: output cells per thread
+// Threads per group of grid_axis.comp, along x: rows of a coarse grid are short, and a group
+// wider than a row idles its other lanes.
+constexpr uint32_t kAxisGroup = 8;
+
+glm::uvec3 dims_of(const bake::GpuGridLevel& l) { return l.dims; }
+uint32_t cells_of(glm::uvec3 d) { return d.x * d.y * d.z; }
+
+}  // namespace
+
+void Baker::Impl::record_grid(VkCommandBuffer cmd, MeshState& m, gpu::GpuTimer* timer, uint32_t slot_begin,
+                              uint32_t slot_end)
+{
+    const uint32_t levels = m.grid_level_count();
+    if (levels == 0) return;
+    auto mark = [&](const char* stage) {
+        if (timer) timer->mark(cmd, stage);
+    };
+    const auto& splat = kernel(grid_splat, {"grid_splat", shaders::grid_splat_comp(), storage_bindings(6),
+                                            sizeof(GridSplatPush), 64, {}});
+    auto axis_kernel = [&](uint32_t half_width, uint32_t step, bool fixed) -> const gpu::Kernel& {
+        return kernel(grid_axis[fixed][step - 1][half_width], {"grid_axis", shaders::grid_axis_comp(), {kTexels, kTexels, kStorage},
+                                                               sizeof(AxisPass), kAxisGroup, {half_width, step, fixed ? 1u : 0u}});
+    };
+    const auto& gather = kernel(grid_gather, {"grid_gather", shaders::grid_gather_comp(),
+                                              {kStorage, kStorage, kStorage, kStorage, kTexels, kStorage, kStorage, kStorage, kStorage},
+                                              sizeof(GridGatherPush), 64, tm_constants(m.variant)});
+    const auto& L = m.grid_plan_levels;
+    vkCmdFillBuffer(cmd, m.grid_splat.handle(), 0, VK_WHOLE_SIZE, 0);
+    if (m.grid_cube_side > 0) {  // the current bounds, for grids that follow the mesh
+        vkCmdFillBuffer(cmd, m.grid_bounds.handle(), 0, 12, ~0u);
+        vkCmdFillBuffer(cmd, m.grid_bounds.handle(), 12, 12, 0);
+        gpu::compute_barrier(cmd);
+        kernel(grid_bounds, {"grid_bounds", shaders::grid_bounds_comp(), storage_bindings(2), sizeof(GatherPush), 64, {}})
+            .dispatch(cmd, m.vertex_count, GatherPush{m.vertex_count}, {m.positions, m.grid_bounds});
+    }
+    gpu::compute_barrier(cmd);
+    splat.dispatch(cmd, m.vertex_count, GridSplatPush{m.vertex_count, std::min(levels, bake::kSplatLevels), m.grid_cube_side},
+                   {m.grid_levels, m.positions, m.areas, m.ao, m.grid_splat, m.grid_bounds});
+    gpu::compute_barrier(cmd);
+    mark("t_m grid splat");
+
+    // Three passes x, y, z from level `from` (its cells, or its fixed-point splat) into
+    // `to_offset` of the cell buffer, through the two scratch buffers.
+    auto separable = [&](uint32_t from, glm::uvec3 out_dims, uint32_t step, int32_t shift, uint32_t half_width,
+                         const float* w, uint32_t to_offset) {
+        const bake::GpuGridLevel& src = L[from];
+        const bool fixed = from < bake::kSplatLevels;
+        glm::uvec3 in = dims_of(src);
+        for (uint32_t axis = 0; axis < 3; ++axis) {
+            glm::uvec3 out = in;
+            out[axis] = out_dims[axis];
+            AxisPass p{in, out, axis, shift, 0, 0, 1.0f, {}};
+            std::copy(w, w + half_width + 1, p.w);
+            const gpu::TexelView* source = &m.grid_scratch_texels[(axis + 1) % 2];
+            const gpu::Buffer* target = &m.grid_scratch[axis % 2];
+            if (axis == 0) {
+                source = &m.grid_cell_texels;
+                p.in_offset = src.offset;
+                p.inv_scale = 1.0f / src.splat_scale;
+            }
+            if (axis == 2) target = &m.grid_cells, p.out_offset = to_offset;
+            glm::uvec3 runs = out;
+            runs[axis] = (out[axis] + kAxisRun - 1) / kAxisRun;
+            axis_kernel(half_width, step, fixed && axis == 0).dispatch_3d(cmd, runs, p, {m.grid_splat_texels, *source, *target});
+            gpu::compute_barrier(cmd);
+            in = out;
+        }
+    };
+    static constexpr float kTwoScale[3] = {6.0f / 8, 4.0f / 8, 1.0f / 8};
+    for (uint32_t g = bake::kSplatLevels; g < levels; ++g)
+        separable(g - 2, dims_of(L[g]), 2, -2, 2, kTwoScale, L[g].offset);
+    mark("t_m grid restrict");
+    for (uint32_t g = 0; g < levels; ++g)
+        if (L[g].weight != glm::vec3(0)) separable(g, dims_of(L[g]), 1, 0, L[g].half_width, L[g].blur, L[g].offset);
+    mark("t_m grid blur");
+    gather.dispatch(cmd, slot_end - slot_begin, GridGatherPush{levels, slot_begin, slot_end - slot_begin, m.grid_cube_side},
+                    {m.profiles, m.grid_levels, m.positions, m.point_order, m.grid_cell_texels, m.partial_sum, m.partial_comp,
+                     m.tm, m.grid_bounds});
+    gpu::compute_barrier(cmd);
+    mark("t_m grid gather");
+}
+
+}  // namespace jade

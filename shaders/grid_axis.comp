@@ -1,0 +1,68 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// The smooth part of t_m, step 2 of 3: one axis of a separable filter over one grid
+// (engine/src/bake/grid_field.hpp), either
+//   blur:     a sampled Gaussian of variance σ² − 2h²/3 (splat and gather each add the
+//             B-spline's h²/3), STEP 1: out[o] = Σ_k w[|k|]·in[o + k];
+//   restrict: the cubic B-spline's two-scale filter (1 4 6 4 1)/8 onto the grid of twice the
+//             spacing, STEP 2: out[o] = Σ_k w[|k|]·in[2o − 2 + k]. Exact: splatting into the
+//             coarse grid gives the same cells, so only the two finest grids take atomics.
+// Cells outside the input grid are zero (every source lies two cells or more inside).
+// One thread per RUN consecutive output cells along the axis: it fetches the inputs they share
+// once (lavapipe pays per fetch, not per multiply-add). The half-width and step are
+// specialisation constants, so the taps unroll with constant indices.
+#include "common.glsl"
+#include "grid.glsl"
+
+layout(constant_id = 1) const int HALF_WIDTH = 8;
+layout(constant_id = 2) const int STEP = 1;
+layout(constant_id = 3) const uint FIXED = 0u;  // 1: the input is the fixed-point splat (inv_scale: area per unit)
+const int RUN = 8;
+const int INPUTS = STEP * (RUN - 1) + 2 * HALF_WIDTH + 1;
+
+layout(push_constant, scalar) uniform Push {
+    uvec3 in_dims;
+    uvec3 out_dims;  // differs from in_dims along `axis` only
+    uint axis;
+    int shift;       // 0 blur, −2 restrict
+    uint in_offset, out_offset;
+    float inv_scale;
+    float w[GRID_MAX_HALF_WIDTH + 1u];
+} pc;
+
+layout(binding = 0) uniform usamplerBuffer splat;  // texel fetches: lavapipe's storage loads are per-lane loops
+layout(binding = 1) uniform samplerBuffer source;
+layout(binding = 2, scalar) writeonly buffer Target { float target[]; };
+
+float fetch(int texel)
+{
+    return FIXED == 1u ? float(texelFetch(splat, texel).x) * pc.inv_scale : texelFetch(source, texel).x;
+}
+
+void main()
+{
+    // gl_GlobalInvocationID counts runs along the axis, cells along the others.
+    uvec3 o = gl_GlobalInvocationID;
+    uvec3 od = pc.out_dims;
+    o[pc.axis] *= uint(RUN);
+    if (o.x >= od.x || o.y >= od.y || o.z >= od.z) return;
+    uvec3 id = pc.in_dims;
+    int stride = pc.axis == 0u ? 1 : pc.axis == 1u ? int(id.x) : int(id.x * id.y);
+    uvec3 at = o;
+    at[pc.axis] = 0u;
+    int row = int(pc.in_offset + (at.z * id.y + at.y) * id.x + at.x);  // the input row's first cell
+    int first = STEP * int(o[pc.axis]) + pc.shift - HALF_WIDTH, last = int(id[pc.axis]) - 1;
+    float inputs[INPUTS];
+    [[unroll]] for (int i = 0; i < INPUTS; ++i) {
+        int at_i = first + i;
+        inputs[i] = at_i >= 0 && at_i <= last ? fetch(row + clamp(at_i, 0, last) * stride) : 0.0;
+    }
+    int out_stride = pc.axis == 0u ? 1 : pc.axis == 1u ? int(od.x) : int(od.x * od.y);
+    int out_at = int(pc.out_offset + (o.z * od.y + o.y) * od.x + o.x);
+    int count = min(RUN, int(od[pc.axis] - o[pc.axis]));
+    [[unroll]] for (int r = 0; r < RUN; ++r) {
+        float sum = 0.0;
+        [[unroll]] for (int k = -HALF_WIDTH; k <= HALF_WIDTH; ++k) sum += pc.w[k < 0 ? -k : k] * inputs[STEP * r + HALF_WIDTH + k];
+        if (r < count) target[out_at + r * out_stride] = sum;
+    }
+}

@@ -1,0 +1,56 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_ballot : require
+// The smooth part of t_m, step 3 of 3: at each target, every grid's blurred value with the
+// same cubic B-spline as the splat, weighted per channel, added to the near pass's partial sums
+// (which hold the short part). One thread per tree slot in [slot_begin, slot_begin + count).
+#include "common.glsl"
+#include "grid.glsl"
+#include "tm_common.glsl"
+
+layout(push_constant, scalar) uniform Push {
+    uint level_count;
+    uint slot_begin;
+    uint slot_count;
+    float cube_side;  // > 0: a deforming mesh's grids follow its bounds (level_origin)
+} pc;
+
+layout(binding = 1, scalar) readonly buffer Levels { GridLevel levels[]; };
+layout(binding = 2, scalar) readonly buffer Positions { vec3 positions[]; };
+layout(binding = 3, scalar) readonly buffer Order { uint order[]; };  // slot → bake vertex
+layout(binding = 4) uniform samplerBuffer blurred;
+
+layout(binding = 8, scalar) readonly buffer Bounds { uvec3 bounds_lo, bounds_hi; };  // grid_bounds.comp
+
+#define TM_STATE_BINDING 5
+#include "tm_state.glsl"
+
+void main()
+{
+    uint t = jade_thread_index();
+    if (t >= pc.slot_count) return;
+    uint k = pc.slot_begin + t;
+    uint v = order[k];
+    vec3 x = positions[v];
+    vec3 sum = partial_sum[k], comp = partial_comp[k];
+    vec3 corner = cube_corner(pc.cube_side, bounds_lo, bounds_hi);
+    for (uint g = 0u; g < pc.level_count; ++g) {
+        GridLevel l = levels[g];
+        if (l.weight == vec3(0.0)) continue;  // a grid kept only to restrict the next ones from
+        ivec3 base;
+        vec4 wx, wy, wz;
+        bspline_footprint(l, level_origin(l, pc.cube_side, corner), x, base, wx, wy, wz);
+        float value = 0.0;
+        [[unroll]] for (int c = 0; c < 4; ++c)
+            [[unroll]] for (int j = 0; j < 4; ++j) {
+                uint row = grid_cell(l, base + ivec3(0, j, c));
+                int at = int(row);
+                vec4 cells = vec4(texelFetch(blurred, at).x, texelFetch(blurred, at + 1).x, texelFetch(blurred, at + 2).x,
+                                  texelFetch(blurred, at + 3).x);
+                value += wy[j] * wz[c] * dot(wx, cells);
+            }
+        compensated_add(sum, comp, value * l.weight);
+    }
+    save_partial(k, v, sum, comp);
+}

@@ -1,0 +1,43 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// The smooth part of t_m, step 1 of 3: every source's (1 − A_o)·area into every Gaussian's grid
+// with cubic B-spline weights (engine/src/bake/grid_field.hpp). Integer atomics on fixed-point
+// values: the sums do not depend on the order threads run in, so a bake is reproducible bit for
+// bit. One thread per vertex.
+#include "common.glsl"
+#include "grid.glsl"
+
+layout(push_constant, scalar) uniform Push {
+    uint vertex_count;
+    uint level_count;
+    float cube_side;  // > 0: a deforming mesh's grids follow its bounds (level_origin)
+} pc;
+
+layout(binding = 0, scalar) readonly buffer Levels { GridLevel levels[]; };
+layout(binding = 1, scalar) readonly buffer Positions { vec3 positions[]; };
+layout(binding = 2, scalar) readonly buffer Areas { float areas[]; };
+layout(binding = 3, scalar) readonly buffer Ao { float ao[]; };
+layout(binding = 4, scalar) buffer Cells { uint cells[]; };
+layout(binding = 5, scalar) readonly buffer Bounds { uvec3 bounds_lo, bounds_hi; };  // grid_bounds.comp
+
+void main()
+{
+    uint v = jade_thread_index();
+    if (v >= pc.vertex_count) return;
+    vec3 x = positions[v];
+    float weight = max(areas[v], 0.0) * (1.0 - ao[v]);
+    vec3 corner = cube_corner(pc.cube_side, bounds_lo, bounds_hi);
+    for (uint g = 0u; g < pc.level_count; ++g) {
+        GridLevel l = levels[g];
+        ivec3 base;
+        vec4 wx, wy, wz;
+        bspline_footprint(l, level_origin(l, pc.cube_side, corner), x, base, wx, wy, wz);
+        float w = weight * l.splat_scale;
+        [[unroll]] for (int k = 0; k < 4; ++k)
+            [[unroll]] for (int j = 0; j < 4; ++j) {
+                float wjk = w * wy[j] * wz[k];
+                uint row = grid_cell(l, base + ivec3(0, j, k));
+                [[unroll]] for (int i = 0; i < 4; ++i) atomicAdd(cells[row + uint(i)], uint(wjk * wx[i] + 0.5));
+            }
+    }
+}
