@@ -447,7 +447,8 @@ TEST(DeformAnimation, BadFilesAreErrorsNamingTheElement)
 
 TEST_F(DeformGpu, SkinnedMorphedAnimationMatchesFloat64)
 {
-    const AnimatedMesh m = load_test_asset();
+    AnimatedMesh m = load_test_asset();
+    m.nodes[size_t(m.mesh_node)].translation = glm::vec3(5.0f, 0.0f, 0.0f);  // ignored: the mesh is skinned
     const PreparedMesh rest = prepare_mesh(m.mesh);
     ASSERT_EQ(rest.vertex_count(), 20u);
     MeshDeformer deformer(context(), rest);
@@ -487,6 +488,7 @@ TEST_F(DeformGpu, UnskinnedMeshFollowsItsNode)
 {
     // An unskinned mesh uses its node's world matrix as the one joint.
     AnimatedMesh m = load_test_asset();
+    m.nodes[size_t(m.mesh_node)].translation = glm::vec3(5.0f, 0.0f, 0.0f);
     m.skinned = false;
     m.joints.clear();
     m.inverse_bind.clear();

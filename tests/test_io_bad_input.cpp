@@ -58,7 +58,8 @@ const std::map<std::string, std::string> kExpectedErrors = {
     {"gltf_lines.gltf", "mesh 0 primitive 0: mode 1 (LINES) is not supported"},
     {"gltf_draco_required.gltf", "required extension KHR_draco_mesh_compression is not supported"},
     {"gltf_meshopt_required.gltf", "required extension EXT_meshopt_compression is not supported"},
-    {"gltf_sparse.gltf", "accessor 0 (POSITION): sparse accessors are not supported"},
+    {"gltf_sparse_count.gltf", "accessor 0 (POSITION): sparse count 100 is not in 1..24"},
+    {"gltf_sparse_unordered.gltf", "accessor 0 (POSITION): sparse indices are not strictly increasing at entry 3"},
     {"gltf_view_past_buffer.gltf", "bufferView 1 (bytes 288 + 4000) runs past the end of buffer 0 (648 bytes)"},
     {"gltf_accessor_past_view.gltf", "accessor 0 (POSITION): 25 elements of 12 bytes"},
     {"gltf_int_positions.gltf", "accessor 0 (POSITION): component type UNSIGNED_INT"},
@@ -284,7 +285,7 @@ TEST_P(io_damaged_files, TruncatedOrCorruptedCopiesLoadOrFailCleanly)
 }
 
 INSTANTIATE_TEST_SUITE_P(GoodTestData, io_damaged_files,
-                         ::testing::Values("cube_seams.gltf", "cube_seams.glb", "nodes_transforms.gltf", "strip_fan.gltf",
+                         ::testing::Values("cube_seams.gltf", "cube_seams.glb", "nodes_transforms.gltf", "strip_fan.gltf", "sparse_cube.gltf",
                                            "cube_ascii.ply", "cube_binary_le.ply", "cube_binary_be.ply", "cube.obj",
                                            "cube_colors.off", "tetra_normals.off"),
                          [](const auto& param) {

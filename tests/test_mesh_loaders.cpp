@@ -266,6 +266,22 @@ TEST(io_load_gltf, TriangleStripAndFanAreConverted)
     EXPECT_NEAR(p.total_area(), 2.0f + 1.5f * std::sqrt(3.0f), 1e-5f);  // 1×2 strip + unit hexagon
 }
 
+TEST(io_load_gltf, SparseAccessorsAreExpanded)
+{
+    // make_test_data.py: positions 3 and 7 replaced, _AO without a bufferView (zeros) with four
+    // sparse entries.
+    const auto sparse = jade::load_mesh(data("sparse_cube.gltf"));
+    const auto dense = jade::load_mesh(data("cube_seams.gltf"));
+    ASSERT_EQ(sparse.positions.size(), dense.positions.size());
+    for (size_t v = 0; v < dense.positions.size(); ++v) {
+        const glm::vec3 expected = v == 3 ? glm::vec3(0, 0, 5) : v == 7 ? glm::vec3(0, 0, -5) : dense.positions[v];
+        EXPECT_EQ(sparse.positions[v], expected) << "vertex " << v;
+        EXPECT_EQ(sparse.normals[v], dense.normals[v]) << "vertex " << v;
+        EXPECT_EQ(sparse.baked_ao[v], v < 4 ? 0.25f : 0.0f) << "vertex " << v;
+    }
+    EXPECT_EQ(sparse.indices, dense.indices);
+}
+
 // ------------------------------------------------------------------------- save_baked_gltf --
 
 struct Baked {

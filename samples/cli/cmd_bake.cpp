@@ -1,4 +1,6 @@
-// jade bake MESH --out FILE.glb: AO and t_m on the GPU, written on the render vertices.
+// jade bake MESH --out FILE.glb: AO, t_m and the thickness on the GPU, written on the render
+// vertices. A glTF input is written back whole with the attributes added (bake_asset.cpp).
+#include "bake_record.hpp"
 #include "commands.hpp"
 
 #include <jade/io.hpp>
@@ -8,84 +10,88 @@
 
 namespace jade::cli {
 
-static std::string profile_json(const ChannelProfile& p)
-{
-    std::ostringstream os;
-    os.precision(9);
-    switch (p.kind) {
-    case ProfileKind::Burley: os << "{\"kind\":\"burley\",\"d\":" << p.d << "}"; break;
-    case ProfileKind::Dipole:
-        os << "{\"kind\":\"dipole\",\"sigma_tr\":" << p.sigma_tr << ",\"z_r\":" << p.z_r << ",\"z_v\":" << p.z_v << "}";
-        break;
-    case ProfileKind::Gaussians:
-        os << "{\"kind\":\"gaussians\",\"weights\":[";
-        for (uint32_t k = 0; k < p.gaussian_count; ++k) os << (k ? "," : "") << p.weight[k];
-        os << "],\"variances\":[";
-        for (uint32_t k = 0; k < p.gaussian_count; ++k) os << (k ? "," : "") << p.variance[k];
-        os << "]}";
-        break;
-    }
-    return os.str();
-}
+namespace {
 
-static std::string extras_json(const Material& m, const BakeSettings& s, const BakeResult& r)
+void print_timings(const BakeResult& r)
 {
-    std::ostringstream os;
-    os.precision(9);
-    os << "{\"jade\":{\"version\":1,\"units\":\"t_m unitless (profile normalised to 1 over the plane); "
-          "profile lengths in mesh units\","
-       << "\"material\":{\"name\":\"" << m.name << "\",\"albedo\":[" << m.albedo.x << "," << m.albedo.y << ","
-       << m.albedo.z << "],\"strength\":" << m.strength << ",\"ior\":" << m.ior << ",\"roughness\":" << m.roughness
-       << ",\"profiles\":[" << profile_json(m.profile[0]) << "," << profile_json(m.profile[1]) << ","
-       << profile_json(m.profile[2]) << "]},"
-       << "\"settings\":{\"ao_rays\":" << s.ao.rays << ",\"ao_low_discrepancy\":" << (s.ao.low_discrepancy ? "true" : "false")
-       << ",\"ao_seed\":" << s.ao.seed << ",\"ao_max_distance_rel\":" << s.ao.max_distance_rel
-       << ",\"ao_epsilon_rel\":" << s.ao.epsilon_rel << ",\"tm_method\":\"" << tm_method_name(r.method_used)
-       << "\",\"tm_epsilon\":" << s.tm_epsilon << "},"
-       << "\"timings_ms\":{\"wall\":" << r.timings.wall_ms << ",\"gpu\":" << r.timings.gpu_total_ms;
-    for (auto& [stage, ms] : r.timings.gpu_stages) os << ",\"" << stage << "\":" << ms;
-    os << "}}}";
-    return os.str();
-}
-
-int cmd_bake(int argc, char** argv)
-{
-    auto specs = device_options();
-    for (auto& v : {material_options(), bake_options()}) specs.insert(specs.end(), v.begin(), v.end());
-    specs.push_back({"out", "FILE", "output .glb or .gltf (required)"});
-    Args args("bake", specs, argc, argv, 2);
-    if (args.flag("help")) {
-        std::printf("usage: jade bake MESH --out FILE.glb [options]\n\nBakes ambient occlusion and the translucency "
-                    "magnitude t_m on the GPU and writes the mesh\nwith per-vertex attributes _AO (SCALAR) and _TM (VEC3, "
-                    "linear RGB) and the settings in extras.\n\n%s", args.help().c_str());
-        return 0;
-    }
-    if (args.positional().size() != 1) args.fail("expects exactly one MESH");
-    auto out = args.get("out");
-    if (!out) args.fail("--out FILE is required");
-    BakeSettings settings = bake_settings_from_args(args);
-    check_output_file(args, "out", *out, {".glb", ".gltf"});
-
-    TriangleMesh mesh = load_mesh_arg(args.positional()[0]);
-    PreparedMesh prepared = prepare_mesh(mesh);
-    Material material = material_from_args(args, prepared);
-    auto ctx = make_context(args);
-    if (args.flag("verbose")) std::fprintf(stderr, "jade: device %s\n", ctx->device_info().name.c_str());
-    Baker baker(*ctx);
-    std::fprintf(stderr, "jade: baking %zu vertices, %u AO rays each, material %s ...\n", prepared.vertex_count(),
-                 settings.ao.rays, material.name.c_str());
-    BakeResult r = baker.bake(prepared, material, settings);
     for (auto& [stage, ms] : r.timings.gpu_stages) std::fprintf(stderr, "  %-18s %s\n", stage.c_str(), format_ms(ms).c_str());
     std::fprintf(stderr, "  %-18s %s (GPU %s)\n", "total", format_ms(r.timings.wall_ms).c_str(),
                  format_ms(r.timings.gpu_total_ms).c_str());
+}
+
+/// An OFF, PLY or OBJ mesh: one bake, written as a new glTF of that mesh alone.
+void bake_mesh(const Args& args, const std::string& in, const std::filesystem::path& out, const BakeSettings& settings)
+{
+    TriangleMesh mesh = load_mesh_arg(in);
+    Material material = material_from_args(args, diagonal(mesh));
+    auto ctx = make_context(args);
+    if (args.flag("verbose")) std::fprintf(stderr, "jade: device %s\n", ctx->device_info().name.c_str());
+    Baker baker(*ctx);
+    std::fprintf(stderr, "jade: baking %zu vertices, %u AO rays each, material %s ...\n", mesh.positions.size(),
+                 settings.ao.rays, material.name.c_str());
+    PreparedMesh prepared;
+    BakeResult r = bake_at_unit_scale(baker, mesh, material, settings, prepared);
+    print_timings(r);
 
     BakedAttributes baked;
     baked.ao = to_render_vertices(prepared, r.ao, 0.0f);
     baked.tm = to_render_vertices(prepared, r.tm, glm::vec3(0.0f));
     if (!r.thickness.empty()) baked.thickness = to_render_vertices(prepared, r.thickness, 0.0f);
-    baked.extras_json = extras_json(material, settings, r);
-    save_baked_gltf(*out, mesh, baked);
-    std::printf("wrote %s\n", out->c_str());
+    std::ostringstream os;
+    os << "{\"jade\":{\"version\":1," << record::units() << ",\"material\":" << record::material(material)
+       << ",\"settings\":" << record::settings(settings, r) << ",\"timings_ms\":" << record::timings(r) << "}}";
+    baked.extras_json = os.str();
+    save_baked_gltf(out, mesh, baked);
+}
+
+bool is_gltf(const std::filesystem::path& path)
+{
+    auto ext = path.extension().string();
+    for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext == ".gltf" || ext == ".glb";
+}
+
+}  // namespace
+
+int cmd_bake(int argc, char** argv)
+{
+    auto specs = device_options();
+    for (auto& v : {material_options(), bake_options()}) specs.insert(specs.end(), v.begin(), v.end());
+    specs.push_back({"out", "FILE", "output .glb or .gltf (required unless --in-place)"});
+    specs.push_back({"in-place", "", "replace the glTF input itself (atomically: the old or the new file, never half)"});
+    Args args("bake", specs, argc, argv, 2);
+    if (args.flag("help")) {
+        std::printf("usage: jade bake MESH --out FILE.glb|.gltf [options]\n"
+                    "       jade bake ASSET.gltf|.glb --in-place [options]\n\n"
+                    "Bakes ambient occlusion, the translucency magnitude t_m and (for materials with transmission)\n"
+                    "the thickness on the GPU and writes them as per-vertex attributes _AO (SCALAR), _TM (VEC3,\n"
+                    "linear RGB) and _THICKNESS (SCALAR, mesh units), with the settings in the asset's extras.\n"
+                    "A glTF input is written back whole (scenes, nodes, materials, textures, skins, animations,\n"
+                    "morph targets, cameras, extensions, extras) with the attributes added to each triangle\n"
+                    "primitive; each mesh is baked once, in the world space of its first instance (a skinned\n"
+                    "mesh in its bind pose); see docs/gltf.md. Other meshes (.off, .ply, .obj) become a glTF of\n"
+                    "the mesh alone.\n\n%s",
+                    args.help().c_str());
+        return 0;
+    }
+    if (args.positional().size() != 1) args.fail("expects exactly one MESH");
+    const std::string in = args.positional()[0];
+    const bool in_place = args.flag("in-place");
+    auto out_arg = args.get("out");
+    if (!out_arg && !in_place) args.fail("--out FILE is required (or --in-place to replace a glTF input)");
+    if (in_place && !is_gltf(in)) args.fail("--in-place: " + in + " is not a glTF file (.gltf, .glb)");
+    std::error_code ec;
+    const bool same = out_arg && std::filesystem::exists(*out_arg, ec) && std::filesystem::equivalent(in, *out_arg, ec);
+    if (in_place && out_arg && !same) args.fail("--in-place replaces " + in + "; --out " + *out_arg + " names another file");
+    if (same && !in_place) args.fail("--out " + *out_arg + " is the input file; give --in-place to replace it");
+    // In place, the file a link points to is replaced, not the link.
+    const std::filesystem::path out = in_place ? std::filesystem::canonical(in) : std::filesystem::path(*out_arg);
+    BakeSettings settings = bake_settings_from_args(args);
+    check_output_file(args, in_place ? "in-place" : "out", out, {".glb", ".gltf"});
+
+    if (is_gltf(in)) bake_asset(args, in, out, settings);
+    else bake_mesh(args, in, out, settings);
+    std::printf("wrote %s\n", out.string().c_str());
     return 0;
 }
 

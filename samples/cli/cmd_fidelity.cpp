@@ -327,19 +327,13 @@ int cmd_fidelity(int argc, char** argv)
                 }
     }
     if (out.empty()) throw Error("--references " + dir.string() + ": no reference scene matched");
-    if (auto path = args.get("markdown")) report::write_atomically(*path, fidelity_markdown(out, ctx->device_info().name));
+    if (auto path = args.get("markdown")) write_file_atomically(*path, fidelity_markdown(out, ctx->device_info().name));
     if (auto path = args.get("json")) {
-        const std::filesystem::path p(*path), tmp = p.string() + ".tmp";
-        {
-            std::ofstream f(tmp);
-            f << json{{"fit", {{"albedo_scale", fit.albedo_scale}, {"strength", fit.strength},
-                               {"transmission_weight", fit.transmission_weight}, {"diffusion_weight", fit.diffusion_weight},
-                               {"lobe", fit.lobe}, {"normal_mix", fit.normal_mix}}},
-                      {"scenes", out}}
-                     .dump(1);
-            if (!f) throw Error(tmp.string() + ": cannot write");
-        }
-        std::filesystem::rename(tmp, p);
+        const json doc = {{"fit", {{"albedo_scale", fit.albedo_scale}, {"strength", fit.strength},
+                                   {"transmission_weight", fit.transmission_weight}, {"diffusion_weight", fit.diffusion_weight},
+                                   {"lobe", fit.lobe}, {"normal_mix", fit.normal_mix}}},
+                          {"scenes", out}};
+        write_file_atomically(*path, doc.dump(1));
     }
     return 0;
 }

@@ -4,8 +4,10 @@
 #include <jade/io.hpp>
 
 #include <glm/common.hpp>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 
@@ -23,6 +25,55 @@ static void print_device(const DeviceInfo& d)
     std::printf("float64           %s\n", d.float64 ? "yes" : "no");
     std::printf("timestamp period  %.3g ns\n", d.timestamp_period_ns);
     std::printf("device memory     %.1f GiB\n", double(d.device_local_heap_bytes) / (1u << 30));
+}
+
+/// What `jade bake` recorded in a glTF's asset.extras.jade (bake_record.hpp), if anything.
+static void print_bake_record(const std::string& path)
+{
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (ext != ".glb" && ext != ".gltf") return;
+    const std::string text = GltfAsset::load(path).asset_extras_json();
+    const auto extras = nlohmann::json::parse(text.empty() ? "{}" : text, nullptr, false);
+    if (!extras.is_object() || !extras.contains("jade") || !extras["jade"].is_object()) {
+        std::printf("baked by jade     no (no asset.extras.jade)\n");
+        return;
+    }
+    const auto& j = extras["jade"];
+    auto str = [](const nlohmann::json& v) {
+        if (v.is_string()) return v.get<std::string>();
+        if (!v.is_number_float()) return v.dump();
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.6g", v.get<double>());
+        return std::string(buf);
+    };
+    const auto& s = j.value("settings", nlohmann::json::object());
+    std::printf("baked by jade     record version %s; AO %s rays (seed %s, max distance %s of the diagonal), t_m %s "
+                "(theta %s), thickness %s rays\n",
+                str(j.value("version", nlohmann::json())).c_str(), str(s.value("ao_rays", nlohmann::json())).c_str(),
+                str(s.value("ao_seed", nlohmann::json())).c_str(), str(s.value("ao_max_distance_rel", nlohmann::json())).c_str(),
+                str(s.value("tm_method", nlohmann::json())).c_str(), str(s.value("tm_epsilon", nlohmann::json())).c_str(),
+                str(s.value("thickness_rays", nlohmann::json(0))).c_str());
+    if (j.contains("instance_rule")) std::printf("instance rule     %s\n", str(j["instance_rule"]).c_str());
+    std::vector<nlohmann::json> materials;
+    if (j.contains("material")) materials.push_back(j["material"]);
+    for (const auto& m : j.value("materials", nlohmann::json::array())) materials.push_back(m);
+    for (size_t i = 0; i < materials.size(); ++i) {
+        const auto& m = materials[i];
+        std::string profiles;
+        for (const auto& p : m.value("profiles", nlohmann::json::array())) profiles += std::string(profiles.empty() ? "" : ", ") + p.dump();
+        std::printf("material %-8zu %s: strength %s, %s\n", i, str(m.value("name", nlohmann::json())).c_str(),
+                    str(m.value("strength", nlohmann::json())).c_str(), profiles.c_str());
+    }
+    for (const auto& b : j.value("bakes", nlohmann::json::array())) {
+        std::string prims;
+        for (const auto& p : b.value("primitives", nlohmann::json::array())) prims += std::string(prims.empty() ? "" : ",") + p.dump();
+        std::printf("bake              mesh %s primitives %s: %s vertices, material %s (%s), %s%s, %s ms\n",
+                    str(b.value("mesh", nlohmann::json())).c_str(), prims.c_str(), str(b.value("vertices", nlohmann::json())).c_str(),
+                    str(b.value("material", nlohmann::json())).c_str(), str(b.value("gltf_material", nlohmann::json())).c_str(),
+                    str(b.value("space", nlohmann::json())).c_str(), b.value("thickness", false) ? ", with thickness" : "",
+                    str(b.value("timings_ms", nlohmann::json::object()).value("wall", nlohmann::json())).c_str());
+    }
 }
 
 static void print_mesh(const std::string& path)
@@ -52,6 +103,11 @@ static void print_mesh(const std::string& path)
         for (auto& t : mesh.baked_tm) lo = glm::min(lo, t), hi = glm::max(hi, t);
         std::printf("baked t_m         R %.4f..%.4f  G %.4f..%.4f  B %.4f..%.4f\n", lo.x, hi.x, lo.y, hi.y, lo.z, hi.z);
     }
+    if (!mesh.baked_thickness.empty()) {
+        auto [lo, hi] = std::minmax_element(mesh.baked_thickness.begin(), mesh.baked_thickness.end());
+        std::printf("baked thickness   %.4g .. %.4g mesh units\n", *lo, *hi);
+    }
+    print_bake_record(path);
     std::printf("timings           load %s, prepare %s\n", format_ms(ms(t0, t1)).c_str(), format_ms(ms(t1, t2)).c_str());
 }
 
@@ -62,7 +118,8 @@ int cmd_info(int argc, char** argv)
     Args args("info", specs, argc, argv, 2);
     if (args.flag("help")) {
         std::printf("usage: jade info [MESH]\n\nWithout MESH: the Vulkan device Jade would use. With MESH: counts after\n"
-                    "preparation (welding, degenerate triangles), bounds and timings.\n\n%s", args.help().c_str());
+                    "preparation (welding, degenerate triangles), bounds and timings; for a file written by jade bake,\n"
+                    "the ranges of the baked attributes and what was baked with which settings.\n\n%s", args.help().c_str());
         return 0;
     }
     if (args.positional().size() > 1) args.fail("takes at most one mesh");

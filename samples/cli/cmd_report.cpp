@@ -4,6 +4,8 @@
 // through samples/report/plot_report.py, DIR/*.png.
 #include "report.hpp"
 
+#include <jade/io.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -164,7 +166,7 @@ int cmd_report(int argc, char** argv)
 
     if (args.flag("summary-only")) {
         auto ctx = make_context(args);
-        write_atomically(dir / "summary.md", summary_markdown(read_csv(dir / "report.csv"), plan, ctx->device_info().name));
+        write_file_atomically(dir / "summary.md", summary_markdown(read_csv(dir / "report.csv"), plan, ctx->device_info().name));
         if (!args.flag("no-plot")) run_plots(dir);
         return 0;
     }
@@ -196,10 +198,10 @@ int cmd_report(int argc, char** argv)
         std::fprintf(stderr, "[%zu/%zu] %s: %s\n", k + 1, steps.size(), steps[k].what.c_str(), describe(r).c_str());
         if (r.knob.empty()) continue;
         rows.push_back(std::move(r));
-        write_atomically(dir / "report.csv", csv(rows));
+        write_file_atomically(dir / "report.csv", csv(rows));
     }
     steps.clear();
-    write_atomically(dir / "summary.md", summary_markdown(rows, plan, ctx->device_info().name));
+    write_file_atomically(dir / "summary.md", summary_markdown(rows, plan, ctx->device_info().name));
     std::fprintf(stderr, "jade report: %zu configurations in %s: %s, %s\n", rows.size(),
                  format_ms(std::chrono::duration<double, std::milli>(Clock::now() - t0).count()).c_str(),
                  (dir / "report.csv").string().c_str(), (dir / "summary.md").string().c_str());

@@ -38,6 +38,8 @@ std::unique_ptr<Context> make_context(const Args& args);
 /// The material named by --material (default "jade") for `mesh`: physical presets use
 /// --mm-per-unit, by default 100 / diagonal (the object is taken to be 10 cm across).
 Material material_from_args(const Args& args, const PreparedMesh& mesh);
+/// The same for an object (or a whole asset) whose bounding box has this diagonal (mesh units).
+Material material_from_args(const Args& args, double diagonal);
 BakeSettings bake_settings_from_args(const Args& args);
 /// The built-in default scene when `path` is empty or "bunny": the Stanford bunny if
 /// assets/ has it, else a procedural sphere.

@@ -93,9 +93,11 @@ Medium medium_from_args(const Args& args)
     return m;
 }
 
-Material material_from_args(const Args& args, const PreparedMesh& mesh)
+Material material_from_args(const Args& args, const PreparedMesh& mesh) { return material_from_args(args, double(mesh.diagonal)); }
+
+Material material_from_args(const Args& args, double diagonal)
 {
-    double default_mm = mesh.diagonal > 0 ? 100.0 / mesh.diagonal : 1.0;
+    double default_mm = diagonal > 0 ? 100.0 / diagonal : 1.0;
     double mm_per_unit = args.number("mm-per-unit", default_mm, 1e-30, 1e30);
     Material m;
     if (args.get("medium") && args.get("material")) args.fail("--medium and --material: give one of them");
@@ -115,7 +117,7 @@ Material material_from_args(const Args& args, const PreparedMesh& mesh)
         double mean = 0;
         for (auto& p : m.profile) mean += (p.kind == ProfileKind::Burley ? p.d : 1.0) / 3.0;
         for (auto& p : m.profile)
-            p = ChannelProfile::burley((p.kind == ProfileKind::Burley ? p.d / mean : 1.0) * rel * mesh.diagonal);
+            p = ChannelProfile::burley((p.kind == ProfileKind::Burley ? p.d / mean : 1.0) * rel * diagonal);
     }
     m.strength = float(args.number("strength", m.strength, 0.0, 1e6));
     return m;

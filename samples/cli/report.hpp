@@ -108,8 +108,6 @@ void add_image_steps(Session& session, MeshState& state, std::vector<Step>& step
 void add_deform_steps(Session& session, MeshState& state, std::vector<Step>& steps);
 
 // report_write.cpp
-/// Writes `content` to `path` through a temporary file in the same folder and a rename.
-void write_atomically(const std::filesystem::path& path, const std::string& content);
 std::string csv(const std::vector<Row>& rows);
 /// Reads what csv() wrote (throws jade::Error naming the file and line).
 std::vector<Row> read_csv(const std::filesystem::path& path);

@@ -48,22 +48,6 @@ std::pair<std::string, std::string> split_method(const std::string& method)
     return {method.substr(0, open), method.substr(open + 2, method.size() - open - 3)};
 }
 
-void write_atomically(const std::filesystem::path& path, const std::string& content)
-{
-    std::filesystem::path tmp = path;
-    tmp += ".tmp";
-    {
-        std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-        if (!f) throw Error(tmp.string() + ": cannot open for writing");
-        f.write(content.data(), std::streamsize(content.size()));
-        f.close();
-        if (!f) throw Error(tmp.string() + ": write failed (disk full?)");
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) throw Error(path.string() + ": cannot rename the temporary file into place: " + ec.message());
-}
-
 namespace {
 
 std::string csv_field(const std::string& s)

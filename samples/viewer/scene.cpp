@@ -63,6 +63,7 @@ Scene::Scene(const jade::AdoptedVulkan& host, const std::string& mesh_arg, const
     const jade::TriangleMesh mesh = load(mesh_arg);
     mesh_name_ = mesh.name;
     rest_ = jade::prepare_mesh(mesh);
+    if (!mesh.baked_tm.empty()) baked_file_ = mesh;
     // As `jade render`: the object is taken to be 100 mm across unless told otherwise.
     mm_per_unit_ = rest_.diagonal > 0 ? 100.0 / rest_.diagonal : 1.0;
     update(initial);
@@ -76,6 +77,7 @@ void Scene::update(const ViewState& state)
     std::vector<std::pair<std::string, double>> previous = std::move(times_.stages);
     times_.stages.clear();
     const bool material_changed = state.material != baked_material_ || state.quality != baked_quality_;
+    if (material_changed && baked_material_ >= 0) baked_file_.reset();  // the file's t_m is for its own material
     if (material_changed) {
         material_ = jade::material_preset(jade::material_preset_names().at(size_t(state.material)), mm_per_unit_);
         strength_ = -1.0f;  // set_material below
@@ -112,6 +114,12 @@ void Scene::update(const ViewState& state)
 
 void Scene::bake_static(const ViewState& state)
 {
+    if (baked_file_ && !material_.opaque) {
+        const double t0 = now_ms();
+        renderer_.set_mesh(*baked_file_, baked_file_->baked_tm, baked_file_->baked_thickness);
+        times_.stages.emplace_back("t_m from the file: set_mesh (CPU)", now_ms() - t0);
+        return;
+    }
     std::vector<glm::vec3> tm;
     std::vector<float> thickness;
     if (!material_.opaque) {

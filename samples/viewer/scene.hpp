@@ -74,6 +74,8 @@ private:
     jade::Renderer renderer_;
     std::string mesh_name_;
     jade::PreparedMesh rest_;
+    /// A file written by `jade bake`: its t_m is drawn until the material or quality changes.
+    std::optional<jade::TriangleMesh> baked_file_;
     jade::Material material_;
     double mm_per_unit_ = 1.0;
     std::unique_ptr<jade::MeshDeformer> deformer_;

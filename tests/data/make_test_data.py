@@ -122,6 +122,72 @@ def cube_seams():
     return g
 
 
+def sparse_cube():
+    """cube_seams with sparse accessors: POSITION moves vertices 3 and 7 to (0, 0, 5) and
+    (0, 0, -5); _AO has no bufferView (zeros) and sparse values 0.25 on vertices 0..3."""
+    g = cube_seams()
+    doc = g.doc
+
+    def view(fmt, values):
+        while len(g.buffer) % 4:
+            g.buffer.append(0)
+        raw = struct.pack("<" + fmt * len(values), *values)
+        doc["bufferViews"].append({"buffer": 0, "byteOffset": len(g.buffer), "byteLength": len(raw)})
+        g.buffer += raw
+        return len(doc["bufferViews"]) - 1
+
+    positions = doc["accessors"][0]
+    positions["sparse"] = {"count": 2, "indices": {"bufferView": view("H", [3, 7]), "componentType": USHORT},
+                           "values": {"bufferView": view("f", [0, 0, 5, 0, 0, -5])}}
+    positions["min"][2], positions["max"][2] = -5.0, 5.0
+    doc["accessors"].append({"componentType": FLOAT, "count": 24, "type": "SCALAR",
+                             "sparse": {"count": 4, "indices": {"bufferView": view("B", [0, 1, 2, 3]), "componentType": UBYTE},
+                                        "values": {"bufferView": view("f", [0.25] * 4)}}})
+    doc["meshes"][0]["primitives"][0]["attributes"]["_AO"] = len(doc["accessors"]) - 1
+    doc["meshes"][0]["name"] = "sparse_cube"
+    return g
+
+
+def asset_features():
+    """What the round trip of jade bake must keep (tests/test_gltf_roundtrip.cpp): cube_seams'
+    mesh with TEXCOORD_0 and COLOR_0 interleaved in one bufferView (byteStride 12, normalized
+    UNSIGNED_BYTE colours), a custom _CUSTOM attribute and a second LINES primitive sharing its
+    POSITION accessor; two instances (scale 2, and mirrored), a camera node, and extras and an
+    unknown extension on a node, the asset and the document."""
+    g = cube_seams()
+    doc = g.doc
+    while len(g.buffer) % 4:
+        g.buffer.append(0)
+    offset = len(g.buffer)
+    for v in range(24):
+        g.buffer += struct.pack("<ff", (v % 4) / 3.0, (v // 4) / 5.0) + struct.pack("<4B", 10 * v, 255 - 10 * v, 128, 255)
+    doc["bufferViews"].append({"buffer": 0, "byteOffset": offset, "byteLength": 24 * 12, "byteStride": 12,
+                               "target": ARRAY_BUFFER})
+    view = len(doc["bufferViews"]) - 1
+    doc["accessors"].append({"bufferView": view, "componentType": FLOAT, "count": 24, "type": "VEC2"})
+    uv = len(doc["accessors"]) - 1
+    doc["accessors"].append({"bufferView": view, "byteOffset": 8, "componentType": UBYTE, "normalized": True,
+                             "count": 24, "type": "VEC4"})
+    color = len(doc["accessors"]) - 1
+    custom = g.accessor("f", [0.5 * v for v in range(24)], FLOAT, "SCALAR", 24, ARRAY_BUFFER)
+    lines = g.indices([0, 1, 1, 2, 2, 3, 3, 0], UBYTE)
+    prim = doc["meshes"][0]["primitives"][0]
+    prim["attributes"].update(TEXCOORD_0=uv, COLOR_0=color, _CUSTOM=custom)
+    doc["meshes"][0]["primitives"].append({"attributes": {"POSITION": prim["attributes"]["POSITION"]}, "indices": lines,
+                                           "mode": 1})
+    doc["nodes"] = [{"mesh": 0, "name": "big", "scale": [2.0, 2.0, 2.0]},
+                    {"mesh": 0, "name": "mirrored", "scale": [-1.0, 1.0, 1.0], "translation": [5.0, 0.0, 0.0],
+                     "extras": {"note": "kept"}, "extensions": {"EXT_jade_test_unknown": {"level": 3}}},
+                    {"name": "eye", "camera": 0, "translation": [0.0, 0.0, 10.0]}]
+    doc["scenes"] = [{"nodes": [0, 1, 2], "name": "all"}]
+    doc["cameras"] = [{"type": "perspective", "perspective": {"yfov": 0.7, "znear": 0.1, "zfar": 100.0}}]
+    doc["extensionsUsed"] = ["EXT_jade_test_unknown"]
+    doc["extensions"] = {"EXT_jade_test_unknown": {"document": True}}
+    doc["extras"] = {"pipeline": {"stage": 2, "tags": ["a", None, 12345678901234]}}
+    doc["asset"]["extras"] = {"author": "make_test_data.py"}
+    return g
+
+
 # ------------------------------------------------------------------------- nodes_transforms --
 
 def nodes_transforms():
@@ -240,8 +306,12 @@ def bad_gltf_files():
                                                            extensionsRequired=["KHR_draco_mesh_compression"]))
     variant("gltf_meshopt_required.gltf", lambda d: d.update(extensionsUsed=["EXT_meshopt_compression"],
                                                              extensionsRequired=["EXT_meshopt_compression"]))
-    variant("gltf_sparse.gltf", lambda d: d["accessors"][0].update(
-        sparse={"count": 1, "indices": {"bufferView": 2, "componentType": USHORT},
+    variant("gltf_sparse_count.gltf", lambda d: d["accessors"][0].update(
+        sparse={"count": 100, "indices": {"bufferView": 2, "componentType": USHORT},
+                "values": {"bufferView": 0}}))
+    # Entries 0 and 1 of the index buffer (0, 1, 2, 0, ...) as sparse indices, then 2 and 0.
+    variant("gltf_sparse_unordered.gltf", lambda d: d["accessors"][0].update(
+        sparse={"count": 4, "indices": {"bufferView": 2, "componentType": USHORT},
                 "values": {"bufferView": 0}}))
     variant("gltf_view_past_buffer.gltf", lambda d: d["bufferViews"][1].update(byteLength=4000))
     variant("gltf_accessor_past_view.gltf", lambda d: d["accessors"][0].update(count=25))
@@ -315,7 +385,8 @@ def skinned_morph_anim():
     """A closed square column (0.5 x 2 x 0.5, rings at y = 0, 0.5, ..., 2) skinned to two joints,
     with one morph target and an animation whose three channels use the three sampler types.
     tests/test_deform.cpp hand-computes the expected pose from the numbers written here:
-      node 0  the mesh, skin 0, translation (5, 0, 0) (ignored: the mesh is skinned)
+      node 0  the mesh, skin 0 (tests/test_deform.cpp gives it a translation in memory, which a
+              skinned mesh ignores: glTF validators warn about one in a file)
       node 1  joint "root" at the origin; node 2 joint "upper", child of 1, translation (0, 1, 0)
       weights: rings y <= 0.5 -> root, y = 1 -> 0.5 / 0.5, y >= 1.5 -> upper
       morph target 0: the top ring (y = 2) moves by (+0.1 x, 0, +0.1 z) (it widens by 20 %)
@@ -339,8 +410,8 @@ def skinned_morph_anim():
     idx += [top, top + 2, top + 1, top, top + 3, top + 2]  # top, facing +y
     joints, weights = [], []
     for (x, y, z) in pos:
-        joints += [0, 1, 0, 0]
         w1 = 0.0 if y <= 0.5 else (0.5 if y == 1.0 else 1.0)
+        joints += [0, 1 if w1 > 0.0 else 0, 0, 0]  # unused slots hold joint 0, as glTF asks
         weights += [1.0 - w1, w1, 0.0, 0.0]
     delta = [(0.1 * x, 0.0, 0.1 * z) if y == 2.0 else (0.0, 0.0, 0.0) for (x, y, z) in pos]
     p_acc = g.vec3(pos, minmax=True)
@@ -354,10 +425,12 @@ def skinned_morph_anim():
     del g.doc["bufferViews"][-1]["target"]
     s = math.sin(math.pi / 4)
     t_rot = g.accessor("f", [0.0, 1.0], FLOAT, "SCALAR", 2, None)
+    g.doc["accessors"][-1].update(min=[0.0], max=[1.0])  # glTF requires bounds on key times
     del g.doc["bufferViews"][-1]["target"]
     v_rot = g.accessor("f", [0, 0, 0, 1, 0, 0, s, s], FLOAT, "VEC4", 2, None)
     del g.doc["bufferViews"][-1]["target"]
     t_step = g.accessor("f", [0.0, 0.5, 1.0], FLOAT, "SCALAR", 3, None)
+    g.doc["accessors"][-1].update(min=[0.0], max=[1.0])
     del g.doc["bufferViews"][-1]["target"]
     v_step = g.accessor("f", [0, 0, 0, 1, 0, 0, 2, 0, 0], FLOAT, "VEC3", 3, None)
     del g.doc["bufferViews"][-1]["target"]
@@ -366,7 +439,7 @@ def skinned_morph_anim():
     g.doc["meshes"].append({"primitives": [{"attributes": {"POSITION": p_acc, "JOINTS_0": j_acc, "WEIGHTS_0": w_acc},
                                             "indices": i_acc, "targets": [{"POSITION": d_acc}]}],
                             "weights": [0.0]})
-    g.doc["nodes"] = [{"name": "column", "mesh": 0, "skin": 0, "translation": [5.0, 0.0, 0.0]},
+    g.doc["nodes"] = [{"name": "column", "mesh": 0, "skin": 0},
                       {"name": "root", "children": [2]},
                       {"name": "upper", "translation": [0.0, 1.0, 0.0]}]
     g.doc["skins"] = [{"joints": [1, 2], "inverseBindMatrices": ibm_acc, "skeleton": 1}]
@@ -419,6 +492,8 @@ def main():
     write(os.path.join(HERE, "cube_external.bin"), bytes(external.buffer))
     write(os.path.join(HERE, "nodes_transforms.gltf"), dump(nodes_transforms().finish()))
     write(os.path.join(HERE, "strip_fan.gltf"), dump(strip_fan().finish()))
+    write(os.path.join(HERE, "sparse_cube.gltf"), dump(sparse_cube().finish()))
+    write(os.path.join(HERE, "asset_features.gltf"), dump(asset_features().finish()))
     write(os.path.join(HERE, "skinned_morph_anim.gltf"), dump(skinned_morph_anim().finish()))
     # Not in bad/: those must all fail load_mesh, which ignores animations.
     os.makedirs(BAD_ANIMATION, exist_ok=True)

@@ -41,6 +41,8 @@ std::filesystem::path out(const std::string& name)
     return p;
 }
 
+std::filesystem::path cli() { return env_path("JADE_CLI"); }
+
 static std::string shell_quote(const std::string& s)
 {
     std::string q = "'";

@@ -18,6 +18,8 @@ struct CliResult {
     int exit_code = -1;
     std::string output;  ///< stdout and stderr together
 };
+/// The `jade` command-line sample's executable (JADE_CLI).
+std::filesystem::path cli();
 /// Runs the `jade` command-line sample with the given arguments (no shell quoting needed).
 CliResult run_cli(const std::vector<std::string>& args);
 

@@ -128,6 +128,22 @@ TEST_F(ViewerXvfb, PresentedFrameMatchesHeadlessRender)
     EXPECT_GT(d.covered, d.compared / 10);
 }
 
+// A file written by `jade bake` is drawn with its own t_m, as `jade render` draws it: baked here
+// with marble, the viewer's jade material would give another t_m if it baked again.
+TEST_F(ViewerXvfb, BakedFileIsDrawnWithItsOwnTm)
+{
+    const auto baked = test::out("viewer/bunny_marble.glb");
+    const test::CliResult b = test::run_cli({"bake", bunny(), "--out", baked.string(), "--quality", "draft", "--material", "marble"});
+    ASSERT_EQ(b.exit_code, 0) << b.output;
+    const auto shot = test::out("viewer/bunny_marble_no_ui.png");
+    view({baked.string(), "--size", "200x150", "--frames", "2", "--no-ui", "--screenshot", shot.string()});
+    const Image8 viewer = read_png(shot), ref = reference(baked.string(), "bunny_marble", {}, "200x150");
+    const Difference d = compare(viewer, ref, 1);
+    EXPECT_LE(d.max_steps, 2);
+    EXPECT_LE(d.over_tolerance, d.compared / 1000) << "pixels more than one step apart";
+    EXPECT_GT(d.covered, d.compared / 10);
+}
+
 // With the panel: outside the rectangles the viewer reports for its windows (controls on the
 // left, timings overlay bottom right) the frame still matches the headless render; inside,
 // the panel was drawn over it.

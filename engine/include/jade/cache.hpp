@@ -10,8 +10,8 @@
 //           uint64 vertex count, uint64 FNV-1a checksum of the payload   (little-endian)
 //   payload vertex count floats of AO, then 3 × vertex count floats of t_m (RGB interleaved)
 // An entry whose magic, version, key, size or checksum does not match is stale or corrupt:
-// load() reports why and bake_with_cache() bakes again and replaces it. Entries are written to
-// a temporary file in DIR and renamed, so readers never see a half-written entry.
+// load() reports why and bake_with_cache() bakes again and replaces it. Entries are written with
+// write_file_atomically (jade/io.hpp), so readers never see a half-written entry.
 //
 // Threading: a BakeCache holds only its folder; concurrent processes may share a folder
 // (rename is atomic; the last writer of a key wins with identical content).

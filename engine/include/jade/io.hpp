@@ -3,10 +3,14 @@
 #pragma once
 
 #include <jade/deform.hpp>
+#include <jade/material.hpp>
 #include <jade/mesh.hpp>
 
 #include <filesystem>
+#include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace jade {
@@ -23,7 +27,9 @@ TriangleMesh load_mesh(const std::filesystem::path& path);
 
 /// Loads the first node with a mesh of a glTF file with its skin (JOINTS_0/WEIGHTS_0, inverse
 /// bind matrices), morph targets (POSITION deltas), node hierarchy and animations (LINEAR, STEP,
-/// CUBICSPLINE), for jade/deform.hpp. Only TRIANGLES primitives; errors as load_mesh.
+/// CUBICSPLINE), for jade/deform.hpp, and the baked `_AO`/`_TM`/`_THICKNESS` of the bind pose
+/// when every primitive has them (a file written by jade bake). Only TRIANGLES primitives;
+/// errors as load_mesh.
 AnimatedMesh load_animated_gltf(const std::filesystem::path& path);
 
 /// Writes an animated image (frames of width × height linear-RGB RGBA floats, sRGB-encoded,
@@ -32,6 +38,13 @@ AnimatedMesh load_animated_gltf(const std::filesystem::path& path);
 /// Atomic like save_image.
 void save_animation(const std::filesystem::path& path, int width, int height, const std::vector<std::vector<float>>& frames,
                     double fps);
+
+/// Writes `bytes` to `path` atomically, as every file writer here does: a temporary file
+/// "<path>.tmp-<pid>" in the same folder is written, synced to disk (fsync), renamed to `path`
+/// and the folder synced. A failure or a crash at any moment leaves the old file (or none) or
+/// the complete new one; a crash may leave the temporary file behind. Throws jade::Error
+/// naming the file.
+void write_file_atomically(const std::filesystem::path& path, std::string_view bytes);
 
 /// What `jade bake` stores next to the mesh.
 struct BakedAttributes {
@@ -46,6 +59,73 @@ struct BakedAttributes {
 /// mesh units). Written to a temporary file
 /// in the same folder and renamed, so a failure never leaves a half-written file.
 void save_baked_gltf(const std::filesystem::path& path, const TriangleMesh& mesh, const BakedAttributes& baked);
+
+/// A glTF 2.0 asset (.gltf or .glb) read whole, to be written back with baked attributes by
+/// save_baked_asset: every scene, node, mesh, material, texture, image, sampler, skin, animation,
+/// camera, extension and extras as read (docs/gltf.md). What is baked, the instance rule:
+/// - each glTF mesh once, all its triangle primitives together as one surface (they occlude and
+///   scatter into each other), in the world space of its first instance in the default scene
+///   (depth-first, as load_mesh walks it), node scale included; every other instance gets the
+///   same values. A mesh whose first instance has a skin is baked in its bind pose (the
+///   positions as stored, which the skin deforms); one no node of the default scene shows, in
+///   its own coordinates. Morph targets are at weight 0 (the base shape, as load_mesh reads it).
+/// - primitives whose glTF material Jade maps translucent (docs/scene.md) are baked with that
+///   material, the others (opaque, or no material) with the caller's: one target per distinct
+///   material of a mesh, each over the whole mesh.
+/// - POINTS and LINES primitives are written back unchanged, without baked attributes.
+class GltfAsset {
+public:
+    struct BakeTarget {
+        /// The mesh's triangle primitives merged, in the space above (mesh units); render
+        /// vertices in primitive order, each primitive's in its own vertex order. Named
+        /// "FILE: mesh 3 'wheel'" for messages.
+        TriangleMesh mesh;
+        int mesh_index = -1;
+        std::vector<int> primitives;      ///< the primitives of the mesh that take this bake's values
+        /// Jade's material for them when their glTF material is translucent; empty: the caller's.
+        std::optional<Material> material;
+        std::string material_name;        ///< "material 2 'steel'" or "no material"
+        std::string space;                ///< "world space of node 4 'wheel' (first of 2 instances)", ...
+    };
+
+    /// Reads the file (errors as load_mesh, naming the file and the element). External buffers
+    /// and images must exist: the output holds them. `warnings` receives what the material
+    /// mapping says (docs/scene.md).
+    static GltfAsset load(const std::filesystem::path& path, std::vector<std::string>* warnings = nullptr);
+
+    GltfAsset(GltfAsset&&) noexcept;
+    GltfAsset& operator=(GltfAsset&&) noexcept;
+    ~GltfAsset();
+
+    const std::string& name() const;                   ///< the file name, for messages
+    const std::vector<BakeTarget>& targets() const;
+    /// The `asset.extras` JSON object of the file (empty when it has none), where `jade bake`
+    /// keeps what it baked with.
+    std::string asset_extras_json() const;
+
+    struct Impl;
+
+private:
+    friend void save_baked_asset(const std::filesystem::path&, const GltfAsset&, const std::vector<BakedAttributes>&,
+                                 const std::string&);
+    explicit GltfAsset(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> impl_;
+};
+
+/// Writes `asset` to `path` (.glb or .gltf, whatever the input was) with `baked[i]` - one
+/// BakedAttributes per asset.targets()[i], over its mesh's render vertices; empty ao and tm:
+/// target not baked; their extras_json is not used - added to the target's primitives as the
+/// vertex attributes `_AO` (SCALAR float), `_TM` (VEC3 float) and `_THICKNESS` (SCALAR float,
+/// mesh units, only where given), replacing earlier ones. `asset_extras_json`, a JSON object, is
+/// merged into the asset's `extras` (its keys replace the same keys). Besides: the output is one
+/// self-contained file (external buffers and images embedded; all buffers packed into one, each
+/// bufferView 4-byte aligned); required accessor bounds the input lacks (POSITION, animation key
+/// times) are added; materials that Jade maps translucent without KHR_materials_diffuse_transmission
+/// (an extras.jade.preset) get it and KHR_materials_volume with the preset's medium. Every value
+/// written is finite: a non-finite baked value is an error naming the file, mesh, primitive and
+/// vertex. Atomic (write_file_atomically): `path` may be the asset's own file.
+void save_baked_asset(const std::filesystem::path& path, const GltfAsset& asset, const std::vector<BakedAttributes>& baked,
+                      const std::string& asset_extras_json);
 
 /// Writes a linear-RGB float image: .png (sRGB-encoded, 8 bit), .exr (linear half/float).
 /// `rgba` holds width*height*4 floats, rows top to bottom. Atomic like save_baked_gltf.

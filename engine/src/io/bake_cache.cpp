@@ -2,12 +2,12 @@
 #include <jade/cache.hpp>
 #include <jade/context.hpp>
 #include <jade/error.hpp>
+#include <jade/io.hpp>
 
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <system_error>
-#include <unistd.h>
 #include <vector>
 
 namespace jade {
@@ -159,26 +159,16 @@ void BakeCache::store(uint64_t key, const BakeResult& r) const
     h.key = key;
     h.vertex_count = r.ao.size();
     h.checksum = payload_checksum(r);
-    // Unique per process, so concurrent writers never share a temporary file.
-    const std::filesystem::path tmp = path.string() + ".tmp" + std::to_string(::getpid());
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        out.write(reinterpret_cast<const char*>(&h), sizeof h);
-        out.write(reinterpret_cast<const char*>(r.ao.data()), std::streamsize(r.ao.size() * sizeof(float)));
-        out.write(reinterpret_cast<const char*>(r.tm.data()), std::streamsize(r.tm.size() * sizeof(glm::vec3)));
-        out.write(reinterpret_cast<const char*>(r.thickness.data()), std::streamsize(r.thickness.size() * sizeof(float)));
-        out.flush();
-        if (!out) {
-            std::error_code ec;
-            std::filesystem::remove(tmp, ec);
-            throw Error(tmp.string() + ": cannot write the bake cache entry");
-        }
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::filesystem::remove(tmp, ec);
-        throw Error(path.string() + ": cannot rename the bake cache entry into place (" + ec.message() + ")");
+    // The temporary file is unique per process, so concurrent writers never share one.
+    std::string bytes(reinterpret_cast<const char*>(&h), sizeof h);
+    auto append = [&](const void* data, size_t size) { bytes.append(static_cast<const char*>(data), size); };
+    append(r.ao.data(), r.ao.size() * sizeof(float));
+    append(r.tm.data(), r.tm.size() * sizeof(glm::vec3));
+    append(r.thickness.data(), r.thickness.size() * sizeof(float));
+    try {
+        write_file_atomically(path, bytes);
+    } catch (const Error& e) {
+        throw Error(path.string() + ": cannot store the bake cache entry (" + e.what() + ")");
     }
 }
 

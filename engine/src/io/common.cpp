@@ -1,11 +1,16 @@
 // io/common.cpp - helpers shared by the readers and writers; see common.hpp.
 #include "io/common.hpp"
 
+#include <jade/io.hpp>
+
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <system_error>
 
+#include <fcntl.h>
 #include <unistd.h>
 
 namespace jade::io {
@@ -101,6 +106,24 @@ std::string one_line(const std::string& message)
     return out;
 }
 
+namespace {
+
+/// Flushes a file's data and metadata to the disk (fsync), so that a rename published after it
+/// never names a file whose bytes a crash could still lose.
+void sync_path(std::string_view name, const std::filesystem::path& path, bool folder)
+{
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | (folder ? O_DIRECTORY : 0));
+    if (fd < 0) fail(name, "cannot open " + path.string() + " to sync it: " + std::strerror(errno));
+    const int rc = ::fsync(fd);
+    const int error = errno;
+    ::close(fd);
+    // Some file systems cannot sync a folder (EINVAL): the rename is then as durable as they allow.
+    if (rc != 0 && !(folder && (error == EINVAL || error == ENOTSUP)))
+        fail(name, "cannot sync " + path.string() + " to disk: " + std::strerror(error));
+}
+
+}  // namespace
+
 void write_atomically(const std::filesystem::path& path, const std::function<void(const std::filesystem::path&)>& write)
 {
     const auto name = display_name(path);
@@ -108,6 +131,7 @@ void write_atomically(const std::filesystem::path& path, const std::function<voi
     tmp += ".tmp-" + std::to_string(::getpid());
     try {
         write(tmp);
+        sync_path(name, tmp, false);
         std::filesystem::rename(tmp, path);
     } catch (const std::exception& e) {
         std::error_code ignored;
@@ -115,6 +139,9 @@ void write_atomically(const std::filesystem::path& path, const std::function<voi
         if (dynamic_cast<const Error*>(&e)) throw;
         fail(name, std::string("cannot write: ") + e.what());
     }
+    // The new name must reach the disk too, or a crash could bring back the old file (or none).
+    const auto folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+    sync_path(name, folder, true);
 }
 
 std::string lower_extension(const std::filesystem::path& path)
@@ -125,3 +152,19 @@ std::string lower_extension(const std::filesystem::path& path)
 }
 
 }  // namespace jade::io
+
+namespace jade {
+
+void write_file_atomically(const std::filesystem::path& path, std::string_view bytes)
+{
+    const auto name = io::display_name(path);
+    io::write_atomically(path, [&](const std::filesystem::path& tmp) {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        if (!out) io::fail(name, "cannot open " + tmp.string() + " for writing: " + std::strerror(errno));
+        out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+        out.close();
+        if (!out) io::fail(name, "writing " + tmp.string() + " failed (disk full?)");
+    });
+}
+
+}  // namespace jade

@@ -77,7 +77,9 @@ std::string printable(std::string_view text, size_t max = 32);
 /// URIs) shortened.
 std::string one_line(const std::string& message);
 
-/// Writes a file atomically: `write` fills "<path>.tmp-<pid>", which is then renamed to `path`.
+/// Writes a file atomically, the one way every writer of Jade does: `write` fills
+/// "<path>.tmp-<pid>" beside it, which is synced to disk (fsync), renamed to `path`, and the
+/// folder synced, so that a crash at any moment leaves the old file or the complete new one.
 /// On any failure the temporary file is removed and the error is rethrown as jade::Error.
 void write_atomically(const std::filesystem::path& path, const std::function<void(const std::filesystem::path&)>& write);
 

@@ -50,12 +50,6 @@ glm::dmat4 local_transform(const std::string& name, const tinygltf::Node& node, 
     return m;
 }
 
-struct Instance {
-    int mesh;
-    glm::dmat4 world;
-    int node;
-};
-
 std::vector<int> scene_roots(const std::string& name, const tinygltf::Model& model)
 {
     if (!model.scenes.empty()) {
@@ -79,7 +73,7 @@ std::vector<int> scene_roots(const std::string& name, const tinygltf::Model& mod
 /// Walks the node trees from `roots` (iteratively: no stack overflow on deep hierarchies) and
 /// lists every mesh instance with its world matrix. glTF nodes have at most one parent; a node
 /// reached twice is reported as a cycle or as a node with two parents.
-std::vector<Instance> mesh_instances(const std::string& name, const tinygltf::Model& model, const std::vector<int>& roots)
+std::vector<MeshInstance> mesh_instances(const std::string& name, const tinygltf::Model& model, const std::vector<int>& roots)
 {
     constexpr int kUnvisited = -2, kRoot = -1;
     std::vector<int> parent(model.nodes.size(), kUnvisited);
@@ -89,7 +83,7 @@ std::vector<Instance> mesh_instances(const std::string& name, const tinygltf::Mo
     };
     std::vector<Pending> stack;
     for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, kRoot, glm::dmat4(1.0)});
-    std::vector<Instance> instances;
+    std::vector<MeshInstance> instances;
     while (!stack.empty()) {
         const Pending p = stack.back();
         stack.pop_back();
@@ -133,16 +127,24 @@ public:
         mesh_.name = name;
     }
 
-    void add(const Instance& instance)
+    /// Every triangle primitive of the instance. Points and lines are left out (a baked asset
+    /// may carry them); a file with nothing else fails naming the first of them (finish()).
+    void add(const MeshInstance& instance)
     {
         const auto& mesh = model_.meshes[size_t(instance.mesh)];
-        for (size_t p = 0; p < mesh.primitives.size(); ++p)
-            add_primitive("mesh " + std::to_string(instance.mesh) + " primitive " + std::to_string(p) + ": ", mesh.primitives[p],
-                          instance.world);
+        for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+            const std::string where = "mesh " + std::to_string(instance.mesh) + " primitive " + std::to_string(p) + ": ";
+            if (const int mode = mesh.primitives[p].mode; !is_triangle_mode(mode)) {
+                if (skipped_.empty())
+                    skipped_ = where + "mode " + std::to_string(mode) + " (" + mode_name(mode) + ") is not supported (only triangles)";
+                continue;
+            }
+            add_primitive(where, mesh.primitives[p], instance.world);
+        }
     }
 
     /// Only primitive `p` of the instance (a scene object, io/scene_gltf.cpp).
-    void add(const Instance& instance, size_t p)
+    void add(const MeshInstance& instance, size_t p)
     {
         add_primitive("mesh " + std::to_string(instance.mesh) + " primitive " + std::to_string(p) + ": ",
                       model_.meshes[size_t(instance.mesh)].primitives[p], instance.world);
@@ -150,6 +152,7 @@ public:
 
     TriangleMesh finish()
     {
+        if (mesh_.indices.empty() && !skipped_.empty()) fail(name_, skipped_);
         if (!all_normals_) mesh_.normals.clear();
         if (!all_ao_) mesh_.baked_ao.clear();
         if (!all_tm_) mesh_.baked_tm.clear();
@@ -279,9 +282,28 @@ private:
     AccessorReader accessors_;
     TriangleMesh mesh_;
     bool all_normals_ = true, all_ao_ = true, all_tm_ = true, all_thickness_ = true;
+    std::string skipped_;  ///< why the first non-triangle primitive was left out
 };
 
 }  // namespace
+
+std::vector<MeshInstance> scene_mesh_instances(const std::string& name, const tinygltf::Model& model)
+{
+    return mesh_instances(name, model, scene_roots(name, model));
+}
+
+bool is_triangle_mode(int mode)
+{
+    return mode < 0 || mode == TINYGLTF_MODE_TRIANGLES || mode == TINYGLTF_MODE_TRIANGLE_STRIP || mode == TINYGLTF_MODE_TRIANGLE_FAN;
+}
+
+TriangleMesh read_gltf_primitive(const std::string& name, const tinygltf::Model& model, int mesh, size_t primitive,
+                                 const glm::dmat4& world)
+{
+    MeshBuilder builder(name, model);
+    builder.add({mesh, world, -1}, primitive);
+    return builder.finish();
+}
 
 TriangleMesh read_gltf(const std::filesystem::path& path, const std::string& name, const std::string& bytes, bool binary)
 {
@@ -289,7 +311,7 @@ TriangleMesh read_gltf(const std::filesystem::path& path, const std::string& nam
     const auto model = parse_gltf(path, name, bytes, binary);
     check_required_extensions(name, model);
     MeshBuilder builder(name, model);
-    for (const auto& instance : mesh_instances(name, model, scene_roots(name, model))) builder.add(instance);
+    for (const auto& instance : scene_mesh_instances(name, model)) builder.add(instance);
     return builder.finish();
 }
 
@@ -297,9 +319,10 @@ std::vector<GltfPrimitive> read_gltf_primitives(const std::string& name, const t
 {
     check_required_extensions(name, model);
     std::vector<GltfPrimitive> out;
-    for (const auto& instance : mesh_instances(name, model, scene_roots(name, model))) {
+    for (const auto& instance : scene_mesh_instances(name, model)) {
         const auto& mesh = model.meshes[size_t(instance.mesh)];
         for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+            if (!is_triangle_mode(mesh.primitives[p].mode)) continue;  // points and lines are no objects
             MeshBuilder builder(name, model);
             builder.add(instance, p);
             out.push_back({builder.finish(), instance.node, instance.mesh, int(p), mesh.primitives[p].material});

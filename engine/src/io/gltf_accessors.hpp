@@ -1,8 +1,9 @@
 // io/gltf_accessors.hpp - checked access to glTF accessor data (private to jade_io).
 //
-// Every accessor is checked before it is read: it exists, is not sparse, has the expected type
-// and component type, and each of its elements lies inside its bufferView, which lies inside its
-// buffer. Reads are then plain memcpy's at offset + i * stride.
+// Every accessor is checked before it is read: it exists, has the expected type and component
+// type, and each of its elements lies inside its bufferView, which lies inside its buffer. Reads
+// are then plain memcpy's at offset + i * stride. A sparse accessor is expanded once into a dense
+// copy that the view owns (its indices checked: in range and strictly increasing).
 #pragma once
 
 #include <tiny_gltf.h>
@@ -12,7 +13,9 @@
 #include <cstdint>
 #include <cstring>
 #include <initializer_list>
+#include <memory>
 #include <string>
+#include <vector>
 
 namespace jade::io {
 
@@ -22,6 +25,14 @@ struct AccessorView {
     size_t stride = 0;
     size_t count = 0;
     int component = 0;
+    std::shared_ptr<const std::vector<unsigned char>> dense;  ///< a sparse accessor's expanded data
+
+    /// Element i's bytes (`size` of them: component size × components).
+    void bytes(size_t i, void* out, size_t size) const
+    {
+        if (data) std::memcpy(out, data + i * stride, size);
+        else std::memset(out, 0, size);
+    }
 
     glm::vec3 vec3(size_t i) const
     {
@@ -60,8 +71,9 @@ private:
         size_t length, stride;
     };
     ViewRange buffer_view(const std::string& subject, int index) const;
-    void check_fits(const std::string& subject, const tinygltf::Accessor& a, size_t element, size_t stride, size_t length,
-                    int view) const;
+    void check_fits(const std::string& subject, size_t count, size_t offset, size_t element, size_t stride, size_t length,
+                    const std::string& view) const;
+    void expand_sparse(const std::string& subject, const tinygltf::Accessor& a, size_t element, AccessorView& v) const;
 
     const std::string& file_;
     const tinygltf::Model& model_;

@@ -102,11 +102,45 @@ void read_nodes(const std::string& name, const tinygltf::Model& model, AnimatedM
     }
 }
 
+/// `_AO`, `_TM` and `_THICKNESS` (jade bake), kept when every primitive has them, as load_mesh does.
+struct BakedReader {
+    bool all_ao = true, all_tm = true, all_thickness = true;
+
+    void add(const Reader& r, const std::string& where, const tinygltf::Primitive& prim, size_t n, TriangleMesh& mesh)
+    {
+        auto read = [&](const char* role, int type, bool& all) {
+            const int index = r.attribute(prim, role);
+            std::vector<float> v;
+            const size_t width = size_t(tinygltf::GetNumComponentsInType(uint32_t(type)));
+            if (index >= 0) v = r.floats(where, index, role, type);
+            if (index >= 0 && v.size() != n * width)
+                fail(r.name, where + "accessor " + std::to_string(index) + " (" + role + ") has " + std::to_string(v.size() / width) +
+                                 " elements for " + std::to_string(n) + " vertices");
+            if (index < 0) all = false, v.assign(n * width, 0.0f);
+            return v;
+        };
+        const auto ao = read("_AO", TINYGLTF_TYPE_SCALAR, all_ao);
+        const auto tm = read("_TM", TINYGLTF_TYPE_VEC3, all_tm);
+        const auto thickness = read("_THICKNESS", TINYGLTF_TYPE_SCALAR, all_thickness);
+        mesh.baked_ao.insert(mesh.baked_ao.end(), ao.begin(), ao.end());
+        for (size_t i = 0; i < n; ++i) mesh.baked_tm.emplace_back(tm[3 * i], tm[3 * i + 1], tm[3 * i + 2]);
+        mesh.baked_thickness.insert(mesh.baked_thickness.end(), thickness.begin(), thickness.end());
+    }
+
+    void finish(TriangleMesh& mesh) const
+    {
+        if (!all_ao) mesh.baked_ao.clear();
+        if (!all_tm) mesh.baked_tm.clear();
+        if (!all_thickness) mesh.baked_thickness.clear();
+    }
+};
+
 void read_mesh(const Reader& r, int mesh_index, bool skinned, AnimatedMesh& out)
 {
     const auto& mesh = r.model.meshes[size_t(mesh_index)];
     out.mesh.name = r.name;
     size_t targets = 0;
+    BakedReader baked;
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
         const auto& prim = mesh.primitives[p];
         const std::string where = "mesh " + std::to_string(mesh_index) + " primitive " + std::to_string(p) + ": ";
@@ -118,6 +152,7 @@ void read_mesh(const Reader& r, int mesh_index, bool skinned, AnimatedMesh& out)
         const size_t n = positions.size() / 3, base = out.mesh.positions.size();
         if (n > io::kMaxVertices - base) fail(r.name, where + "more vertices in total than 32-bit indices can address");
         for (size_t i = 0; i < n; ++i) out.mesh.positions.emplace_back(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]);
+        baked.add(r, where, prim, n, out.mesh);
 
         if (p == 0) targets = prim.targets.size(), out.morph_deltas.resize(targets);
         if (prim.targets.size() != targets)
@@ -193,6 +228,7 @@ void read_mesh(const Reader& r, int mesh_index, bool skinned, AnimatedMesh& out)
         if (corners.size() % 3 != 0) fail(r.name, where + std::to_string(corners.size()) + " vertices for TRIANGLES is not a multiple of 3");
         for (uint32_t c : corners) out.mesh.indices.push_back(uint32_t(base + c));
     }
+    baked.finish(out.mesh);
     out.default_weights.assign(targets, 0.0f);
     const auto& w = r.model.nodes[size_t(out.mesh_node)].weights.empty() ? mesh.weights : r.model.nodes[size_t(out.mesh_node)].weights;
     if (!w.empty() && w.size() != targets)

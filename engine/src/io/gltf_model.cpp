@@ -114,9 +114,14 @@ bool fs_write(std::string* err, const std::string&, const std::vector<unsigned c
     return false;
 }
 
-/// Images are not geometry: they are neither decoded nor required.
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*)
+/// Images are not geometry: they are never decoded; their bytes are kept when asked for.
+bool keep_image(tinygltf::Image*, const int index, std::string*, std::string*, int, int, const unsigned char* bytes, int size,
+                void* user)
 {
+    if (auto* images = static_cast<std::vector<std::vector<unsigned char>>*>(user); images && index >= 0 && size >= 0) {
+        if (images->size() <= size_t(index)) images->resize(size_t(index) + 1);
+        (*images)[size_t(index)].assign(bytes, bytes + size);
+    }
     return true;
 }
 
@@ -187,7 +192,7 @@ bool geometry_neutral(const std::string& ext)
 }  // namespace
 
 tinygltf::Model parse_gltf(const std::filesystem::path& path, const std::string& name, const std::string& bytes,
-                           bool binary)
+                           bool binary, std::vector<std::vector<unsigned char>>* images)
 {
     tinygltf::TinyGLTF loader;
     FsContext ctx;
@@ -197,7 +202,7 @@ tinygltf::Model parse_gltf(const std::filesystem::path& path, const std::string&
     const std::string folder = ctx.folder.string();
     ctx.prefix = folder.ends_with('/') ? folder : folder + "/";
     loader.SetFsCallbacks({&fs_exists, &fs_expand, &fs_read, &fs_write, &ctx});
-    loader.SetImageLoader(&skip_image, nullptr);
+    loader.SetImageLoader(&keep_image, images);
 
     tinygltf::Model model;
     std::string err, warn;
@@ -220,6 +225,7 @@ tinygltf::Model parse_gltf(const std::filesystem::path& path, const std::string&
     }
     if (!ctx.refused_uri.empty()) fail_refused_uri(name, ctx, model);
     if (!ok) fail(name, "tinygltf: " + one_line(err.empty() && warn.empty() ? "parse failed" : err + warn));
+    if (images) images->resize(model.images.size());
     return model;
 }
 

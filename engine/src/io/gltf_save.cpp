@@ -8,13 +8,13 @@
 #include <jade/io.hpp>
 
 #include "io/common.hpp"
+#include "io/gltf_container.hpp"
 
 #include <glm/common.hpp>
 #include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <cstring>
-#include <fstream>
 
 namespace jade {
 
@@ -129,73 +129,23 @@ json build_json(const TriangleMesh& mesh, const BakedAttributes& baked, json ext
     };
 }
 
-std::string base64(const std::vector<unsigned char>& data)
-{
-    static constexpr char kDigits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    out.reserve((data.size() + 2) / 3 * 4);
-    for (size_t i = 0; i < data.size(); i += 3) {
-        const uint32_t a = data[i], b = i + 1 < data.size() ? data[i + 1] : 0, c = i + 2 < data.size() ? data[i + 2] : 0;
-        const uint32_t triple = (a << 16) | (b << 8) | c;
-        out += kDigits[(triple >> 18) & 63];
-        out += kDigits[(triple >> 12) & 63];
-        out += i + 1 < data.size() ? kDigits[(triple >> 6) & 63] : '=';
-        out += i + 2 < data.size() ? kDigits[triple & 63] : '=';
-    }
-    return out;
-}
-
 std::string dump(const json& j)
 {
     // Mesh names come from file names: replace invalid UTF-8 rather than throw.
     return j.dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
-void append_u32(std::string& out, uint32_t v)
-{
-    char raw[4];
-    std::memcpy(raw, &v, 4);
-    out.append(raw, 4);
-}
-
-/// GLB container: 12-byte header, JSON chunk padded with spaces, BIN chunk padded with zeros.
 std::string to_glb(const std::string& name, json document, const std::vector<unsigned char>& buffer)
 {
     document["buffers"] = json::array({{{"byteLength", buffer.size()}}});
-    std::string text = dump(document);
-    text.resize((text.size() + 3) / 4 * 4, ' ');
-    const size_t bin = (buffer.size() + 3) / 4 * 4;
-    const uint64_t total = 12 + 8 + text.size() + 8 + bin;
-    if (total > 0xffffffffu) io::fail(name, "the GLB would exceed 4 GiB");
-    std::string out;
-    out.reserve(size_t(total));
-    out += "glTF";
-    append_u32(out, 2);
-    append_u32(out, uint32_t(total));
-    append_u32(out, uint32_t(text.size()));
-    append_u32(out, 0x4E4F534Au);  // "JSON"
-    out += text;
-    append_u32(out, uint32_t(bin));
-    append_u32(out, 0x004E4942u);  // "BIN\0"
-    out.append(reinterpret_cast<const char*>(buffer.data()), buffer.size());
-    out.append(bin - buffer.size(), '\0');
-    return out;
+    return io::glb_container(name, dump(document), buffer);
 }
 
 std::string to_gltf(json document, const std::vector<unsigned char>& buffer)
 {
     document["buffers"] = json::array(
-        {{{"byteLength", buffer.size()}, {"uri", "data:application/octet-stream;base64," + base64(buffer)}}});
+        {{{"byteLength", buffer.size()}, {"uri", "data:application/octet-stream;base64," + io::base64(buffer)}}});
     return dump(document);
-}
-
-void write_bytes(const std::string& name, const std::filesystem::path& tmp, const std::string& bytes)
-{
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) io::fail(name, "cannot open " + tmp.string() + " for writing");
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    out.close();
-    if (!out) io::fail(name, "writing " + tmp.string() + " failed");
 }
 
 }  // namespace
@@ -209,7 +159,7 @@ void save_baked_gltf(const std::filesystem::path& path, const TriangleMesh& mesh
     Document doc;
     const json document = build_json(mesh, baked, parse_extras(name, baked.extras_json), doc);
     const std::string bytes = ext == ".glb" ? to_glb(name, document, doc.buffer()) : to_gltf(document, doc.buffer());
-    io::write_atomically(path, [&](const std::filesystem::path& tmp) { write_bytes(name, tmp, bytes); });
+    write_file_atomically(path, bytes);
 }
 
 }  // namespace jade

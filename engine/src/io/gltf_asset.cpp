@@ -1,0 +1,190 @@
+// io/gltf_asset.cpp - GltfAsset::load: a glTF file read whole, and what to bake of it (the
+// instance rule of jade/io.hpp). The writer is io/gltf_asset_save.cpp.
+#include <jade/io.hpp>
+
+#include "io/common.hpp"
+#include "io/gltf_asset.hpp"
+#include "io/gltf_materials.hpp"
+#include "io/gltf_model.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <map>
+
+namespace jade {
+
+namespace {
+
+using io::fail;
+
+std::string described(const std::string& kind, int index, const std::string& name)
+{
+    return kind + " " + std::to_string(index) + (name.empty() ? "" : " '" + io::printable(name, 48) + "'");
+}
+
+/// The JSON text of the file: all of a .gltf, the first chunk of a .glb (parse_gltf checked
+/// the container).
+std::string_view json_text(const std::string& bytes, bool binary)
+{
+    if (!binary) return bytes;
+    uint32_t length;
+    std::memcpy(&length, bytes.data() + 12, 4);
+    return std::string_view(bytes).substr(20, length);
+}
+
+/// Every external image must have been read: the output embeds it.
+void check_images(const GltfAsset::Impl& a)
+{
+    for (size_t i = 0; i < a.model.images.size(); ++i) {
+        const auto& image = a.model.images[i];
+        if (image.bufferView >= 0 || image.uri.rfind("data:", 0) == 0) continue;
+        if (a.image_bytes[i].empty())
+            fail(a.name, described("image", int(i), image.name) + ": external file '" + io::printable(image.uri, 64) +
+                             "' cannot be read (the baked file embeds it)");
+    }
+}
+
+/// The space a mesh is baked in, from its first instance (see GltfAsset).
+struct Placement {
+    glm::dmat4 world{1.0};
+    std::string space;
+};
+
+std::vector<Placement> placements(const GltfAsset::Impl& a)
+{
+    const auto& model = a.model;
+    std::vector<Placement> out(model.meshes.size());
+    std::vector<int> first(model.meshes.size(), -1), count(model.meshes.size(), 0);
+    std::vector<glm::dmat4> world(model.meshes.size());
+    for (const auto& instance : io::scene_mesh_instances(a.name, model)) {
+        const size_t m = size_t(instance.mesh);
+        if (count[m]++ == 0) first[m] = instance.node, world[m] = instance.world;
+    }
+    for (size_t m = 0; m < out.size(); ++m) {
+        if (first[m] < 0) {
+            out[m].space = "its own coordinates (no node of the default scene shows it)";
+            continue;
+        }
+        const auto& node = model.nodes[size_t(first[m])];
+        const std::string where = described("node", first[m], node.name);
+        if (node.skin >= 0) {
+            out[m].space = "its bind pose (the skinned " + where + "; the stored positions)";
+        } else {
+            out[m].world = world[m];
+            out[m].space = "world space of " + where +
+                           (count[m] > 1 ? " (first of " + std::to_string(count[m]) + " instances)" : "");
+        }
+    }
+    return out;
+}
+
+/// The bake targets of one mesh: its triangle primitives merged, one target per material group.
+void add_targets(GltfAsset::Impl& a, int mesh_index, const Placement& placement, std::vector<std::string>* warnings)
+{
+    const auto& mesh = a.model.meshes[size_t(mesh_index)];
+    const std::string mesh_name = described("mesh", mesh_index, mesh.name);
+    TriangleMesh merged;
+    merged.name = a.name + ": " + mesh_name;
+    std::vector<GltfAsset::Impl::Span> spans(mesh.primitives.size());
+    std::vector<int> groups;               // group key per primitive: translucent material, or -1
+    std::map<int, std::string> opaque;     // materials of the caller's group, for its description
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+        const auto& prim = mesh.primitives[p];
+        groups.push_back(-2);
+        if (!io::is_triangle_mode(prim.mode)) continue;
+        if (prim.material >= int(a.model.materials.size()))
+            fail(a.name, mesh_name + " primitive " + std::to_string(p) + ": material " + std::to_string(prim.material) +
+                             " does not exist (" + std::to_string(a.model.materials.size()) + " materials)");
+        const TriangleMesh part = io::read_gltf_primitive(a.name, a.model, mesh_index, p, placement.world);
+        if (part.positions.size() > io::kMaxVertices - merged.positions.size())
+            fail(a.name, mesh_name + ": more vertices in total than 32-bit indices can address");
+        const size_t base = merged.positions.size();
+        spans[p] = {base, part.positions.size(), true};
+        merged.positions.insert(merged.positions.end(), part.positions.begin(), part.positions.end());
+        for (uint32_t i : part.indices) merged.indices.push_back(uint32_t(base + i));
+        const bool translucent = prim.material >= 0 && a.translucent[size_t(prim.material)];
+        groups.back() = translucent ? prim.material : -1;
+        if (!translucent)
+            opaque[prim.material] = prim.material < 0 ? "no material"
+                                                      : described("material", prim.material, a.model.materials[size_t(prim.material)].name);
+    }
+    if (merged.indices.empty()) {
+        if (warnings && !mesh.primitives.empty())
+            warnings->push_back(a.name + ": " + mesh_name + " has no triangles; not baked");
+        return;
+    }
+    validate_mesh(merged);  // finite positions, indices in range; the message names file and mesh
+    std::vector<int> order;  // group keys in order of first appearance
+    for (int g : groups)
+        if (g != -2 && std::find(order.begin(), order.end(), g) == order.end()) order.push_back(g);
+    for (int key : order) {
+        GltfAsset::BakeTarget t;
+        t.mesh = merged;
+        t.mesh_index = mesh_index;
+        t.space = placement.space;
+        for (size_t p = 0; p < groups.size(); ++p)
+            if (groups[p] == key) t.primitives.push_back(int(p));
+        if (key >= 0) {
+            t.material = a.translucent[size_t(key)];
+            t.material_name = described("material", key, a.model.materials[size_t(key)].name);
+        } else {
+            for (const auto& [index, text] : opaque) t.material_name += std::string(t.material_name.empty() ? "" : ", ") + text;
+            t.material_name += " (opaque for Jade)";
+        }
+        std::vector<GltfAsset::Impl::Span> own = spans;
+        for (size_t p = 0; p < own.size(); ++p) own[p].baked = own[p].baked && groups[p] == key;
+        a.targets.push_back(std::move(t));
+        a.spans.push_back(std::move(own));
+    }
+}
+
+}  // namespace
+
+GltfAsset::GltfAsset(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+GltfAsset::GltfAsset(GltfAsset&&) noexcept = default;
+GltfAsset& GltfAsset::operator=(GltfAsset&&) noexcept = default;
+GltfAsset::~GltfAsset() = default;
+
+const std::string& GltfAsset::name() const { return impl_->name; }
+const std::vector<GltfAsset::BakeTarget>& GltfAsset::targets() const { return impl_->targets; }
+
+std::string GltfAsset::asset_extras_json() const
+{
+    const auto& asset = impl_->doc.find("asset");
+    if (asset == impl_->doc.end() || !asset->is_object() || !asset->contains("extras")) return {};
+    return (*asset)["extras"].dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+}
+
+GltfAsset GltfAsset::load(const std::filesystem::path& path, std::vector<std::string>* warnings)
+{
+    const std::string name = io::display_name(path);
+    return io::naming_file(name, [&] {
+        const auto ext = io::lower_extension(path);
+        if (ext != ".gltf" && ext != ".glb") fail(name, "a glTF asset must be .gltf or .glb, not '" + ext + "'");
+        const std::string bytes = io::read_file(path);
+        if (bytes.empty()) fail(name, "file is empty");
+        auto a = std::make_unique<Impl>();
+        a->path = path;
+        a->name = name;
+        a->model = io::parse_gltf(path, name, bytes, ext == ".glb", &a->image_bytes);
+        io::check_required_extensions(name, a->model);
+        try {
+            a->doc = nlohmann::ordered_json::parse(json_text(bytes, ext == ".glb"));
+        } catch (const nlohmann::json::exception& e) {
+            fail(name, std::string("JSON: ") + io::one_line(e.what()));
+        }
+        if (!a->doc.is_object()) fail(name, "the glTF JSON is not an object");
+        check_images(*a);
+
+        io::MaterialMapper mapper(name, a->model, warnings);
+        a->translucent.resize(a->model.materials.size());
+        for (size_t m = 0; m < a->model.materials.size(); ++m)
+            if (Material jade = mapper.map(int(m)); !jade.opaque) a->translucent[m] = std::move(jade);
+
+        const auto where = placements(*a);
+        for (size_t m = 0; m < a->model.meshes.size(); ++m) add_targets(*a, int(m), where[m], warnings);
+        return GltfAsset(std::move(a));
+    });
+}
+
+}  // namespace jade

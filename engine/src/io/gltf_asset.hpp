@@ -1,0 +1,39 @@
+// io/gltf_asset.hpp - what a GltfAsset holds (private to jade_io): the document as read, twice.
+//
+// The JSON text is kept as nlohmann::ordered_json, so that every property, extension and extras
+// the writer does not touch is written back as it was (key order included); tinygltf's parse of
+// the same text provides the checked binary data (buffers, external files, accessors). Both see
+// the same arrays, so their indices agree.
+#pragma once
+
+#include <jade/io.hpp>
+
+#include <nlohmann/json.hpp>
+#include <tiny_gltf.h>
+
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace jade {
+
+struct GltfAsset::Impl {
+    /// Where a primitive's vertices lie in its target's merged mesh.
+    struct Span {
+        size_t first = 0, count = 0;
+        bool baked = false;  ///< false: not a triangle primitive, never written to
+    };
+
+    std::filesystem::path path;
+    std::string name;
+    nlohmann::ordered_json doc;
+    tinygltf::Model model;
+    std::vector<std::vector<unsigned char>> image_bytes;  ///< per image, as tinygltf read it
+    std::vector<BakeTarget> targets;
+    std::vector<std::vector<Span>> spans;                 ///< per target, per primitive of its mesh
+    std::vector<std::optional<Material>> translucent;     ///< per glTF material: Jade's, when translucent
+};
+
+}  // namespace jade
