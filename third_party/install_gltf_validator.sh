@@ -16,8 +16,11 @@ if [ -f "$dest/node_modules/gltf-validator/package.json" ] &&
   exit 0
 fi
 if ! command -v npm >/dev/null 2>&1; then
-  echo "jade: Node.js is installed but npm is not: cannot install gltf-validator@$version" >&2
-  exit 1
+  echo "jade: installing Debian's npm (Node.js is here, npm is not)" >&2
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends npm >/dev/null ||
+    { echo "jade: cannot install npm: gltf-validator@$version cannot be installed" >&2; exit 1; }
 fi
 mkdir -p "$dest"
 # A lock per folder: test binaries may start this at the same time.

@@ -1,0 +1,174 @@
+// bake/tm_passes.cpp - the t_m passes of Baker::Impl: set-up (method choice, near lists, the far
+// field's buffers) and recording (gather → near field → all pairs | refit → clustered | grid).
+// Recorded by the static bake and by DynamicBake.
+#include "bake/baker_impl.hpp"
+
+namespace jade {
+
+void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Material& material, const BakeSettings& s, float near_margin)
+{
+    validate_tm_settings(s, ctx);
+    const size_t n = mesh.vertex_count();
+    m.variant = tm_variant(material);
+    m.exact = s.method == TmMethod::Exact || (s.method == TmMethod::Auto && n < kExactBelow);
+    bake::Bvh tree = bake::build_bvh(mesh.positions, mesh.positions, kPointLeafSize);
+    // Auto takes the grid unless its grids had to be coarsened to fit in memory or its near
+    // lists would be long (a mesh whose bounds are vast for its vertex spacing, or dense in
+    // patches): docs/bake.md, "Choosing the far field".
+    std::optional<bake::GridPlan> grid_plan;
+    if (!m.exact && (s.method == TmMethod::Grid || s.method == TmMethod::Auto)) {
+        grid_plan = bake::plan_grid(mesh, material, m.variant.grey ? 1 : 3, s.tm_grid_resolution,
+                                    near_margin > kStaticNearMargin, near_margin);
+        const uint64_t entries = grid_plan->feasible ? bake::sample_near_entries(mesh, tree, near_margin, float(grid_plan->r_cut)) : 0;
+        const bool long_lists = entries * 4 > kGridMaxNearBytes;
+        if (s.method == TmMethod::Grid && (!grid_plan->feasible || long_lists))
+            throw Error("t_m grid: " + std::to_string(n) + " vertices spread over these bounds need " +
+                        std::to_string(grid_plan->cells_needed) + " grid cells at resolution " +
+                        std::to_string(s.tm_grid_resolution) + " (the limit is " + std::to_string(bake::kGridMaxCells) +
+                        ") or near lists of ~" + std::to_string(entries * 4 >> 20) + " MiB (the limit is " +
+                        std::to_string(kGridMaxNearBytes >> 20) + " MiB): use the clustered far field "
+                        "(TmMethod::Clustered, --method clustered) or a lower resolution");
+        if (s.method == TmMethod::Auto && (grid_plan->coarsened || long_lists ||
+                                            entries > 4 * grid_plan->near_entries(n, near_margin)))
+            grid_plan.reset();
+    }
+    m.grid = grid_plan.has_value();
+    auto profiles = bake::to_gpu(material);
+    if (!m.exact && !m.grid) {
+        // The faint test of tm_cluster.comp against the total area (≥ the total weight, so
+        // never laxer than against the weight).
+        double area = 0;
+        for (float a : mesh.areas) area += a;
+        const double threshold = 1e-3 * std::pow(double(s.tm_epsilon), 3);
+        for (int c = 0; c < 3; ++c)
+            profiles[c].faint_radius = bake::faint_radius(material.profile[c], area, threshold, mesh.diagonal);
+    }
+    m.profiles = gpu::Buffer::from(ctx, std::span<const bake::GpuProfile>(profiles), kStorageUsage, "profiles");
+    m.tm = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m");
+    m.partial_sum = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m partial sums");
+    m.partial_comp = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m partial compensation");
+    if (m.grid) prepare_grid(m, *grid_plan);
+    else {
+        m.smooth_table = gpu::Buffer(ctx, 16, kTexelUsage, "smooth-part table (unused)");
+        m.smooth_table_texels = gpu::TexelView(ctx, m.smooth_table, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "smooth-part table");
+    }
+    bake::NearLists near = bake::build_near_lists(mesh, tree, near_margin, float(m.grid_r_cut));
+    std::vector<uint32_t> identity;
+    if (m.exact) {
+        identity.resize(n);
+        std::iota(identity.begin(), identity.end(), 0u);
+    }
+    // Rows in slot order, so a range of slots has a contiguous window of entries.
+    near = bake::reorder_rows(near, m.exact ? std::span<const uint32_t>(identity) : std::span<const uint32_t>(tree.order));
+    // Entries name source slots: the near pass reads the sources in slot order as texels.
+    if (!m.exact) {
+        std::vector<uint32_t> slot_of(n);
+        for (uint32_t k = 0; k < n; ++k) slot_of[tree.order[k]] = k;
+        for (uint32_t& j : near.indices) j = slot_of[j];
+    }
+    plan_near_windows(m, near.offsets);
+    m.near_offsets = gpu::Buffer::from(ctx, near.offsets, kStorageUsage, "near-field offsets");
+    m.near_disks = gpu::Buffer::from(ctx, near.disk_counts, kStorageUsage, "near-field disk candidates");
+    near.indices.resize(near.indices.size() + 64, 0);  // room for a window's aligned start and minimum size
+    // Bound in windows (plan_near_windows), so it may outgrow one binding.
+    m.near_indices = gpu::Buffer(ctx, near.indices.size() * 4, kStorageUsage, "near-field sources", false,
+                                 gpu::StorageBinding::Windows);
+    m.near_indices.upload(near.indices.data(), near.indices.size() * 4);
+    if (m.exact || m.grid) {
+        m.point_order = m.exact ? gpu::Buffer::from(ctx, identity, kStorageUsage, "identity order")
+                                : gpu::Buffer::from(ctx, tree.order, kStorageUsage, "point tree order");
+        m.points = gpu::Buffer(ctx, n * 32, kTexelUsage, "t_m sources");
+        m.point_texels = gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "t_m sources (texels)");
+        m.source_texels = gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_UINT, 16, "t_m sources (integer texels)");
+        return;
+    }
+    m.point_order = gpu::Buffer::from(ctx, tree.order, kStorageUsage, "point tree order");
+    m.node_count = uint32_t(tree.nodes.size());
+    m.nodes = gpu::Buffer::from(ctx, tree.nodes, kStorageUsage, "point tree nodes");
+    bake::BvhLevels levels = bake::bvh_levels(tree);
+    m.node_levels = gpu::Buffer::from(ctx, levels.nodes, kStorageUsage, "point tree levels");
+    m.level_offsets = levels.offsets;
+    // One buffer holds the nodes (4 texels each) and then the sources (2 texels each), so one
+    // fetch per lane brings a node and a source (tm_cluster.comp).
+    // Sources start at a texel that is a multiple of 16 (256 bytes): any device's allowed
+    // offset for binding them alone as a storage buffer.
+    m.first_point = (4 * m.node_count + 15) / 16 * 16;
+    check_storage_range(VkDeviceSize(n) * 32, "t_m sources");
+    check_storage_range(VkDeviceSize(m.node_count) * 64, "t_m cluster nodes");
+    m.points = gpu::Buffer(ctx, VkDeviceSize(m.first_point) * 16 + n * 32, kTexelUsage, "t_m cluster tree and sources", false,
+                           gpu::StorageBinding::Windows);  // bound as two windows, each checked above
+    m.tree_texels = gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_UINT, 16, "t_m cluster tree and sources (texels)");
+    m.source_texels = gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_UINT, 16, "t_m cluster tree and sources (texels)");
+    m.source_base = m.first_point;
+    m.resume = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m traversal resume state");
+}
+
+void Baker::Impl::record_near(VkCommandBuffer cmd, MeshState& m, uint32_t slot_begin, uint32_t slot_end)
+{
+    for (const auto& w : m.near_windows) {
+        const uint32_t first = std::max(w.first_slot, slot_begin), end = std::min(w.first_slot + w.slot_count, slot_end);
+        if (first >= end) continue;
+        near_kernel(m.variant, m.grid)
+            .dispatch(cmd, end - first,
+                      NearPush{first, end - first, w.index_base, m.source_base, m.grid_cut2, m.grid_table_scale},
+                      {m.profiles, m.source_texels, m.near_offsets,
+                       gpu::Binding(m.near_indices.handle(), VkDeviceSize(w.index_base) * 4, w.bytes), m.near_disks,
+                       m.point_order, m.smooth_table_texels, m.partial_sum, m.partial_comp, m.tm});
+    }
+    gpu::compute_barrier(cmd);
+}
+
+void Baker::Impl::record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSettings& s, gpu::GpuTimer* timer, uint32_t slot_begin,
+                   uint32_t slot_end)
+{
+    auto mark = [&](const char* stage) {
+        if (timer) timer->mark(cmd, stage);
+    };
+    const uint32_t n = m.vertex_count;
+    if (m.exact) slot_begin = 0, slot_end = n;
+    slot_end = std::min(slot_end, n);
+    const gpu::Binding nodes_window(m.points.handle(), 0, std::max<VkDeviceSize>(VkDeviceSize(m.node_count) * 64, 16));
+    const gpu::Binding points_window(m.points.handle(), VkDeviceSize(m.first_point) * 16, VkDeviceSize(n) * 32);
+    gather_kernel().dispatch(cmd, n, GatherPush{n}, {m.positions, m.areas, m.ao, m.point_order, points_window});
+    gpu::compute_barrier(cmd);
+    mark("gather");
+    if (m.grid) {
+        record_near(cmd, m, slot_begin, slot_end);
+        mark("t_m near field");
+        record_grid(cmd, m, timer, slot_begin, slot_end);
+        return;
+    }
+    if (!m.exact) {
+        for (size_t l = 0; l + 1 < m.level_offsets.size(); ++l) {
+            const uint32_t first = m.level_offsets[l], count = m.level_offsets[l + 1] - first;
+            refit_kernel().dispatch(cmd, count, RefitPush{count, first}, {m.nodes, m.node_levels, nodes_window, points_window});
+            gpu::compute_barrier(cmd);
+        }
+        mark("refit");
+        vkCmdFillBuffer(cmd, m.resume.handle(), 0, VK_WHOLE_SIZE, 0);
+    }
+    record_near(cmd, m, slot_begin, slot_end);
+    mark("t_m near field");
+    if (m.exact) {
+        const auto& kernel = exact_kernel(m.variant, s.tm_float64_sums);
+        for (uint32_t begin = 0; begin < n; begin += kExactSourcesPerDispatch) {
+            ExactPush push{n, begin, std::min(n, begin + kExactSourcesPerDispatch)};
+            kernel.dispatch(cmd, n, push, {m.profiles, m.point_texels, m.partial_sum, m.partial_comp, m.tm});
+            gpu::compute_barrier(cmd);
+        }
+        mark("t_m far field (all pairs)");
+        return;
+    }
+    const auto& kernel = cluster_kernel(m.variant);
+    // Every thread visits each node and each source at most once: this many dispatches finish
+    // every traversal; threads that are done return at once.
+    const uint32_t dispatches = (m.node_count + n) / kClusterWorkPerDispatch + 1;
+    ClusterPush push{n, m.node_count, s.tm_epsilon, kClusterWorkPerDispatch, m.first_point, slot_begin, slot_end};
+    for (uint32_t d = 0; d < dispatches; ++d) {
+        kernel.dispatch(cmd, slot_end - slot_begin, push, {m.profiles, m.tree_texels, m.point_order, m.resume, m.partial_sum, m.partial_comp, m.tm});
+        gpu::compute_barrier(cmd);
+    }
+    mark("t_m far field (clustered)");
+}
+
+}  // namespace jade
