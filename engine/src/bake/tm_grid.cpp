@@ -57,7 +57,6 @@ constexpr uint32_t kAxisRun = 8;  // = RUN in grid_axis.comp: output cells per t
 constexpr uint32_t kAxisGroup = 8;
 
 glm::uvec3 dims_of(const bake::GpuGridLevel& l) { return l.dims; }
-uint32_t cells_of(glm::uvec3 d) { return d.x * d.y * d.z; }
 
 }  // namespace
 
