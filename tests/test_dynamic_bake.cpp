@@ -96,6 +96,10 @@ void check_frames(Context& ctx, const char* asset, double d_rel, TmMethod method
 
 TEST_F(GpuTest, DynamicBakeFollowsATwistedDragon) { check_frames(context(), "ChineseDragon-10kv.off", 0.05); }
 TEST_F(GpuTest, DynamicBakeFollowsATwistedBunny) { check_frames(context(), "bunny00.off", 0.05); }
+TEST_F(GpuTest, DynamicBakeWithTheClusteredFarFieldFollowsATwistedDragon)
+{
+    check_frames(context(), "ChineseDragon-10kv.off", 0.05, TmMethod::Clustered);
+}
 TEST_F(GpuTest, DynamicBakeWithTheGridFollowsATwistedDragon)
 {
     check_frames(context(), "ChineseDragon-10kv.off", 0.05, TmMethod::Grid);

@@ -84,14 +84,6 @@ void bench_mesh(const Args& args, Context& ctx, const std::string& path, const s
     print("full, grid", by_grid);
     std::printf("%-22s the grid's frames are %.2fx faster, its re-bakes %.2fx, its t_m stage %.2fx (mean of 2 rounds)\n",
                 "", frame_ratio, bake_ratio, by_clustered.tm / by_grid.tm);
-    for (const BakeSettings* which : {&clustered, &grid}) {  // one full re-bake of the rest pose, by stage
-        DynamicBake once(baker, rest, material, *which);
-        once.bake(rest.positions, rest.normals, rest.areas);
-        const BakeResult r = once.bake(rest.positions, rest.normals, rest.areas);
-        std::printf("%-22s", which == &grid ? "  grid stages:" : "  clustered stages:");
-        for (auto& [stage, ms] : r.timings.gpu_stages) std::printf(" %s %.1f;", stage.c_str(), ms);
-        std::printf(" (t_m memory %.1f MiB)\n", double(r.tm_bytes) / 1048576.0);
-    }
     std::printf("for scale, the rest pose's ");
     compare_ao_with_embree(baker, rest, settings.ao, 3);
     // Amortised modes with the method the settings choose (auto: the grid, docs/bake.md).
