@@ -172,7 +172,9 @@ Step tm_step(Session& s, MeshState& st, size_t k, std::string knob, std::string 
             r.notes += "; float32 with compensated summation";
             mc.exact = std::move(b.tm);
         } else if (settings.method == TmMethod::Auto) {
-            r.notes += b.method_used == TmMethod::Exact ? "; auto chose exact" : strf("; auto chose clustered eps=%g", double(settings.tm_epsilon));
+            r.notes += b.method_used == TmMethod::Exact     ? std::string("; auto chose exact")
+                       : b.method_used == TmMethod::Grid    ? strf("; auto chose grid, resolution %g", double(settings.tm_grid_resolution))
+                                                            : strf("; auto chose clustered eps=%g", double(settings.tm_epsilon));
         }
         return r;
     }};
@@ -207,6 +209,12 @@ void add_tm_steps(Session& s, MeshState& st, std::vector<Step>& steps)
             clustered.tm_epsilon = eps;
             steps.push_back(tm_step(s, st, k, "tm_epsilon", strf("%g", double(eps)), "clustered", clustered, labels[k]));
         }
+        for (Quality q : kQualities) {  // the grid at each preset's resolution
+            BakeSettings grid = BakeSettings::preset(q);
+            grid.method = TmMethod::Grid;
+            steps.push_back(tm_step(s, st, k, "tm_grid_resolution", strf("%g", double(grid.tm_grid_resolution)), "grid", grid,
+                                    labels[k]));
+        }
         for (Quality q : kQualities)
             steps.push_back(tm_step(s, st, k, "tm_auto", quality_name(q), "auto", BakeSettings::preset(q), labels[k]));
     }
@@ -227,7 +235,7 @@ void add_quality_steps(Session& s, MeshState& st, std::vector<Step>& steps)
             ErrorStats ao = error_stats(ao_errors(b.ao, ref_ao));
             r.notes = strf("t_m relative vs float64 on %zu vertices (%u-ray AO); this bake: %u AO rays (AO RMS %.3g), eps=%g, %s",
                            st.sample.size(), s.plan.ao_reference_rays, settings.ao.rays, ao.rms, double(settings.tm_epsilon),
-                           b.method_used == TmMethod::Exact ? "exact" : "clustered");
+                           tm_method_name(b.method_used));
             st.quality[quality_name(q)] = std::move(b);
             return r;
         }});
@@ -248,7 +256,7 @@ void warm_up(Session& session)
 {
     PreparedMesh tiny = prepare_mesh(procedural::sphere(1.0f, 6, 12));
     Material grey = burley_material(glm::dvec3(0.1), glm::vec3(0.8f)), rgb = material_preset("jade", 50.0);
-    for (TmMethod method : {TmMethod::Exact, TmMethod::Clustered}) {
+    for (TmMethod method : {TmMethod::Exact, TmMethod::Clustered, TmMethod::Grid}) {
         BakeSettings s;
         s.ao.rays = 4;
         s.method = method;

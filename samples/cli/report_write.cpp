@@ -129,7 +129,7 @@ std::optional<Axes> pareto_axes(const Row& r)
 {
     const std::string c = split_method(r.method).second;
     if (r.knob == "ao_rays") return Axes{r.mesh + "|ao|" + c, r.gpu_ms, r.err.rms};
-    if (r.knob == "tm_exact" || r.knob == "tm_epsilon" || r.knob == "tm_auto") return Axes{r.mesh + "|tm|" + c, r.gpu_ms, r.err.max};
+    if (r.knob == "tm_exact" || r.knob == "tm_epsilon" || r.knob == "tm_grid_resolution" || r.knob == "tm_auto") return Axes{r.mesh + "|tm|" + c, r.gpu_ms, r.err.max};
     if (r.knob == "quality") return Axes{r.mesh + "|quality", r.gpu_ms, r.err.max};
     if (r.knob == "lut_size" || r.knob == "image_lut") return Axes{r.mesh + "|" + r.knob, texels(r.value), r.err.max};
     if (r.knob == "deform_ao" || r.knob == "deform_tm") return Axes{r.mesh + "|" + r.knob, r.gpu_ms, r.err.rms};
@@ -212,7 +212,10 @@ std::vector<size_t> select(const std::vector<Row>& rows, const std::function<boo
     return out;
 }
 
-bool is_tm(const Row& r) { return r.knob == "tm_exact" || r.knob == "tm_epsilon" || r.knob == "tm_auto"; }
+bool is_tm(const Row& r)
+{
+    return r.knob == "tm_exact" || r.knob == "tm_epsilon" || r.knob == "tm_grid_resolution" || r.knob == "tm_auto";
+}
 
 // ---- Recommended settings ------------------------------------------------------------------
 
