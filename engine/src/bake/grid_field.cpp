@@ -5,6 +5,7 @@
 #include <jade/error.hpp>
 
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -256,6 +257,31 @@ void set_splat_scales(std::vector<GpuGridLevel>& levels, const PreparedMesh& mes
     }
 }
 
+// A sphere holding every vertex (Ritter's: from two far-apart vertices, grown to take in the
+// rest), at most ~5 % wider than the smallest. The mesh turned any way about its centre stays
+// inside it, so its bounds' widest side never exceeds this diameter.
+double bounding_sphere_diameter(const PreparedMesh& mesh)
+{
+    auto farthest = [&](glm::dvec3 from) {
+        glm::dvec3 best = from;
+        double d = -1;
+        for (const auto& p : mesh.positions)
+            if (double e = glm::distance(glm::dvec3(p), from); e > d) d = e, best = glm::dvec3(p);
+        return best;
+    };
+    const glm::dvec3 a = farthest(glm::dvec3(mesh.positions[0])), b = farthest(a);
+    glm::dvec3 centre = 0.5 * (a + b);
+    double radius = 0.5 * glm::distance(a, b);
+    for (const auto& p : mesh.positions) {
+        const double d = glm::distance(glm::dvec3(p), centre);
+        if (d <= radius) continue;
+        const double grown = 0.5 * (radius + d);
+        centre += (grown - radius) / d * (glm::dvec3(p) - centre);
+        radius = grown;
+    }
+    return std::min(2.0 * radius, double(mesh.diagonal));
+}
+
 }  // namespace
 
 GridPlan plan_grid(const PreparedMesh& mesh, const Material& material, int channels, double resolution, bool deforming,
@@ -274,7 +300,7 @@ GridPlan plan_grid(const PreparedMesh& mesh, const Material& material, int chann
     const double spacing = std::sqrt(area / double(mesh.vertex_count()));
     GridPlan plan;
     plan.spacing = spacing;
-    plan.cube_side = deforming ? kDeformingCube * mesh.diagonal : 0.0;
+    plan.cube_side = deforming ? kDeformingCube * bounding_sphere_diameter(mesh) : 0.0;
     const double r_max = deforming ? std::sqrt(3.0) * plan.cube_side : double(mesh.diagonal);
     const double r_cut = kCutSpacingsPerResolution * resolution * spacing;
     plan.r_cut = r_cut;

@@ -37,7 +37,7 @@ constexpr uint64_t kGridMaxCells = 1ull << 25; // all grids together; past it r_
 constexpr double kGridMaxCoarsening = 1.5;      // ... by at most this factor (the near lists by its square)
 // Grids the sources are splatted into; grid g ≥ 2 is restricted from grid g − 2 (twice finer).
 constexpr uint32_t kSplatLevels = 2;
-constexpr double kDeformingCube = 1.1;  // a deforming mesh's grids: cubes of this × the rest diagonal
+constexpr double kDeformingCube = 1.1;  // a deforming mesh's grids: cubes of this × the rest pose's bounding sphere
 
 /// One Gaussian's grid, as the grid shaders read it (scalar layout, shaders/include/grid.glsl).
 struct GpuGridLevel {
@@ -84,9 +84,9 @@ struct GridPlan {
 };
 
 /// Plans the grids over the mesh's bounds, for pairs up to the diagonal apart. A deforming
-/// mesh's grids are cubes of side kDeformingCube × the rest diagonal, placed each frame about
-/// its current bounds (grid_bounds.comp): they hold the rest pose turned any way, and stretches
-/// of 10 %; a vertex beyond counts at the cube's face. When the grids would exceed
+/// mesh's grids are cubes of side kDeformingCube × the diameter of the rest pose's bounding
+/// sphere, placed each frame about its current bounds (grid_bounds.comp): they hold the rest
+/// pose turned any way, and stretches of 10 %; a vertex beyond counts at the cube's face. When the grids would exceed
 /// kGridMaxCells, r_cut grows until they fit (`coarsened`): fewer, coarser grids and longer
 /// near lists; past kGridMaxCoarsening the plan is not `feasible` (no levels). Never a silent
 /// error. `near_margin`: the near lists' (bake/near_field.hpp); the table covers their reach.
