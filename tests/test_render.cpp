@@ -103,7 +103,9 @@ void expect_matches_golden(const RenderedImage& img, const std::string& name)
     const auto golden_path = test::data("golden/" + name + ".png");
     if (const char* update = std::getenv("JADE_UPDATE_GOLDEN"); update && std::string(update) == "1") {
         save_image(golden_path, int(img.width), int(img.height), img.rgba);
-        std::printf("wrote %s: look at it before committing\n", golden_path.string().c_str());
+        // Writing is not checking: the run fails, so the mode can never pass CI by itself.
+        ADD_FAILURE() << "JADE_UPDATE_GOLDEN=1: wrote " << golden_path << " instead of comparing; look at it before "
+                      << "committing, then run the test again without the variable";
         return;
     }
     const std::vector<uint8_t> actual = to_srgb8(img), golden = read_png(golden_path, img.width, img.height);

@@ -125,11 +125,13 @@ Material material_from_args(const Args& args, double diagonal)
 
 BakeSettings bake_settings_from_args(const Args& args)
 {
-    std::string q = args.get_or("quality", "default");
+    const std::string q = args.get_or("quality", "default");
     Quality quality = Quality::Default;
-    if (q == "draft") quality = Quality::Draft;
-    else if (q == "high") quality = Quality::High;
-    else if (q != "default") args.fail("--quality: '" + q + "' is not one of draft, default, high");
+    try {
+        quality = parse_quality(q);
+    } catch (const Error&) {
+        args.fail("--quality: '" + q + "' is not one of draft, default, high");
+    }
     BakeSettings s = BakeSettings::preset(quality);
     s.ao.rays = args.count("ao-rays", s.ao.rays, 1, 65536);
     s.ao.low_discrepancy = !args.flag("ao-iid");

@@ -22,7 +22,6 @@ double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std
 std::string sampling_name(bool low_discrepancy) { return low_discrepancy ? "low-discrepancy" : "i.i.d."; }
 std::string distance_case(float d) { return strf("d=%g", double(d)); }
 
-const char* quality_name(Quality q) { return q == Quality::Draft ? "draft" : q == Quality::High ? "high" : "default"; }
 constexpr Quality kQualities[] = {Quality::Draft, Quality::Default, Quality::High};
 
 std::vector<double> ao_errors(const std::vector<float>& ao, const std::vector<float>& reference)

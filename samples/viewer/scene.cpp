@@ -33,19 +33,6 @@ jade::TriangleMesh load(const std::string& arg)
 
 }  // namespace
 
-const char* quality_name(jade::Quality q)
-{
-    return q == jade::Quality::Draft ? "draft" : q == jade::Quality::High ? "high" : "default";
-}
-
-std::optional<jade::Quality> parse_quality(const std::string& name)
-{
-    if (name == "draft") return jade::Quality::Draft;
-    if (name == "default") return jade::Quality::Default;
-    if (name == "high") return jade::Quality::High;
-    return std::nullopt;
-}
-
 const std::vector<std::string>& deformation_names()
 {
     static const std::vector<std::string> names = [] {

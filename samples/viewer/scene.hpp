@@ -36,9 +36,6 @@ struct ViewState {
     double time = 0.0;               ///< deformation time, seconds
 };
 
-/// "draft", "default", "high" and their inverse (nullopt for an unknown name).
-const char* quality_name(jade::Quality q);
-std::optional<jade::Quality> parse_quality(const std::string& name);
 /// "none", "bend", "twist", "squash", "wave" (index = ViewState::deformation).
 const std::vector<std::string>& deformation_names();
 

@@ -111,6 +111,10 @@ TmMethod parse_tm_method(std::string_view name);
 /// 1.6 → 8.4e-3, 1.2 → 2.5e-3, 0.8 → 8e-4; tests assert default ≤ 1 %, high ≤ 0.1 %.)
 enum class Quality { Draft, Default, High };
 
+/// "draft", "default", "high"; parse_quality throws jade::Error on anything else.
+const char* quality_name(Quality quality);
+Quality parse_quality(std::string_view name);
+
 struct BakeSettings {
     AoSettings ao;
     /// The thickness pass, run only for a material whose transmission is enabled (it is what

@@ -31,6 +31,23 @@ BakeSettings BakeSettings::preset(Quality q)
     return s;
 }
 
+const char* quality_name(Quality quality)
+{
+    switch (quality) {
+    case Quality::Draft: return "draft";
+    case Quality::High: return "high";
+    case Quality::Default: break;
+    }
+    return "default";
+}
+
+Quality parse_quality(std::string_view name)
+{
+    for (Quality q : {Quality::Draft, Quality::Default, Quality::High})
+        if (name == quality_name(q)) return q;
+    throw Error("unknown quality '" + std::string(name) + "' (draft, default or high)");
+}
+
 const char* tm_method_name(TmMethod method)
 {
     switch (method) {
