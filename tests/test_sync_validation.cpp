@@ -72,7 +72,7 @@ TEST(SyncValidation, IsQuietWithABarrierAndWithoutSyncValidation)
 
 TEST(SyncValidation, ShutdownLeavesNoVulkanObjectBehind)
 {
-    // Issue 8: every Vulkan object is destroyed at shutdown. The layer reports a child still
+    // Every Vulkan object is destroyed at shutdown. The layer reports a child still
     // alive at vkDestroyDevice / vkDestroyInstance (object tracker) through the log, which
     // outlives the context: a bake and renders in every mode, then everything destroyed, must
     // leave the log without a single validation line (synchronization validation on as well).

@@ -187,11 +187,9 @@ std::vector<GpuGridLevel> make_levels(const PreparedMesh& mesh, const SmoothFit&
                                       uint64_t& cells, uint64_t& max_cells)
 {
     glm::dvec3 lo(mesh.positions[0]), hi(mesh.positions[0]);
-    double area = 0;
     for (size_t i = 0; i < mesh.vertex_count(); ++i) {
         lo = glm::min(lo, glm::dvec3(mesh.positions[i]));
         hi = glm::max(hi, glm::dvec3(mesh.positions[i]));
-        area += mesh.areas[i];
     }
     if (cube_side > 0) {
         const glm::dvec3 centre = 0.5 * (lo + hi);
@@ -233,7 +231,6 @@ std::vector<GpuGridLevel> make_levels(const PreparedMesh& mesh, const SmoothFit&
         for (uint32_t k = 0; k <= l.half_width; ++k) l.blur[k] = float(l.blur[k] / sum);
         l.weight = glm::vec3(fit.weight[g] * std::sqrt(2 * kPi) * resolution / (h * h));
     }
-    (void)area;
     return levels;
 }
 
