@@ -10,9 +10,11 @@
 //   4i:     centre.xyz, W
 //   4i + 1: radius, reach (largest NEAR_FACTOR·ρ_j of its sources), escape, range (bvh.glsl)
 //   4i + 2: covariance xx, yy, zz, xy      units⁴
-//   4i + 3: covariance xz, yz, 0, 0
+//   4i + 3: covariance xz, yz; |Σ w·n|, the direction of Σ w·n (direction.glsl): the
+//           normal monopole of the scattering normal (tm_state.glsl)
 #include "common.glsl"
 #include "bvh.glsl"
+#include "direction.glsl"
 
 layout(push_constant, scalar) uniform Push {
     uint count;        // nodes in this level
@@ -39,6 +41,7 @@ struct Cluster {
     float w;
     float reach;
     float cov[6];
+    vec3 normal;  // Σ w·n
 };
 
 Cluster read_cluster(uint i)
@@ -47,7 +50,7 @@ Cluster read_cluster(uint i)
     float reach = uintBitsToFloat(tree[4u * i + 1u].y);
     vec4 b = uintBitsToFloat(tree[4u * i + 2u]);
     vec4 d = uintBitsToFloat(tree[4u * i + 3u]);
-    return Cluster(a.xyz, a.w, reach, float[6](b.x, b.y, b.z, b.w, d.x, d.y));
+    return Cluster(a.xyz, a.w, reach, float[6](b.x, b.y, b.z, b.w, d.x, d.y), d.z * decode_direction(d.w));
 }
 
 // Adds a point mass or a child cluster of weight w at p (covariance `cov` about p) to the
@@ -73,6 +76,7 @@ void main()
     vec3 lo = vec3(3.0e38), hi = vec3(-3.0e38), c;
     float weight = 0.0, reach = 0.0;
     float cov[6] = none;
+    vec3 normal = vec3(0.0);
     if (jade_range_is_leaf(range)) {
         uint first = jade_range_first(range), count = jade_range_count(range);
         vec3 moment = vec3(0.0);
@@ -80,8 +84,10 @@ void main()
         [[unroll]] for (uint k = 0u; k < 8u; ++k) {
             uint j = 2u * (first + min(k, count - 1u));
             p[k] = uintBitsToFloat(points[j]);
-            float area = uintBitsToFloat(points[j + 1u].y);
+            vec4 extra = uintBitsToFloat(points[j + 1u]);
+            float area = extra.y;
             if (k >= count) p[k].w = 0.0;
+            normal += p[k].w * decode_direction(extra.w);
             lo = k < count ? min(lo, p[k].xyz) : lo;
             hi = k < count ? max(hi, p[k].xyz) : hi;
             weight += p[k].w;
@@ -102,6 +108,7 @@ void main()
         add_covariance(cov, ca.w, ca.c, c, ca.cov);
         add_covariance(cov, cb.w, cb.c, c, cb.cov);
         reach = max(ca.reach, cb.reach);
+        normal = ca.normal + cb.normal;
     }
     topology[i].lo = lo;
     topology[i].hi = hi;
@@ -109,5 +116,5 @@ void main()
     tree[4u * i] = floatBitsToUint(vec4(c, weight));
     tree[4u * i + 1u] = uvec4(floatBitsToUint(radius), floatBitsToUint(reach), topology[i].escape, range);
     tree[4u * i + 2u] = floatBitsToUint(vec4(cov[0], cov[1], cov[2], cov[3]));
-    tree[4u * i + 3u] = floatBitsToUint(vec4(cov[4], cov[5], 0.0, 0.0));
+    tree[4u * i + 3u] = floatBitsToUint(vec4(cov[4], cov[5], length(normal), encode_direction(normal)));
 }

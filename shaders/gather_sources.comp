@@ -3,6 +3,7 @@
 // Gathers the per-vertex inputs of the far passes into tree order, as the source texels
 // described in tm_common.glsl.
 #include "common.glsl"
+#include "direction.glsl"
 
 layout(push_constant, scalar) uniform Push {
     uint vertex_count;
@@ -14,6 +15,7 @@ layout(binding = 2, scalar) readonly buffer Ao { float ao[]; };
 layout(binding = 3, scalar) readonly buffer PointOrder { uint point_order[]; };
 // The sources' window of the buffer (after the cluster nodes when they share it).
 layout(binding = 4, scalar) writeonly buffer Points { vec4 points[]; };
+layout(binding = 5, scalar) readonly buffer Normals { vec3 normals[]; };
 
 const float NEAR_FACTOR = 4.0;  // as in tm_common.glsl
 
@@ -24,5 +26,5 @@ void main()
     uint v = point_order[k];
     float area = areas[v], visibility = 1.0 - ao[v];
     points[2u * k] = vec4(positions[v], area * visibility);
-    points[2u * k + 1u] = vec4(NEAR_FACTOR * NEAR_FACTOR / JADE_PI * area, area, visibility, 0.0);
+    points[2u * k + 1u] = vec4(NEAR_FACTOR * NEAR_FACTOR / JADE_PI * area, area, visibility, encode_direction(normals[v]));
 }

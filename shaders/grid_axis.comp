@@ -16,7 +16,8 @@
 
 layout(constant_id = 1) const int HALF_WIDTH = 8;
 layout(constant_id = 2) const int STEP = 1;
-layout(constant_id = 3) const uint FIXED = 0u;  // 1: the input is the fixed-point splat (inv_scale: area per unit)
+// 1: the input is the unsigned fixed-point splat, 2: the signed one (inv_scale: area per unit)
+layout(constant_id = 3) const uint FIXED = 0u;
 const int RUN = 8;
 const int INPUTS = STEP * (RUN - 1) + 2 * HALF_WIDTH + 1;
 
@@ -36,7 +37,9 @@ layout(binding = 2, scalar) writeonly buffer Target { float target[]; };
 
 float fetch(int texel)
 {
-    return FIXED == 1u ? float(texelFetch(splat, texel).x) * pc.inv_scale : texelFetch(source, texel).x;
+    if (FIXED == 1u) return float(texelFetch(splat, texel).x) * pc.inv_scale;
+    if (FIXED == 2u) return float(int(texelFetch(splat, texel).x)) * pc.inv_scale;
+    return texelFetch(source, texel).x;
 }
 
 void main()

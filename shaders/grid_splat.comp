@@ -3,7 +3,9 @@
 // The smooth part of t_m, step 1 of 3: every source's (1 − A_o)·area into every Gaussian's grid
 // with cubic B-spline weights (engine/src/bake/grid_field.hpp). Integer atomics on fixed-point
 // values: the sums do not depend on the order threads run in, so a bake is reproducible bit for
-// bit. One thread per vertex.
+// bit. One thread per vertex. Field 0 is the weight itself (unsigned fixed point); fields 1..3
+// are the weight times the normal's x, y, z, the scattering normal's sums (tm_state.glsl):
+// signed, two's complement at half the scale, so their sums stay within ±2^31.
 #include "common.glsl"
 #include "grid.glsl"
 
@@ -11,6 +13,7 @@ layout(push_constant, scalar) uniform Push {
     uint vertex_count;
     uint level_count;
     float cube_side;  // > 0: a deforming mesh's grids follow its bounds (level_origin)
+    uint field;       // 0: (1 − A_o)·area; 1, 2, 3: times n.x, n.y, n.z
 } pc;
 
 layout(binding = 0, scalar) readonly buffer Levels { GridLevel levels[]; };
@@ -19,6 +22,7 @@ layout(binding = 2, scalar) readonly buffer Areas { float areas[]; };
 layout(binding = 3, scalar) readonly buffer Ao { float ao[]; };
 layout(binding = 4, scalar) buffer Cells { uint cells[]; };
 layout(binding = 5, scalar) readonly buffer Bounds { uvec3 bounds_lo, bounds_hi; };  // grid_bounds.comp
+layout(binding = 6, scalar) readonly buffer Normals { vec3 normals[]; };
 
 void main()
 {
@@ -26,6 +30,7 @@ void main()
     if (v >= pc.vertex_count) return;
     vec3 x = positions[v];
     float weight = max(areas[v], 0.0) * (1.0 - ao[v]);
+    if (pc.field > 0u) weight *= 0.5 * normals[v][pc.field - 1u];
     vec3 corner = cube_corner(pc.cube_side, bounds_lo, bounds_hi);
     for (uint g = 0u; g < pc.level_count; ++g) {
         GridLevel l = levels[g];
@@ -37,7 +42,7 @@ void main()
             [[unroll]] for (int j = 0; j < 4; ++j) {
                 float wjk = w * wy[j] * wz[k];
                 uint row = grid_cell(l, base + ivec3(0, j, k));
-                [[unroll]] for (int i = 0; i < 4; ++i) atomicAdd(cells[row + uint(i)], uint(wjk * wx[i] + 0.5));
+                [[unroll]] for (int i = 0; i < 4; ++i) atomicAdd(cells[row + uint(i)], uint(int(floor(wjk * wx[i] + 0.5))));
             }
     }
 }

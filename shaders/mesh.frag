@@ -21,6 +21,8 @@ layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec3 in_tm;
 layout(location = 3) in float in_curvature;
 layout(location = 4) in float in_thickness;
+layout(location = 5) in vec3 in_scattering_normal;
+layout(location = 6) in vec3 in_normal_spread;
 
 layout(location = 0) out vec4 out_color;
 
@@ -138,6 +140,9 @@ void main()
         return;
     }
     vec3 n = normalize(in_normal);
+    // The t_m modes light the diffuse term along the scattering normal (BakeResult::
+    // scattering_normal: bumps within the profile's reach smoothed out), the rest along n.
+    vec3 n_diffuse = MODE == kTm ? normalize(in_scattering_normal) : n;
     vec3 v = normalize(frame.eye - in_position);
     // Leaving towards the eye: the same for every light.
     float exit_transmittance = MODE == kTm && data.transmission_shape.w > 0.0 ? boundary_transmittance(dot(n, v)) : 1.0;
@@ -150,7 +155,8 @@ void main()
     vec3 tm = min(max(in_tm, vec3(0.0)), vec3(3.0e38));
     LutRows rows;
     {
-        vec3 y = sqrt(sqrt(clamp(data.albedo_strength.w * tm * data.params.x, 0.0, 1.0))) * data.lut_map.z;
+        vec3 t = data.albedo_strength.w * tm + data.specular.w * clamp(in_normal_spread, 0.0, 1.0);
+        vec3 y = sqrt(sqrt(clamp(t * data.params.x, 0.0, 1.0))) * data.lut_map.z;
         vec3 row = min(floor(y), vec3(data.lut_map.w));
         rows.first = row * data.lut_map.y;
         rows.weight = y - row;
@@ -168,9 +174,9 @@ void main()
             e /= d2;
         }
         l = normalize(l);
-        float c = dot(n, l);
-        vec3 diffuse = albedo * (1.0 / JADE_PI) * diffuse_response(c, rows, kappa_scaled) * e;
-        if (MODE == kTm && data.transmission_shape.w > 0.0) diffuse *= boundary_transmittance(c) * exit_transmittance;
+        float c = dot(n, l), c_diffuse = dot(n_diffuse, l);
+        vec3 diffuse = albedo * (1.0 / JADE_PI) * diffuse_response(c_diffuse, rows, kappa_scaled) * e;
+        if (MODE == kTm && data.transmission_shape.w > 0.0) diffuse *= boundary_transmittance(c_diffuse) * exit_transmittance;
         color += diffuse;
         if (c > 0.0 && data.specular.z > 0.0) color += data.specular.z * specular_lobe(n, v, l, c) * e;
         if (TRANSMISSION == 1u) color += transmitted(n, v, l, c, uint(light.color.w)) * e;

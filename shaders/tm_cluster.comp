@@ -64,6 +64,7 @@ void main()
     uint vertex = order[k];
     vec3 x = uintBitsToFloat(texelFetch(tree, int(first_point + 2u * k)).xyz);
     vec3 sum = partial_sum[k], comp = partial_comp[k];
+    vec3 normal[3] = vec3[3](vec3(0.0), vec3(0.0), vec3(0.0));
     Profile prof[3] = load_profiles();
 
     // One loop iteration is one node, or one source of an opened leaf (a cluster of radius 0):
@@ -79,9 +80,11 @@ void main()
         vec4 node_cw = uintBitsToFloat(subgroupBroadcast(mine, 0u));
         uvec4 shape = subgroupBroadcast(mine, 1u);
         vec4 cov_a = uintBitsToFloat(subgroupBroadcast(mine, 2u));
-        vec2 cov_b = uintBitsToFloat(subgroupBroadcast(mine, 3u).xy);
+        vec4 node_d = uintBitsToFloat(subgroupBroadcast(mine, 3u));
+        vec2 cov_b = node_d.xy;
         vec4 source_pw = uintBitsToFloat(subgroupBroadcast(mine, 4u));
-        float source_near_r2 = uintBitsToFloat(subgroupBroadcast(mine, 5u).x);
+        vec4 source_extra = uintBitsToFloat(subgroupBroadcast(mine, 5u));
+        float source_near_r2 = source_extra.x;
         work += 1u;
         if (in_leaf) {
             node_cw = source_pw;
@@ -101,7 +104,7 @@ void main()
         float trace = cov_a.x + cov_a.y + cov_a.z;
         float r_safe = max(r, 1e-30);
         bool accept = r - s >= reach;
-        vec3 far = vec3(0.0);
+        vec3 far = vec3(0.0), point = vec3(0.0);
         [[unroll]] for (uint c = 0u; c < CHANNELS; ++c) {
             ProfileDerivatives at = profile_derivatives(prof[c], r_safe);
             float second, tangential, decay_length;
@@ -128,15 +131,19 @@ void main()
             // differences would divide by zero.)
             float quadrupole = s > 0.0 ? 0.5 * ((second - tangential) * cuu + tangential * trace) : 0.0;
             far[c] = weight * at.r0 + quadrupole;
+            point[c] = at.r0;
         }
         if (in_leaf) {
             // A source within its near radius is the near pass's, and the target is not its own source.
             bool counts = r * r >= source_near_r2 && r > 0.0;
             compensated_add(sum, comp, counts ? far : vec3(0.0));
+            add_weighted(normal, counts ? far : vec3(0.0), decode_direction(source_extra.w));
             j += 1u;
         } else {
             accept = subgroupAll(accept) && weight > 0.0;  // uniform: the subgroup walks as one
             if (accept) compensated_add(sum, comp, far);
+            // The node's normal sum Σ w·n as a monopole (cluster_refit.comp: its length, its direction).
+            if (accept) add_weighted(normal, point * node_d.z, decode_direction(node_d.w));
             bool open_leaf = !accept && weight > 0.0 && jade_range_is_leaf(range);
             if (open_leaf) {
                 j = jade_range_first(range);
@@ -149,4 +156,5 @@ void main()
     if (!in_range) return;
     resume[k] = uvec3(i, j, j_end);
     save_partial(k, vertex, sum, comp);
+    add_normal_sums(vertex, normal);
 }

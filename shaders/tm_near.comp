@@ -65,6 +65,8 @@ void main()
     float own_rho = sqrt(own_extra.y / JADE_PI);
     [[unroll]] for (uint c = 0u; c < CHANNELS; ++c) sum[c] = own_extra.z * profile_cdf(prof[c], own_rho);
     if (GRID == 1u) sum -= own.w * texelFetch(smooth_table, 0).xyz;
+    vec3 normal[3] = vec3[3](vec3(0.0), vec3(0.0), vec3(0.0));
+    add_weighted(normal, sum, decode_direction(own_extra.w));
     // The disk candidates first, then (GRID) the point pairs within r_cut: lavapipe runs both
     // sides of a branch, so the disk integral stays out of the second, longer loop.
     uint split = near_offsets[k] + near_disks[k];
@@ -83,26 +85,37 @@ void main()
         // The disk reaches at most DISK_CAP·r towards the target; the rest of the area stays a
         // point (kDiskCap in bake/disk_integral.hpp): irregular meshes must not count a second
         // self term for stiff profiles.
+        // That rest lies around the source, at the RMS distance of its annulus from the target,
+        // so a source (nearly) on top of the target stays finite (rest_distance in
+        // bake/disk_integral.hpp).
         float capped = min(rho, DISK_CAP * r);
         float rest = max(area - JADE_PI * capped * capped, 0.0);
-        vec3 point = vec3(0.0);
+        float rest_r = sqrt(r2 + 0.5 * (area / JADE_PI + capped * capped));
+        vec3 point = vec3(0.0), pair = vec3(0.0);
         [[unroll]] for (uint c = 0u; c < CHANNELS; ++c) {
             point[c] = profile_r(prof[c], max(r, 1e-30));
-            sum[c] += weight * (disk_integral(prof[c], r, capped) + rest * point[c]);
+            float disk_part = capped > 0.0 ? disk_integral(prof[c], r, capped) : 0.0;
+            pair[c] = weight * (disk_part + rest * profile_r(prof[c], rest_r));
         }
         if (GRID == 1u) {
             float near_weight = disk || r2 < pc.cut2 ? s.w : 0.0;
-            sum += near_weight * ((disk ? vec3(0.0) : point) - smooth_part(r));
+            pair += near_weight * ((disk ? vec3(0.0) : point) - smooth_part(r));
         }
+        sum += pair;
+        add_weighted(normal, pair, decode_direction(extra.w));
     }
     if (GRID == 1u) {
         for (uint e = split; e < near_offsets[k + 1u]; ++e) {
-            vec4 s = source_texel(near_indices[e - pc.index_base], 0u);
+            uint j = near_indices[e - pc.index_base];
+            vec4 s = source_texel(j, 0u);
             vec3 to_source = s.xyz - x;
             float r2 = dot(to_source, to_source);
             float r = sqrt(r2);
-            sum += (r2 < pc.cut2 ? s.w / max(r, 1e-30) : 0.0) * table_lookup(r, TABLE_SIZE);
+            vec3 pair = (r2 < pc.cut2 ? s.w / max(r, 1e-30) : 0.0) * table_lookup(r, TABLE_SIZE);
+            sum += pair;
+            add_weighted(normal, pair, decode_direction(source_texel(j, 1u).w));
         }
     }
     save_partial(k, order[k], sum, vec3(0.0));
+    start_normal_sums(order[k], normal);
 }

@@ -103,7 +103,7 @@ TEST_F(BakeCacheTest, CorruptOrStaleEntriesAreDetectedAndRebaked)
     const CachedBake good = bake_with_cache(context(), cache, sphere, material, settings);
     const auto path = cache.entry_path(key);
     const auto size = std::filesystem::file_size(path);
-    EXPECT_EQ(size, 40 + sphere.vertex_count() * 16);
+    EXPECT_EQ(size, 40 + sphere.vertex_count() * (16 + 24)) << "header, AO and t_m, scattering normal and normal spread";
 
     auto patch = [&](std::streamoff offset, char byte) {
         std::fstream f(path, std::ios::binary | std::ios::in | std::ios::out);

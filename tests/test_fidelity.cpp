@@ -44,13 +44,14 @@ void back_lit_scenes_are_far_closer_than_lambert_and_curvature()
         sum_ours += flip(s, "default"), sum_lambert += flip(s, "lambert");
     }
     EXPECT_EQ(back, 13);
-    EXPECT_GE(closer_than_curvature, 12) << "measured: all but dragon_marble_back (0.464 against 0.452)";
-    EXPECT_GE(thirty_percent, 11) << "measured: all but dragon_marble_back (0.92 of Lambert) and hand_jewel_back (0.71)";
-    EXPECT_EQ(helped, 13) << "transmission and the boundary transmittance never make a back-lit scene worse than tm";
-    EXPECT_LE(sum_ours, 0.6 * sum_lambert) << "mean masked FLIP, back light: measured 0.40 against Lambert's 0.73";
+    EXPECT_EQ(closer_than_curvature, 13);
+    EXPECT_GE(thirty_percent, 12) << "measured: all but dragon_marble_back (0.80 of Lambert)";
+    EXPECT_GE(helped, 12) << "transmission and the boundary transmittance make no back-lit scene worse than tm but "
+                             "dragon_marble_back (0.407 against 0.339)";
+    EXPECT_LE(sum_ours, 0.6 * sum_lambert) << "mean masked FLIP, back light: measured 0.41 against Lambert's 0.73";
 }
 
-void front_and_side_lit_scenes_are_closer_than_lambert_everywhere_and_than_curvature_almost_everywhere()
+void front_and_side_lit_scenes_are_closer_than_lambert_and_curvature_everywhere()
 {
     ASSERT_EQ(scenes().size(), 39u);
     std::map<std::string, double> ours, lambert, curvature;
@@ -69,8 +70,7 @@ void front_and_side_lit_scenes_are_closer_than_lambert_everywhere_and_than_curva
     }
     EXPECT_EQ(lit, 26);
     EXPECT_EQ(closer, 26);
-    EXPECT_GE(closer_than_curvature, 23) << "measured: all but camel_marble_side, camel_wax_side, hand_jewel_side "
-                                            "(by 0.001-0.011)";
+    EXPECT_EQ(closer_than_curvature, 26);
 }
 
 void thin_parts_lit_from_behind_carry_the_path_tracers_radiance()
@@ -93,8 +93,9 @@ void thin_parts_lit_from_behind_carry_the_path_tracers_radiance()
         nearer += all_nearer ? 1 : 0;
     }
     EXPECT_EQ(back, 13);
-    EXPECT_GE(nearer, 12) << "nearer than the poster's model alone everywhere but dragon_wax_back";
-    EXPECT_GE(within, 10) << "measured 10 of 13 within 25 % in every channel (docs/fidelity.md)";
+    EXPECT_EQ(nearer, 13) << "nearer than the poster's model alone everywhere";
+    EXPECT_GE(within, 10) << "measured 10 of 13 within 25 % in every channel: not dragon_wax_back and the two fists "
+                             "(docs/fidelity.md)";
 }
 
 }  // namespace
@@ -109,7 +110,7 @@ TEST(Fidelity, AgainstThePathTracedReferences)
     }
     {
         SCOPED_TRACE("front and side light");
-        front_and_side_lit_scenes_are_closer_than_lambert_everywhere_and_than_curvature_almost_everywhere();
+        front_and_side_lit_scenes_are_closer_than_lambert_and_curvature_everywhere();
     }
     {
         SCOPED_TRACE("thin parts");

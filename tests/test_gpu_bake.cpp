@@ -53,6 +53,26 @@ RelError relative_error(const std::vector<glm::vec3>& gpu, const std::vector<glm
     return e;
 }
 
+// The largest angle (radians) between the GPU's scattering normals and the reference's.
+double max_angle(const std::vector<glm::vec3>& gpu, const std::vector<glm::dvec3>& ref, std::span<const uint32_t> at)
+{
+    double worst = 0;
+    for (size_t k = 0; k < at.size(); ++k) {
+        const glm::dvec3 g(gpu.at(at[k]));
+        worst = std::max(worst, std::atan2(glm::length(glm::cross(g, ref[k])), glm::dot(g, ref[k])));
+    }
+    return worst;
+}
+
+// The largest absolute difference of per-channel values against the reference's.
+double max_abs_error(const std::vector<glm::vec3>& gpu, const std::vector<glm::dvec3>& ref, std::span<const uint32_t> at)
+{
+    double worst = 0;
+    for (size_t k = 0; k < at.size(); ++k)
+        for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(double(gpu.at(at[k])[c]) - ref[k][c]));
+    return worst;
+}
+
 void expect_finite_nonnegative(const std::vector<glm::vec3>& tm)
 {
     for (size_t i = 0; i < tm.size(); ++i)
@@ -93,7 +113,7 @@ TEST_F(GpuTest, AoMatchesReferenceOnDragon) { check_ao_against_reference(context
 
 // t_m on the dragon for d at 1 %, 5 % and 20 % of the diagonal: the all-pairs pass within
 // 1e-4 relative; the clustered and the grid far fields within 1 % at the default quality and
-// 0.1 % at the high one, of the float64 reference.
+// 0.1 % at the high one, of the float64 reference. The scattering normals too, in angle.
 class TmAccuracy : public GpuTest, public ::testing::WithParamInterface<double> {};
 
 TEST_P(TmAccuracy, DragonAgainstFloat64)
@@ -107,11 +127,16 @@ TEST_P(TmAccuracy, DragonAgainstFloat64)
     auto ao = baker.bake_ao(mesh, ao_settings);
     auto at = sample_vertices(mesh.vertex_count(), 400);
     auto ref = reference_tm(mesh, ao, m, at);
+    const ReferenceScattering ref_scattering = reference_scattering(mesh, ao, m, at);
+    const auto& ref_normal = ref_scattering.normal;
 
     BakeSettings exact;
     exact.method = TmMethod::Exact;
-    auto e = relative_error(baker.bake_tm(mesh, ao, m, exact).tm, ref, at);
+    const BakeResult x = baker.bake_tm(mesh, ao, m, exact);
+    auto e = relative_error(x.tm, ref, at);
     EXPECT_LE(e.max, 1e-4) << "exact pass, rms " << e.rms;
+    EXPECT_LE(max_angle(x.scattering_normal, ref_normal, at), 2e-3) << "exact pass: the scattering normal";
+    EXPECT_LE(max_abs_error(x.normal_spread, ref_scattering.spread, at), 2e-3) << "exact pass: the normal spread";
 
     EXPECT_EQ(baker.bake_tm(mesh, ao, m, BakeSettings::preset(Quality::Default)).method_used, TmMethod::Grid)
         << "auto: the grid far field";
@@ -125,6 +150,15 @@ TEST_P(TmAccuracy, DragonAgainstFloat64)
             e = relative_error(r.tm, ref, at);
             EXPECT_LE(e.max, q == Quality::High ? 1e-3 : 1e-2)
                 << tm_method_name(method) << ", " << (q == Quality::High ? "high" : "default") << " quality, rms " << e.rms;
+            // The grid carries the normal's sums exactly as t_m's; the clustered far field takes
+            // each accepted node's normal sum as a monopole, whose error the sum's cancellation
+            // over a wide profile magnifies (measured 0.12 rad at d = 20 %, default quality).
+            const double angle = max_angle(r.scattering_normal, ref_normal, at);
+            const double bound = method == TmMethod::Grid ? (q == Quality::High ? 1e-3 : 2e-3) : (q == Quality::High ? 1.5e-2 : 0.15);
+            EXPECT_LE(angle, bound) << tm_method_name(method) << ", " << quality_name(q) << ": the scattering normal";
+            const double spread = max_abs_error(r.normal_spread, ref_scattering.spread, at);
+            std::printf("%s %s: angle %.2e spread %.2e\n", tm_method_name(method), quality_name(q), angle, spread);
+            EXPECT_LE(spread, bound) << tm_method_name(method) << ", " << quality_name(q) << ": the normal spread";
         }
 }
 

@@ -122,8 +122,8 @@ TEST(SceneMaterials, VolumeAndDiffuseTransmissionBecomeABurleyProfilePerChannel)
         EXPECT_NEAR(m.transmission.sigma_t[c], 1.0 / mfp, 1e-5 / mfp) << "channel " << c;
         EXPECT_NEAR(m.albedo[c], A[c], 1e-6);
     }
-    // e.g. red: ℓ = 0.02 / (1 + ln 2) = 11.81 mm, R_d = 0.5 / 0.95 = 0.526, s(0.526) = 1.468, d = 8.051 mm.
-    EXPECT_NEAR(m.profile[0].d, 0.011812322 / (1.85 - 0.5 / 0.95 + 7.0 * std::pow(0.8 - 0.5 / 0.95, 3.0)), 1e-8);
+    // e.g. red: ℓ = 0.02 / (1 + ln 2) = 11.81 mm, R_d = 0.5 / 0.9 = 0.556, s(0.556) = 1.396, d = 8.457 mm.
+    EXPECT_NEAR(m.profile[0].d, 0.011812322 / (1.85 - 0.5 / 0.9 + 7.0 * std::pow(0.8 - 0.5 / 0.9, 3.0)), 1e-8);
     EXPECT_NEAR(m.strength, 0.5 * 1.5, 1e-6);  // diffuseTransmissionFactor × extras strength
     EXPECT_NEAR(m.roughness, 0.3, 1e-6);
 }
@@ -253,8 +253,9 @@ TEST(ScenePlan, MixedSceneGetsOnlyThePassesEachObjectNeeds)
     EXPECT_TRUE(bar.passes[0].per_frame && bar.passes[1].per_frame && bar.passes[1].resident);
     EXPECT_EQ(bar.variant.channels, 3u);
 
-    // Vertex buffer of the draw: 44 bytes per bake vertex (position, normal, t_m, curvature, thickness).
-    EXPECT_EQ(grey.passes.back().buffers[0].bytes, 44u * grey.bake_vertices);
+    // Vertex buffer of the draw: 68 bytes per bake vertex (position, normal, t_m, curvature, thickness,
+    // scattering normal, normal spread).
+    EXPECT_EQ(grey.passes.back().buffers[0].bytes, 68u * grey.bake_vertices);
     const std::string text = plan.describe();
     EXPECT_NE(text.find("shader variant: mode tm, CHANNELS=1"), std::string::npos) << text;
     EXPECT_NE(text.find("pass dynamic bake (every frame)"), std::string::npos);

@@ -205,7 +205,8 @@ int cmd_deform(int argc, char** argv)
         const BakeResult baked =
             rebake.bake(deformer.positions_buffer(), deformer.normals_buffer(), deformer.areas_buffer(), /*read_back=*/false);
         for (const auto& [stage, ms] : baked.timings.gpu_stages) (stage == "ao" ? st.ao : st.tm) += ms;
-        renderer.update_vertices(deformer.positions_buffer(), deformer.normals_buffer(), rebake.buffers().tm, rebake.buffers().thickness);
+        renderer.update_vertices(deformer.positions_buffer(), deformer.normals_buffer(), rebake.buffers().tm, rebake.buffers().thickness,
+                                 rebake.buffers().scattering_normal);
         RenderedImage image = renderer.render(camera, lights, render_settings);
         st.draw = image.gpu_ms;
         char name[32];

@@ -93,6 +93,7 @@ MediumFit fit_from_args(const Args& args)
         try {
             fit.albedo_scale = j.value("albedo_scale", fit.albedo_scale);
             fit.strength = j.value("strength", fit.strength);
+            fit.spread_strength = j.value("spread_strength", fit.spread_strength);
             fit.transmission_weight = j.value("transmission_weight", fit.transmission_weight);
             fit.diffusion_weight = j.value("diffusion_weight", fit.diffusion_weight);
             fit.lobe = j.value("lobe", fit.lobe);
@@ -250,7 +251,7 @@ int cmd_fidelity(int argc, char** argv)
             baked.emplace(key, std::move(b));
         }
         const BakedMesh& b = baked.at(key);
-        renderer.set_mesh(b.prepared, b.bake.tm, b.bake.thickness);
+        renderer.set_mesh(b.prepared, b.bake);
         Camera camera;
         camera.eye = vec3_of(rec.at("camera").at("eye"));
         camera.target = vec3_of(rec.at("camera").at("target"));
@@ -274,6 +275,7 @@ int cmd_fidelity(int argc, char** argv)
             // The poster's model alone: no boundary transmittance either.
             Material as_drawn = material;
             as_drawn.boundary_transmittance = mode.transmission;
+            if (!mode.transmission) as_drawn.spread_strength = 0.0f;
             renderer.set_material(as_drawn);
             RenderedImage img = renderer.render(camera, lights, rs);
             const flip::Image test = flip::from_linear(img.width, img.height, img.rgba.data(), 4);
@@ -329,7 +331,7 @@ int cmd_fidelity(int argc, char** argv)
     if (out.empty()) throw Error("--references " + dir.string() + ": no reference scene matched");
     if (auto path = args.get("markdown")) write_file_atomically(*path, fidelity_markdown(out, ctx->device_info().name));
     if (auto path = args.get("json")) {
-        const json doc = {{"fit", {{"albedo_scale", fit.albedo_scale}, {"strength", fit.strength},
+        const json doc = {{"fit", {{"albedo_scale", fit.albedo_scale}, {"strength", fit.strength}, {"spread_strength", fit.spread_strength},
                                    {"transmission_weight", fit.transmission_weight}, {"diffusion_weight", fit.diffusion_weight},
                                    {"lobe", fit.lobe}, {"normal_mix", fit.normal_mix}}},
                           {"scenes", out}};

@@ -108,12 +108,13 @@ struct Scene {
     Material material;
     std::vector<glm::vec3> tm;  ///< per bake vertex when baked here, else empty
     std::vector<float> thickness;  ///< per bake vertex when baked here with transmission, else empty
+    std::vector<glm::vec3> scattering_normal, normal_spread;  ///< per bake vertex when baked here, else empty
 };
 
 void set_scene(Renderer& renderer, const Scene& s)
 {
     if (!s.mesh.baked_tm.empty()) renderer.set_mesh(s.mesh, s.mesh.baked_tm, s.mesh.baked_thickness);  // per render vertex
-    else renderer.set_mesh(s.prepared, s.tm, s.thickness);
+    else renderer.set_mesh(s.prepared, s.tm, s.thickness, s.scattering_normal, s.normal_spread);
     renderer.set_material(s.material);
 }
 
@@ -133,6 +134,8 @@ Scene load_scene(const Args& args, Context& ctx, const std::string& path, bool n
         std::fprintf(stderr, "jade: baked in %s\n", format_ms(r.timings.wall_ms).c_str());
         s.tm = std::move(r.tm);
         s.thickness = std::move(r.thickness);
+        s.scattering_normal = std::move(r.scattering_normal);
+        s.normal_spread = std::move(r.normal_spread);
     }
     return s;
 }

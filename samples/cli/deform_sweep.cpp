@@ -54,7 +54,7 @@ SweepStats DeformSweep::run(const Amortisation& amortisation, Renderer* renderer
         const BakeResult r = rebake_.bake(deformer_.positions_buffer(), deformer_.normals_buffer(), deformer_.areas_buffer());
         double draw_ms = 0;
         if (renderer) {
-            renderer->set_mesh(deformed_mesh(rest_, deformer_.read()), r.tm);
+            renderer->set_mesh(deformed_mesh(rest_, deformer_.read()), r);
             draw_ms = renderer->render(cameras_[f], default_lights(cameras_[f]), render_settings).gpu_ms;
         }
         if (f == 0 && amortised) continue;  // measure the steady state

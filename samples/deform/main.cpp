@@ -47,7 +47,7 @@ int main(int argc, char** argv)
             const jade::DeformTimings d = deformer.deform(twist, t);
             const jade::PreparedMesh deformed = jade::deformed_mesh(rest, deformer.read());
             const jade::BakeResult baked = baker.bake(deformed, material, settings);
-            renderer.set_mesh(deformed, baked.tm, baked.thickness);
+            renderer.set_mesh(deformed, baked);
             jade::RenderedImage image = renderer.render(camera, lights, render);
             std::printf("frame %2d  t = %.2f s  deform+normals %.2f ms  bake %.0f ms  draw %.1f ms (GPU)\n", f, t,
                         d.deform_ms + d.normals_ms, baked.timings.gpu_total_ms, image.gpu_ms);

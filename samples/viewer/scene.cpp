@@ -107,7 +107,7 @@ void Scene::bake_static(const ViewState& state)
         times_.stages.emplace_back("t_m from the file: set_mesh (CPU)", now_ms() - t0);
         return;
     }
-    std::vector<glm::vec3> tm;
+    std::vector<glm::vec3> tm, scattering_normal, normal_spread;
     std::vector<float> thickness;
     if (!material_.opaque) {
         const jade::BakeResult r = baker_.bake(rest_, material_, jade::BakeSettings::preset(state.quality));
@@ -115,9 +115,11 @@ void Scene::bake_static(const ViewState& state)
         for (const auto& [name, ms] : r.timings.gpu_stages) times_.stages.emplace_back("bake " + name, ms);
         tm = r.tm;
         thickness = r.thickness;
+        scattering_normal = r.scattering_normal;
+        normal_spread = r.normal_spread;
     }
     const double t0 = now_ms();
-    renderer_.set_mesh(rest_, tm, thickness);
+    renderer_.set_mesh(rest_, tm, thickness, scattering_normal, normal_spread);
     times_.stages.emplace_back("set_mesh (CPU)", now_ms() - t0);
 }
 
@@ -134,7 +136,8 @@ void Scene::deform_and_rebake(const ViewState& state)
                                                  deformer_->areas_buffer(), /*read_back=*/false);
         for (const auto& [name, ms] : r.timings.gpu_stages) times_.stages.emplace_back("re-bake " + name, ms);
         const double t1 = now_ms();
-        renderer_.update_vertices(deformer_->positions_buffer(), deformer_->normals_buffer(), rebake_->buffers().tm);
+        renderer_.update_vertices(deformer_->positions_buffer(), deformer_->normals_buffer(), rebake_->buffers().tm,
+                                  rebake_->buffers().thickness, rebake_->buffers().scattering_normal);
         times_.stages.emplace_back("vertex update (wall)", now_ms() - t1);
     } else {  // opaque: no t_m, the deformed mesh as host data
         const double t1 = now_ms();

@@ -22,7 +22,7 @@ const uint kColorMapStops = 9;
 
 layout(binding = 0, scalar) readonly buffer FrameData {
     vec4 albedo_strength;   // k_d (linear RGB), strength (variance per unit t_m)
-    vec4 specular;          // F0, α = roughness², weight, unused
+    vec4 specular;          // F0, α = roughness², weight; Material::spread_strength (rad² per unit normal spread)
     vec4 lut_map;           // translucency LUT quads: column cos θ·x + x, x = (W−1)/2; y = W − 1 quads a row;
                             // row (t / t_max)^¼ · z, z = H − 1; w = H − 2 the last row of quads
     vec4 curvature_map;     // curvature LUT:    u = cos θ · x + y, v = s / (1 + s) · z + w

@@ -3,6 +3,7 @@
 #ifndef JADE_TM_COMMON_GLSL
 #define JADE_TM_COMMON_GLSL
 
+#include "direction.glsl"
 #include "profile.glsl"
 
 // 1 for grey materials (one profile baked, copied to RGB), else 3.
@@ -23,7 +24,7 @@ Profile[3] load_profiles()
 // The far passes read the sources in tree order (exact pass: bake order) from a texel buffer
 // written by gather_sources.comp, two RGBA32F texels per source:
 //   2j:     position.xyz, weight = area·(1 − A_o)
-//   2j + 1: near radius² = NEAR_FACTOR²·area/π, area, 1 − A_o, 0
+//   2j + 1: near radius² = NEAR_FACTOR²·area/π, area, 1 − A_o, normal (direction.glsl)
 // Within the near radius a pair is the near pass's (tm_near.comp, integrated over the disk).
 const float NEAR_RADIUS2_PER_AREA = NEAR_FACTOR * NEAR_FACTOR / JADE_PI;
 
@@ -37,19 +38,24 @@ float far_pair(Profile p, float r2, float near_r2, float weight)
 
 // The point sums of a group of up to 8 sources, fetched cooperatively: lane m of the subgroup
 // has fetched source m's texels (pw, extra); each lane adds the first `count` sources to its
-// own target x. One texel fetch per lane serves 8 targets × 8 sources: lavapipe's loads cost
-// far more than its arithmetic (docs/lavapipe.md). Needs a subgroup of at least 8 lanes with
-// all lanes active.
-vec3 far_group(Profile prof[3], vec3 x, vec4 pw, float near_r2, uint count)
+// own target x, and per channel their normals with the same weights to `normal`. One texel
+// fetch per lane serves 8 targets × 8 sources: lavapipe's loads cost far more than its
+// arithmetic (docs/lavapipe.md). Needs a subgroup of at least 8 lanes with all lanes active.
+vec3 far_group(Profile prof[3], vec3 x, vec4 pw, vec4 extra, uint count, inout vec3 normal[3])
 {
     vec3 total = vec3(0.0);
     [[unroll]] for (uint m = 0u; m < 8u; ++m) {
         vec4 s = subgroupBroadcast(pw, m);
-        float s_near_r2 = subgroupBroadcast(near_r2, m);
+        vec4 e = subgroupBroadcast(extra, m);
         vec3 d = s.xyz - x;
         float r2 = dot(d, d);
         float w = m < count ? s.w : 0.0;
-        [[unroll]] for (uint c = 0u; c < CHANNELS; ++c) total[c] += far_pair(prof[c], r2, s_near_r2, w);
+        vec3 n = decode_direction(e.w);
+        [[unroll]] for (uint c = 0u; c < CHANNELS; ++c) {
+            float v = far_pair(prof[c], r2, e.x, w);
+            total[c] += v;
+            normal[c] += v * n;
+        }
     }
     return total;
 }

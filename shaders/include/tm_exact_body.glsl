@@ -37,11 +37,12 @@ void main()
     dvec3 total = dvec3(sum) + dvec3(comp);
 #endif
     vec3 block = vec3(0.0);
+    vec3 normal[3] = vec3[3](vec3(0.0), vec3(0.0), vec3(0.0));
     for (uint g = pc.source_begin; g < pc.source_end; g += 8u) {
         uint j = min(g + (lane & 7u), pc.source_end - 1u);
         vec4 pw = texelFetch(points, int(2u * j));
-        float near_r2 = texelFetch(points, int(2u * j + 1u)).x;
-        block += far_group(prof, x, pw, near_r2, min(pc.source_end - g, 8u));
+        vec4 extra = texelFetch(points, int(2u * j + 1u));
+        block += far_group(prof, x, pw, extra, min(pc.source_end - g, 8u), normal);
         if ((g - pc.source_begin) % 64u == 56u) {
 #ifdef JADE_FLOAT64_SUMS
             total += dvec3(block);
@@ -58,5 +59,8 @@ void main()
 #else
     compensated_add(sum, comp, block);
 #endif
-    if (i_lane < pc.vertex_count) save_partial(i, i, sum, comp);
+    if (i_lane < pc.vertex_count) {
+        save_partial(i, i, sum, comp);
+        add_normal_sums(i, normal);
+    }
 }

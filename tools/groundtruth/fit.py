@@ -2,7 +2,8 @@
 """Calibrates what Material::from_medium leaves free against the path-traced references.
 
 Input: the separate terms of Jade's shading per training scene, written by
-  build/samples/cli/jade fidelity --set train --components COMPONENTS
+  build/samples/cli/jade fidelity --set train --components COMPONENTS [--fit SPREAD.json]
+(the diffuse terms use the spread_strength of --fit; pass the same value as --spread-strength)
 (diffuse with albedo R_d per strength, specular, transmission of weight 1 per lobe with
 normal_mix 0 and 1). Jade's image is linear in the rest:
   image = albedo_scale * D_s + S + sum over parts p (ballistic b, diffused d) of
@@ -71,6 +72,8 @@ def main():
     ap.add_argument("--out", default=os.path.join(HERE, "fit_result.json"))
     ap.add_argument("--thin-weight", type=float, default=0.1)
     ap.add_argument("--stage1", help="ALBEDO_SCALE,STRENGTH: skip stage 1 with these values")
+    ap.add_argument("--spread-strength", type=float, default=0.0,
+                    help="the spread_strength the components were written with (jade fidelity --fit), recorded in the result")
     a = ap.parse_args()
     names = sorted({os.path.basename(p).split("__")[0] for p in glob.glob(os.path.join(a.components, "*__specular.exr"))})
     scenes = [load_scene(a.components, a.references, n) for n in names]
@@ -146,7 +149,7 @@ def main():
     _, w, wd, n, m = best2
     print(f"stage 2: transmission_weight {w}, diffusion_weight {wd:.3f}, lobe {n}, normal_mix {m}: objective "
           f"{best2[0]:.4f} over {len(behind)} side/back scenes ({time.time() - t0:.0f} s)")
-    result = {"albedo_scale": scale, "strength": float(st), "transmission_weight": w, "diffusion_weight": wd,
+    result = {"albedo_scale": scale, "strength": float(st), "spread_strength": a.spread_strength, "transmission_weight": w, "diffusion_weight": wd,
               "lobe": float(n), "normal_mix": m,
               "objective_stage1": best1[0], "objective_stage2": best2[0], "thin_weight": a.thin_weight,
               "training_scenes": names, "command": " ".join(sys.argv)}

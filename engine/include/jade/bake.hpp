@@ -83,6 +83,15 @@ std::vector<float> reference_ao(const PreparedMesh& mesh, const AoSettings& sett
 std::vector<glm::dvec3> reference_tm(const PreparedMesh& mesh, std::span<const float> ao,
                                      const Material& material, std::span<const uint32_t> vertices = {});
 
+/// float64 CPU reference of BakeResult::scattering_normal and normal_spread, over the same
+/// pairs and rule as reference_tm; one value per listed vertex.
+struct ReferenceScattering {
+    std::vector<glm::dvec3> normal;  ///< unit; the vertex normal where the sum vanishes
+    std::vector<glm::dvec3> spread;  ///< per channel, [0, 1]
+};
+ReferenceScattering reference_scattering(const PreparedMesh& mesh, std::span<const float> ao, const Material& material,
+                                         std::span<const uint32_t> vertices = {});
+
 /// The direction of ray k of vertex `vertex` (unit, world space, cosine-distributed about
 /// `normal`): the ray set both the GPU pass and reference_ao use.
 glm::vec3 ao_ray_direction(glm::vec3 normal, uint32_t vertex, uint32_t k, const AoSettings& settings);
@@ -152,6 +161,19 @@ struct BakeResult {
     std::vector<float> ao;           ///< per bake vertex, [0,1]
     std::vector<glm::vec3> tm;       ///< per bake vertex, linear RGB, unitless
     std::vector<float> thickness;    ///< per bake vertex, mesh units; empty without the pass
+    /// Per bake vertex, unit length: the direction of Σ_c N_c, N_c = ∫ R_c(|x − s|)(1 − A_o(s))·n(s) dS,
+    /// the mean normal of the surface the scattered light enters through, weighted as t_m is
+    /// (the channels' profiles summed). The translucent diffuse term is lit along it
+    /// (docs/shading.md): small bumps within the profile's reach smooth out, as light diffusing
+    /// under the surface smooths them. The vertex normal where the sum vanishes (nothing lit
+    /// within reach). Empty when t_m is not baked (bake_ao only, opaque materials).
+    std::vector<glm::vec3> scattering_normal;
+    /// Per bake vertex and channel, in [0, 1]: 1 − |N_c| / t_m,c, how much the normals within
+    /// the channel's profile reach disagree (0 on a plane; ≈ ⟨θ²⟩/2 for a small angular spread
+    /// θ about their mean; 1 when they cancel). A wide profile on a curved surface spreads its
+    /// light over more directions: Material::spread_strength turns it into blur. Empty with
+    /// scattering_normal.
+    std::vector<glm::vec3> normal_spread;
     BakeTimings timings;
     TmMethod method_used = TmMethod::Exact;
     uint64_t tm_bytes = 0;           ///< device memory of the t_m passes: near lists, far field, sums
@@ -223,11 +245,15 @@ public:
     /// The GPU buffers, one entry per bake vertex, tightly packed: positions and normals
     /// (float3, mesh units, unit normals), areas (float, units²) - written by a deformer (usage:
     /// storage, transfer destination) - and the results ao (float), t_m (float3) and thickness
-    /// (float, mesh units; VK_NULL_HANDLE when BakeSettings::thickness is off).
+    /// (float, mesh units; VK_NULL_HANDLE when BakeSettings::thickness is off), and the
+    /// per-channel normal sums N_c (three float3 per vertex, channel-minor: what
+    /// BakeResult::scattering_normal and normal_spread are made of; Renderer::record_vertex_update
+    /// takes them as they are).
     struct Buffers {
         VkBuffer positions, normals, areas, ao, tm;
         uint32_t vertex_count;
         VkBuffer thickness = VK_NULL_HANDLE;
+        VkBuffer scattering_normal = VK_NULL_HANDLE;
     };
     Buffers buffers() const;
 

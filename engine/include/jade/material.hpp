@@ -116,8 +116,9 @@ struct Transmission {
 /// tracer (Mitsuba 3) on the training scenes of tools/groundtruth (fit: tools/groundtruth/fit.py,
 /// results and validation: docs/fidelity.md). The defaults are the fitted values.
 struct MediumFit {
-    double albedo_scale = 0.95;         ///< k_d = albedo_scale · R_d(α', η)
-    double strength = 1.2;              ///< Material::strength (rad² per unit t_m)
+    double albedo_scale = 0.9;          ///< k_d = albedo_scale · R_d(α', η)
+    double strength = 0.3;              ///< Material::strength (rad² per unit t_m)
+    double spread_strength = 3.0;       ///< Material::spread_strength (rad² per unit normal spread)
     double transmission_weight = 0.65;  ///< Transmission::weight / T_boundary
     double diffusion_weight = 0.046;    ///< Transmission::diffusion_weight / T_boundary
     double lobe = 16.0;                 ///< Transmission::lobe
@@ -138,7 +139,11 @@ struct Material {
     std::string name;                       ///< preset or user name, used in messages and reports
     std::array<ChannelProfile, 3> profile;  ///< linear RGB
     glm::vec3 albedo{0.8f};                 ///< diffuse albedo k_d, linear RGB
-    float strength = 1.0f;                  ///< Gaussian variance (rad²) = strength · t_m
+    float strength = 1.0f;                  ///< Gaussian variance (rad²) = strength · t_m + spread_strength · spread
+    /// Blur that follows the surface's shape within the profile's reach: rad² added per unit of
+    /// BakeResult::normal_spread (≈ ⟨θ²⟩/2 of the normals there, per channel). 0 is the
+    /// poster's model; from_medium sets it from the fit.
+    float spread_strength = 0.0f;
     float ior = 1.5f;                       ///< for the specular Fresnel term
     float roughness = 0.25f;                ///< GGX roughness (perceptual, squared in the shader)
     float specular = 1.0f;                  ///< specular weight (0 turns the lobe off)
@@ -155,7 +160,7 @@ struct Material {
     /// - profile: Burley per channel with d = ℓ/s(A), ℓ = 1/σ_t' the reduced mean free path,
     ///   A = diffuse_reflectance(α', η), s(A) = 1.85 − A + 7|A − 0.8|³ (Christensen & Burley
     ///   2015, searchlight configuration; ℓ is clamped to [1e-12, 1e12] mesh units);
-    /// - strength = fit.strength;
+    /// - strength = fit.strength, spread_strength = fit.spread_strength;
     /// - transmission: σ_t = σ_s + σ_a, σ_s', σ_tr; weight = fit.transmission_weight · T_b and
     ///   diffusion_weight = fit.diffusion_weight · T_b with T_b = (1 − F0)², F0 = ((η − 1)/(η + 1))²
     ///   (entering and leaving); lobe and normal_mix from the fit;

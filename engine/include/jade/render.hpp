@@ -34,6 +34,9 @@
 
 namespace jade {
 
+struct BakeResult;  // jade/bake.hpp
+
+
 class Context;
 
 /// What the fragment shader computes (see the header comment).
@@ -180,9 +183,10 @@ struct RenderTarget {
     bool keep = false;
 };
 
-/// What the renderer keeps per vertex (position, normal, t_m, curvature, thickness: floats) and
-/// its per-draw constants with 64 lights, in bytes: for memory plans (jade/scene.hpp).
-inline constexpr uint64_t kRendererVertexBytes = 44;
+/// What the renderer keeps per vertex (position, normal, t_m, curvature, thickness, scattering
+/// normal, normal spread: floats) and its per-draw constants with 64 lights, in bytes: for memory plans
+/// (jade/scene.hpp).
+inline constexpr uint64_t kRendererVertexBytes = 68;
 inline constexpr uint64_t kRendererFrameDataBytes = 2608;
 
 /// Draws one mesh with one material. Owns its GPU buffers, LUT images and pipelines (created
@@ -203,8 +207,15 @@ public:
     /// seams of the input are smoothed over). Computes the mean curvature. Waits for the GPU to be idle first, so command
     /// buffers recorded earlier must have completed or not be submitted again.
     /// `thickness` (mesh units, per bake vertex, BakeResult::thickness; empty: none, and no
-    /// transmission is drawn) feeds Material::transmission.
-    void set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm = {}, std::span<const float> thickness = {});
+    /// transmission is drawn) feeds Material::transmission. `scattering_normal` (per bake
+    /// vertex, BakeResult::scattering_normal; empty: the vertex normals) is what the `Tm`
+    /// mode's diffuse term is lit along; specular, Lambert and Curvature use the vertex normals.
+    /// `normal_spread` (per bake vertex, BakeResult::normal_spread, each channel in [0, 1];
+    /// empty: 0) adds Material::spread_strength · spread to the blur.
+    void set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm = {}, std::span<const float> thickness = {},
+                  std::span<const glm::vec3> scattering_normal = {}, std::span<const glm::vec3> normal_spread = {});
+    /// The same with everything a bake made (t_m, thickness, scattering normals and spreads).
+    void set_mesh(const PreparedMesh& mesh, const BakeResult& bake);
     /// A mesh as loaded, with t_m (and optionally the thickness) per render vertex (e.g.
     /// TriangleMesh::baked_tm, baked_thickness). It is prepared (welded) and the values are
     /// averaged over the render vertices of each bake vertex.
@@ -219,12 +230,16 @@ public:
     /// after earlier compute-shader and transfer writes to the inputs (and earlier draws' vertex
     /// reads), and one before the vertex input of later draws on the same queue (record() or
     /// render() after it). `thickness` (float per bake vertex, DynamicBake::buffers().thickness)
-    /// is optional: VK_NULL_HANDLE keeps the thickness set_mesh was given. Throws jade::Error
-    /// without a mesh or with a null positions, normals or t_m buffer.
+    /// is optional: VK_NULL_HANDLE keeps the thickness set_mesh was given. `scattering_normal`
+    /// (the per-channel normal sums, three float3 per bake vertex:
+    /// DynamicBake::buffers().scattering_normal) gives the scattering normal and the normal
+    /// spread as BakeResult defines them; VK_NULL_HANDLE: the new vertex normals, spread 0. Throws jade::Error without a mesh or
+    /// with a null positions, normals or t_m buffer.
     void record_vertex_update(VkCommandBuffer cmd, VkBuffer positions, VkBuffer normals, VkBuffer tm,
-                              VkBuffer thickness = VK_NULL_HANDLE);
+                              VkBuffer thickness = VK_NULL_HANDLE, VkBuffer scattering_normal = VK_NULL_HANDLE);
     /// The same in a submission of its own (waits).
-    void update_vertices(VkBuffer positions, VkBuffer normals, VkBuffer tm, VkBuffer thickness = VK_NULL_HANDLE);
+    void update_vertices(VkBuffer positions, VkBuffer normals, VkBuffer tm, VkBuffer thickness = VK_NULL_HANDLE,
+                         VkBuffer scattering_normal = VK_NULL_HANDLE);
     /// Albedo, strength, specular parameters and profiles (the curvature LUT is rebuilt, on
     /// the CPU in float64, when the profiles change). Waits for the GPU like set_mesh.
     void set_material(const Material& material);

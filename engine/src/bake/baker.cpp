@@ -108,6 +108,7 @@ BakeResult Baker::bake_tm(const PreparedMesh& mesh, std::span<const float> ao, c
     BakeResult r;
     r.ao.assign(ao.begin(), ao.end());
     r.tm = m.tm.read<glm::vec3>(mesh.vertex_count());
+    read_scattering_normals(r, m.normal_sum, m.normals, m.vertex_count);
     r.method_used = m.method();
     r.tm_bytes = m.tm_bytes();
     finish_timings(r.timings, timer, setup, t0);
@@ -142,6 +143,7 @@ BakeResult Baker::bake(const PreparedMesh& mesh, const Material& material, const
     r.ao = m.ao.read<float>(mesh.vertex_count());
     if (settings.thickness.enabled()) r.thickness = m.thickness.read<float>(mesh.vertex_count());
     r.tm = m.tm.read<glm::vec3>(mesh.vertex_count());
+    read_scattering_normals(r, m.normal_sum, m.normals, m.vertex_count);
     r.method_used = m.method();
     r.tm_bytes = m.tm_bytes();
     finish_timings(r.timings, timer, setup, t0);

@@ -21,6 +21,7 @@
 #include "jade_shaders.hpp"
 
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
@@ -77,7 +78,7 @@ struct GatherPush { uint32_t vertex_count; };
 struct RefitPush { uint32_t count, first; };
 struct RayRefitPush { uint32_t count, first, mode; };
 struct NearPush { uint32_t first_slot, slot_count, index_base, source_base; float cut2, table_scale; };
-struct GridSplatPush { uint32_t vertex_count, level_count; float cube_side; };
+struct GridSplatPush { uint32_t vertex_count, level_count; float cube_side; uint32_t field; };
 struct GridGatherPush { uint32_t level_count, slot_begin, slot_count; float cube_side; };
 struct ExactPush { uint32_t vertex_count, source_begin, source_end; };
 struct ClusterPush { uint32_t vertex_count, node_count; float epsilon; uint32_t work_budget, first_point, slot_begin, slot_end; };
@@ -117,6 +118,31 @@ inline void validate_tm_settings(const BakeSettings& s, const gpu::Context& ctx)
     if (!(s.tm_epsilon > 0) || !std::isfinite(s.tm_epsilon)) throw Error("t_m: epsilon must be > 0");
     if (s.tm_float64_sums && !ctx.info().float64)
         throw Error("t_m: float64 sums (BakeSettings::tm_float64_sums) need shaderFloat64, which this device lacks");
+}
+
+// BakeResult::scattering_normal and normal_spread from the per-channel normal sums N_c
+// (tm_state.glsl) and t_m: the direction of Σ_c N_c (the vertex normal where it is too short to
+// have one: nothing within the profile's reach is lit), and 1 − |N_c|/t_m,c clamped to [0, 1].
+inline void read_scattering_normals(BakeResult& r, const gpu::Buffer& sums, const gpu::Buffer& normals, uint32_t n)
+{
+    const std::vector<glm::vec3> s = sums.read<glm::vec3>(size_t(3) * n);
+    std::vector<glm::vec3> fallback;
+    r.scattering_normal.resize(n);
+    r.normal_spread.resize(n);
+    for (uint32_t i = 0; i < n; ++i) {
+        const glm::vec3 v = s[3 * i] + s[3 * i + 1] + s[3 * i + 2];
+        const float len2 = glm::dot(v, v);
+        if (len2 > 1e-30f && std::isfinite(len2)) r.scattering_normal[i] = v / std::sqrt(len2);
+        else {
+            if (fallback.empty()) fallback = normals.read<glm::vec3>(n);
+            r.scattering_normal[i] = fallback[i];
+        }
+        for (int c = 0; c < 3; ++c) {
+            const float t = r.tm[i][c], len = glm::length(s[3 * i + c]);
+            const float spread = t > 0.0f && std::isfinite(len) ? 1.0f - len / t : 0.0f;
+            r.normal_spread[i][c] = std::isfinite(spread) ? std::clamp(spread, 0.0f, 1.0f) : 0.0f;
+        }
+    }
 }
 
 inline void finish_timings(BakeTimings& t, const gpu::GpuTimer& timer, double setup, Clock::time_point t0)
@@ -162,6 +188,7 @@ using bake::tm_variant;
 using bake::validate_ao_settings;
 using bake::validate_tm_settings;
 using bake::finish_timings;
+using bake::read_scattering_normals;
 
 struct Baker::Impl {
     gpu::Context& ctx;
@@ -171,7 +198,7 @@ struct Baker::Impl {
     std::optional<gpu::Kernel> tm_exact[2][4], tm_cluster[2][4];
     std::optional<gpu::Kernel> tm_near[2][2][4];  // [grid far field][grey][kind]
     std::optional<gpu::Kernel> grid_splat, grid_gather, grid_bounds;
-    std::optional<gpu::Kernel> grid_axis[2][2][bake::kGridMaxHalfWidth + 1];  // [fixed-point input][blur, restrict][half-width]
+    std::optional<gpu::Kernel> grid_axis[3][2][bake::kGridMaxHalfWidth + 1];  // [input: float, fixed point, signed][blur, restrict][half-width]
     std::optional<gpu::Kernel> tm_exact_f64[2][4];  // BakeSettings::tm_float64_sums
 
     explicit Impl(gpu::Context& c) : ctx(c) {}
@@ -202,7 +229,7 @@ struct Baker::Impl {
     }
     const gpu::Kernel& gather_kernel()
     {
-        return kernel(gather, {"gather_sources", shaders::gather_sources_comp(), storage_bindings(5), sizeof(GatherPush), 64, {}});
+        return kernel(gather, {"gather_sources", shaders::gather_sources_comp(), storage_bindings(6), sizeof(GatherPush), 64, {}});
     }
     const gpu::Kernel& refit_kernel()
     {
@@ -220,7 +247,7 @@ struct Baker::Impl {
         constants.push_back(grid ? 1u : 0u);
         return kernel(tm_near[grid][v.grey][v.kind],
                       {"tm_near", shaders::tm_near_comp(),
-                       {kStorage, kTexels, kStorage, kStorage, kStorage, kStorage, kTexels, kStorage, kStorage, kStorage},
+                       {kStorage, kTexels, kStorage, kStorage, kStorage, kStorage, kTexels, kStorage, kStorage, kStorage, kStorage},
                        sizeof(NearPush), 64, constants});
     }
     const gpu::Kernel& exact_kernel(const TmVariant& v, bool float64_sums)
@@ -229,14 +256,14 @@ struct Baker::Impl {
         if (!slot) require_subgroup_groups();  // once, when the kernel is made
         return kernel(slot, {float64_sums ? "tm_exact_f64" : "tm_exact",
                              float64_sums ? shaders::tm_exact_f64_comp() : shaders::tm_exact_comp(),
-                             {kStorage, kTexels, kStorage, kStorage, kStorage}, sizeof(ExactPush), 64, tm_constants(v)});
+                             {kStorage, kTexels, kStorage, kStorage, kStorage, kStorage}, sizeof(ExactPush), 64, tm_constants(v)});
     }
     const gpu::Kernel& cluster_kernel(const TmVariant& v)
     {
         if (!tm_cluster[v.grey][v.kind]) require_subgroup_groups();
         return kernel(tm_cluster[v.grey][v.kind],
                       {"tm_cluster", shaders::tm_cluster_comp(),
-                       {kStorage, kTexels, kStorage, kStorage, kStorage, kStorage, kStorage}, sizeof(ClusterPush), 64,
+                       {kStorage, kTexels, kStorage, kStorage, kStorage, kStorage, kStorage, kStorage}, sizeof(ClusterPush), 64,
                        tm_constants(v)});
     }
     // The far passes share fetches across subgroups of at least 8 lanes (tm_common.glsl).
@@ -274,6 +301,7 @@ struct Baker::Impl {
         TmVariant variant{};
         uint32_t node_count = 0, first_point = 0;  // first_point: texel of source 0 in `points`
         gpu::Buffer profiles, point_order, points, nodes, node_levels, tm;
+        gpu::Buffer normal_sum;  // per vertex: the scattering normal's unnormalised sum (tm_state.glsl)
         gpu::Buffer partial_sum, partial_comp, resume, near_offsets, near_disks, near_indices;
         gpu::TexelView point_texels, tree_texels;
         gpu::TexelView source_texels;  // the sources as RGBA32UI (the near pass), from texel source_base
@@ -284,24 +312,27 @@ struct Baker::Impl {
             VkDeviceSize bytes;
         };
         std::vector<NearWindow> near_windows;  // near-pass dispatches, each within one binding's range
-        // The grid far field: its plan's sizes, cells (fixed-point splats, blurred values), two
-        // blur buffers for the largest grid, the levels and S(r) table. smooth_table is a
-        // placeholder for the other methods (the near pass always binds one).
+        // The grid far field: its plan's sizes, cells (fixed-point splats, blurred values) per
+        // field (grid_splat.comp: the weight, then times n.x, n.y, n.z), two blur buffers for
+        // the largest grid, the levels and S(r) table. smooth_table is a placeholder for the
+        // other methods (the near pass always binds one).
         float grid_cut2 = 0, grid_table_scale = 0, grid_cube_side = 0;
         std::vector<bake::GpuGridLevel> grid_plan_levels;
         uint64_t grid_bytes = 0;
         double grid_r_cut = 0;
-        gpu::Buffer grid_levels, grid_splat, grid_cells, grid_scratch[2], smooth_table, grid_bounds;
-        gpu::TexelView smooth_table_texels, grid_splat_texels, grid_cell_texels, grid_scratch_texels[2];
+        static constexpr uint32_t kGridFields = bake::kGridFields;
+        gpu::Buffer grid_levels, grid_splat[kGridFields], grid_cells[kGridFields], grid_scratch[2], smooth_table, grid_bounds;
+        gpu::TexelView smooth_table_texels, grid_splat_texels[kGridFields], grid_cell_texels[kGridFields], grid_scratch_texels[2];
         uint32_t grid_level_count() const { return uint32_t(grid_plan_levels.size()); }
         TmMethod method() const { return exact ? TmMethod::Exact : grid ? TmMethod::Grid : TmMethod::Clustered; }
         uint64_t tm_bytes() const
         {
             uint64_t b = 0;
-            for (const gpu::Buffer* x : {&profiles, &point_order, &points, &nodes, &node_levels, &tm, &partial_sum, &partial_comp,
-                                         &resume, &near_offsets, &near_disks, &near_indices, &grid_levels, &grid_splat,
-                                         &grid_cells, &grid_scratch[0], &grid_scratch[1], &smooth_table})
+            for (const gpu::Buffer* x : {&profiles, &point_order, &points, &nodes, &node_levels, &tm, &normal_sum, &partial_sum,
+                                         &partial_comp, &resume, &near_offsets, &near_disks, &near_indices, &grid_levels,
+                                         &grid_scratch[0], &grid_scratch[1], &smooth_table})
                 b += *x ? x->size() : 0;
+            for (uint32_t f = 0; f < kGridFields; ++f) b += (grid_splat[f] ? grid_splat[f].size() : 0) + (grid_cells[f] ? grid_cells[f].size() : 0);
             return b;
         }
     };

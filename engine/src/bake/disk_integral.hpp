@@ -58,9 +58,14 @@ inline double disk_integral(const ChannelProfile& p, double r, double rho)
 /// beyond. 0 for a zero area.
 /// A neighbour's disk never reaches past kDiskCap·r towards the target: on irregular meshes a
 /// large neighbour's disk would otherwise cover the target and, for a stiff profile, count a
-/// second self term. The area beyond the capped disk stays a point at the vertex, so the
-/// neighbour's total area is kept. Regular meshes (ρ ≈ 0.56 r) are not affected.
+/// second self term. The area beyond the capped disk (the annulus from kDiskCap·r to ρ about
+/// the neighbour) is kept as a point at that annulus's RMS distance from the target,
+/// √(r² + (ρ² + capped²)/2), so the neighbour's total area is kept and a neighbour (nearly) on
+/// top of the target stays finite: at r = 0 its whole area sits at ρ/√2. Regular meshes
+/// (ρ ≈ 0.56 r) are not affected.
 inline constexpr double kDiskCap = 0.6;
+
+inline double rest_distance(double r, double rho, double capped) { return std::sqrt(r * r + 0.5 * (rho * rho + capped * capped)); }
 
 inline double vertex_disk_term(const ChannelProfile& p, double r, double area)
 {
@@ -68,9 +73,8 @@ inline double vertex_disk_term(const ChannelProfile& p, double r, double area)
     if (r * r < 16.0 / std::numbers::pi * area) {
         const double rho = std::sqrt(area / std::numbers::pi);
         const double capped = std::min(rho, kDiskCap * r);
-        if (!(capped > 0.0)) return p.cdf(rho);  // coincident vertices (prepare_mesh welds them)
         const double rest = area - std::numbers::pi * capped * capped;
-        return disk_integral(p, r, capped) + (rest > 0.0 ? rest * p.R(r) : 0.0);
+        return (capped > 0.0 ? disk_integral(p, r, capped) : 0.0) + (rest > 0.0 ? rest * p.R(rest_distance(r, rho, capped)) : 0.0);
     }
     return area * p.R(r);
 }

@@ -45,7 +45,7 @@ DynamicBake::Buffers DynamicBake::buffers() const
 {
     const auto& m = state_->mesh;
     return {m.positions.handle(), m.normals.handle(), m.areas.handle(), m.ao.handle(), m.tm.handle(), m.vertex_count,
-            m.thickness ? m.thickness.handle() : VK_NULL_HANDLE};
+            m.thickness ? m.thickness.handle() : VK_NULL_HANDLE, m.normal_sum.handle()};
 }
 
 void DynamicBake::record(VkCommandBuffer cmd) { record_timed(cmd, nullptr); }
@@ -160,6 +160,7 @@ BakeResult DynamicBake::submit_timed(const BakeInputs* inputs, std::chrono::stea
     if (read_back) {
         r.ao = m.ao.read<float>(m.vertex_count);
         r.tm = m.tm.read<glm::vec3>(m.vertex_count);
+        read_scattering_normals(r, m.normal_sum, m.normals, m.vertex_count);
         if (m.thickness) r.thickness = m.thickness.read<float>(m.vertex_count);
     }
     r.method_used = m.method();

@@ -37,6 +37,9 @@ constexpr uint64_t kGridMaxCells = 1ull << 25; // all grids together; past it r_
 constexpr double kGridMaxCoarsening = 1.5;      // ... by at most this factor (the near lists by its square)
 // Grids the sources are splatted into; grid g ≥ 2 is restricted from grid g − 2 (twice finer).
 constexpr uint32_t kSplatLevels = 2;
+// Fields splatted and blurred per grid: (1 − A_o)·area, and times n.x, n.y, n.z for the
+// scattering normal (shaders/grid_splat.comp).
+constexpr uint32_t kGridFields = 4;
 constexpr double kDeformingCube = 1.1;  // a deforming mesh's grids: cubes of this × the rest pose's bounding sphere
 
 /// One Gaussian's grid, as the grid shaders read it (scalar layout, shaders/include/grid.glsl).

@@ -99,6 +99,7 @@ Material Material::from_medium(const Medium& medium, const MediumFit& fit, std::
     };
     check_fit("albedo_scale", fit.albedo_scale, 0.0, 1.0);
     check_fit("strength", fit.strength, 0.0, 1e6);
+    check_fit("spread_strength", fit.spread_strength, 0.0, 1e6);
     check_fit("transmission_weight", fit.transmission_weight, 0.0, 1e3);
     check_fit("diffusion_weight", fit.diffusion_weight, 0.0, 1e3);
     check_fit("lobe", fit.lobe, 0.0, 1e3);
@@ -120,6 +121,7 @@ Material Material::from_medium(const Medium& medium, const MediumFit& fit, std::
     }
     const double f0 = (medium.ior - 1.0) * (medium.ior - 1.0) / ((medium.ior + 1.0) * (medium.ior + 1.0));
     m.strength = float(fit.strength);
+    m.spread_strength = float(fit.spread_strength);
     m.transmission.weight = float(fit.transmission_weight * (1.0 - f0) * (1.0 - f0));
     m.transmission.diffusion_weight = float(fit.diffusion_weight * (1.0 - f0) * (1.0 - f0));
     m.transmission.lobe = float(fit.lobe);

@@ -14,6 +14,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <string>
@@ -248,14 +249,22 @@ std::vector<float> reference_ao(const PreparedMesh& mesh, const AoSettings& sett
     return ao;
 }
 
-std::vector<glm::dvec3> reference_tm(const PreparedMesh& mesh, std::span<const float> ao, const Material& material,
-                                     std::span<const uint32_t> vertices)
+namespace {
+
+// t_m and the normal sums N_c = ∫R_c(1 − A_o)·n dS per listed vertex, by brute force.
+struct ReferenceSums {
+    std::vector<glm::dvec3> tm;
+    std::vector<std::array<glm::dvec3, 3>> normal;
+};
+
+ReferenceSums reference_sums(const PreparedMesh& mesh, std::span<const float> ao, const Material& material,
+                             std::span<const uint32_t> vertices, const char* where)
 {
     const size_t m = mesh.vertex_count();
     if (ao.size() != m)
-        throw Error("reference_tm: " + std::to_string(ao.size()) + " AO values for " + std::to_string(m) + " bake vertices");
-    if (material.opaque) throw Error("reference_tm: material '" + material.name + "' is opaque and has no t_m");
-    const std::vector<uint32_t> list = resolve_subset(mesh, vertices, "reference_tm");
+        throw Error(std::string(where) + ": " + std::to_string(ao.size()) + " AO values for " + std::to_string(m) + " bake vertices");
+    if (material.opaque) throw Error(std::string(where) + ": material '" + material.name + "' is opaque and has no t_m");
+    const std::vector<uint32_t> list = resolve_subset(mesh, vertices, where);
 
     // Per vertex: position, area A_j (units²), weight 1 − A_o(j). Zero weights are dropped from
     // the neighbour list (they contribute exactly nothing).
@@ -264,7 +273,7 @@ std::vector<glm::dvec3> reference_tm(const PreparedMesh& mesh, std::span<const f
     std::vector<uint32_t> sources;
     for (size_t j = 0; j < m; ++j) {
         if (!(ao[j] >= 0.0f && ao[j] <= 1.0f))
-            throw Error("reference_tm: AO of vertex " + std::to_string(j) + " = " + std::to_string(ao[j]) +
+            throw Error(std::string(where) + ": AO of vertex " + std::to_string(j) + " = " + std::to_string(ao[j]) +
                         " is not in [0, 1]");
         pos[j] = glm::dvec3(mesh.positions[j]);
         weight[j] = 1.0 - double(ao[j]);
@@ -273,21 +282,57 @@ std::vector<glm::dvec3> reference_tm(const PreparedMesh& mesh, std::span<const f
     const int channels = material.grey() ? 1 : 3;
     const auto& profile = material.profile;
 
-    std::vector<glm::dvec3> tm(list.size());
+    ReferenceSums out{std::vector<glm::dvec3>(list.size()), std::vector<std::array<glm::dvec3, 3>>(list.size())};
     parallel_for(list.size(), 4, [&](size_t idx) {
         const uint32_t i = list[idx];
         double sum[3] = {0.0, 0.0, 0.0};
         const double rho_i = std::sqrt(double(mesh.areas[i]) / std::numbers::pi);
-        for (int c = 0; c < channels; ++c) sum[c] = weight[i] * profile[c].cdf(rho_i);  // self disk
+        std::array<glm::dvec3, 3> normal{};
+        for (int c = 0; c < channels; ++c) {
+            sum[c] = weight[i] * profile[c].cdf(rho_i);  // self disk
+            normal[c] = sum[c] * glm::dvec3(mesh.normals[i]);
+        }
         for (const uint32_t j : sources) {
             if (j == i) continue;
             const double r = glm::distance(pos[i], pos[j]);
             const double area = double(mesh.areas[j]);
-            for (int c = 0; c < channels; ++c) sum[c] += weight[j] * bake::vertex_disk_term(profile[c], r, area);
+            for (int c = 0; c < channels; ++c) {
+                const double v = weight[j] * bake::vertex_disk_term(profile[c], r, area);
+                sum[c] += v;
+                normal[c] += v * glm::dvec3(mesh.normals[j]);
+            }
         }
-        tm[idx] = channels == 1 ? glm::dvec3(sum[0]) : glm::dvec3(sum[0], sum[1], sum[2]);
+        out.tm[idx] = channels == 1 ? glm::dvec3(sum[0]) : glm::dvec3(sum[0], sum[1], sum[2]);
+        if (channels == 1) normal[1] = normal[2] = normal[0];
+        out.normal[idx] = normal;
     });
-    return tm;
+    return out;
+}
+
+}  // namespace
+
+std::vector<glm::dvec3> reference_tm(const PreparedMesh& mesh, std::span<const float> ao, const Material& material,
+                                     std::span<const uint32_t> vertices)
+{
+    return reference_sums(mesh, ao, material, vertices, "reference_tm").tm;
+}
+
+ReferenceScattering reference_scattering(const PreparedMesh& mesh, std::span<const float> ao, const Material& material,
+                                         std::span<const uint32_t> vertices)
+{
+    const std::vector<uint32_t> list = resolve_subset(mesh, vertices, "reference_scattering");
+    const ReferenceSums sums = reference_sums(mesh, ao, material, vertices, "reference_scattering");
+    ReferenceScattering out{std::vector<glm::dvec3>(list.size()), std::vector<glm::dvec3>(list.size())};
+    for (size_t k = 0; k < list.size(); ++k) {
+        const glm::dvec3 n = sums.normal[k][0] + sums.normal[k][1] + sums.normal[k][2];
+        const double len = glm::length(n);
+        out.normal[k] = len > 1e-300 ? n / len : glm::dvec3(mesh.normals[list[k]]);
+        for (int c = 0; c < 3; ++c) {
+            const double t = sums.tm[k][c];
+            out.spread[k][c] = t > 0.0 ? std::clamp(1.0 - glm::length(sums.normal[k][c]) / t, 0.0, 1.0) : 0.0;
+        }
+    }
+    return out;
 }
 
 }  // namespace jade

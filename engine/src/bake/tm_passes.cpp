@@ -45,6 +45,7 @@ void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Mater
     }
     m.profiles = gpu::Buffer::from(ctx, std::span<const bake::GpuProfile>(profiles), kStorageUsage, "profiles");
     m.tm = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m");
+    m.normal_sum = gpu::Buffer(ctx, n * 36, kStorageUsage, "scattering normal sums (per channel)");
     m.partial_sum = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m partial sums");
     m.partial_comp = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m partial compensation");
     if (m.grid) prepare_grid(m, *grid_plan);
@@ -113,7 +114,7 @@ void Baker::Impl::record_near(VkCommandBuffer cmd, MeshState& m, uint32_t slot_b
                       NearPush{first, end - first, w.index_base, m.source_base, m.grid_cut2, m.grid_table_scale},
                       {m.profiles, m.source_texels, m.near_offsets,
                        gpu::Binding(m.near_indices.handle(), VkDeviceSize(w.index_base) * 4, w.bytes), m.near_disks,
-                       m.point_order, m.smooth_table_texels, m.partial_sum, m.partial_comp, m.tm});
+                       m.point_order, m.smooth_table_texels, m.partial_sum, m.partial_comp, m.tm, m.normal_sum});
     }
     gpu::compute_barrier(cmd);
 }
@@ -129,7 +130,7 @@ void Baker::Impl::record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSetting
     slot_end = std::min(slot_end, n);
     const gpu::Binding nodes_window(m.points.handle(), 0, std::max<VkDeviceSize>(VkDeviceSize(m.node_count) * 64, 16));
     const gpu::Binding points_window(m.points.handle(), VkDeviceSize(m.first_point) * 16, VkDeviceSize(n) * 32);
-    gather_kernel().dispatch(cmd, n, GatherPush{n}, {m.positions, m.areas, m.ao, m.point_order, points_window});
+    gather_kernel().dispatch(cmd, n, GatherPush{n}, {m.positions, m.areas, m.ao, m.point_order, points_window, m.normals});
     gpu::compute_barrier(cmd);
     mark("gather");
     if (m.grid) {
@@ -153,7 +154,7 @@ void Baker::Impl::record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSetting
         const auto& kernel = exact_kernel(m.variant, s.tm_float64_sums);
         for (uint32_t begin = 0; begin < n; begin += kExactSourcesPerDispatch) {
             ExactPush push{n, begin, std::min(n, begin + kExactSourcesPerDispatch)};
-            kernel.dispatch(cmd, n, push, {m.profiles, m.point_texels, m.partial_sum, m.partial_comp, m.tm});
+            kernel.dispatch(cmd, n, push, {m.profiles, m.point_texels, m.partial_sum, m.partial_comp, m.tm, m.normal_sum});
             gpu::compute_barrier(cmd);
         }
         mark("t_m far field (all pairs)");
@@ -165,7 +166,8 @@ void Baker::Impl::record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSetting
     const uint32_t dispatches = (m.node_count + n) / kClusterWorkPerDispatch + 1;
     ClusterPush push{n, m.node_count, s.tm_epsilon, kClusterWorkPerDispatch, m.first_point, slot_begin, slot_end};
     for (uint32_t d = 0; d < dispatches; ++d) {
-        kernel.dispatch(cmd, slot_end - slot_begin, push, {m.profiles, m.tree_texels, m.point_order, m.resume, m.partial_sum, m.partial_comp, m.tm});
+        kernel.dispatch(cmd, slot_end - slot_begin, push,
+                        {m.profiles, m.tree_texels, m.point_order, m.resume, m.partial_sum, m.partial_comp, m.tm, m.normal_sum});
         gpu::compute_barrier(cmd);
     }
     mark("t_m far field (clustered)");

@@ -47,12 +47,15 @@ uint64_t payload_checksum(const BakeResult& r)
     f.bytes(r.ao.data(), r.ao.size() * sizeof(float));
     f.bytes(r.tm.data(), r.tm.size() * sizeof(glm::vec3));
     f.bytes(r.thickness.data(), r.thickness.size() * sizeof(float));
+    f.bytes(r.scattering_normal.data(), r.scattering_normal.size() * sizeof(glm::vec3));
+    f.bytes(r.normal_spread.data(), r.normal_spread.size() * sizeof(glm::vec3));
     return f.h;
 }
 
-// Header::method_used holds the TmMethod in its low 16 bits and this flag: a thickness per
-// vertex follows t_m.
+// Header::method_used holds the TmMethod in its low 16 bits and these flags: a thickness per
+// vertex follows t_m; then a scattering normal and a normal spread per vertex.
 constexpr uint32_t kHasThickness = 1u << 16;
+constexpr uint32_t kHasScatteringNormal = 1u << 17;
 
 }  // namespace
 
@@ -129,15 +132,18 @@ std::optional<BakeResult> BakeCache::load(uint64_t key, size_t vertex_count, std
     if (h.key != key) return fail("key mismatch");
     if (h.vertex_count != vertex_count)
         return fail("vertex count " + std::to_string(h.vertex_count) + ", expected " + std::to_string(vertex_count));
-    const uint32_t method = h.method_used & ~kHasThickness;
+    const uint32_t method = h.method_used & ~(kHasThickness | kHasScatteringNormal);
     if (method > uint32_t(TmMethod::Grid)) return fail("bad method");
     BakeResult r;
     r.ao.resize(vertex_count);
     r.tm.resize(vertex_count);
     if (h.method_used & kHasThickness) r.thickness.resize(vertex_count);
+    if (h.method_used & kHasScatteringNormal) r.scattering_normal.resize(vertex_count), r.normal_spread.resize(vertex_count);
     if (!in.read(reinterpret_cast<char*>(r.ao.data()), std::streamsize(vertex_count * sizeof(float))) ||
         !in.read(reinterpret_cast<char*>(r.tm.data()), std::streamsize(vertex_count * sizeof(glm::vec3))) ||
-        !in.read(reinterpret_cast<char*>(r.thickness.data()), std::streamsize(r.thickness.size() * sizeof(float))))
+        !in.read(reinterpret_cast<char*>(r.thickness.data()), std::streamsize(r.thickness.size() * sizeof(float))) ||
+        !in.read(reinterpret_cast<char*>(r.scattering_normal.data()), std::streamsize(r.scattering_normal.size() * sizeof(glm::vec3))) ||
+        !in.read(reinterpret_cast<char*>(r.normal_spread.data()), std::streamsize(r.normal_spread.size() * sizeof(glm::vec3))))
         return fail("truncated");
     if (in.peek() != std::char_traits<char>::eof()) return fail("trailing bytes");
     if (payload_checksum(r) != h.checksum) return fail("checksum mismatch");
@@ -149,13 +155,15 @@ std::optional<BakeResult> BakeCache::load(uint64_t key, size_t vertex_count, std
 void BakeCache::store(uint64_t key, const BakeResult& r) const
 {
     const std::filesystem::path path = entry_path(key);
-    if (r.ao.size() != r.tm.size() || (!r.thickness.empty() && r.thickness.size() != r.ao.size()))
+    if (r.ao.size() != r.tm.size() || (!r.thickness.empty() && r.thickness.size() != r.ao.size()) ||
+        (!r.scattering_normal.empty() && (r.scattering_normal.size() != r.ao.size() || r.normal_spread.size() != r.ao.size())))
         throw Error(path.string() + ": cannot store a bake with " + std::to_string(r.ao.size()) + " AO, " +
                     std::to_string(r.tm.size()) + " t_m and " + std::to_string(r.thickness.size()) + " thickness values");
     Header h{};
     std::memcpy(h.magic, kMagic, sizeof kMagic);
     h.version = kBakeCacheVersion;
-    h.method_used = uint32_t(r.method_used) | (r.thickness.empty() ? 0u : kHasThickness);
+    h.method_used = uint32_t(r.method_used) | (r.thickness.empty() ? 0u : kHasThickness) |
+                    (r.scattering_normal.empty() ? 0u : kHasScatteringNormal);
     h.key = key;
     h.vertex_count = r.ao.size();
     h.checksum = payload_checksum(r);
@@ -165,6 +173,8 @@ void BakeCache::store(uint64_t key, const BakeResult& r) const
     append(r.ao.data(), r.ao.size() * sizeof(float));
     append(r.tm.data(), r.tm.size() * sizeof(glm::vec3));
     append(r.thickness.data(), r.thickness.size() * sizeof(float));
+    append(r.scattering_normal.data(), r.scattering_normal.size() * sizeof(glm::vec3));
+    append(r.normal_spread.data(), r.normal_spread.size() * sizeof(glm::vec3));
     try {
         write_file_atomically(path, bytes);
     } catch (const Error& e) {

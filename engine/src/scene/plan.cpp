@@ -64,6 +64,7 @@ std::vector<BufferEstimate> bake_buffers(const PreparedMesh& mesh, const Materia
         {"t_m", at_least_16(12.0 * n)},
         {"t_m partial sums", at_least_16(12.0 * n)},
         {"t_m partial compensation", at_least_16(12.0 * n)},
+        {"scattering normal sums (per channel)", at_least_16(36.0 * n)},
         {"near-field offsets", at_least_16(4.0 * (n + 1))},
         {"near-field disk candidates", at_least_16(4.0 * n)},
         {"near-field sources", at_least_16(4.0 * (near_entries + 64))},

@@ -38,6 +38,7 @@ struct SceneRenderer::Impl {
         PreparedMesh rest;
         mutable std::vector<glm::vec3> tm;  // deforming: read back from the GPU by tm() only
         std::vector<float> thickness;       // static objects with transmission
+        std::vector<glm::vec3> scattering_normal, normal_spread;  // static translucent objects
         std::unique_ptr<Renderer> renderer;
         // Deforming objects only.
         std::optional<ProceduralDeformer> deformer;
@@ -85,6 +86,8 @@ struct SceneRenderer::Impl {
                     r.note = b.note;
                     o.tm = std::move(b.result.tm);
                     o.thickness = std::move(b.result.thickness);
+                    o.scattering_normal = std::move(b.result.scattering_normal);
+                    o.normal_spread = std::move(b.result.normal_spread);
                 } else if (p.kind == PassKind::Deform) {
                     o.deformer = *so.deformer;
                     o.mesh_deformer = std::make_unique<MeshDeformer>(context, o.rest);
@@ -98,7 +101,7 @@ struct SceneRenderer::Impl {
                 passes.push_back(std::move(r));
             }
             o.renderer = std::make_unique<Renderer>(context, settings.renderer);
-            o.renderer->set_mesh(o.rest, o.tm, o.thickness);
+            o.renderer->set_mesh(o.rest, o.tm, o.thickness, o.scattering_normal, o.normal_spread);
             o.renderer->set_material(so.material);
             objects.push_back(std::move(o));
         }
@@ -117,7 +120,8 @@ struct SceneRenderer::Impl {
                 o.dynamic_bake->record(cmd, o.mesh_deformer->positions_buffer(), o.mesh_deformer->normals_buffer(),
                                        o.mesh_deformer->areas_buffer());
                 o.renderer->record_vertex_update(cmd, o.mesh_deformer->positions_buffer(), o.mesh_deformer->normals_buffer(),
-                                                 o.dynamic_bake->buffers().tm, o.dynamic_bake->buffers().thickness);
+                                                 o.dynamic_bake->buffers().tm, o.dynamic_bake->buffers().thickness,
+                                                 o.dynamic_bake->buffers().scattering_normal);
             });
             const double deform_and_bake_ms = ms_since(t0);
             passes.push_back({plan.objects[k].name, PassKind::Deform, 0, "t = " + std::to_string(t) + " s"});

@@ -14,6 +14,7 @@
 #include "shading/light_depth.hpp"
 #include "shading/lut.hpp"
 
+#include <jade/bake.hpp>
 #include <jade/context.hpp>
 #include <jade/render.hpp>
 
@@ -63,6 +64,8 @@ static_assert(sizeof(FramePush) == 80 && sizeof(GpuLight) == 32);
 struct Vertex {
     glm::vec3 position, normal, tm;
     float curvature, thickness;
+    glm::vec3 scattering_normal;  // BakeResult::scattering_normal: what the translucent diffuse term is lit along
+    glm::vec3 normal_spread;      // BakeResult::normal_spread, per channel
 };
 static_assert(sizeof(Vertex) == kRendererVertexBytes && sizeof(FrameData) == kRendererFrameDataBytes);
 
@@ -159,7 +162,9 @@ struct Renderer::Impl {
                                 {1, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
                                 {2, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, tm)},
                                 {3, VK_FORMAT_R32_SFLOAT, offsetof(Vertex, curvature)},
-                                {4, VK_FORMAT_R32_SFLOAT, offsetof(Vertex, thickness)}};
+                                {4, VK_FORMAT_R32_SFLOAT, offsetof(Vertex, thickness)},
+                                {5, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, scattering_normal)},
+                                {6, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal_spread)}};
                 d.bindings = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,
                               VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
                 d.push_size = sizeof(FramePush);
@@ -270,7 +275,7 @@ struct Renderer::Impl {
         FrameData d{};
         d.albedo_strength = glm::vec4(m.albedo, m.strength);
         const float f0 = std::pow((m.ior - 1.0f) / (m.ior + 1.0f), 2.0f);
-        d.specular = glm::vec4(f0, std::max(m.roughness * m.roughness, 1e-3f), m.specular, 0.0f);
+        d.specular = glm::vec4(f0, std::max(m.roughness * m.roughness, 1e-3f), m.specular, m.spread_strength);
         d.lut_map = lut->shader_map();
         const auto [lo, hi] = false_color_range(s);
         d.curvature_map = curvature_lut ? curvature_lut->shader_map() : glm::vec4(0.0f);
@@ -420,9 +425,21 @@ struct Renderer::Impl {
 Renderer::Renderer(Context& context, const RendererOptions& options) : impl_(std::make_unique<Impl>(context.gpu(), options)) {}
 Renderer::~Renderer() = default;
 
-void Renderer::set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm, std::span<const float> thickness)
+void Renderer::set_mesh(const PreparedMesh& mesh, const BakeResult& bake)
+{
+    set_mesh(mesh, bake.tm, bake.thickness, bake.scattering_normal, bake.normal_spread);
+}
+
+void Renderer::set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm, std::span<const float> thickness,
+                        std::span<const glm::vec3> scattering_normal, std::span<const glm::vec3> normal_spread)
 {
     const size_t n = mesh.vertex_count();
+    if (!scattering_normal.empty() && scattering_normal.size() != n)
+        throw Error("Renderer::set_mesh: " + std::to_string(scattering_normal.size()) + " scattering normals for " +
+                    std::to_string(n) + " vertices");
+    if (!normal_spread.empty() && normal_spread.size() != n)
+        throw Error("Renderer::set_mesh: " + std::to_string(normal_spread.size()) + " normal spreads for " + std::to_string(n) +
+                    " vertices");
     if (!tm.empty() && tm.size() != n)
         throw Error("Renderer::set_mesh: " + std::to_string(tm.size()) + " t_m values for " + std::to_string(n) + " vertices");
     if (!thickness.empty() && thickness.size() != n)
@@ -442,7 +459,14 @@ void Renderer::set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm,
         const float th = thickness.empty() ? 0.0f : thickness[i];
         if (!(std::isfinite(th) && th >= 0.0f))
             throw Error("Renderer::set_mesh: thickness of vertex " + std::to_string(i) + " is negative or not finite");
-        vertices[i] = {mesh.positions[i], mesh.normals[i], t, curvature[i], th};
+        glm::vec3 s = scattering_normal.empty() ? mesh.normals[i] : scattering_normal[i];
+        const float s_len = glm::length(s);
+        if (!(std::isfinite(s_len) && s_len > 0.0f))
+            throw Error("Renderer::set_mesh: scattering normal of vertex " + std::to_string(i) + " is zero or not finite");
+        const glm::vec3 spread = normal_spread.empty() ? glm::vec3(0.0f) : normal_spread[i];
+        if (!(spread.x >= 0.0f && spread.x <= 1.0f && spread.y >= 0.0f && spread.y <= 1.0f && spread.z >= 0.0f && spread.z <= 1.0f))
+            throw Error("Renderer::set_mesh: normal spread of vertex " + std::to_string(i) + " is not in [0, 1]");
+        vertices[i] = {mesh.positions[i], mesh.normals[i], t, curvature[i], th, s / s_len, spread};
         const float mean = t.x / 3.0f + t.y / 3.0f + t.z / 3.0f;
         tm_min = std::min(tm_min, mean);
         tm_max = std::max(tm_max, mean);
@@ -463,15 +487,16 @@ void Renderer::set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm,
     m.has_thickness = !thickness.empty();
 }
 
-void Renderer::record_vertex_update(VkCommandBuffer cmd, VkBuffer positions, VkBuffer normals, VkBuffer tm, VkBuffer thickness)
+void Renderer::record_vertex_update(VkCommandBuffer cmd, VkBuffer positions, VkBuffer normals, VkBuffer tm, VkBuffer thickness,
+                                    VkBuffer scattering_normal)
 {
     Impl& m = *impl_;
     if (!m.has_mesh) throw Error("Renderer::record_vertex_update: no mesh (call set_mesh first)");
     if (!positions || !normals || !tm) throw Error("Renderer::record_vertex_update: a buffer is VK_NULL_HANDLE");
-    struct PackPush { uint32_t vertex_count, has_thickness; };
+    struct PackPush { uint32_t vertex_count, has_thickness, has_scattering_normal; };
     if (!m.pack_vertices)
         m.pack_vertices.emplace(m.ctx, gpu::KernelDesc{"pack_vertices", shaders::pack_vertices_comp(),
-                                                      std::vector<VkDescriptorType>(5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
+                                                      std::vector<VkDescriptorType>(6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
                                                       sizeof(PackPush), 64, {}});
     const VkDeviceSize stream = VkDeviceSize(m.vertex_count) * 12;
     // Earlier compute or transfer writes to the inputs, and earlier draws' reads of the vertices.
@@ -479,19 +504,21 @@ void Renderer::record_vertex_update(VkCommandBuffer cmd, VkBuffer positions, VkB
                                  VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT,
                         VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                         VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT);
-    // Without a thickness stream the binding gets the t_m stream (never read: has_thickness = 0).
-    m.pack_vertices->dispatch(cmd, m.vertex_count, PackPush{m.vertex_count, thickness ? 1u : 0u},
+    // Without a thickness or scattering-normal stream the binding gets the t_m stream (never read).
+    m.pack_vertices->dispatch(cmd, m.vertex_count, PackPush{m.vertex_count, thickness ? 1u : 0u, scattering_normal ? 1u : 0u},
                               {gpu::Binding(positions, 0, stream), gpu::Binding(normals, 0, stream), gpu::Binding(tm, 0, stream),
-                               m.vertices, gpu::Binding(thickness ? thickness : tm, 0, stream / 3)});
+                               m.vertices, gpu::Binding(thickness ? thickness : tm, 0, stream / 3),
+                               gpu::Binding(scattering_normal ? scattering_normal : tm, 0, stream)});
     if (thickness) m.has_thickness = true;
     ++m.geometry_version;
     gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_WRITE_BIT,
                         VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT, VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT);
 }
 
-void Renderer::update_vertices(VkBuffer positions, VkBuffer normals, VkBuffer tm, VkBuffer thickness)
+void Renderer::update_vertices(VkBuffer positions, VkBuffer normals, VkBuffer tm, VkBuffer thickness, VkBuffer scattering_normal)
 {
-    impl_->ctx.submit_and_wait([&](VkCommandBuffer cmd) { record_vertex_update(cmd, positions, normals, tm, thickness); });
+    impl_->ctx.submit_and_wait(
+        [&](VkCommandBuffer cmd) { record_vertex_update(cmd, positions, normals, tm, thickness, scattering_normal); });
 }
 
 void Renderer::set_material(const Material& material)
