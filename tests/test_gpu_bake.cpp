@@ -338,6 +338,52 @@ TEST_F(GpuTest, FlatGridIntegratesToOne)
     EXPECT_NEAR(tm[centre].x, 1.0, 0.01);
 }
 
+// An unwelded seam: the grid's middle column of vertices doubled, the copies 1e-5 spacings
+// apart (prepare_mesh welds only exact duplicates), as at the seams of glTF assets. Each copy is
+// within a hair of the other: the vertex-disk rule must count it as area nearby, not as a point
+// at r → 0 (it once gave t_m ≈ 1e5 there). t_m stays near 1 of the open plane, and the GPU
+// matches the float64 reference on the seam.
+TEST_F(GpuTest, NearlyCoincidentSeamVerticesStayFinite)
+{
+    TriangleMesh mesh = procedural::grid(40, 1.0f);
+    const size_t n = mesh.positions.size();
+    std::vector<uint32_t> copy(n, ~0u);
+    float mid_x = 0;
+    for (const glm::vec3& p : mesh.positions) mid_x += p.x / float(n);
+    for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+        glm::vec3 c(0.0f);
+        for (int k = 0; k < 3; ++k) c += mesh.positions[mesh.indices[3 * t + k]] / 3.0f;
+        if (c.x < mid_x) continue;  // triangles right of the seam take the copies
+        for (int k = 0; k < 3; ++k) {
+            uint32_t& v = mesh.indices[3 * t + k];
+            if (std::abs(mesh.positions[v].x - mid_x) > 1e-3f) continue;
+            if (copy[v] == ~0u) {
+                copy[v] = uint32_t(mesh.positions.size());
+                mesh.positions.push_back(mesh.positions[v] + glm::vec3(1e-5f, 0.0f, 0.0f));
+            }
+            v = copy[v];
+        }
+    }
+    ASSERT_GT(mesh.positions.size(), n) << "the grid has a column of vertices at its centre";
+    mesh.normals.clear();  // prepare_mesh computes them
+    const PreparedMesh grid = prepare_mesh(mesh);
+    ASSERT_EQ(grid.vertex_count(), mesh.positions.size()) << "the copies are not welded";
+    const std::vector<float> open(grid.vertex_count(), 0.0f);
+    const Material m = burley_material(glm::dvec3(2.0), glm::vec3(1));
+    Baker baker(context());
+    BakeSettings exact;
+    exact.method = TmMethod::Exact;
+    const auto tm = baker.bake_tm(grid, open, m, exact).tm;
+    std::vector<uint32_t> seam;
+    for (uint32_t i = 0; i < grid.vertex_count(); ++i)
+        if (std::abs(grid.positions[i].x - mid_x) < 1e-3f && std::abs(grid.positions[i].y) < 10.0f) seam.push_back(i);
+    const auto ref = reference_tm(grid, open, m, seam);
+    for (size_t k = 0; k < seam.size(); ++k) {
+        EXPECT_LT(tm[seam[k]].x, 1.3f) << "seam vertex " << seam[k];
+        EXPECT_NEAR(tm[seam[k]].x, ref[k].x, 1e-4 * ref[k].x) << "seam vertex " << seam[k];
+    }
+}
+
 // Thin things let more light through: a slab's top centre has a larger t_m than a block's.
 TEST_F(GpuTest, ThinSlabIsMoreTranslucentThanThickBlock)
 {
