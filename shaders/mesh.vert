@@ -1,7 +1,12 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// mesh.vert - passes the world-space attributes through; the shading is all per fragment.
+// mesh.vert - passes the world-space attributes through, and evaluates what of the shading is
+// smooth over the surface and per vertex in nature: the transmission's path inside the object
+// and its attenuation (transmission.glsl), once per vertex instead of once per fragment.
 #include "shading.glsl"
+#include "transmission.glsl"
+
+layout(constant_id = 0) const uint MODE = 2;  // as mesh.frag; kInputs and above: the inputs pass
 
 layout(location = 0) in vec3 in_position;   // mesh units
 layout(location = 1) in vec3 in_normal;     // unit, outward
@@ -14,6 +19,8 @@ layout(location = 1) out vec3 out_normal;
 layout(location = 2) out vec3 out_tm;
 layout(location = 3) out float out_curvature;
 layout(location = 4) out float out_thickness;
+// The attenuation of each slot drawn (TRANSMISSION); in the inputs pass, its path t instead.
+layout(location = 5) out vec3 out_attenuation[kAttenuationSlots];
 
 void main()
 {
@@ -22,5 +29,11 @@ void main()
     out_tm = in_tm;
     out_curvature = in_curvature;
     out_thickness = in_thickness;
+    for (uint s = 0; s < kAttenuationSlots; ++s) {
+        out_attenuation[s] = vec3(0.0);
+        if ((TRANSMISSION & (1u << s)) == 0u) continue;
+        float t = transmission_path(s, in_thickness, in_position);
+        out_attenuation[s] = MODE >= kInputs ? vec3(t) : transmission_attenuation(t);
+    }
     gl_Position = frame.view_proj * vec4(in_position, 1.0);
 }

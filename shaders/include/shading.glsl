@@ -15,12 +15,19 @@ layout(push_constant, scalar) uniform FramePush {
 
 struct GpuLight {
     vec4 vector;        // xyz: towards the light (w = 0) or its position (w = 1)
-    vec4 color;         // rgb: irradiance (directional) or intensity (point); w: light-depth tile + 1, 0 none
+    vec4 color;         // rgb: irradiance (directional) or intensity (point); w unused
 };
 
 const uint kColorMapStops = 9;
 
-layout(binding = 0, scalar) readonly buffer FrameData {
+// Shading modes (specialisation constant MODE of both stages, jade::ShadingMode), and the
+// inputs pass: MODE = kInputs + k writes the k-th vec4 of the rasterised shading inputs
+// (Renderer::shading_inputs) instead of shading.
+const uint kLambert = 0, kCurvature = 1, kTm = 2, kFalseColor = 3, kInputs = 4;
+
+const uint kMaxLights = 64;  // renderer.cpp: kMaxLights
+
+layout(binding = 0, scalar) uniform FrameData {
     vec4 albedo_strength;   // k_d (linear RGB), strength (variance per unit t_m)
     vec4 specular;          // F0, α = roughness², weight, unused
     vec4 lut_map;           // translucency LUT quads: column cos θ·x + x, x = (W−1)/2; y = W − 1 quads a row;
@@ -34,7 +41,9 @@ layout(binding = 0, scalar) readonly buffer FrameData {
     vec4 light_depth_map;   // light-depth tile size (texels), tiles in the atlas, depth range (mesh units), unused
     mat4 light_depth[4];    // world → light clip space of each tile (shading/light_depth.hpp)
     vec4 color_map[kColorMapStops];  // false-colour stops, linear RGB
-    GpuLight lights[];
+    uvec4 counts;           // x: lights that may transmit (the first entries of transmitting[])
+    uint transmitting[kMaxLights];  // light index | attenuation slot << 16 (transmission.glsl)
+    GpuLight lights[kMaxLights];
 } data;
 
 #endif

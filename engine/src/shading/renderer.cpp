@@ -13,6 +13,7 @@
 #include "gpu/timer.hpp"
 #include "shading/light_depth.hpp"
 #include "shading/lut.hpp"
+#include "shading/mesh_pipeline.hpp"
 
 #include <jade/context.hpp>
 #include <jade/render.hpp>
@@ -39,32 +40,12 @@ namespace jade {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr uint32_t kMaxLights = 64;
+using shading::FrameData;
+using shading::FramePush;
+using shading::GpuLight;
+using shading::kMaxLights;
+using shading::Vertex;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
-
-// Mirrors of shaders/include/shading.glsl.
-struct FramePush {
-    glm::mat4 view_proj;
-    glm::vec3 eye;
-    uint32_t light_count;
-};
-struct GpuLight {
-    glm::vec4 vector, color;
-};
-struct FrameData {
-    glm::vec4 albedo_strength, specular, lut_map, curvature_map, params;
-    glm::vec4 transmission, transmission_diffusion, transmission_scatter, transmission_shape, light_depth_map;
-    glm::mat4 light_depth[shading::LightDepth::kMaxLights];
-    glm::vec4 color_map[9];
-    GpuLight lights[kMaxLights];
-};
-static_assert(sizeof(FramePush) == 80 && sizeof(GpuLight) == 32);
-
-struct Vertex {
-    glm::vec3 position, normal, tm;
-    float curvature, thickness;
-};
-static_assert(sizeof(Vertex) == kRendererVertexBytes && sizeof(FrameData) == kRendererFrameDataBytes);
 
 VkFormat color_format(const RenderSettings& s) { return s.float32 ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT; }
 
@@ -104,13 +85,15 @@ struct Renderer::Impl {
     glm::vec3 bbox_min{0.0f}, bbox_max{0.0f};
     std::vector<float> curvature;
     float tm_min_mean = 0.0f, tm_max_mean = 0.0f;  // range of mean(t_m) over the vertices
+    glm::vec3 tm_min{0.0f};  // per channel over the vertices; 0 after record_vertex_update (not known)
     bool has_mesh = false, has_thickness = false;
     uint64_t geometry_version = 0;  // changes with set_mesh and record_vertex_update (light-depth reuse)
 
     std::optional<shading::LightDepth> light_depth;  // made on the first draw with transmission
     std::optional<Material> material;
     gpu::Buffer frame_data;
-    std::map<uint64_t, gpu::GraphicsPipeline> pipelines;  // key: pipeline_key()
+    TmEvaluation evaluation;
+    shading::MeshPipelines pipelines;
 
     // render()'s own targets, kept while the size and format stay the same.
     struct Targets {
@@ -125,7 +108,8 @@ struct Renderer::Impl {
         : ctx(c), options(o), sampler(shading::make_lut_sampler(c)),
           nearest(gpu::make_sampler(c, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "light depth sampler")), lut(shading::shared_translucency_lut(c, o.lut)),
           placeholder(c, {"curvature LUT placeholder", 1, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_SAMPLED_BIT}),
-          frame_data(c, sizeof(FrameData), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "frame data")
+          frame_data(c, sizeof(FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, "frame data"),
+          evaluation(shading::resolve_evaluation(o.tm_evaluation, device_type(c))), pipelines(c)
     {
         // Sampled-image descriptors need the image in its layout even if never read.
         c.submit_and_wait([&](VkCommandBuffer cmd) { placeholder.transition(cmd, gpu::use::kSampled); });
@@ -134,43 +118,27 @@ struct Renderer::Impl {
     Impl(const Impl&) = delete;
     Impl& operator=(const Impl&) = delete;
 
-    static uint64_t pipeline_key(ShadingMode mode, uint32_t channels, bool transmission, VkFormat format, uint32_t samples)
+    static VkPhysicalDeviceType device_type(const gpu::Context& c)
     {
-        return uint64_t(mode) | uint64_t(channels) << 8 | uint64_t(transmission) << 12 | uint64_t(samples) << 16 |
-               uint64_t(format) << 32;
+        VkPhysicalDeviceProperties p;
+        vkGetPhysicalDeviceProperties(c.physical_device(), &p);
+        return p.deviceType;
     }
 
-    const gpu::GraphicsPipeline& pipeline(ShadingMode mode, uint32_t channels, bool transmission, VkFormat format,
-                                          uint32_t samples)
+    // The pipeline variant of a draw: only the t_m mode reads the channels, the evaluation path
+    // and the transmission slots; the Fourier terms follow the smallest t of the mesh.
+    shading::MeshVariant variant(uint32_t mode, uint32_t transmission_slots) const
     {
-        if (mode != ShadingMode::Tm) channels = 3, transmission = false;  // only the t_m path reads them
-        auto [it, inserted] = pipelines.try_emplace(pipeline_key(mode, channels, transmission, format, samples));
-        if (inserted) {
-            try {
-                gpu::GraphicsPipelineDesc d;
-                d.name = "mesh";
-                d.vertex_spirv = shaders::mesh_vert();
-                d.fragment_spirv = shaders::mesh_frag();
-                d.color_formats = {format};
-                d.depth_format = kDepthFormat;
-                d.samples = VkSampleCountFlagBits(samples);
-                d.vertex_stride = sizeof(Vertex);
-                d.attributes = {{0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
-                                {1, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
-                                {2, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, tm)},
-                                {3, VK_FORMAT_R32_SFLOAT, offsetof(Vertex, curvature)},
-                                {4, VK_FORMAT_R32_SFLOAT, offsetof(Vertex, thickness)}};
-                d.bindings = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,
-                              VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
-                d.push_size = sizeof(FramePush);
-                d.constants = {uint32_t(mode), channels, transmission ? 1u : 0u};
-                it->second = gpu::GraphicsPipeline(ctx, d);
-            } catch (...) {
-                pipelines.erase(it);
-                throw;
-            }
-        }
-        return it->second;
+        shading::MeshVariant v;
+        v.mode = mode;
+        if (mode != uint32_t(ShadingMode::Tm) && mode < shading::kInputsMode) return v;
+        v.channels = material->grey() ? 1 : 3;
+        v.transmission = transmission_slots;
+        if (mode >= shading::kInputsMode) return v;
+        v.evaluation = evaluation;
+        const float smallest = v.channels == 1 ? tm_min.x : std::min({tm_min.x, tm_min.y, tm_min.z});
+        shading::choose_terms(double(material->strength) * double(smallest), v);
+        return v;
     }
 
     void check_ready(const RenderSettings& s, std::span<const Light> lights) const
@@ -230,19 +198,33 @@ struct Renderer::Impl {
                            [&](const Light& l) { return shading::LightDepth::may_transmit(cam.eye, l, centre, radius); });
     }
 
-    // The light-depth tiles of the directional lights behind the object (shading/light_depth.hpp);
-    // each light's tile + 1, 0 for none. The atlas is made on the first draw that needs it.
-    std::vector<uint32_t> record_light_depth(VkCommandBuffer cmd, const Camera& cam, std::span<const Light> lights)
+    // Which lights the transmission loop of mesh.frag visits, each with its attenuation slot (0:
+    // the thickness alone, s ≥ 1: depth tile s, shading/light_depth.hpp, rendered here for the
+    // directional lights behind the object; the atlas is made on the first draw that needs it).
+    struct Transmitting {
+        uint32_t slots = 0;            // bit s: slot s is used (MeshVariant::transmission)
+        std::vector<uint32_t> entries;  // light index | slot << 16
+    };
+    Transmitting record_transmission(VkCommandBuffer cmd, const Camera& cam, std::span<const Light> lights,
+                                     const RenderSettings& s)
     {
+        Transmitting out;
+        if (!transmission_reaches_camera(cam, lights, s)) return out;
         const glm::vec3 centre = 0.5f * (bbox_min + bbox_max);
         const float radius = 0.5f * glm::length(bbox_max - bbox_min);
-        const bool any = std::any_of(lights.begin(), lights.end(), [&](const Light& l) {
-            return l.type == Light::Type::Directional && shading::LightDepth::may_transmit(cam.eye, l, centre, radius);
-        });
-        if (!any) return std::vector<uint32_t>(lights.size(), 0);
-        if (!light_depth) light_depth.emplace(ctx, options.light_depth_size);
-        return light_depth->record(cmd, cam.eye, lights, vertices.handle(), sizeof(Vertex), indices.handle(), index_count,
-                                   centre, radius, geometry_version);
+        auto transmits = [&](const Light& l) { return shading::LightDepth::may_transmit(cam.eye, l, centre, radius); };
+        std::vector<uint32_t> tiles(lights.size(), 0);
+        if (std::any_of(lights.begin(), lights.end(), [&](const Light& l) { return l.type == Light::Type::Directional && transmits(l); })) {
+            if (!light_depth) light_depth.emplace(ctx, options.light_depth_size);
+            tiles = light_depth->record(cmd, cam.eye, lights, vertices.handle(), sizeof(Vertex), indices.handle(), index_count,
+                                        centre, radius, geometry_version);
+        }
+        for (size_t k = 0; k < lights.size(); ++k)
+            if (transmits(lights[k])) {
+                out.entries.push_back(uint32_t(k) | tiles[k] << 16);
+                out.slots |= 1u << tiles[k];
+            }
+        return out;
     }
 
     std::pair<float, float> false_color_range(const RenderSettings& s) const
@@ -264,7 +246,7 @@ struct Renderer::Impl {
         return curvature_lut ? curvature_lut->image() : placeholder;
     }
 
-    FrameData frame_constants(std::span<const Light> lights, const RenderSettings& s, std::span<const uint32_t> tiles) const
+    FrameData frame_constants(std::span<const Light> lights, const RenderSettings& s, const Transmitting& transmitting) const
     {
         const Material& m = *material;
         FrameData d{};
@@ -289,14 +271,17 @@ struct Renderer::Impl {
             for (uint32_t k = 0; k < shading::LightDepth::kMaxLights; ++k) d.light_depth[k] = light_depth->view_projection(k);
         }
         for (int i = 0; i < 9; ++i) d.color_map[i] = glm::vec4(false_color(float(i) / 8.0f), 1.0f);
+        d.counts = glm::uvec4(uint32_t(transmitting.entries.size()), 0, 0, 0);
+        std::copy(transmitting.entries.begin(), transmitting.entries.end(), d.transmitting);
         for (size_t k = 0; k < lights.size(); ++k)
             d.lights[k] = {glm::vec4(lights[k].vector, lights[k].type == Light::Type::Point ? 1.0f : 0.0f),
-                           glm::vec4(lights[k].color, tiles.empty() ? 0.0f : float(tiles[k]))};
+                           glm::vec4(lights[k].color, 0.0f)};
         return d;
     }
 
+    // mode: a ShadingMode, or shading::kInputsMode + k for the inputs pass.
     void record(VkCommandBuffer cmd, const RenderTarget& t, const Camera& cam, std::span<const Light> lights,
-                const RenderSettings& s)
+                const RenderSettings& s, uint32_t mode)
     {
         check_ready(s, lights);
         if (t.width != s.width || t.height != s.height || !t.color || !t.depth || (s.samples > 1) != bool(t.resolve))
@@ -305,12 +290,10 @@ struct Renderer::Impl {
         const FramePush push = push_constants(cam, s.width, s.height, uint32_t(lights.size()));
         const gpu::Image& curvature =
             s.mode == ShadingMode::Curvature ? curvature_image() : curvature_lut ? curvature_lut->image() : placeholder;
-        const bool transmission = transmission_reaches_camera(cam, lights, s);
-        const std::vector<uint32_t> tiles = transmission ? record_light_depth(cmd, cam, lights) : std::vector<uint32_t>{};
-        const FrameData data = frame_constants(lights, s, tiles);
-        const auto& pipe = pipeline(s.mode, material->grey() ? 1 : 3, transmission, color_format(s), s.samples);
-        const bool depth_tiles = std::any_of(tiles.begin(), tiles.end(), [](uint32_t t) { return t != 0; });
-        const gpu::Image& light_depth_image = depth_tiles ? light_depth->atlas() : placeholder;
+        const Transmitting transmitting = record_transmission(cmd, cam, lights, s);
+        const FrameData data = frame_constants(lights, s, transmitting);
+        const auto& pipe = pipelines.get(variant(mode, transmitting.slots), color_format(s), s.samples);
+        const gpu::Image& light_depth_image = transmitting.slots > 1 ? light_depth->atlas() : placeholder;
 
         // The frame constants are rewritten in the command stream: wait for the previous draw's
         // shader reads (write-after-read), then make the new values visible to this draw.
@@ -319,7 +302,7 @@ struct Renderer::Impl {
         gpu::memory_barrier(cmd, shaders, 0, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
         vkCmdUpdateBuffer(cmd, frame_data.handle(), 0, (bytes + 3) & ~size_t(3), &data);
         gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, shaders,
-                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+                            VK_ACCESS_2_UNIFORM_READ_BIT);
 
         VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
         color.imageView = t.color;
@@ -351,7 +334,8 @@ struct Renderer::Impl {
         pipe.bind(cmd, {s.width, s.height}, push,
                   {frame_data, lut->quads(),
                    gpu::Binding::image(curvature.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler),
-                   gpu::Binding::image(light_depth_image.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, nearest)});
+                   gpu::Binding::image(light_depth_image.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, nearest),
+                   gpu::Binding::image(lut->filtered().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler)});
         VkBuffer vb = vertices.handle();
         VkDeviceSize offset = 0;
         vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
@@ -377,7 +361,7 @@ struct Renderer::Impl {
         t.width = s.width, t.height = s.height, t.samples = s.samples, t.format = format;
     }
 
-    RenderedImage render(const Camera& cam, std::span<const Light> lights, const RenderSettings& s)
+    RenderedImage render(const Camera& cam, std::span<const Light> lights, const RenderSettings& s, uint32_t mode)
     {
         const auto t0 = Clock::now();
         check_ready(s, lights);
@@ -393,7 +377,7 @@ struct Renderer::Impl {
             t.depth.transition(cmd, gpu::use::kDepthAttachment, true);
             if (t.resolve) t.resolve.transition(cmd, gpu::use::kColorAttachment, true);
             record(cmd, {t.color.view(), t.resolve ? t.resolve.view() : VK_NULL_HANDLE, t.depth.view(), s.width, s.height},
-                   cam, lights, s);
+                   cam, lights, s, mode);
             timer->mark(cmd, "draw");
             result.transition(cmd, gpu::use::kTransferSrc);
             result.copy_to_buffer(cmd, t.readback.handle());
@@ -415,6 +399,36 @@ struct Renderer::Impl {
         img.wall_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
         return img;
     }
+
+    ShadingInputs shading_inputs(const Camera& cam, std::span<const Light> lights, const RenderSettings& settings)
+    {
+        RenderSettings s = settings;
+        s.mode = ShadingMode::Tm;
+        s.samples = 1, s.float32 = true, s.transparent_background = true, s.tone_map = ToneMap::None, s.exposure = 1.0f;
+        s.background = glm::vec3(0.0f);
+        const size_t pixels = size_t(s.width) * s.height;
+        ShadingInputs in;
+        in.width = s.width, in.height = s.height;
+        std::vector<glm::vec4>* planes[] = {&in.position, &in.normal, &in.tm};
+        std::array<std::vector<glm::vec4>, 2> paths;  // the five attenuation slots' paths
+        for (uint32_t k = 0; k < shading::kInputsSlots; ++k) {
+            RenderedImage img = render(cam, lights, s, shading::kInputsMode + k);
+            std::vector<glm::vec4>& plane = k < 3 ? *planes[k] : paths[k - 3];
+            plane.resize(pixels);
+            std::memcpy(plane.data(), img.rgba.data(), pixels * sizeof(glm::vec4));
+        }
+        // Each light's path is its slot's (the same selection as record()).
+        Transmitting transmitting;
+        ctx.submit_and_wait([&](VkCommandBuffer cmd) { transmitting = record_transmission(cmd, cam, lights, s); });
+        in.transmits.assign(lights.size(), 0);
+        in.path.assign(lights.size() * pixels, 0.0f);
+        for (uint32_t entry : transmitting.entries) {
+            const uint32_t light = entry & 0xffffu, slot = entry >> 16;
+            in.transmits[light] = 1;
+            for (size_t p = 0; p < pixels; ++p) in.path[light * pixels + p] = paths[slot / 4][p][slot % 4];
+        }
+        return in;
+    }
 };
 
 Renderer::Renderer(Context& context, const RendererOptions& options) : impl_(std::make_unique<Impl>(context.gpu(), options)) {}
@@ -433,6 +447,7 @@ void Renderer::set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm,
     std::vector<float> curvature = mean_curvature(mesh, impl_->options.curvature_smoothing);
     std::vector<Vertex> vertices(n);
     float tm_min = INFINITY, tm_max = 0.0f;
+    glm::vec3 tm_min_channel(n == 0 || tm.empty() ? 0.0f : INFINITY);
     for (size_t i = 0; i < n; ++i) {
         glm::vec3 t = tm.empty() ? glm::vec3(0.0f) : tm[i];
         // Each component on its own: t.x + t.y + t.z overflows for values near FLT_MAX, which
@@ -445,6 +460,7 @@ void Renderer::set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm,
         vertices[i] = {mesh.positions[i], mesh.normals[i], t, curvature[i], th};
         const float mean = t.x / 3.0f + t.y / 3.0f + t.z / 3.0f;
         tm_min = std::min(tm_min, mean);
+        tm_min_channel = glm::min(tm_min_channel, t);
         tm_max = std::max(tm_max, mean);
     }
     Impl& m = *impl_;
@@ -458,6 +474,7 @@ void Renderer::set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm,
     m.bbox_min = mesh.bbox_min, m.bbox_max = mesh.bbox_max;
     m.curvature = std::move(curvature);
     m.tm_min_mean = tm_min, m.tm_max_mean = tm_max;
+    m.tm_min = tm_min_channel;
     m.has_mesh = true;
     ++m.geometry_version;
     m.has_thickness = !thickness.empty();
@@ -484,6 +501,7 @@ void Renderer::record_vertex_update(VkCommandBuffer cmd, VkBuffer positions, VkB
                               {gpu::Binding(positions, 0, stream), gpu::Binding(normals, 0, stream), gpu::Binding(tm, 0, stream),
                                m.vertices, gpu::Binding(thickness ? thickness : tm, 0, stream / 3)});
     if (thickness) m.has_thickness = true;
+    m.tm_min = glm::vec3(0.0f);  // t_m now comes from the GPU: the evaluation must hold for any t
     ++m.geometry_version;
     gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_WRITE_BIT,
                         VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT, VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT);
@@ -508,13 +526,20 @@ void Renderer::set_material(const Material& material)
 
 RenderedImage Renderer::render(const Camera& camera, std::span<const Light> lights, const RenderSettings& settings)
 {
-    return impl_->render(camera, lights, settings);
+    return impl_->render(camera, lights, settings, uint32_t(settings.mode));
 }
+
+ShadingInputs Renderer::shading_inputs(const Camera& camera, std::span<const Light> lights, const RenderSettings& settings)
+{
+    return impl_->shading_inputs(camera, lights, settings);
+}
+
+TmEvaluation Renderer::tm_evaluation() const { return impl_->evaluation; }
 
 void Renderer::record(VkCommandBuffer cmd, const RenderTarget& target, const Camera& camera, std::span<const Light> lights,
                       const RenderSettings& settings)
 {
-    impl_->record(cmd, target, camera, lights, settings);
+    impl_->record(cmd, target, camera, lights, settings, uint32_t(settings.mode));
 }
 
 const LutLayout& Renderer::lut_layout() const { return impl_->lut->layout(); }
