@@ -19,7 +19,7 @@ layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec3 in_tm;
 layout(location = 3) in float in_curvature;
 layout(location = 4) in float in_thickness;
-layout(location = 5) in vec3 in_attenuation[kAttenuationSlots];
+layout(location = 5) in float in_path[kMaxTransmitters];
 
 layout(location = 0) out vec4 out_color;
 
@@ -63,16 +63,6 @@ float boundary_transmittance(float cos_theta)
     return 1.0 - (f0 + (grazing - f0) * (m2 * m2 * m));
 }
 
-// The attenuation of slot s, interpolated from the vertices: constant indices only, so that
-// the slots this pipeline does not draw are not interpolated at all.
-vec3 attenuation(uint slot)
-{
-    vec3 a = vec3(0.0);
-    for (uint s = 0; s < kAttenuationSlots; ++s)
-        if ((TRANSMISSION & (1u << s)) != 0u && slot == s) a = in_attenuation[s];
-    return a;
-}
-
 vec3 false_color(float x)
 {
     float s = clamp(x, 0.0, 1.0) * float(kColorMapStops - 1);
@@ -86,8 +76,7 @@ vec4 shading_input(uint k)
     if (k == 0u) return vec4(in_position, 1.0);
     if (k == 1u) return vec4(in_normal, in_thickness);
     if (k == 2u) return vec4(in_tm, in_curvature);
-    if (k == 3u) return vec4(in_attenuation[0].x, in_attenuation[1].x, in_attenuation[2].x, in_attenuation[3].x);
-    return vec4(in_attenuation[4].x, 0.0, 0.0, 0.0);
+    return vec4(in_path[0], in_path[1], in_path[2], in_path[3]);
 }
 
 // Towards light `light` from this fragment, unit, and its irradiance here.
@@ -140,14 +129,10 @@ void main()
         color += diffuse;
         if (c > 0.0 && data.specular.z > 0.0) color += data.specular.z * specular_lobe(n, v, l, c) * e;
     }
-    // Only the lights that may shine through the object towards the eye (the renderer lists them).
-    if (MODE == kTm && TRANSMISSION != 0u) {
-        for (uint i = 0; i < data.counts.x; ++i) {
-            uint entry = data.transmitting[i];
-            vec3 l, e;
-            light_at(data.lights[entry & 0xffffu], l, e);
-            color += transmission_lobe(v, l, dot(n, l)) * attenuation(entry >> 16) * e;
-        }
-    }
+    // Only the lights that may shine through the object towards the eye, each in its own
+    // unrolled step (constant indices: a loop over a list would cost more than the term).
+    if (MODE == kTm)
+        for (uint k = 0; k < TRANSMISSION; ++k)
+            color += transmitter_lobe(k, in_position, n, v) * attenuation_at(in_path[k]);
     out_color = vec4(color, 1.0);
 }

@@ -1,8 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // mesh.vert - passes the world-space attributes through, and evaluates what of the shading is
-// smooth over the surface and per vertex in nature: the transmission's path inside the object
-// and its attenuation (transmission.glsl), once per vertex instead of once per fragment.
+// smooth over the surface and per vertex in nature: each transmitting light's path inside the
+// object (transmission.glsl), once per vertex instead of once per fragment.
 #include "shading.glsl"
 #include "transmission.glsl"
 
@@ -19,8 +19,8 @@ layout(location = 1) out vec3 out_normal;
 layout(location = 2) out vec3 out_tm;
 layout(location = 3) out float out_curvature;
 layout(location = 4) out float out_thickness;
-// The attenuation of each slot drawn (TRANSMISSION); in the inputs pass, its path t instead.
-layout(location = 5) out vec3 out_attenuation[kAttenuationSlots];
+// Per transmitting light: the path t (transmitter_path).
+layout(location = 5) out float out_path[kMaxTransmitters];
 
 void main()
 {
@@ -29,11 +29,6 @@ void main()
     out_tm = in_tm;
     out_curvature = in_curvature;
     out_thickness = in_thickness;
-    for (uint s = 0; s < kAttenuationSlots; ++s) {
-        out_attenuation[s] = vec3(0.0);
-        if ((TRANSMISSION & (1u << s)) == 0u) continue;
-        float t = transmission_path(s, in_thickness, in_position);
-        out_attenuation[s] = MODE >= kInputs ? vec3(t) : transmission_attenuation(t);
-    }
+    for (uint k = 0; k < kMaxTransmitters; ++k) out_path[k] = k < TRANSMISSION ? transmitter_path(k, in_position, in_thickness) : 0.0;
     gl_Position = frame.view_proj * vec4(in_position, 1.0);
 }

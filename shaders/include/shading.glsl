@@ -41,8 +41,8 @@ layout(binding = 0, scalar) uniform FrameData {
     vec4 light_depth_map;   // light-depth tile size (texels), tiles in the atlas, depth range (mesh units), unused
     mat4 light_depth[4];    // world → light clip space of each tile (shading/light_depth.hpp)
     vec4 color_map[kColorMapStops];  // false-colour stops, linear RGB
-    uvec4 counts;           // x: lights that may transmit (the first entries of transmitting[])
-    uint transmitting[kMaxLights];  // light index | attenuation slot << 16 (transmission.glsl)
+    vec4 transmission_table_map;  // 1 / step of the attenuation table (mesh units), last texel, last interval
+    GpuLight transmitters[4];  // the lights drawn with transmission (transmission.glsl); color.w: depth tile, 0 none
     GpuLight lights[kMaxLights];
 } data;
 

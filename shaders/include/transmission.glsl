@@ -1,18 +1,21 @@
-// transmission.glsl - light from behind through the object (jade/material.hpp Transmission), in
-// two parts: what depends on the path t inside the object only (the attenuation, smooth over the
-// surface: mesh.vert evaluates it per vertex) and what depends on the eye and the normal (the
-// lobe, per fragment in mesh.frag). Their product is the transmitted() of docs/shading.md:
-//   [w_b e^{−σ_t t} + w_d (1 − e^{−σ_s' t}) e^{−σ_tr t}] · (n+1)/(2π) max(V·(−L), 0)^n ·
-//   ((1 − m) + m max(−N·L, 0))
+// transmission.glsl - light from behind through the object (jade/material.hpp Transmission):
+//   A(t) · (n+1)/(2π) max(V·(−L), 0)^n · ((1 − m) + m max(−N·L, 0)) · E
+// with A the attenuation along the path t inside the object (attenuation.glsl). What is smooth
+// over the surface is per vertex in mesh.vert: the path t (the longer of the local thickness and
+// the path from where the light enters, from the light's depth tile) and the lobe factor; A(t)
+// is read per fragment from the table of transmission_table.comp at the interpolated t, since
+// t itself is not smooth where the body shadows a part from the light.
 #ifndef JADE_TRANSMISSION_GLSL
 #define JADE_TRANSMISSION_GLSL
 
-// Bit s: attenuation slot s is drawn; slot 0 is the local thickness alone (point lights and
-// lights without a depth tile), slot s ≥ 1 the path of depth tile s. 0: no transmission.
+#include "attenuation.glsl"
+
+// Lights drawn with transmission (data.transmitters[0 … TRANSMISSION − 1]); 0: none.
 layout(constant_id = 2) const uint TRANSMISSION = 0;
-const uint kAttenuationSlots = 5;  // 1 + shading::LightDepth::kMaxLights
+const uint kMaxTransmitters = 4;  // shading::kMaxTransmitters
 
 layout(binding = 3) uniform sampler2D light_depth_atlas;  // D32: depth nearest to each light, one tile per light
+layout(binding = 5) uniform usamplerBuffer transmission_table;  // A(t_i), A(t_{i+1}) as halves
 
 // How far light from directional light `tile` (1-based) travels inside the object before it
 // reaches `position`, mesh units: its depth along the light minus the depth of the surface
@@ -33,30 +36,39 @@ float light_path(uint tile, vec3 position)
     return max(p.z - entry, 0.0) * data.light_depth_map.z;
 }
 
-// The path of slot s: the longer of the local thickness and the path from where the light
-// enters (a thin part that the body shadows from the light is dark).
-float transmission_path(uint slot, float thickness, vec3 position)
+// Transmitter k's path t at `position`: the longer of the local thickness and the path from
+// where the light enters (a thin part that the body shadows from the light is dark).
+float transmitter_path(uint k, vec3 position, float thickness)
 {
-    return slot == 0u ? thickness : max(thickness, light_path(slot, position));
+    uint tile = uint(data.transmitters[k].color.w);
+    return tile != 0u ? max(thickness, light_path(tile, position)) : thickness;
 }
 
-// Ballistic and diffused transmittance along the path t. σ_t ≤ 3e38 and t > 0: the product is
-// finite or +Inf, never NaN, and e^{−Inf} = 0. A zero (or NaN) thickness transmits fully without
-// the product: lavapipe turned 3e38 · 0 into a NaN there (tests/test_thickness.cpp).
-vec3 transmission_attenuation(float t)
+// The forward lobe (n + 1)/(2π)·max(V·(−L), 0)^n of transmitter k, following −N·L by
+// normal_mix, times its irradiance at `position`.
+vec3 transmitter_lobe(uint k, vec3 position, vec3 n, vec3 v)
 {
-    vec3 ballistic = t > 0.0 ? exp(-data.transmission.rgb * t) : vec3(1.0);
-    vec3 diffused = t > 0.0 ? (1.0 - exp(-data.transmission_scatter.rgb * t)) * exp(-data.transmission_diffusion.rgb * t) : vec3(0.0);
-    return data.transmission.w * ballistic + data.transmission_diffusion.w * diffused;
-}
-
-// The forward lobe (n + 1)/(2π)·max(V·(−L), 0)^n, following −N·L by normal_mix.
-float transmission_lobe(vec3 v, vec3 l, float n_dot_l)
-{
+    GpuLight light = data.transmitters[k];
+    vec3 l = light.vector.xyz, e = light.color.rgb;
+    if (light.vector.w != 0.0) {  // point light: inverse-square falloff
+        l -= position;
+        e /= max(dot(l, l), 1e-20);
+    }
+    l = normalize(l);
     float mu = max(-dot(v, l), 0.0);
     vec4 shape = data.transmission_shape;
     float lobe = mu > 0.0 ? shape.y * pow(mu, shape.x) : 0.0;
-    return lobe * ((1.0 - shape.z) + shape.z * max(-n_dot_l, 0.0));
+    return lobe * ((1.0 - shape.z) + shape.z * max(-dot(n, l), 0.0)) * e;
+}
+
+// A(t), interpolated from the table (the last entry, ~0, beyond it; a NaN t reads an end).
+vec3 attenuation_at(float t)
+{
+    float x = clamp(t * data.transmission_table_map.x, 0.0, data.transmission_table_map.y);
+    float i = min(floor(x), data.transmission_table_map.z);
+    uvec4 q = texelFetch(transmission_table, int(i));
+    vec2 rg = unpackHalf2x16(q.x), ba = unpackHalf2x16(q.y), gb = unpackHalf2x16(q.z);
+    return mix(vec3(rg, ba.x), vec3(ba.y, gb), x - i);
 }
 
 #endif

@@ -213,7 +213,7 @@ struct ShadingInputs {
 /// What the renderer keeps per vertex (position, normal, t_m, curvature, thickness: floats) and
 /// its per-draw constants with 64 lights, in bytes: for memory plans (jade/scene.hpp).
 inline constexpr uint64_t kRendererVertexBytes = 44;
-inline constexpr uint64_t kRendererFrameDataBytes = 2880;
+inline constexpr uint64_t kRendererFrameDataBytes = 2752;
 
 /// Draws one mesh with one material. Owns its GPU buffers, LUT images and pipelines (created
 /// lazily per mode, sample count and format). Threading and lifetime as in the header comment.

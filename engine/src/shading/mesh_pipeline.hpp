@@ -20,9 +20,9 @@ namespace jade::shading {
 
 inline constexpr uint32_t kMaxLights = 64;  ///< shading.glsl: kMaxLights
 /// Mode constant of the inputs pass: kInputsMode + k writes the k-th vec4 of the inputs (shading.glsl).
-inline constexpr uint32_t kInputsMode = 4, kInputsSlots = 5;
-/// Attenuation slots of the transmission: 0 the thickness alone, 1 … 4 the depth tiles (transmission.glsl).
-inline constexpr uint32_t kAttenuationSlots = 1 + LightDepth::kMaxLights;
+inline constexpr uint32_t kInputsMode = 4, kInputsSlots = 4;
+/// Lights drawn with transmission per draw: the first that may shine through (transmission.glsl).
+inline constexpr uint32_t kMaxTransmitters = 4;
 
 // Mirrors of shaders/include/shading.glsl (scalar layout).
 struct FramePush {
@@ -38,8 +38,8 @@ struct FrameData {
     glm::vec4 transmission, transmission_diffusion, transmission_scatter, transmission_shape, light_depth_map;
     glm::mat4 light_depth[LightDepth::kMaxLights];
     glm::vec4 color_map[9];
-    glm::uvec4 counts;
-    uint32_t transmitting[kMaxLights];
+    glm::vec4 transmission_table_map;
+    GpuLight transmitters[kMaxTransmitters];
     GpuLight lights[kMaxLights];
 };
 static_assert(sizeof(FramePush) == 80 && sizeof(GpuLight) == 32);
@@ -53,7 +53,7 @@ static_assert(sizeof(Vertex) == kRendererVertexBytes && sizeof(FrameData) == kRe
 struct MeshVariant {
     uint32_t mode = 0;          ///< ShadingMode, or kInputsMode + k
     uint32_t channels = 3;      ///< 1: grey material
-    uint32_t transmission = 0;  ///< bit s: attenuation slot s drawn; 0: no transmission
+    uint32_t transmission = 0;  ///< lights drawn with transmission (FrameData::transmitters)
     TmEvaluation evaluation = TmEvaluation::Lut;
     uint32_t terms = 5;         ///< Alu: Fourier terms
     bool small_t = true;        ///< Alu: the closed form for √t < kSmallSigma is needed

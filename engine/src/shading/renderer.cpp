@@ -14,6 +14,7 @@
 #include "shading/light_depth.hpp"
 #include "shading/lut.hpp"
 #include "shading/mesh_pipeline.hpp"
+#include "shading/transmission_table.hpp"
 
 #include <jade/context.hpp>
 #include <jade/render.hpp>
@@ -94,6 +95,7 @@ struct Renderer::Impl {
     gpu::Buffer frame_data;
     TmEvaluation evaluation;
     shading::MeshPipelines pipelines;
+    shading::TransmissionTable transmission_table;  // of the material's Transmission
 
     // render()'s own targets, kept while the size and format stay the same.
     struct Targets {
@@ -109,7 +111,7 @@ struct Renderer::Impl {
           nearest(gpu::make_sampler(c, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "light depth sampler")), lut(shading::shared_translucency_lut(c, o.lut)),
           placeholder(c, {"curvature LUT placeholder", 1, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_SAMPLED_BIT}),
           frame_data(c, sizeof(FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, "frame data"),
-          evaluation(shading::resolve_evaluation(o.tm_evaluation, device_type(c))), pipelines(c)
+          evaluation(shading::resolve_evaluation(o.tm_evaluation, device_type(c))), pipelines(c), transmission_table(c)
     {
         // Sampled-image descriptors need the image in its layout even if never read.
         c.submit_and_wait([&](VkCommandBuffer cmd) { placeholder.transition(cmd, gpu::use::kSampled); });
@@ -126,14 +128,14 @@ struct Renderer::Impl {
     }
 
     // The pipeline variant of a draw: only the t_m mode reads the channels, the evaluation path
-    // and the transmission slots; the Fourier terms follow the smallest t of the mesh.
-    shading::MeshVariant variant(uint32_t mode, uint32_t transmission_slots) const
+    // and the transmitting lights; the Fourier terms follow the smallest t of the mesh.
+    shading::MeshVariant variant(uint32_t mode, uint32_t transmitters) const
     {
         shading::MeshVariant v;
         v.mode = mode;
         if (mode != uint32_t(ShadingMode::Tm) && mode < shading::kInputsMode) return v;
         v.channels = material->grey() ? 1 : 3;
-        v.transmission = transmission_slots;
+        v.transmission = transmitters;
         if (mode >= shading::kInputsMode) return v;
         v.evaluation = evaluation;
         const float smallest = v.channels == 1 ? tm_min.x : std::min({tm_min.x, tm_min.y, tm_min.z});
@@ -198,12 +200,13 @@ struct Renderer::Impl {
                            [&](const Light& l) { return shading::LightDepth::may_transmit(cam.eye, l, centre, radius); });
     }
 
-    // Which lights the transmission loop of mesh.frag visits, each with its attenuation slot (0:
-    // the thickness alone, s ≥ 1: depth tile s, shading/light_depth.hpp, rendered here for the
-    // directional lights behind the object; the atlas is made on the first draw that needs it).
+    // The lights drawn with transmission: the first kMaxTransmitters that may shine through the
+    // object towards the eye, each with its depth tile (shading/light_depth.hpp, rendered here for
+    // the directional ones; the atlas is made on the first draw that needs it) in color.w, 0 none.
     struct Transmitting {
-        uint32_t slots = 0;            // bit s: slot s is used (MeshVariant::transmission)
-        std::vector<uint32_t> entries;  // light index | slot << 16
+        std::vector<GpuLight> lights;
+        std::vector<uint32_t> index;  // of each in the draw's lights
+        bool tiles = false;           // some light has a depth tile
     };
     Transmitting record_transmission(VkCommandBuffer cmd, const Camera& cam, std::span<const Light> lights,
                                      const RenderSettings& s)
@@ -219,12 +222,18 @@ struct Renderer::Impl {
             tiles = light_depth->record(cmd, cam.eye, lights, vertices.handle(), sizeof(Vertex), indices.handle(), index_count,
                                         centre, radius, geometry_version);
         }
-        for (size_t k = 0; k < lights.size(); ++k)
+        for (size_t k = 0; k < lights.size() && out.lights.size() < shading::kMaxTransmitters; ++k)
             if (transmits(lights[k])) {
-                out.entries.push_back(uint32_t(k) | tiles[k] << 16);
-                out.slots |= 1u << tiles[k];
+                out.lights.push_back(gpu_light(lights[k], float(tiles[k])));
+                out.index.push_back(uint32_t(k));
+                out.tiles = out.tiles || tiles[k] != 0;
             }
         return out;
+    }
+
+    static GpuLight gpu_light(const Light& l, float w)
+    {
+        return {glm::vec4(l.vector, l.type == Light::Type::Point ? 1.0f : 0.0f), glm::vec4(l.color, w)};
     }
 
     std::pair<float, float> false_color_range(const RenderSettings& s) const
@@ -271,11 +280,9 @@ struct Renderer::Impl {
             for (uint32_t k = 0; k < shading::LightDepth::kMaxLights; ++k) d.light_depth[k] = light_depth->view_projection(k);
         }
         for (int i = 0; i < 9; ++i) d.color_map[i] = glm::vec4(false_color(float(i) / 8.0f), 1.0f);
-        d.counts = glm::uvec4(uint32_t(transmitting.entries.size()), 0, 0, 0);
-        std::copy(transmitting.entries.begin(), transmitting.entries.end(), d.transmitting);
-        for (size_t k = 0; k < lights.size(); ++k)
-            d.lights[k] = {glm::vec4(lights[k].vector, lights[k].type == Light::Type::Point ? 1.0f : 0.0f),
-                           glm::vec4(lights[k].color, 0.0f)};
+        d.transmission_table_map = transmission_table.shader_map();
+        std::copy(transmitting.lights.begin(), transmitting.lights.end(), d.transmitters);
+        for (size_t k = 0; k < lights.size(); ++k) d.lights[k] = gpu_light(lights[k], 0.0f);
         return d;
     }
 
@@ -292,8 +299,8 @@ struct Renderer::Impl {
             s.mode == ShadingMode::Curvature ? curvature_image() : curvature_lut ? curvature_lut->image() : placeholder;
         const Transmitting transmitting = record_transmission(cmd, cam, lights, s);
         const FrameData data = frame_constants(lights, s, transmitting);
-        const auto& pipe = pipelines.get(variant(mode, transmitting.slots), color_format(s), s.samples);
-        const gpu::Image& light_depth_image = transmitting.slots > 1 ? light_depth->atlas() : placeholder;
+        const auto& pipe = pipelines.get(variant(mode, uint32_t(transmitting.lights.size())), color_format(s), s.samples);
+        const gpu::Image& light_depth_image = transmitting.tiles ? light_depth->atlas() : placeholder;
 
         // The frame constants are rewritten in the command stream: wait for the previous draw's
         // shader reads (write-after-read), then make the new values visible to this draw.
@@ -335,7 +342,8 @@ struct Renderer::Impl {
                   {frame_data, lut->quads(),
                    gpu::Binding::image(curvature.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler),
                    gpu::Binding::image(light_depth_image.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, nearest),
-                   gpu::Binding::image(lut->filtered().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler)});
+                   gpu::Binding::image(lut->filtered().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler),
+                   transmission_table.texels()});
         VkBuffer vb = vertices.handle();
         VkDeviceSize offset = 0;
         vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
@@ -409,23 +417,22 @@ struct Renderer::Impl {
         const size_t pixels = size_t(s.width) * s.height;
         ShadingInputs in;
         in.width = s.width, in.height = s.height;
-        std::vector<glm::vec4>* planes[] = {&in.position, &in.normal, &in.tm};
-        std::array<std::vector<glm::vec4>, 2> paths;  // the five attenuation slots' paths
+        std::vector<glm::vec4> paths;  // of the transmitting lights, in their order
+        std::vector<glm::vec4>* planes[] = {&in.position, &in.normal, &in.tm, &paths};
         for (uint32_t k = 0; k < shading::kInputsSlots; ++k) {
-            RenderedImage img = render(cam, lights, s, shading::kInputsMode + k);
-            std::vector<glm::vec4>& plane = k < 3 ? *planes[k] : paths[k - 3];
-            plane.resize(pixels);
-            std::memcpy(plane.data(), img.rgba.data(), pixels * sizeof(glm::vec4));
+            const RenderedImage img = render(cam, lights, s, shading::kInputsMode + k);
+            planes[k]->resize(pixels);
+            std::memcpy(planes[k]->data(), img.rgba.data(), pixels * sizeof(glm::vec4));
         }
-        // Each light's path is its slot's (the same selection as record()).
+        // The same selection as record()'s.
         Transmitting transmitting;
         ctx.submit_and_wait([&](VkCommandBuffer cmd) { transmitting = record_transmission(cmd, cam, lights, s); });
         in.transmits.assign(lights.size(), 0);
         in.path.assign(lights.size() * pixels, 0.0f);
-        for (uint32_t entry : transmitting.entries) {
-            const uint32_t light = entry & 0xffffu, slot = entry >> 16;
+        for (size_t i = 0; i < transmitting.index.size(); ++i) {
+            const uint32_t light = transmitting.index[i];
             in.transmits[light] = 1;
-            for (size_t p = 0; p < pixels; ++p) in.path[light * pixels + p] = paths[slot / 4][p][slot % 4];
+            for (size_t p = 0; p < pixels; ++p) in.path[light * pixels + p] = paths[p][int(i)];
         }
         return in;
     }
@@ -521,6 +528,7 @@ void Renderer::set_material(const Material& material)
     Impl& m = *impl_;
     vkDeviceWaitIdle(m.ctx.device());
     if (m.curvature_lut && m.curvature_lut_profiles != material.profile) m.curvature_lut.reset();  // rebuilt on demand
+    if (material.transmission.enabled()) m.transmission_table.update(material.transmission);
     m.material = material;
 }
 
