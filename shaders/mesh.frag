@@ -19,7 +19,7 @@ layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec3 in_tm;
 layout(location = 3) in float in_curvature;
 layout(location = 4) in float in_thickness;
-layout(location = 5) in float in_path[kMaxTransmitters];
+layout(location = 5) in vec2 in_transmitter[kMaxTransmitters];  // path t, lobe
 
 layout(location = 0) out vec4 out_color;
 
@@ -76,7 +76,7 @@ vec4 shading_input(uint k)
     if (k == 0u) return vec4(in_position, 1.0);
     if (k == 1u) return vec4(in_normal, in_thickness);
     if (k == 2u) return vec4(in_tm, in_curvature);
-    return vec4(in_path[0], in_path[1], in_path[2], in_path[3]);
+    return vec4(in_transmitter[0].x, in_transmitter[1].x, in_transmitter[2].x, in_transmitter[3].x);
 }
 
 // Towards light `light` from this fragment, unit, and its irradiance here.
@@ -107,14 +107,11 @@ void main()
     bool boundary = MODE == kTm && data.transmission_shape.w > 0.0;
     float exit_transmittance = boundary ? boundary_transmittance(dot(n, v)) : 1.0;
     vec3 albedo = data.albedo_strength.rgb;
-    // t = strength · t_m per channel, interpolated t_m as the poster. t_m is capped below +Inf
-    // first, since interpolating vertex values near FLT_MAX can round up to +Inf and strength
-    // 0 · Inf would be NaN (tests/test_stability.cpp renders t_m = 3e38 with strength 0 and
-    // 1e30), and t is clamped to the LUT's range t_max, past which f is 1/π within 2e-6.
+    // t = strength · t_m per channel, from the interpolated t_m as the poster: interpolating a
+    // function of t instead (the LUT row, e^{−2t}) leaves the image budget where t_m is noisy.
     Translucency tr;
     if (MODE == kTm) {
-        vec3 tm = min(max(in_tm, vec3(0.0)), vec3(3.0e38));
-        vec3 t = min(data.albedo_strength.w * tm * data.params.x, vec3(1.0)) * (1.0 / data.params.x);
+        vec3 t = variance(in_tm);
         tr = translucency_setup(CHANNELS == 1 ? t.rrr : t);
     }
     float kappa_scaled = max(in_curvature, 0.0) * data.params.y;  // concave: treated as flat
@@ -132,7 +129,10 @@ void main()
     // Only the lights that may shine through the object towards the eye, each in its own
     // unrolled step (constant indices: a loop over a list would cost more than the term).
     if (MODE == kTm)
-        for (uint k = 0; k < TRANSMISSION; ++k)
-            color += transmitter_lobe(k, in_position, n, v) * attenuation_at(in_path[k]);
+        for (uint k = 0; k < TRANSMISSION; ++k) {
+            vec3 l, e;
+            transmitter_at(k, in_position, l, e);
+            color += (in_transmitter[k].y * transmitter_follow(dot(n, l))) * attenuation_at(in_transmitter[k].x) * e;
+        }
     out_color = vec4(color, 1.0);
 }

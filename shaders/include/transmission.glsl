@@ -44,21 +44,35 @@ float transmitter_path(uint k, vec3 position, float thickness)
     return tile != 0u ? max(thickness, light_path(tile, position)) : thickness;
 }
 
-// The forward lobe (n + 1)/(2π)·max(V·(−L), 0)^n of transmitter k, following −N·L by
-// normal_mix, times its irradiance at `position`.
-vec3 transmitter_lobe(uint k, vec3 position, vec3 n, vec3 v)
+// Towards transmitter k from `position`, unit, and its irradiance there (e: the colour, times
+// the inverse-square falloff of a point light).
+void transmitter_at(uint k, vec3 position, out vec3 l, out vec3 e)
 {
     GpuLight light = data.transmitters[k];
-    vec3 l = light.vector.xyz, e = light.color.rgb;
-    if (light.vector.w != 0.0) {  // point light: inverse-square falloff
+    l = light.vector.xyz;
+    e = light.color.rgb;
+    if (light.vector.w != 0.0) {
         l -= position;
         e /= max(dot(l, l), 1e-20);
     }
     l = normalize(l);
+}
+
+// The forward lobe (n + 1)/(2π)·max(V·(−L), 0)^n of transmitter k: smooth over the surface (V
+// and L change little across a triangle), per vertex.
+float transmitter_lobe(uint k, vec3 position, vec3 v)
+{
+    vec3 l, e;
+    transmitter_at(k, position, l, e);
     float mu = max(-dot(v, l), 0.0);
-    vec4 shape = data.transmission_shape;
-    float lobe = mu > 0.0 ? shape.y * pow(mu, shape.x) : 0.0;
-    return lobe * ((1.0 - shape.z) + shape.z * max(-dot(n, l), 0.0)) * e;
+    return mu > 0.0 ? data.transmission_shape.y * pow(mu, data.transmission_shape.x) : 0.0;
+}
+
+// How much of the lobe goes out at this normal: following −N·L by normal_mix (per fragment:
+// the kink at N·L = 0 is not smooth).
+float transmitter_follow(float n_dot_l)
+{
+    return (1.0 - data.transmission_shape.z) + data.transmission_shape.z * max(-n_dot_l, 0.0);
 }
 
 // A(t), interpolated from the table (the last entry, ~0, beyond it; a NaN t reads an end).
