@@ -39,7 +39,7 @@ layout(binding = 0, scalar) uniform FrameData {
     vec4 transmission_scatter;    // σ_s' (1/mesh unit), unused
     vec4 transmission_shape; // lobe exponent n, (n + 1)/(2π), normal_mix, 1: diffuse × boundary transmittance
     vec4 light_depth_map;   // light-depth tile size (texels), tiles in the atlas, depth range (mesh units), unused
-    mat4 light_depth[4];    // world → light clip space of each tile (shading/light_depth.hpp)
+    mat4 light_depth[4];    // world → light clip space of each transmitter's tile (shading/light_depth.hpp)
     vec4 color_map[kColorMapStops];  // false-colour stops, linear RGB
     vec4 transmission_table_map;  // 1 / step of the attenuation table (mesh units), last texel, last interval
     GpuLight transmitters[4];  // the lights drawn with transmission (transmission.glsl); color.w: depth tile, 0 none

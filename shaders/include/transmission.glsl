@@ -17,17 +17,19 @@ const uint kMaxTransmitters = 4;  // shading::kMaxTransmitters
 layout(binding = 3) uniform sampler2D light_depth_atlas;  // D32: depth nearest to each light, one tile per light
 layout(binding = 5) uniform usamplerBuffer transmission_table;  // A(t_i), A(t_{i+1}) as halves
 
-// How far light from directional light `tile` (1-based) travels inside the object before it
-// reaches `position`, mesh units: its depth along the light minus the depth of the surface
-// nearest to the light, bilinear between the four nearest texels of its tile.
-float light_path(uint tile, vec3 position)
+// How far light from transmitter k travels inside the object before it reaches `position`, mesh
+// units: its depth along the light minus the depth of the surface nearest to the light,
+// bilinear between the four nearest texels of its tile (atlas column `tile` − 1). The matrix is
+// the transmitter's own (data.light_depth[k]): a constant index, which lavapipe reads once,
+// not once per lane.
+float light_path(uint k, uint tile, vec3 position)
 {
-    vec4 p = data.light_depth[tile - 1u] * vec4(position, 1.0);
+    vec4 p = data.light_depth[k] * vec4(position, 1.0);
     float size = data.light_depth_map.x;
     vec2 xy = clamp(p.xy * 0.5 + 0.5, 0.0, 1.0) * size - 0.5;
     vec2 f = fract(xy);
     ivec2 base = ivec2(floor(xy)), lo = ivec2(0), hi = ivec2(int(size) - 1);
-    int x0 = int(tile - 1u) * int(size);
+    int x0 = int(max(tile, 1u) - 1u) * int(size);
     float d00 = texelFetch(light_depth_atlas, ivec2(x0, 0) + clamp(base, lo, hi), 0).r;
     float d10 = texelFetch(light_depth_atlas, ivec2(x0, 0) + clamp(base + ivec2(1, 0), lo, hi), 0).r;
     float d01 = texelFetch(light_depth_atlas, ivec2(x0, 0) + clamp(base + ivec2(0, 1), lo, hi), 0).r;
@@ -41,7 +43,7 @@ float light_path(uint tile, vec3 position)
 float transmitter_path(uint k, vec3 position, float thickness)
 {
     uint tile = uint(data.transmitters[k].color.w);
-    return tile != 0u ? max(thickness, light_path(tile, position)) : thickness;
+    return tile != 0u ? max(thickness, light_path(k, tile, position)) : thickness;
 }
 
 // Towards transmitter k from `position`, unit, and its irradiance there (e: the colour, times

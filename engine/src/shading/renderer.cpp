@@ -277,7 +277,9 @@ struct Renderer::Impl {
         if (light_depth) {
             d.light_depth_map = glm::vec4(float(light_depth->tile_size()), float(shading::LightDepth::kMaxLights),
                                           light_depth->depth_range(), 0.0f);
-            for (uint32_t k = 0; k < shading::LightDepth::kMaxLights; ++k) d.light_depth[k] = light_depth->view_projection(k);
+            for (size_t k = 0; k < transmitting.lights.size(); ++k)
+                if (const uint32_t tile = uint32_t(transmitting.lights[k].color.w); tile != 0)
+                    d.light_depth[k] = light_depth->view_projection(tile - 1);
         }
         for (int i = 0; i < 9; ++i) d.color_map[i] = glm::vec4(false_color(float(i) / 8.0f), 1.0f);
         d.transmission_table_map = transmission_table.shader_map();
