@@ -113,6 +113,8 @@ std::vector<BufferEstimate> draw_buffers(size_t n, size_t tris)
     return {{"mesh vertices", at_least_16(double(kRendererVertexBytes) * n)},
             {"mesh indices", at_least_16(12.0 * tris)},
             {"frame data", kRendererFrameDataBytes},
+            // Two texels until a material with transmission tabulates A(t) (≤ 1 MiB).
+            {"transmission table", 32},
             {"curvature LUT placeholder (image)", 16, true}};
 }
 
@@ -121,7 +123,8 @@ std::vector<BufferEstimate> shared_buffers(const RendererOptions& o)
 {
     const LutLayout& l = o.lut;
     return {{"translucency LUT quads", at_least_16(16.0 * (l.width - 1) * (l.height - 1))},
-            {"translucency LUT (image)", uint64_t(l.width) * l.height * 4, true}};
+            {"translucency LUT (image)", uint64_t(l.width) * l.height * 4, true},
+            {"translucency LUT, 16 bit (image)", uint64_t(l.width) * l.height * 2, true}};
 }
 
 std::string bytes_text(uint64_t b)

@@ -68,6 +68,13 @@ TmEvaluation resolve_evaluation(TmEvaluation requested, VkPhysicalDeviceType typ
     return type == VK_PHYSICAL_DEVICE_TYPE_CPU ? TmEvaluation::Alu : TmEvaluation::LutFiltered;
 }
 
+TmEvaluation resolve_evaluation(TmEvaluation requested, const gpu::Context& ctx)
+{
+    VkPhysicalDeviceProperties p;
+    vkGetPhysicalDeviceProperties(ctx.physical_device(), &p);
+    return resolve_evaluation(requested, p.deviceType);
+}
+
 const gpu::GraphicsPipeline& MeshPipelines::get(const MeshVariant& v, VkFormat format, uint32_t samples)
 {
     auto [it, inserted] = pipelines_.try_emplace(v.key(format, samples));

@@ -71,6 +71,13 @@ void choose_terms(double t_min, MeshVariant& variant);
 /// What TmEvaluation::Auto means on a device of this type: Alu on a CPU (lavapipe: every memory
 /// read is a gather of its own, arithmetic is SIMD), LutFiltered wherever there are texture units.
 TmEvaluation resolve_evaluation(TmEvaluation requested, VkPhysicalDeviceType type);
+TmEvaluation resolve_evaluation(TmEvaluation requested, const gpu::Context& ctx);  ///< for ctx's device
+
+/// A light as the shaders read it; w of the colour as given (the transmitters' depth tile).
+inline GpuLight gpu_light(const Light& l, float w)
+{
+    return {glm::vec4(l.vector, l.type == Light::Type::Point ? 1.0f : 0.0f), glm::vec4(l.color, w)};
+}
 
 /// The pipelines of one renderer, made on first use per (variant, colour format, samples).
 class MeshPipelines {

@@ -3,8 +3,9 @@
 //
 // Per draw the GPU sees: the vertex buffer {position, normal, t_m, curvature, thickness} (44
 // bytes a vertex), the index buffer, push constants {view-projection, eye, light count}, and one
-// storage buffer FrameData {material, LUT mappings, colour map, lights} written with
-// vkCmdUpdateBuffer inside the command buffer (so record() needs no per-frame buffers).
+// uniform buffer FrameData {material, LUT mappings, colour map, lights, transmitters} written
+// with vkCmdUpdateBuffer inside the command buffer (so record() needs no per-frame buffers).
+// Pipeline variants and their rules: mesh_pipeline.hpp; per-draw checks: frame.hpp.
 #include "gpu/buffer.hpp"
 #include "gpu/context.hpp"
 #include "gpu/image.hpp"
@@ -13,6 +14,7 @@
 #include "gpu/timer.hpp"
 #include "shading/light_depth.hpp"
 #include "shading/lut.hpp"
+#include "shading/frame.hpp"
 #include "shading/mesh_pipeline.hpp"
 #include "shading/transmission_table.hpp"
 
@@ -21,11 +23,7 @@
 
 #include "jade_shaders.hpp"
 
-#include <glm/ext/matrix_clip_space.hpp>
-#include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
-#include <glm/trigonometric.hpp>
-#include <glm/mat4x4.hpp>
 
 #include <algorithm>
 #include <array>
@@ -33,7 +31,6 @@
 #include <cfloat>
 #include <cmath>
 #include <cstring>
-#include <map>
 #include <numbers>
 #include <optional>
 
@@ -49,22 +46,6 @@ using shading::Vertex;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 
 VkFormat color_format(const RenderSettings& s) { return s.float32 ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT; }
-
-float half_to_float(uint16_t h)
-{
-    const uint32_t sign = uint32_t(h >> 15) << 31, exponent = (h >> 10) & 0x1f, mantissa = h & 0x3ff;
-    uint32_t bits;
-    if (exponent == 0x1f) bits = sign | 0x7f800000u | (mantissa << 13);       // inf, NaN
-    else if (exponent != 0) bits = sign | ((exponent + 112) << 23) | (mantissa << 13);
-    else if (mantissa == 0) bits = sign;                                         // ±0
-    else {                                                                       // subnormal
-        float f = std::ldexp(float(mantissa), -24);
-        return sign ? -f : f;
-    }
-    float f;
-    std::memcpy(&f, &bits, 4);
-    return f;
-}
 
 }  // namespace
 
@@ -111,7 +92,7 @@ struct Renderer::Impl {
           nearest(gpu::make_sampler(c, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "light depth sampler")), lut(shading::shared_translucency_lut(c, o.lut)),
           placeholder(c, {"curvature LUT placeholder", 1, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_SAMPLED_BIT}),
           frame_data(c, sizeof(FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, "frame data"),
-          evaluation(shading::resolve_evaluation(o.tm_evaluation, device_type(c))), pipelines(c), transmission_table(c)
+          evaluation(shading::resolve_evaluation(o.tm_evaluation, c)), pipelines(c), transmission_table(c)
     {
         // Sampled-image descriptors need the image in its layout even if never read.
         c.submit_and_wait([&](VkCommandBuffer cmd) { placeholder.transition(cmd, gpu::use::kSampled); });
@@ -119,13 +100,6 @@ struct Renderer::Impl {
     ~Impl() { vkDeviceWaitIdle(ctx.device()); }
     Impl(const Impl&) = delete;
     Impl& operator=(const Impl&) = delete;
-
-    static VkPhysicalDeviceType device_type(const gpu::Context& c)
-    {
-        VkPhysicalDeviceProperties p;
-        vkGetPhysicalDeviceProperties(c.physical_device(), &p);
-        return p.deviceType;
-    }
 
     // The pipeline variant of a draw: only the t_m mode reads the channels, the evaluation path
     // and the transmitting lights; the Fourier terms follow the smallest t of the mesh.
@@ -147,44 +121,7 @@ struct Renderer::Impl {
     {
         if (!has_mesh) throw Error("Renderer: no mesh (call set_mesh first)");
         if (!material) throw Error("Renderer: no material (call set_material first)");
-        if (s.width == 0 || s.height == 0 || s.width > 16384 || s.height > 16384)
-            throw Error("render settings: size " + std::to_string(s.width) + "x" + std::to_string(s.height) +
-                        " is outside 1..16384");
-        if (uint32_t(s.mode) > 3) throw Error("render settings: unknown shading mode " + std::to_string(uint32_t(s.mode)));
-        if (lights.size() > kMaxLights)
-            throw Error("render: " + std::to_string(lights.size()) + " lights, at most " + std::to_string(kMaxLights));
-        for (size_t k = 0; k < lights.size(); ++k) {
-            const Light& l = lights[k];
-            bool ok = std::isfinite(l.vector.x + l.vector.y + l.vector.z) && std::isfinite(l.color.r + l.color.g + l.color.b) &&
-                      (l.type == Light::Type::Point || glm::length(l.vector) > 0.0f);
-            if (!ok) throw Error("render: light " + std::to_string(k) + " has a non-finite value or a zero direction");
-        }
-        const VkSampleCountFlags supported = ctx.limits().framebufferColorSampleCounts &
-                                             ctx.limits().framebufferDepthSampleCounts;
-        if ((s.samples != 1 && s.samples != 2 && s.samples != 4 && s.samples != 8) || !(supported & s.samples))
-            throw Error("render settings: " + std::to_string(s.samples) + " MSAA samples are not supported by " +
-                        ctx.info().name + " (supported mask " + std::to_string(supported) + ")");
-    }
-
-    FramePush push_constants(const Camera& cam, uint32_t width, uint32_t height, uint32_t light_count) const
-    {
-        const glm::vec3 back = cam.eye - cam.target;
-        if (!(glm::length(back) > 0.0f)) throw Error("camera: eye and target are the same point");
-        if (!(glm::length(glm::cross(cam.up, back)) > 1e-6f * glm::length(back) * glm::length(cam.up)))
-            throw Error("camera: up is zero or parallel to the view direction");
-        if (!(cam.fov_y_degrees > 0.0f && cam.fov_y_degrees < 180.0f))
-            throw Error("camera: fov " + std::to_string(cam.fov_y_degrees) + " degrees is outside (0, 180)");
-        // Near and far hug the mesh's bounding sphere; when the eye is inside it, near is a
-        // small fraction of far (D32 keeps enough precision at 1e-4).
-        const glm::vec3 centre = 0.5f * (bbox_min + bbox_max);
-        const float radius = std::max(0.5f * glm::length(bbox_max - bbox_min), 1e-30f) * 1.01f;
-        const float distance = glm::length(cam.eye - centre);
-        Camera fitted = cam;
-        if (!(cam.near_plane > 0.0f && cam.far_plane > cam.near_plane)) {
-            fitted.far_plane = distance + radius;
-            fitted.near_plane = std::max(distance - radius, fitted.far_plane * 1e-4f);
-        }
-        return {fitted.view_projection(float(width) / float(height)), cam.eye, light_count};
+        shading::check_settings(ctx, s, lights);
     }
 
     // The transmission variant is drawn only when it can add light: the material has the term,
@@ -224,16 +161,11 @@ struct Renderer::Impl {
         }
         for (size_t k = 0; k < lights.size() && out.lights.size() < shading::kMaxTransmitters; ++k)
             if (transmits(lights[k])) {
-                out.lights.push_back(gpu_light(lights[k], float(tiles[k])));
+                out.lights.push_back(shading::gpu_light(lights[k], float(tiles[k])));
                 out.index.push_back(uint32_t(k));
                 out.tiles = out.tiles || tiles[k] != 0;
             }
         return out;
-    }
-
-    static GpuLight gpu_light(const Light& l, float w)
-    {
-        return {glm::vec4(l.vector, l.type == Light::Type::Point ? 1.0f : 0.0f), glm::vec4(l.color, w)};
     }
 
     std::pair<float, float> false_color_range(const RenderSettings& s) const
@@ -284,7 +216,7 @@ struct Renderer::Impl {
         for (int i = 0; i < 9; ++i) d.color_map[i] = glm::vec4(false_color(float(i) / 8.0f), 1.0f);
         d.transmission_table_map = transmission_table.shader_map();
         std::copy(transmitting.lights.begin(), transmitting.lights.end(), d.transmitters);
-        for (size_t k = 0; k < lights.size(); ++k) d.lights[k] = gpu_light(lights[k], 0.0f);
+        for (size_t k = 0; k < lights.size(); ++k) d.lights[k] = shading::gpu_light(lights[k], 0.0f);
         return d;
     }
 
@@ -296,7 +228,7 @@ struct Renderer::Impl {
         if (t.width != s.width || t.height != s.height || !t.color || !t.depth || (s.samples > 1) != bool(t.resolve))
             throw Error("render target: size or views do not match the settings (" + std::to_string(s.width) + "x" +
                         std::to_string(s.height) + ", " + std::to_string(s.samples) + " samples)");
-        const FramePush push = push_constants(cam, s.width, s.height, uint32_t(lights.size()));
+        const FramePush push = shading::frame_push(cam, bbox_min, bbox_max, s.width, s.height, uint32_t(lights.size()));
         const gpu::Image& curvature =
             s.mode == ShadingMode::Curvature ? curvature_image() : curvature_lut ? curvature_lut->image() : placeholder;
         const Transmitting transmitting = record_transmission(cmd, cam, lights, s);
@@ -400,7 +332,7 @@ struct Renderer::Impl {
         if (s.float32) t.readback.download(img.rgba.data(), n * sizeof(float));
         else {
             std::vector<uint16_t> half = t.readback.read<uint16_t>(n);
-            for (size_t i = 0; i < n; ++i) img.rgba[i] = half_to_float(half[i]);
+            for (size_t i = 0; i < n; ++i) img.rgba[i] = shading::half_to_float(half[i]);
         }
         img.gpu_ms = timer->total_ms();
         if (s.tone_map != ToneMap::None || s.exposure != 1.0f) apply_tone_map(img, s.tone_map, s.exposure);
