@@ -19,7 +19,7 @@ layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec3 in_tm;
 layout(location = 3) in float in_curvature;
 layout(location = 4) in float in_thickness;
-layout(location = 5) in vec2 in_transmitter[kMaxTransmitters];  // path t, lobe
+layout(location = 5) in float in_lobe[kMaxTransmitters];
 
 layout(location = 0) out vec4 out_color;
 
@@ -76,7 +76,10 @@ vec4 shading_input(uint k)
     if (k == 0u) return vec4(in_position, 1.0);
     if (k == 1u) return vec4(in_normal, in_thickness);
     if (k == 2u) return vec4(in_tm, in_curvature);
-    return vec4(in_transmitter[0].x, in_transmitter[1].x, in_transmitter[2].x, in_transmitter[3].x);
+    vec4 path = vec4(0.0);
+    for (uint j = 0; j < kMaxTransmitters; ++j)
+        if (j < TRANSMISSION) path[j] = transmitter_path(j, in_position, in_thickness);
+    return path;
 }
 
 // Towards light `light` from this fragment, unit, and its irradiance here.
@@ -132,7 +135,7 @@ void main()
         for (uint k = 0; k < TRANSMISSION; ++k) {
             vec3 l, e;
             transmitter_at(k, in_position, l, e);
-            color += (in_transmitter[k].y * transmitter_follow(dot(n, l))) * attenuation_at(in_transmitter[k].x) * e;
+            color += (in_lobe[k] * transmitter_follow(dot(n, l))) * attenuation_at(transmitter_path(k, in_position, in_thickness)) * e;
         }
     out_color = vec4(color, 1.0);
 }

@@ -1,8 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // mesh.vert - passes the world-space attributes through, and evaluates what of the shading is
-// smooth over the surface and per vertex in nature: each transmitting light's path inside the
-// object and its forward lobe (transmission.glsl), once per vertex instead of once per fragment.
+// smooth over the surface and per vertex in nature: each transmitting light's forward lobe
+// (transmission.glsl), once per vertex instead of once per fragment.
 #include "shading.glsl"
 #include "transmission.glsl"
 
@@ -19,8 +19,8 @@ layout(location = 1) out vec3 out_normal;
 layout(location = 2) out vec3 out_tm;
 layout(location = 3) out float out_curvature;
 layout(location = 4) out float out_thickness;
-// Per transmitting light: the path t (transmitter_path) and the lobe (transmitter_lobe).
-layout(location = 5) out vec2 out_transmitter[kMaxTransmitters];
+// Per transmitting light: its forward lobe (transmitter_lobe).
+layout(location = 5) out float out_lobe[kMaxTransmitters];
 
 void main()
 {
@@ -30,8 +30,6 @@ void main()
     out_curvature = in_curvature;
     out_thickness = in_thickness;
     vec3 v = normalize(frame.eye - in_position);
-    for (uint k = 0; k < kMaxTransmitters; ++k)
-        out_transmitter[k] = k < TRANSMISSION ? vec2(transmitter_path(k, in_position, in_thickness), transmitter_lobe(k, in_position, v))
-                                              : vec2(0.0);
+    for (uint k = 0; k < kMaxTransmitters; ++k) out_lobe[k] = k < TRANSMISSION ? transmitter_lobe(k, in_position, v) : 0.0;
     gl_Position = frame.view_proj * vec4(in_position, 1.0);
 }

@@ -1,10 +1,11 @@
 // transmission.glsl - light from behind through the object (jade/material.hpp Transmission):
 //   A(t) · (n+1)/(2π) max(V·(−L), 0)^n · ((1 − m) + m max(−N·L, 0)) · E
-// with A the attenuation along the path t inside the object (attenuation.glsl). What is smooth
-// over the surface is per vertex in mesh.vert: the path t (the longer of the local thickness and
-// the path from where the light enters, from the light's depth tile) and the lobe factor; A(t)
-// is read per fragment from the table of transmission_table.comp at the interpolated t, since
-// t itself is not smooth where the body shadows a part from the light.
+// with A the attenuation along the path t inside the object (attenuation.glsl). The lobe is smooth
+// over the surface and per vertex (mesh.vert). The path t (the longer of the local thickness and
+// the path from where the light enters, from the light's depth tile) is per fragment: it is not
+// smooth where the body shadows a part from the light, and per vertex it lost a thumb tip's glow
+// on the coarse hand of tests/test_fidelity.cpp; A(t) is read from the table of
+// transmission_table.comp (one fetch, not nine exponentials).
 #ifndef JADE_TRANSMISSION_GLSL
 #define JADE_TRANSMISSION_GLSL
 

@@ -30,24 +30,33 @@ TransmissionTable::TransmissionTable(gpu::Context& ctx) : ctx_(ctx)
     view_ = gpu::TexelView(ctx, buffer_, VK_FORMAT_R32G32B32A32_UINT, 16, "transmission table");
 }
 
+TransmissionTable::Layout TransmissionTable::table_layout(const Transmission& tr)
+{
+    // The range: until every exponential with a non-zero rate is below e^{−14} (8e-7); the
+    // spacing: a step of 0.03 / (fastest rate), so that linear interpolation errs by at most
+    // 0.03²/8 ≈ 1e-4 of the weights (docs/shading.md). Rates are capped as the shader caps them.
+    double slowest = INFINITY, fastest = 0.0;
+    for (const glm::vec3& r : {tr.sigma_t, tr.sigma_tr, tr.sigma_s_reduced})
+        for (int c = 0; c < 3; ++c)
+            if (r[c] > 0.0f) slowest = std::min(slowest, double(std::min(r[c], 3e38f))), fastest = std::max(fastest, double(std::min(r[c], 3e38f)));
+    if (!std::isfinite(slowest)) slowest = fastest = 1.0;  // no decay at all: A is constant
+    const double range = 14.0 / slowest;
+    const uint32_t count = uint32_t(std::clamp(std::ceil(range * fastest / 0.03) + 1.0, 2.0, double(kMaxTexels)));
+    return {count, range / double(count - 1)};
+}
+
+uint64_t TransmissionTable::bytes(const Transmission& tr) { return tr.enabled() ? uint64_t(table_layout(tr).count) * 16 : 32; }
+
 void TransmissionTable::update(const Transmission& tr)
 {
     if (held_ && held_->sigma_t == tr.sigma_t && held_->sigma_tr == tr.sigma_tr && held_->sigma_s_reduced == tr.sigma_s_reduced &&
         held_->weight == tr.weight && held_->diffusion_weight == tr.diffusion_weight)
         return;
-    // The range: until every exponential with a non-zero rate is below e^{−14} (8e-7); the
-    // spacing: a step of 0.03 / (fastest rate), so that linear interpolation errs by at most
-    // 0.03²/8 ≈ 1e-4 of the weights (docs/shading.md). Rates are capped as the shader caps them.
+    const Layout layout = table_layout(tr);
+    const uint32_t count = layout.count;
+    const double step = layout.step;
     const glm::vec3 rates[] = {glm::min(tr.sigma_t, glm::vec3(3e38f)), glm::min(tr.sigma_tr, glm::vec3(3e38f)),
                                glm::min(tr.sigma_s_reduced, glm::vec3(3e38f))};
-    double slowest = INFINITY, fastest = 0.0;
-    for (const glm::vec3& r : rates)
-        for (int c = 0; c < 3; ++c)
-            if (r[c] > 0.0f) slowest = std::min(slowest, double(r[c])), fastest = std::max(fastest, double(r[c]));
-    if (!std::isfinite(slowest)) slowest = fastest = 1.0;  // no decay at all: A is constant
-    const double range = 14.0 / slowest;
-    const uint32_t count = uint32_t(std::clamp(std::ceil(range * fastest / 0.03) + 1.0, 2.0, double(kMaxTexels)));
-    const double step = range / double(count - 1);
     if (buffer_.size() < VkDeviceSize(count) * 16) {
         view_ = {};
         buffer_ = gpu::Buffer(ctx_, VkDeviceSize(count) * 16,

@@ -24,11 +24,20 @@ public:
     /// sure no draw reading the table is in flight (Renderer::set_material waits for the device).
     void update(const Transmission& tr);
 
+    /// The device bytes the table holds for a material with `tr` (for scene plans).
+    static uint64_t bytes(const Transmission& tr);
+
     /// What attenuation_at() indexes with: x = 1/step (per mesh unit), y = last texel, z = last interval.
     glm::vec4 shader_map() const { return map_; }
     const gpu::TexelView& texels() const { return view_; }
 
 private:
+    struct Layout {
+        uint32_t count;  // texels
+        double step;     // mesh units between them
+    };
+    static Layout table_layout(const Transmission& tr);
+
     gpu::Context& ctx_;
     std::optional<gpu::Kernel> kernel_;
     gpu::Buffer buffer_;
