@@ -1,7 +1,12 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// mesh.vert - passes the world-space attributes through; the shading is all per fragment.
+// mesh.vert - passes the world-space attributes through, and evaluates what of the shading is
+// smooth over the surface and per vertex in nature: each transmitting light's forward lobe
+// (transmission.glsl), once per vertex instead of once per fragment.
 #include "shading.glsl"
+#include "transmission.glsl"
+
+layout(constant_id = 0) const uint MODE = 2;  // as mesh.frag; kInputs and above: the inputs pass
 
 layout(location = 0) in vec3 in_position;   // mesh units
 layout(location = 1) in vec3 in_normal;     // unit, outward
@@ -16,8 +21,10 @@ layout(location = 1) out vec3 out_normal;
 layout(location = 2) out vec3 out_tm;
 layout(location = 3) out float out_curvature;
 layout(location = 4) out float out_thickness;
-layout(location = 5) out vec3 out_scattering_normal;
-layout(location = 6) out vec3 out_normal_spread;
+// Per transmitting light: its forward lobe (transmitter_lobe).
+layout(location = 5) out float out_lobe[kMaxTransmitters];
+layout(location = 9) out vec3 out_scattering_normal;
+layout(location = 10) out vec3 out_normal_spread;
 
 void main()
 {
@@ -28,5 +35,7 @@ void main()
     out_thickness = in_thickness;
     out_scattering_normal = in_scattering_normal;
     out_normal_spread = in_normal_spread;
+    vec3 v = normalize(frame.eye - in_position);
+    for (uint k = 0; k < kMaxTransmitters; ++k) out_lobe[k] = k < TRANSMISSION ? transmitter_lobe(k, in_position, v) : 0.0;
     gl_Position = frame.view_proj * vec4(in_position, 1.0);
 }

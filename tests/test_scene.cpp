@@ -347,8 +347,9 @@ TEST_F(SceneGpuTest, OpaqueObjectAllocatesNoTmBuffers)
     EXPECT_TRUE(renderer.passes_run().empty());
     EXPECT_TRUE(renderer.tm(0).empty());
     EXPECT_EQ(c1.compute_pipelines - c0.compute_pipelines, 1u);  // the Renderer's LUT builder only
-    // vertices, indices, frame data, LUT quads (device-local) and the LUT build's read-back (host-visible)
-    EXPECT_EQ(c1.buffers - c0.buffers, 5u);
+    // vertices, indices, frame data, LUT quads, transmission table (device-local), the LUT build's
+    // read-back and the 16-bit LUT's upload (host-visible)
+    EXPECT_EQ(c1.buffers - c0.buffers, 7u);
     EXPECT_EQ(c1.device_buffer_bytes - c0.device_buffer_bytes, plan.objects[0].passes[0].buffer_bytes() + plan.shared_buffer_bytes());
     EXPECT_EQ(plan.objects[0].variant.mode, ShadingMode::Lambert);
 }
@@ -513,7 +514,8 @@ TEST(SceneCli, BenchRenderSceneComparesCachedWithNeverBaked)
                        "--quality", "draft"});
     ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("1 static bakes were missing and ran now"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("created 1 compute pipelines (2 objects"), std::string::npos) << r.output;  // the shared LUT's builder
+    // The shared LUT's builder and the one transmitting object's attenuation table.
+    EXPECT_NE(r.output.find("created 2 compute pipelines (2 objects"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("cached / never baked: GPU"), std::string::npos) << r.output;
 }
 

@@ -151,8 +151,8 @@ int bench_render_scene(const Args& args)
     SceneRenderer cached(*ctx, scene, settings, cached_bakes(cache));
     const ObjectCounts after = ctx->created_objects();
     SceneRenderer unbaked(*ctx, scene, settings, never_baked());
-    std::printf("cached scene set-up created %llu compute pipelines (%zu objects: the one shared LUT's builder, no bake "
-                "kernel) and %llu buffers (%.2f MiB device-local: the draws' only)\n",
+    std::printf("cached scene set-up created %llu compute pipelines (%zu objects: the one shared LUT's builder and each "
+                "transmitting object's attenuation table, no bake kernel) and %llu buffers (%.2f MiB device-local: the draws' only)\n",
                 (unsigned long long)(after.compute_pipelines - before.compute_pipelines), scene.objects.size(),
                 (unsigned long long)(after.buffers - before.buffers),
                 double(after.device_buffer_bytes - before.device_buffer_bytes) / double(1u << 20));

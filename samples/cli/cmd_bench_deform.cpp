@@ -124,7 +124,10 @@ int cmd_bench_deform(int argc, char** argv)
     }
     const std::vector<uint32_t> slices = parse_slices(args);
     std::vector<std::string> meshes = args.positional();
-    if (meshes.empty()) meshes = {"bunny", "assets/ChineseDragon-10kv.off"};
+    if (meshes.empty()) {
+        const std::filesystem::path dragon = find_asset("ChineseDragon-10kv.off");
+        meshes = {"bunny", dragon.empty() ? std::string("assets/ChineseDragon-10kv.off") : dragon.string()};
+    }
     auto ctx = make_context(args);
     std::printf("jade bench deform on %s\n", ctx->device_info().name.c_str());
     for (const auto& path : meshes) bench_mesh(args, *ctx, path, slices);

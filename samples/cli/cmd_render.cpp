@@ -19,6 +19,11 @@
 namespace jade::cli {
 namespace {
 
+OptionSpec eval_option()
+{
+    return {"eval", "PATH", "how tm evaluates the translucency: auto (by the device) | alu | lut | lut16 (docs/shading.md)"};
+}
+
 std::vector<OptionSpec> render_options()
 {
     return {{"mode", "M", "lambert | curvature | tm | tm-false-color (default tm)"},
@@ -31,11 +36,23 @@ std::vector<OptionSpec> render_options()
             {"frame", "", "move the eye so the mesh fills the view, seen from --eye's direction (default +z)"},
             {"light", "SPEC", "dir:X,Y,Z:R,G,B (towards the light, irradiance) or point:X,Y,Z:R,G,B "
                               "(position, intensity); repeatable; replaces --lights"},
-            {"lights", "PRESET", "default (key upper front-left + fill) | figure1 (back light: ears glow)"},
+            {"lights", "PRESET", "default (key upper front-left + fill) | figure1 (back light: ears glow) | back (key + back light)"},
             {"tonemap", "", "tone map with the ACES fit (default: linear HDR, clipped by the PNG)"},
             {"tonemap-curve", "C", "aces | reinhard (with --tonemap)"},
             {"exposure", "X", "scale the linear colour before tone mapping (default 1)"},
-            {"samples", "N", "MSAA samples 1, 2, 4, 8 (default 4)"}};
+            {"samples", "N", "MSAA samples 1, 2, 4, 8 (default 4)"},
+            eval_option()};
+}
+
+RendererOptions renderer_options(const Args& args)
+{
+    RendererOptions o;
+    try {
+        o.tm_evaluation = parse_tm_evaluation(args.get_or("eval", "auto"));
+    } catch (const Error& e) {
+        args.fail(std::string("--eval: ") + e.what());
+    }
+    return o;
 }
 
 std::pair<uint32_t, uint32_t> parse_size(const Args& args, const std::string& fallback)
@@ -89,15 +106,20 @@ Camera camera_from_args(const Args& args, const PreparedMesh& mesh, float aspect
     return c;
 }
 
+std::vector<Light> preset_lights(const Args& args, const Camera& camera)
+{
+    const std::string preset = args.get_or("lights", "default");
+    if (preset == "figure1") return figure1_lights(camera);
+    if (preset == "back") return back_lights(camera);
+    if (preset != "default") args.fail("--lights: '" + preset + "' is not one of default, figure1, back");
+    return default_lights(camera);
+}
+
 std::vector<Light> lights_from_args(const Args& args, const Camera& camera)
 {
     std::vector<Light> lights;
     for (const auto& spec : args.all("light")) lights.push_back(parse_light(args, spec));
-    if (!lights.empty()) return lights;
-    std::string preset = args.get_or("lights", "default");
-    if (preset == "figure1") return figure1_lights(camera);
-    if (preset != "default") args.fail("--lights: '" + preset + "' is not one of default, figure1");
-    return default_lights(camera);
+    return lights.empty() ? preset_lights(args, camera) : lights;
 }
 
 // The mesh with its t_m per bake vertex: read from a baked file, or baked now (only for the
@@ -189,7 +211,7 @@ int cmd_render(int argc, char** argv)
     Camera camera = camera_from_args(args, scene.prepared, float(settings.width) / float(settings.height));
     std::vector<Light> lights = lights_from_args(args, camera);
 
-    Renderer renderer(*ctx);
+    Renderer renderer(*ctx, renderer_options(args));
     set_scene(renderer, scene);
     RenderedImage image = renderer.render(camera, lights, settings);
     save_image(out, int(image.width), int(image.height), image.rgba);
@@ -205,7 +227,7 @@ int cmd_figure1(int argc, char** argv)
                                     {{"out", "FILE", "output image (default figure1.png)"},
                                      {"size", "WxH", "size of each of the four panels (default 512x512)"},
                                      {"mesh", "MESH", "mesh or baked .glb (default: the Stanford bunny)"},
-                                     {"tonemap", "", "tone map the shaded panels with the ACES fit"}}});
+                                     {"tonemap", "", "tone map the shaded panels with the ACES fit"}, eval_option()}});
     Args first("figure1", specs, argc, argv, 2);
     if (first.flag("help")) {
         std::printf("usage: jade figure1 [options]\n\nThe poster's Figure 1: the bunny made of blue jewel under a back "
@@ -228,7 +250,7 @@ int cmd_figure1(int argc, char** argv)
     Scene scene = load_scene(args, *ctx, args.get_or("mesh", "bunny"), true);
     Camera camera = Camera::framing(scene.prepared.bbox_min, scene.prepared.bbox_max, float(w) / float(h));
     std::vector<Light> lights = figure1_lights(camera);
-    Renderer renderer(*ctx);
+    Renderer renderer(*ctx, renderer_options(args));
     set_scene(renderer, scene);
 
     const int scale = std::max(1, int(h) / 160);
@@ -270,9 +292,10 @@ int cmd_bench_render(int argc, char** argv)
     Args args("bench render", all_options({device_options(), material_options(), bake_options(),
                                            {{"repeat", "N", "frame pairs (lambert, tm) per size, alternating (default 30)"},
                                             {"samples", "N", "MSAA samples 1, 2, 4, 8 (default 4, as jade render)"},
-                                            {"lights", "PRESET", "default (front key + fill) | figure1 (back light: tm "
-                                                                 "draws the transmission term too)"},
-                                            {"sizes", "N,N", "square image sizes (default 512,1024)"}}}),
+                                            {"lights", "PRESET", "default (front key + fill) | figure1 (back light, front key, "
+                                                                 "fill) | back (front key + back light): with a back light tm "
+                                                                 "draws the transmission term too"},
+                                            {"sizes", "N,N", "square image sizes (default 512,1024)"}, eval_option()}}),
               argc, argv, 3);
     if (args.flag("help")) {
         std::printf("usage: jade bench render [MESH] [options]\n\nFrame time of tm against lambert shading at 512x512 and "
@@ -296,20 +319,18 @@ int cmd_bench_render(int argc, char** argv)
     auto ctx = make_context(args);
     Scene scene = load_scene(args, *ctx, args.positional().empty() ? "bunny" : args.positional()[0], true);
     Camera camera = Camera::framing(scene.prepared.bbox_min, scene.prepared.bbox_max);
-    const std::string rig = args.get_or("lights", "default");
-    if (rig != "default" && rig != "figure1") args.fail("--lights: '" + rig + "' is not default or figure1");
-    std::vector<Light> lights = rig == "figure1" ? figure1_lights(camera) : default_lights(camera);
-    Renderer renderer(*ctx);
+    const std::vector<Light> lights = preset_lights(args, camera);
+    Renderer renderer(*ctx, renderer_options(args));
     set_scene(renderer, scene);
-    std::printf("mesh %s: %zu vertices, %zu triangles; material %s (%s; transmission %s); device %s\n",
+    const bool thickness = !scene.thickness.empty() || !scene.mesh.baked_thickness.empty();
+    std::printf("mesh %s: %zu vertices, %zu triangles; material %s (%s; transmission %s); tm evaluation %s; device %s\n",
                 scene.mesh.name.c_str(), scene.prepared.vertex_count(), scene.prepared.triangle_count(),
-                scene.material.name.c_str(), scene.material.grey() ? "grey: 1 LUT fetch" : "RGB: 3 LUT fetches",
-                !scene.material.transmission.enabled() || scene.thickness.empty() ? "off"
-                : rig == "figure1" ? "drawn: a light is behind" : "skipped: no light behind",
-                ctx->device_info().name.c_str());
-    std::printf("same camera, %zu default lights, %ux MSAA, RGBA16F target, specular on in both modes; %u frame pairs "
+                scene.material.name.c_str(), scene.material.grey() ? "grey: 1 channel" : "RGB: 3 channels",
+                !scene.material.transmission.enabled() || !thickness ? "off" : "on where a light is behind",
+                std::string(tm_evaluation_name(renderer.tm_evaluation())).c_str(), ctx->device_info().name.c_str());
+    std::printf("same camera, %zu lights (%s), %ux MSAA, RGBA16F target, specular on in both modes; %u frame pairs "
                 "per size after 2 warm-up pairs\n",
-                lights.size(), samples, repeat);
+                lights.size(), args.get_or("lights", "default").c_str(), samples, repeat);
     std::printf("%-10s %-8s %12s %12s %12s %12s\n", "size", "mode", "GPU median", "GPU min", "wall median", "wall min");
     // The machine may be shared: each iteration renders both modes back to back (in
     // alternating order, so neither always runs second) and the ratio is taken per pair, so

@@ -44,6 +44,9 @@ BakeSettings bake_settings_from_args(const Args& args);
 /// The built-in default scene when `path` is empty or "bunny": the Stanford bunny if
 /// assets/ has it, else a procedural sphere.
 TriangleMesh load_mesh_arg(const std::string& path);
+/// A file of the test meshes (third_party/fetch_assets.sh) by name, from $JADE_ASSETS, ./assets or
+/// the source tree's assets/, whatever the working directory; empty when none has it.
+std::filesystem::path find_asset(const std::string& name);
 
 /// Checks an output file named by --FLAG before any work is done (a bake must not run for
 /// nothing): the extension is one of `extensions` (lower case, with the dot; else a usage

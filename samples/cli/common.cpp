@@ -149,14 +149,31 @@ BakeSettings bake_settings_from_args(const Args& args)
     return s;
 }
 
+std::filesystem::path find_asset(const std::string& name)
+{
+    namespace fs = std::filesystem;
+    // Wherever jade runs from: $JADE_ASSETS, the working directory's assets/, then the source
+    // tree's (next to the executable's build tree, build/samples/cli/jade, or where it was
+    // configured from).
+    std::vector<fs::path> folders;
+    if (const char* assets = std::getenv("JADE_ASSETS")) folders.emplace_back(assets);
+    folders.emplace_back("assets");
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    if (!ec) folders.push_back(exe.parent_path() / "../../../assets");
+    folders.emplace_back(JADE_CLI_SOURCE_ASSETS);
+    for (const fs::path& folder : folders)
+        if (fs::is_regular_file(folder / name, ec)) return (folder / name).lexically_normal();
+    return {};
+}
+
 TriangleMesh load_mesh_arg(const std::string& path)
 {
     if (!path.empty() && path != "bunny") return load_mesh(path);
-    const char* assets = std::getenv("JADE_ASSETS");
-    std::filesystem::path bunny = std::filesystem::path(assets ? assets : "assets") / "bunny00.off";
-    if (std::filesystem::exists(bunny)) return load_mesh(bunny);
-    std::fprintf(stderr, "jade: %s not found (run third_party/fetch_assets.sh); using a procedural sphere\n",
-                 bunny.string().c_str());
+    const std::filesystem::path bunny = find_asset("bunny00.off");
+    if (!bunny.empty()) return load_mesh(bunny);
+    std::fprintf(stderr, "jade: bunny00.off not found in $JADE_ASSETS, ./assets or %s (run third_party/fetch_assets.sh); "
+                 "using a procedural sphere\n", JADE_CLI_SOURCE_ASSETS);
     return procedural::sphere(1.0f, 64, 128);
 }
 

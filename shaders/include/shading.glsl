@@ -15,12 +15,19 @@ layout(push_constant, scalar) uniform FramePush {
 
 struct GpuLight {
     vec4 vector;        // xyz: towards the light (w = 0) or its position (w = 1)
-    vec4 color;         // rgb: irradiance (directional) or intensity (point); w: light-depth tile + 1, 0 none
+    vec4 color;         // rgb: irradiance (directional) or intensity (point); w unused
 };
 
 const uint kColorMapStops = 9;
 
-layout(binding = 0, scalar) readonly buffer FrameData {
+// Shading modes (specialisation constant MODE of both stages, jade::ShadingMode), and the
+// inputs pass: MODE = kInputs + k writes the k-th vec4 of the rasterised shading inputs
+// (Renderer::shading_inputs) instead of shading.
+const uint kLambert = 0, kCurvature = 1, kTm = 2, kFalseColor = 3, kInputs = 4;
+
+const uint kMaxLights = 64;  // renderer.cpp: kMaxLights
+
+layout(binding = 0, scalar) uniform FrameData {
     vec4 albedo_strength;   // k_d (linear RGB), strength (variance per unit t_m)
     vec4 specular;          // F0, α = roughness², weight; Material::spread_strength (rad² per unit normal spread)
     vec4 lut_map;           // translucency LUT quads: column cos θ·x + x, x = (W−1)/2; y = W − 1 quads a row;
@@ -32,9 +39,11 @@ layout(binding = 0, scalar) readonly buffer FrameData {
     vec4 transmission_scatter;    // σ_s' (1/mesh unit), unused
     vec4 transmission_shape; // lobe exponent n, (n + 1)/(2π), normal_mix, 1: diffuse × boundary transmittance
     vec4 light_depth_map;   // light-depth tile size (texels), tiles in the atlas, depth range (mesh units), unused
-    mat4 light_depth[4];    // world → light clip space of each tile (shading/light_depth.hpp)
+    mat4 light_depth[4];    // world → light clip space of each transmitter's tile (shading/light_depth.hpp)
     vec4 color_map[kColorMapStops];  // false-colour stops, linear RGB
-    GpuLight lights[];
+    vec4 transmission_table_map;  // 1 / step of the attenuation table (mesh units), last texel, last interval
+    GpuLight transmitters[4];  // the lights drawn with transmission (transmission.glsl); color.w: depth tile, 0 none
+    GpuLight lights[kMaxLights];
 } data;
 
 #endif

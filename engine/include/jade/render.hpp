@@ -102,6 +102,9 @@ std::vector<Light> default_lights(const Camera& camera);
 /// the left (E = 6), a dim front key from the upper left (E = 0.6) and a faint fill (0.15):
 /// with t_m shading, light from behind wraps around and thin parts such as the ears glow.
 std::vector<Light> figure1_lights(const Camera& camera);
+/// Two lights, one behind the object: the key of default_lights (E = 2.5) and the back light of
+/// figure1_lights (E = 6), so that the transmission term is drawn (`jade bench render --lights back`).
+std::vector<Light> back_lights(const Camera& camera);
 
 /// An RGBA float image, rows top to bottom, 4 floats per pixel.
 struct RenderedImage {
@@ -152,9 +155,24 @@ struct LutLayout {
     double y(double t) const;
 };
 
+/// How the Tm mode evaluates F(cos θ, t) (docs/shading.md: costs, errors, the rule of Auto).
+/// Every path keeps the final 8-bit sRGB image within 0.5 of a level (99th percentile) and 1
+/// level (max) of a float64 evaluation of the same shading (tests/test_shading_error.cpp).
+enum class TmEvaluation : uint32_t {
+    Auto = 0,      ///< by the device: Alu on a CPU device (lavapipe), LutFiltered on any other
+    Lut = 1,       ///< the LUT as RGBA32F quads in a texel buffer, bilinear in the shader, 1 fetch a read
+    LutFiltered = 2,  ///< the LUT in R16_UNORM, one hardware-filtered sample a read (texture units)
+    Alu = 3,       ///< no memory read: Fourier series in cos θ and a closed form for small t
+};
+/// "auto", "lut", "lut16", "alu".
+std::string_view tm_evaluation_name(TmEvaluation evaluation);
+/// The inverse of tm_evaluation_name; throws jade::Error listing the names.
+TmEvaluation parse_tm_evaluation(std::string_view name);
+
 /// Fixed at Renderer construction: LUT sizes (GPU memory: width × height × 4 bytes each).
 struct RendererOptions {
     LutLayout lut;                                      ///< translucency LUT size (odd width, ≥ 3 × 2)
+    TmEvaluation tm_evaluation = TmEvaluation::Auto;    ///< Renderer::tm_evaluation() says what Auto chose
     uint32_t curvature_lut_width = 129, curvature_lut_height = 64;
     /// Mean curvature smoothing: iterations of 1-ring averaging after the cotangent Laplacian.
     uint32_t curvature_smoothing = 2;
@@ -183,11 +201,25 @@ struct RenderTarget {
     bool keep = false;
 };
 
+/// What the Tm shading of each pixel reads, as rasterised with one sample per pixel at its
+/// centre (Renderer::shading_inputs): to check the shader against an independent evaluation.
+/// Per pixel, rows top to bottom; `path` is light-major (light k's pixel p at k·w·h + p).
+struct ShadingInputs {
+    uint32_t width = 0, height = 0;
+    std::vector<glm::vec4> position;  ///< xyz: mesh units; w: 1 where the mesh covers the pixel, 0 elsewhere
+    std::vector<glm::vec4> normal;    ///< xyz: interpolated vertex normal (not unit); w: thickness
+    std::vector<glm::vec4> tm;        ///< rgb: interpolated t_m; w: curvature
+    std::vector<glm::vec4> scattering_normal;  ///< xyz: interpolated scattering normal (not unit); w: 0
+    std::vector<glm::vec4> normal_spread;      ///< rgb: interpolated normal spread; w: 0
+    std::vector<float> path;          ///< the path t (mesh units) of each transmitting light's attenuation
+    std::vector<uint8_t> transmits;   ///< per light: 1 when the draw adds its transmission
+};
+
 /// What the renderer keeps per vertex (position, normal, t_m, curvature, thickness, scattering
-/// normal, normal spread: floats) and its per-draw constants with 64 lights, in bytes: for memory plans
-/// (jade/scene.hpp).
+/// normal, normal spread: floats) and its per-draw constants with 64 lights, in bytes: for
+/// memory plans (jade/scene.hpp).
 inline constexpr uint64_t kRendererVertexBytes = 68;
-inline constexpr uint64_t kRendererFrameDataBytes = 2608;
+inline constexpr uint64_t kRendererFrameDataBytes = 2752;
 
 /// Draws one mesh with one material. Owns its GPU buffers, LUT images and pipelines (created
 /// lazily per mode, sample count and format). Threading and lifetime as in the header comment.
@@ -263,6 +295,12 @@ public:
     /// destructor wait for the device to be idle before they release anything.
     void record(VkCommandBuffer cmd, const RenderTarget& target, const Camera& camera, std::span<const Light> lights,
                 const RenderSettings& settings);
+
+    /// The per-pixel inputs of the draw render(camera, lights, settings) would make, with one
+    /// sample per pixel (settings.samples is ignored): see ShadingInputs. Submits and waits.
+    ShadingInputs shading_inputs(const Camera& camera, std::span<const Light> lights, const RenderSettings& settings);
+    /// The path RendererOptions::tm_evaluation resolved to on this device (never Auto).
+    TmEvaluation tm_evaluation() const;
 
     const LutLayout& lut_layout() const;  ///< as given in RendererOptions
     /// The translucency LUT as the GPU built it, width × height floats, row j = variance(j).

@@ -12,6 +12,7 @@
 //     (sources within 4 disk radii: π·(4·0.56 h)² / (0.87 h²) ≈ 18 neighbours at spacing h),
 //     times margin² for the dynamic bake's 1.5× margin.
 // Images (the LUTs) are listed but are not buffers; host-visible staging is not counted.
+#include "shading/transmission_table.hpp"
 #include <jade/scene.hpp>
 
 #include "bake/gpu_profile.hpp"
@@ -109,11 +110,12 @@ std::vector<BufferEstimate> deform_buffers(size_t n, size_t tris)
 }
 
 // shading/renderer.cpp: what one Renderer holds of its own while it draws.
-std::vector<BufferEstimate> draw_buffers(size_t n, size_t tris)
+std::vector<BufferEstimate> draw_buffers(size_t n, size_t tris, const Material& material)
 {
     return {{"mesh vertices", at_least_16(double(kRendererVertexBytes) * n)},
             {"mesh indices", at_least_16(12.0 * tris)},
             {"frame data", kRendererFrameDataBytes},
+            {"transmission table", shading::TransmissionTable::bytes(material.transmission)},
             {"curvature LUT placeholder (image)", 16, true}};
 }
 
@@ -122,7 +124,8 @@ std::vector<BufferEstimate> shared_buffers(const RendererOptions& o)
 {
     const LutLayout& l = o.lut;
     return {{"translucency LUT quads", at_least_16(16.0 * (l.width - 1) * (l.height - 1))},
-            {"translucency LUT (image)", uint64_t(l.width) * l.height * 4, true}};
+            {"translucency LUT (image)", uint64_t(l.width) * l.height * 4, true},
+            {"translucency LUT, 16 bit (image)", uint64_t(l.width) * l.height * 2, true}};
 }
 
 std::string bytes_text(uint64_t b)
@@ -296,7 +299,7 @@ ScenePlan plan_scene(const Scene& scene, const SceneSettings& settings, const St
                 else o.passes.push_back({PassKind::StaticBake, false, false, bake_buffers(prepared, obj.material, settings.bake, false, obj.material.transmission.enabled())});
             }
         }
-        o.passes.push_back({PassKind::Draw, true, true, draw_buffers(n, tris)});
+        o.passes.push_back({PassKind::Draw, true, true, draw_buffers(n, tris, obj.material)});
         plan.objects.push_back(std::move(o));
     }
     if (!plan.objects.empty()) plan.shared = shared_buffers(settings.renderer);

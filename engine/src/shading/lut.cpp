@@ -106,6 +106,22 @@ TranslucencyLut::TranslucencyLut(gpu::Context& ctx, const LutLayout& layout) : l
         }
     quads_ = gpu::Buffer::from(ctx, quads, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, "translucency LUT quads");
     quads_view_ = gpu::TexelView(ctx, quads_, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "translucency LUT quads");
+
+    // The same texels in 16 bits for the sampler (TmEvaluation::LutFiltered): f ∈ [0, 1], so
+    // UNORM steps of 1.5e-5, a tenth of what the image budget allows (docs/shading.md).
+    require_format(ctx, VK_FORMAT_R16_UNORM, VK_FORMAT_FEATURE_TRANSFER_DST_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT,
+                   "translucency LUT (16 bit)");
+    std::vector<uint16_t> unorm(f.size());
+    for (size_t i = 0; i < f.size(); ++i) unorm[i] = uint16_t(std::lround(std::clamp(f[i], 0.0f, 1.0f) * 65535.0f));
+    gpu::Buffer staging(ctx, unorm.size() * sizeof(uint16_t), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, "translucency LUT upload", true);
+    staging.upload(unorm.data(), unorm.size() * sizeof(uint16_t));
+    filtered_ = gpu::Image(ctx, {"translucency LUT (16 bit)", W, H, VK_FORMAT_R16_UNORM,
+                                 VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
+    ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+        filtered_.transition(cmd, gpu::use::kTransferDst);
+        filtered_.copy_from_buffer(cmd, staging.handle());
+        filtered_.transition(cmd, gpu::use::kSampled);
+    });
 }
 
 glm::vec4 TranslucencyLut::shader_map() const

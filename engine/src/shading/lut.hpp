@@ -4,7 +4,8 @@
 //                    shaders/lut_build.comp (parameterisation: jade::LutLayout); mesh.frag
 //                    reads the same texels repacked as one RGBA32F "quad" per cell (the 2×2
 //                    texels around it) from a uniform texel buffer and interpolates them
-//                    bilinearly itself (docs/shading.md says why not the sampler).
+//                    bilinearly itself (docs/shading.md says why not the sampler on lavapipe),
+//                    and the same texels in R16_UNORM for the sampler of a GPU.
 //   CurvatureLut     D_c(cos θ, κ) per colour channel, RGBA32F (A = 1), built on the CPU in
 //                    float64 with jade::curvature_lut_reference and uploaded.
 // The curvature LUT is sampled with linear filtering and clamp-to-edge (make_lut_sampler). Both
@@ -43,6 +44,8 @@ public:
     /// The quads: (W − 1) × (H − 1) RGBA32F texels; cell (i, j), at index j·(W − 1) + i, holds
     /// image texels (i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1).
     const gpu::TexelView& quads() const { return quads_view_; }
+    /// The same texels as R16_UNORM, for a linearly filtering sampler (TmEvaluation::LutFiltered).
+    const gpu::Image& filtered() const { return filtered_; }
     /// What mesh.frag indexes the quads with: column x = cos θ·m.x + m.x ∈ [0, W − 1],
     /// m.y = W − 1 quads a row, row y = (t/t_max)^¼·m.z ∈ [0, H − 1], m.w = H − 2 the last.
     glm::vec4 shader_map() const;
@@ -54,6 +57,7 @@ private:
     gpu::Image image_;
     gpu::Buffer quads_;
     gpu::TexelView quads_view_;  // destroyed before quads_
+    gpu::Image filtered_;
 };
 
 /// The translucency LUT of `layout` on `ctx`'s device, shared by every Renderer of that device

@@ -3,8 +3,9 @@
 //
 // Per draw the GPU sees: the vertex buffer {position, normal, t_m, curvature, thickness} (44
 // bytes a vertex), the index buffer, push constants {view-projection, eye, light count}, and one
-// storage buffer FrameData {material, LUT mappings, colour map, lights} written with
-// vkCmdUpdateBuffer inside the command buffer (so record() needs no per-frame buffers).
+// uniform buffer FrameData {material, LUT mappings, colour map, lights, transmitters} written
+// with vkCmdUpdateBuffer inside the command buffer (so record() needs no per-frame buffers).
+// Pipeline variants and their rules: mesh_pipeline.hpp; per-draw checks: frame.hpp.
 #include "gpu/buffer.hpp"
 #include "gpu/context.hpp"
 #include "gpu/image.hpp"
@@ -13,6 +14,9 @@
 #include "gpu/timer.hpp"
 #include "shading/light_depth.hpp"
 #include "shading/lut.hpp"
+#include "shading/frame.hpp"
+#include "shading/mesh_pipeline.hpp"
+#include "shading/transmission_table.hpp"
 
 #include <jade/bake.hpp>
 #include <jade/context.hpp>
@@ -20,11 +24,7 @@
 
 #include "jade_shaders.hpp"
 
-#include <glm/ext/matrix_clip_space.hpp>
-#include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
-#include <glm/trigonometric.hpp>
-#include <glm/mat4x4.hpp>
 
 #include <algorithm>
 #include <array>
@@ -32,7 +32,6 @@
 #include <cfloat>
 #include <cmath>
 #include <cstring>
-#include <map>
 #include <numbers>
 #include <optional>
 
@@ -40,52 +39,14 @@ namespace jade {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr uint32_t kMaxLights = 64;
+using shading::FrameData;
+using shading::FramePush;
+using shading::GpuLight;
+using shading::kMaxLights;
+using shading::Vertex;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 
-// Mirrors of shaders/include/shading.glsl.
-struct FramePush {
-    glm::mat4 view_proj;
-    glm::vec3 eye;
-    uint32_t light_count;
-};
-struct GpuLight {
-    glm::vec4 vector, color;
-};
-struct FrameData {
-    glm::vec4 albedo_strength, specular, lut_map, curvature_map, params;
-    glm::vec4 transmission, transmission_diffusion, transmission_scatter, transmission_shape, light_depth_map;
-    glm::mat4 light_depth[shading::LightDepth::kMaxLights];
-    glm::vec4 color_map[9];
-    GpuLight lights[kMaxLights];
-};
-static_assert(sizeof(FramePush) == 80 && sizeof(GpuLight) == 32);
-
-struct Vertex {
-    glm::vec3 position, normal, tm;
-    float curvature, thickness;
-    glm::vec3 scattering_normal;  // BakeResult::scattering_normal: what the translucent diffuse term is lit along
-    glm::vec3 normal_spread;      // BakeResult::normal_spread, per channel
-};
-static_assert(sizeof(Vertex) == kRendererVertexBytes && sizeof(FrameData) == kRendererFrameDataBytes);
-
 VkFormat color_format(const RenderSettings& s) { return s.float32 ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT; }
-
-float half_to_float(uint16_t h)
-{
-    const uint32_t sign = uint32_t(h >> 15) << 31, exponent = (h >> 10) & 0x1f, mantissa = h & 0x3ff;
-    uint32_t bits;
-    if (exponent == 0x1f) bits = sign | 0x7f800000u | (mantissa << 13);       // inf, NaN
-    else if (exponent != 0) bits = sign | ((exponent + 112) << 23) | (mantissa << 13);
-    else if (mantissa == 0) bits = sign;                                         // ±0
-    else {                                                                       // subnormal
-        float f = std::ldexp(float(mantissa), -24);
-        return sign ? -f : f;
-    }
-    float f;
-    std::memcpy(&f, &bits, 4);
-    return f;
-}
 
 }  // namespace
 
@@ -107,13 +68,16 @@ struct Renderer::Impl {
     glm::vec3 bbox_min{0.0f}, bbox_max{0.0f};
     std::vector<float> curvature;
     float tm_min_mean = 0.0f, tm_max_mean = 0.0f;  // range of mean(t_m) over the vertices
+    glm::vec3 tm_min{0.0f};  // per channel over the vertices; 0 after record_vertex_update (not known)
     bool has_mesh = false, has_thickness = false;
     uint64_t geometry_version = 0;  // changes with set_mesh and record_vertex_update (light-depth reuse)
 
     std::optional<shading::LightDepth> light_depth;  // made on the first draw with transmission
     std::optional<Material> material;
     gpu::Buffer frame_data;
-    std::map<uint64_t, gpu::GraphicsPipeline> pipelines;  // key: pipeline_key()
+    TmEvaluation evaluation;
+    shading::MeshPipelines pipelines;
+    shading::TransmissionTable transmission_table;  // of the material's Transmission
 
     // render()'s own targets, kept while the size and format stay the same.
     struct Targets {
@@ -128,7 +92,8 @@ struct Renderer::Impl {
         : ctx(c), options(o), sampler(shading::make_lut_sampler(c)),
           nearest(gpu::make_sampler(c, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "light depth sampler")), lut(shading::shared_translucency_lut(c, o.lut)),
           placeholder(c, {"curvature LUT placeholder", 1, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_SAMPLED_BIT}),
-          frame_data(c, sizeof(FrameData), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "frame data")
+          frame_data(c, sizeof(FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, "frame data"),
+          evaluation(shading::resolve_evaluation(o.tm_evaluation, c)), pipelines(c), transmission_table(c)
     {
         // Sampled-image descriptors need the image in its layout even if never read.
         c.submit_and_wait([&](VkCommandBuffer cmd) { placeholder.transition(cmd, gpu::use::kSampled); });
@@ -137,89 +102,27 @@ struct Renderer::Impl {
     Impl(const Impl&) = delete;
     Impl& operator=(const Impl&) = delete;
 
-    static uint64_t pipeline_key(ShadingMode mode, uint32_t channels, bool transmission, VkFormat format, uint32_t samples)
+    // The pipeline variant of a draw: only the t_m mode reads the channels, the evaluation path
+    // and the transmitting lights; the Fourier terms follow the smallest t of the mesh.
+    shading::MeshVariant variant(uint32_t mode, uint32_t transmitters) const
     {
-        return uint64_t(mode) | uint64_t(channels) << 8 | uint64_t(transmission) << 12 | uint64_t(samples) << 16 |
-               uint64_t(format) << 32;
-    }
-
-    const gpu::GraphicsPipeline& pipeline(ShadingMode mode, uint32_t channels, bool transmission, VkFormat format,
-                                          uint32_t samples)
-    {
-        if (mode != ShadingMode::Tm) channels = 3, transmission = false;  // only the t_m path reads them
-        auto [it, inserted] = pipelines.try_emplace(pipeline_key(mode, channels, transmission, format, samples));
-        if (inserted) {
-            try {
-                gpu::GraphicsPipelineDesc d;
-                d.name = "mesh";
-                d.vertex_spirv = shaders::mesh_vert();
-                d.fragment_spirv = shaders::mesh_frag();
-                d.color_formats = {format};
-                d.depth_format = kDepthFormat;
-                d.samples = VkSampleCountFlagBits(samples);
-                d.vertex_stride = sizeof(Vertex);
-                d.attributes = {{0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
-                                {1, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
-                                {2, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, tm)},
-                                {3, VK_FORMAT_R32_SFLOAT, offsetof(Vertex, curvature)},
-                                {4, VK_FORMAT_R32_SFLOAT, offsetof(Vertex, thickness)},
-                                {5, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, scattering_normal)},
-                                {6, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal_spread)}};
-                d.bindings = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,
-                              VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
-                d.push_size = sizeof(FramePush);
-                d.constants = {uint32_t(mode), channels, transmission ? 1u : 0u};
-                it->second = gpu::GraphicsPipeline(ctx, d);
-            } catch (...) {
-                pipelines.erase(it);
-                throw;
-            }
-        }
-        return it->second;
+        shading::MeshVariant v;
+        v.mode = mode;
+        if (mode != uint32_t(ShadingMode::Tm) && mode < shading::kInputsMode) return v;
+        v.channels = material->grey() ? 1 : 3;
+        v.transmission = transmitters;
+        if (mode >= shading::kInputsMode) return v;
+        v.evaluation = evaluation;
+        const float smallest = v.channels == 1 ? tm_min.x : std::min({tm_min.x, tm_min.y, tm_min.z});
+        shading::choose_terms(double(material->strength) * double(smallest), v);
+        return v;
     }
 
     void check_ready(const RenderSettings& s, std::span<const Light> lights) const
     {
         if (!has_mesh) throw Error("Renderer: no mesh (call set_mesh first)");
         if (!material) throw Error("Renderer: no material (call set_material first)");
-        if (s.width == 0 || s.height == 0 || s.width > 16384 || s.height > 16384)
-            throw Error("render settings: size " + std::to_string(s.width) + "x" + std::to_string(s.height) +
-                        " is outside 1..16384");
-        if (uint32_t(s.mode) > 3) throw Error("render settings: unknown shading mode " + std::to_string(uint32_t(s.mode)));
-        if (lights.size() > kMaxLights)
-            throw Error("render: " + std::to_string(lights.size()) + " lights, at most " + std::to_string(kMaxLights));
-        for (size_t k = 0; k < lights.size(); ++k) {
-            const Light& l = lights[k];
-            bool ok = std::isfinite(l.vector.x + l.vector.y + l.vector.z) && std::isfinite(l.color.r + l.color.g + l.color.b) &&
-                      (l.type == Light::Type::Point || glm::length(l.vector) > 0.0f);
-            if (!ok) throw Error("render: light " + std::to_string(k) + " has a non-finite value or a zero direction");
-        }
-        const VkSampleCountFlags supported = ctx.limits().framebufferColorSampleCounts &
-                                             ctx.limits().framebufferDepthSampleCounts;
-        if ((s.samples != 1 && s.samples != 2 && s.samples != 4 && s.samples != 8) || !(supported & s.samples))
-            throw Error("render settings: " + std::to_string(s.samples) + " MSAA samples are not supported by " +
-                        ctx.info().name + " (supported mask " + std::to_string(supported) + ")");
-    }
-
-    FramePush push_constants(const Camera& cam, uint32_t width, uint32_t height, uint32_t light_count) const
-    {
-        const glm::vec3 back = cam.eye - cam.target;
-        if (!(glm::length(back) > 0.0f)) throw Error("camera: eye and target are the same point");
-        if (!(glm::length(glm::cross(cam.up, back)) > 1e-6f * glm::length(back) * glm::length(cam.up)))
-            throw Error("camera: up is zero or parallel to the view direction");
-        if (!(cam.fov_y_degrees > 0.0f && cam.fov_y_degrees < 180.0f))
-            throw Error("camera: fov " + std::to_string(cam.fov_y_degrees) + " degrees is outside (0, 180)");
-        // Near and far hug the mesh's bounding sphere; when the eye is inside it, near is a
-        // small fraction of far (D32 keeps enough precision at 1e-4).
-        const glm::vec3 centre = 0.5f * (bbox_min + bbox_max);
-        const float radius = std::max(0.5f * glm::length(bbox_max - bbox_min), 1e-30f) * 1.01f;
-        const float distance = glm::length(cam.eye - centre);
-        Camera fitted = cam;
-        if (!(cam.near_plane > 0.0f && cam.far_plane > cam.near_plane)) {
-            fitted.far_plane = distance + radius;
-            fitted.near_plane = std::max(distance - radius, fitted.far_plane * 1e-4f);
-        }
-        return {fitted.view_projection(float(width) / float(height)), cam.eye, light_count};
+        shading::check_settings(ctx, s, lights);
     }
 
     // The transmission variant is drawn only when it can add light: the material has the term,
@@ -235,19 +138,35 @@ struct Renderer::Impl {
                            [&](const Light& l) { return shading::LightDepth::may_transmit(cam.eye, l, centre, radius); });
     }
 
-    // The light-depth tiles of the directional lights behind the object (shading/light_depth.hpp);
-    // each light's tile + 1, 0 for none. The atlas is made on the first draw that needs it.
-    std::vector<uint32_t> record_light_depth(VkCommandBuffer cmd, const Camera& cam, std::span<const Light> lights)
+    // The lights drawn with transmission: the first kMaxTransmitters that may shine through the
+    // object towards the eye, each with its depth tile (shading/light_depth.hpp, rendered here for
+    // the directional ones; the atlas is made on the first draw that needs it) in color.w, 0 none.
+    struct Transmitting {
+        std::vector<GpuLight> lights;
+        std::vector<uint32_t> index;  // of each in the draw's lights
+        bool tiles = false;           // some light has a depth tile
+    };
+    Transmitting record_transmission(VkCommandBuffer cmd, const Camera& cam, std::span<const Light> lights,
+                                     const RenderSettings& s)
     {
+        Transmitting out;
+        if (!transmission_reaches_camera(cam, lights, s)) return out;
         const glm::vec3 centre = 0.5f * (bbox_min + bbox_max);
         const float radius = 0.5f * glm::length(bbox_max - bbox_min);
-        const bool any = std::any_of(lights.begin(), lights.end(), [&](const Light& l) {
-            return l.type == Light::Type::Directional && shading::LightDepth::may_transmit(cam.eye, l, centre, radius);
-        });
-        if (!any) return std::vector<uint32_t>(lights.size(), 0);
-        if (!light_depth) light_depth.emplace(ctx, options.light_depth_size);
-        return light_depth->record(cmd, cam.eye, lights, vertices.handle(), sizeof(Vertex), indices.handle(), index_count,
-                                   centre, radius, geometry_version);
+        auto transmits = [&](const Light& l) { return shading::LightDepth::may_transmit(cam.eye, l, centre, radius); };
+        std::vector<uint32_t> tiles(lights.size(), 0);
+        if (std::any_of(lights.begin(), lights.end(), [&](const Light& l) { return l.type == Light::Type::Directional && transmits(l); })) {
+            if (!light_depth) light_depth.emplace(ctx, options.light_depth_size);
+            tiles = light_depth->record(cmd, cam.eye, lights, vertices.handle(), sizeof(Vertex), indices.handle(), index_count,
+                                        centre, radius, geometry_version);
+        }
+        for (size_t k = 0; k < lights.size() && out.lights.size() < shading::kMaxTransmitters; ++k)
+            if (transmits(lights[k])) {
+                out.lights.push_back(shading::gpu_light(lights[k], float(tiles[k])));
+                out.index.push_back(uint32_t(k));
+                out.tiles = out.tiles || tiles[k] != 0;
+            }
+        return out;
     }
 
     std::pair<float, float> false_color_range(const RenderSettings& s) const
@@ -269,7 +188,7 @@ struct Renderer::Impl {
         return curvature_lut ? curvature_lut->image() : placeholder;
     }
 
-    FrameData frame_constants(std::span<const Light> lights, const RenderSettings& s, std::span<const uint32_t> tiles) const
+    FrameData frame_constants(std::span<const Light> lights, const RenderSettings& s, const Transmitting& transmitting) const
     {
         const Material& m = *material;
         FrameData d{};
@@ -291,31 +210,32 @@ struct Renderer::Impl {
         if (light_depth) {
             d.light_depth_map = glm::vec4(float(light_depth->tile_size()), float(shading::LightDepth::kMaxLights),
                                           light_depth->depth_range(), 0.0f);
-            for (uint32_t k = 0; k < shading::LightDepth::kMaxLights; ++k) d.light_depth[k] = light_depth->view_projection(k);
+            for (size_t k = 0; k < transmitting.lights.size(); ++k)
+                if (const uint32_t tile = uint32_t(transmitting.lights[k].color.w); tile != 0)
+                    d.light_depth[k] = light_depth->view_projection(tile - 1);
         }
         for (int i = 0; i < 9; ++i) d.color_map[i] = glm::vec4(false_color(float(i) / 8.0f), 1.0f);
-        for (size_t k = 0; k < lights.size(); ++k)
-            d.lights[k] = {glm::vec4(lights[k].vector, lights[k].type == Light::Type::Point ? 1.0f : 0.0f),
-                           glm::vec4(lights[k].color, tiles.empty() ? 0.0f : float(tiles[k]))};
+        d.transmission_table_map = transmission_table.shader_map();
+        std::copy(transmitting.lights.begin(), transmitting.lights.end(), d.transmitters);
+        for (size_t k = 0; k < lights.size(); ++k) d.lights[k] = shading::gpu_light(lights[k], 0.0f);
         return d;
     }
 
+    // mode: a ShadingMode, or shading::kInputsMode + k for the inputs pass.
     void record(VkCommandBuffer cmd, const RenderTarget& t, const Camera& cam, std::span<const Light> lights,
-                const RenderSettings& s)
+                const RenderSettings& s, uint32_t mode)
     {
         check_ready(s, lights);
         if (t.width != s.width || t.height != s.height || !t.color || !t.depth || (s.samples > 1) != bool(t.resolve))
             throw Error("render target: size or views do not match the settings (" + std::to_string(s.width) + "x" +
                         std::to_string(s.height) + ", " + std::to_string(s.samples) + " samples)");
-        const FramePush push = push_constants(cam, s.width, s.height, uint32_t(lights.size()));
+        const FramePush push = shading::frame_push(cam, bbox_min, bbox_max, s.width, s.height, uint32_t(lights.size()));
         const gpu::Image& curvature =
             s.mode == ShadingMode::Curvature ? curvature_image() : curvature_lut ? curvature_lut->image() : placeholder;
-        const bool transmission = transmission_reaches_camera(cam, lights, s);
-        const std::vector<uint32_t> tiles = transmission ? record_light_depth(cmd, cam, lights) : std::vector<uint32_t>{};
-        const FrameData data = frame_constants(lights, s, tiles);
-        const auto& pipe = pipeline(s.mode, material->grey() ? 1 : 3, transmission, color_format(s), s.samples);
-        const bool depth_tiles = std::any_of(tiles.begin(), tiles.end(), [](uint32_t t) { return t != 0; });
-        const gpu::Image& light_depth_image = depth_tiles ? light_depth->atlas() : placeholder;
+        const Transmitting transmitting = record_transmission(cmd, cam, lights, s);
+        const FrameData data = frame_constants(lights, s, transmitting);
+        const auto& pipe = pipelines.get(variant(mode, uint32_t(transmitting.lights.size())), color_format(s), s.samples);
+        const gpu::Image& light_depth_image = transmitting.tiles ? light_depth->atlas() : placeholder;
 
         // The frame constants are rewritten in the command stream: wait for the previous draw's
         // shader reads (write-after-read), then make the new values visible to this draw.
@@ -324,7 +244,7 @@ struct Renderer::Impl {
         gpu::memory_barrier(cmd, shaders, 0, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
         vkCmdUpdateBuffer(cmd, frame_data.handle(), 0, (bytes + 3) & ~size_t(3), &data);
         gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, shaders,
-                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+                            VK_ACCESS_2_UNIFORM_READ_BIT);
 
         VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
         color.imageView = t.color;
@@ -356,7 +276,9 @@ struct Renderer::Impl {
         pipe.bind(cmd, {s.width, s.height}, push,
                   {frame_data, lut->quads(),
                    gpu::Binding::image(curvature.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler),
-                   gpu::Binding::image(light_depth_image.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, nearest)});
+                   gpu::Binding::image(light_depth_image.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, nearest),
+                   gpu::Binding::image(lut->filtered().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler),
+                   transmission_table.texels()});
         VkBuffer vb = vertices.handle();
         VkDeviceSize offset = 0;
         vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
@@ -382,7 +304,7 @@ struct Renderer::Impl {
         t.width = s.width, t.height = s.height, t.samples = s.samples, t.format = format;
     }
 
-    RenderedImage render(const Camera& cam, std::span<const Light> lights, const RenderSettings& s)
+    RenderedImage render(const Camera& cam, std::span<const Light> lights, const RenderSettings& s, uint32_t mode)
     {
         const auto t0 = Clock::now();
         check_ready(s, lights);
@@ -398,7 +320,7 @@ struct Renderer::Impl {
             t.depth.transition(cmd, gpu::use::kDepthAttachment, true);
             if (t.resolve) t.resolve.transition(cmd, gpu::use::kColorAttachment, true);
             record(cmd, {t.color.view(), t.resolve ? t.resolve.view() : VK_NULL_HANDLE, t.depth.view(), s.width, s.height},
-                   cam, lights, s);
+                   cam, lights, s, mode);
             timer->mark(cmd, "draw");
             result.transition(cmd, gpu::use::kTransferSrc);
             result.copy_to_buffer(cmd, t.readback.handle());
@@ -411,7 +333,7 @@ struct Renderer::Impl {
         if (s.float32) t.readback.download(img.rgba.data(), n * sizeof(float));
         else {
             std::vector<uint16_t> half = t.readback.read<uint16_t>(n);
-            for (size_t i = 0; i < n; ++i) img.rgba[i] = half_to_float(half[i]);
+            for (size_t i = 0; i < n; ++i) img.rgba[i] = shading::half_to_float(half[i]);
         }
         img.gpu_ms = timer->total_ms();
         if (s.tone_map != ToneMap::None || s.exposure != 1.0f) apply_tone_map(img, s.tone_map, s.exposure);
@@ -419,6 +341,35 @@ struct Renderer::Impl {
             draw_color_bar(img, false_color_range(s).first, false_color_range(s).second);
         img.wall_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
         return img;
+    }
+
+    ShadingInputs shading_inputs(const Camera& cam, std::span<const Light> lights, const RenderSettings& settings)
+    {
+        RenderSettings s = settings;
+        s.mode = ShadingMode::Tm;
+        s.samples = 1, s.float32 = true, s.transparent_background = true, s.tone_map = ToneMap::None, s.exposure = 1.0f;
+        s.background = glm::vec3(0.0f);
+        const size_t pixels = size_t(s.width) * s.height;
+        ShadingInputs in;
+        in.width = s.width, in.height = s.height;
+        std::vector<glm::vec4> paths;  // of the transmitting lights, in their order
+        std::vector<glm::vec4>* planes[] = {&in.position, &in.normal, &in.tm, &paths, &in.scattering_normal, &in.normal_spread};
+        for (uint32_t k = 0; k < shading::kInputsSlots; ++k) {
+            const RenderedImage img = render(cam, lights, s, shading::kInputsMode + k);
+            planes[k]->resize(pixels);
+            std::memcpy(planes[k]->data(), img.rgba.data(), pixels * sizeof(glm::vec4));
+        }
+        // The same selection as record()'s.
+        Transmitting transmitting;
+        ctx.submit_and_wait([&](VkCommandBuffer cmd) { transmitting = record_transmission(cmd, cam, lights, s); });
+        in.transmits.assign(lights.size(), 0);
+        in.path.assign(lights.size() * pixels, 0.0f);
+        for (size_t i = 0; i < transmitting.index.size(); ++i) {
+            const uint32_t light = transmitting.index[i];
+            in.transmits[light] = 1;
+            for (size_t p = 0; p < pixels; ++p) in.path[light * pixels + p] = paths[p][int(i)];
+        }
+        return in;
     }
 };
 
@@ -450,6 +401,7 @@ void Renderer::set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm,
     std::vector<float> curvature = mean_curvature(mesh, impl_->options.curvature_smoothing);
     std::vector<Vertex> vertices(n);
     float tm_min = INFINITY, tm_max = 0.0f;
+    glm::vec3 tm_min_channel(n == 0 || tm.empty() ? 0.0f : INFINITY);
     for (size_t i = 0; i < n; ++i) {
         glm::vec3 t = tm.empty() ? glm::vec3(0.0f) : tm[i];
         // Each component on its own: t.x + t.y + t.z overflows for values near FLT_MAX, which
@@ -469,6 +421,7 @@ void Renderer::set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm,
         vertices[i] = {mesh.positions[i], mesh.normals[i], t, curvature[i], th, s / s_len, spread};
         const float mean = t.x / 3.0f + t.y / 3.0f + t.z / 3.0f;
         tm_min = std::min(tm_min, mean);
+        tm_min_channel = glm::min(tm_min_channel, t);
         tm_max = std::max(tm_max, mean);
     }
     Impl& m = *impl_;
@@ -482,6 +435,7 @@ void Renderer::set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm,
     m.bbox_min = mesh.bbox_min, m.bbox_max = mesh.bbox_max;
     m.curvature = std::move(curvature);
     m.tm_min_mean = tm_min, m.tm_max_mean = tm_max;
+    m.tm_min = tm_min_channel;
     m.has_mesh = true;
     ++m.geometry_version;
     m.has_thickness = !thickness.empty();
@@ -510,6 +464,7 @@ void Renderer::record_vertex_update(VkCommandBuffer cmd, VkBuffer positions, VkB
                                m.vertices, gpu::Binding(thickness ? thickness : tm, 0, stream / 3),
                                gpu::Binding(scattering_normal ? scattering_normal : tm, 0, stream)});
     if (thickness) m.has_thickness = true;
+    m.tm_min = glm::vec3(0.0f);  // t_m now comes from the GPU: the evaluation must hold for any t
     ++m.geometry_version;
     gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_WRITE_BIT,
                         VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT, VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT);
@@ -530,18 +485,26 @@ void Renderer::set_material(const Material& material)
     Impl& m = *impl_;
     vkDeviceWaitIdle(m.ctx.device());
     if (m.curvature_lut && m.curvature_lut_profiles != material.profile) m.curvature_lut.reset();  // rebuilt on demand
+    if (material.transmission.enabled()) m.transmission_table.update(material.transmission);
     m.material = material;
 }
 
 RenderedImage Renderer::render(const Camera& camera, std::span<const Light> lights, const RenderSettings& settings)
 {
-    return impl_->render(camera, lights, settings);
+    return impl_->render(camera, lights, settings, uint32_t(settings.mode));
 }
+
+ShadingInputs Renderer::shading_inputs(const Camera& camera, std::span<const Light> lights, const RenderSettings& settings)
+{
+    return impl_->shading_inputs(camera, lights, settings);
+}
+
+TmEvaluation Renderer::tm_evaluation() const { return impl_->evaluation; }
 
 void Renderer::record(VkCommandBuffer cmd, const RenderTarget& target, const Camera& camera, std::span<const Light> lights,
                       const RenderSettings& settings)
 {
-    impl_->record(cmd, target, camera, lights, settings);
+    impl_->record(cmd, target, camera, lights, settings, uint32_t(settings.mode));
 }
 
 const LutLayout& Renderer::lut_layout() const { return impl_->lut->layout(); }

@@ -73,6 +73,12 @@ Camera Camera::framing(glm::vec3 lo, glm::vec3 hi, float aspect, glm::vec3 direc
     return c;
 }
 
+std::vector<Light> back_lights(const Camera& camera)
+{
+    const std::vector<Light> key = default_lights(camera), back = figure1_lights(camera);
+    return {key[0], back[0]};
+}
+
 std::vector<Light> default_lights(const Camera& camera)
 {
     Frame f = camera_frame(camera);

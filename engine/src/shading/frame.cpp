@@ -1,0 +1,76 @@
+// shading/frame.cpp - see frame.hpp.
+#include "shading/frame.hpp"
+
+#include "gpu/context.hpp"
+
+#include <jade/context.hpp>
+#include <jade/error.hpp>
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <string>
+
+namespace jade::shading {
+
+void check_settings(const gpu::Context& ctx, const RenderSettings& s, std::span<const Light> lights)
+{
+    if (s.width == 0 || s.height == 0 || s.width > 16384 || s.height > 16384)
+        throw Error("render settings: size " + std::to_string(s.width) + "x" + std::to_string(s.height) +
+                    " is outside 1..16384");
+    if (uint32_t(s.mode) > 3) throw Error("render settings: unknown shading mode " + std::to_string(uint32_t(s.mode)));
+    if (lights.size() > kMaxLights)
+        throw Error("render: " + std::to_string(lights.size()) + " lights, at most " + std::to_string(kMaxLights));
+    for (size_t k = 0; k < lights.size(); ++k) {
+        const Light& l = lights[k];
+        bool ok = std::isfinite(l.vector.x + l.vector.y + l.vector.z) && std::isfinite(l.color.r + l.color.g + l.color.b) &&
+                  (l.type == Light::Type::Point || glm::length(l.vector) > 0.0f);
+        if (!ok) throw Error("render: light " + std::to_string(k) + " has a non-finite value or a zero direction");
+    }
+    const VkSampleCountFlags supported = ctx.limits().framebufferColorSampleCounts &
+                                         ctx.limits().framebufferDepthSampleCounts;
+    if ((s.samples != 1 && s.samples != 2 && s.samples != 4 && s.samples != 8) || !(supported & s.samples))
+        throw Error("render settings: " + std::to_string(s.samples) + " MSAA samples are not supported by " +
+                    ctx.info().name + " (supported mask " + std::to_string(supported) + ")");
+}
+
+FramePush frame_push(const Camera& cam, glm::vec3 bbox_min, glm::vec3 bbox_max, uint32_t width, uint32_t height, uint32_t light_count)
+{
+    const glm::vec3 back = cam.eye - cam.target;
+    if (!(glm::length(back) > 0.0f)) throw Error("camera: eye and target are the same point");
+    if (!(glm::length(glm::cross(cam.up, back)) > 1e-6f * glm::length(back) * glm::length(cam.up)))
+        throw Error("camera: up is zero or parallel to the view direction");
+    if (!(cam.fov_y_degrees > 0.0f && cam.fov_y_degrees < 180.0f))
+        throw Error("camera: fov " + std::to_string(cam.fov_y_degrees) + " degrees is outside (0, 180)");
+    // Near and far hug the mesh's bounding sphere; when the eye is inside it, near is a
+    // small fraction of far (D32 keeps enough precision at 1e-4).
+    const glm::vec3 centre = 0.5f * (bbox_min + bbox_max);
+    const float radius = std::max(0.5f * glm::length(bbox_max - bbox_min), 1e-30f) * 1.01f;
+    const float distance = glm::length(cam.eye - centre);
+    Camera fitted = cam;
+    if (!(cam.near_plane > 0.0f && cam.far_plane > cam.near_plane)) {
+        fitted.far_plane = distance + radius;
+        fitted.near_plane = std::max(distance - radius, fitted.far_plane * 1e-4f);
+    }
+    return {fitted.view_projection(float(width) / float(height)), cam.eye, light_count};
+}
+
+float half_to_float(uint16_t h)
+{
+    const uint32_t sign = uint32_t(h >> 15) << 31, exponent = (h >> 10) & 0x1f, mantissa = h & 0x3ff;
+    uint32_t bits;
+    if (exponent == 0x1f) bits = sign | 0x7f800000u | (mantissa << 13);       // inf, NaN
+    else if (exponent != 0) bits = sign | ((exponent + 112) << 23) | (mantissa << 13);
+    else if (mantissa == 0) bits = sign;                                         // ±0
+    else {                                                                       // subnormal
+        float f = std::ldexp(float(mantissa), -24);
+        return sign ? -f : f;
+    }
+    float f;
+    std::memcpy(&f, &bits, 4);
+    return f;
+}
+
+}  // namespace jade::shading

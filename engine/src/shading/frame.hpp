@@ -1,0 +1,29 @@
+// shading/frame.hpp - the per-draw checks and constants of jade::Renderer that need none of its
+// state: the settings and lights validated, the push constants with near and far fitted to the
+// mesh's bounds, and the half floats of the read-back decoded.
+#pragma once
+
+#include "shading/mesh_pipeline.hpp"
+
+#include <jade/render.hpp>
+
+#include <cstdint>
+#include <span>
+
+namespace jade::gpu { class Context; }
+
+namespace jade::shading {
+
+/// Throws jade::Error naming the setting: size outside 1..16384, unknown mode, more than
+/// kMaxLights lights, a non-finite light or a zero direction, an unsupported sample count.
+void check_settings(const gpu::Context& ctx, const RenderSettings& s, std::span<const Light> lights);
+
+/// View-projection, eye and light count; near and far hug the bounding sphere of [bbox_min,
+/// bbox_max] unless the camera gives both. Throws jade::Error for a degenerate camera.
+FramePush frame_push(const Camera& cam, glm::vec3 bbox_min, glm::vec3 bbox_max, uint32_t width, uint32_t height,
+                     uint32_t light_count);
+
+/// IEEE half to float (inf, NaN, subnormals included).
+float half_to_float(uint16_t h);
+
+}  // namespace jade::shading

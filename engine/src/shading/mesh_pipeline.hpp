@@ -1,0 +1,95 @@
+// shading/mesh_pipeline.hpp - what the renderer's draw hands the GPU (the host mirrors of
+// shaders/include/shading.glsl), and which mesh.vert/mesh.frag pipeline variant a draw takes:
+// the specialisation constants (mode, channels, transmission slots, evaluation path, Fourier
+// terms) and the rules that pick them (docs/shading.md, "Evaluation paths").
+#pragma once
+
+#include "gpu/pipeline.hpp"
+#include "shading/light_depth.hpp"
+
+#include <jade/render.hpp>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include <cstdint>
+#include <map>
+
+namespace jade::shading {
+
+inline constexpr uint32_t kMaxLights = 64;  ///< shading.glsl: kMaxLights
+/// Mode constant of the inputs pass: kInputsMode + k writes the k-th vec4 of the inputs (shading.glsl).
+inline constexpr uint32_t kInputsMode = 4, kInputsSlots = 6;
+/// Lights drawn with transmission per draw: the first that may shine through (transmission.glsl).
+inline constexpr uint32_t kMaxTransmitters = 4;
+
+// Mirrors of shaders/include/shading.glsl (scalar layout).
+struct FramePush {
+    glm::mat4 view_proj;
+    glm::vec3 eye;
+    uint32_t light_count;
+};
+struct GpuLight {
+    glm::vec4 vector, color;
+};
+struct FrameData {
+    glm::vec4 albedo_strength, specular, lut_map, curvature_map, params;
+    glm::vec4 transmission, transmission_diffusion, transmission_scatter, transmission_shape, light_depth_map;
+    glm::mat4 light_depth[LightDepth::kMaxLights];
+    glm::vec4 color_map[9];
+    glm::vec4 transmission_table_map;
+    GpuLight transmitters[kMaxTransmitters];
+    GpuLight lights[kMaxLights];
+};
+static_assert(sizeof(FramePush) == 80 && sizeof(GpuLight) == 32);
+struct Vertex {
+    glm::vec3 position, normal, tm;
+    float curvature, thickness;
+    glm::vec3 scattering_normal;  // BakeResult::scattering_normal: what the translucent diffuse term is lit along
+    glm::vec3 normal_spread;      // BakeResult::normal_spread, per channel
+};
+static_assert(sizeof(Vertex) == kRendererVertexBytes && sizeof(FrameData) == kRendererFrameDataBytes);
+
+/// The specialisation constants of one mesh pipeline.
+struct MeshVariant {
+    uint32_t mode = 0;          ///< ShadingMode, or kInputsMode + k
+    uint32_t channels = 3;      ///< 1: grey material
+    uint32_t transmission = 0;  ///< lights drawn with transmission (FrameData::transmitters)
+    TmEvaluation evaluation = TmEvaluation::Lut;
+    uint32_t terms = 5;         ///< Alu: Fourier terms
+    bool small_t = true;        ///< Alu: the closed form for √t < kSmallSigma is needed
+    uint64_t key(VkFormat format, uint32_t samples) const;
+};
+
+/// Alu: the closed form is used where √t is below this; above it the series with kMaxTerms
+/// terms errs by at most 7e-6, below it the closed form by at most 4e-5 (docs/shading.md).
+inline constexpr float kSmallSigma = 0.3f;
+inline constexpr uint32_t kMaxTerms = 5;
+/// Alu: the fewest Fourier terms whose first omitted term stays below 2e-5 for every t ≥ t_min
+/// (and whether t_min needs the closed form too). t_min = 0 when not known (a GPU-updated mesh).
+void choose_terms(double t_min, MeshVariant& variant);
+
+/// What TmEvaluation::Auto means on a device of this type: Alu on a CPU (lavapipe: every memory
+/// read is a gather of its own, arithmetic is SIMD), LutFiltered wherever there are texture units.
+TmEvaluation resolve_evaluation(TmEvaluation requested, VkPhysicalDeviceType type);
+TmEvaluation resolve_evaluation(TmEvaluation requested, const gpu::Context& ctx);  ///< for ctx's device
+
+/// A light as the shaders read it; w of the colour as given (the transmitters' depth tile).
+inline GpuLight gpu_light(const Light& l, float w)
+{
+    return {glm::vec4(l.vector, l.type == Light::Type::Point ? 1.0f : 0.0f), glm::vec4(l.color, w)};
+}
+
+/// The pipelines of one renderer, made on first use per (variant, colour format, samples).
+class MeshPipelines {
+public:
+    explicit MeshPipelines(gpu::Context& ctx) : ctx_(ctx) {}
+    const gpu::GraphicsPipeline& get(const MeshVariant& variant, VkFormat format, uint32_t samples);
+
+private:
+    gpu::Context& ctx_;
+    std::map<uint64_t, gpu::GraphicsPipeline> pipelines_;
+};
+
+}  // namespace jade::shading

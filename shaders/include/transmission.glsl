@@ -1,0 +1,91 @@
+// transmission.glsl - light from behind through the object (jade/material.hpp Transmission):
+//   A(t) · (n+1)/(2π) max(V·(−L), 0)^n · ((1 − m) + m max(−N·L, 0)) · E
+// with A the attenuation along the path t inside the object (attenuation.glsl). The lobe is smooth
+// over the surface and per vertex (mesh.vert). The path t (the longer of the local thickness and
+// the path from where the light enters, from the light's depth tile) is per fragment: it is not
+// smooth where the body shadows a part from the light, and per vertex it lost a thumb tip's glow
+// on the coarse hand of tests/test_fidelity.cpp; A(t) is read from the table of
+// transmission_table.comp (one fetch, not nine exponentials).
+#ifndef JADE_TRANSMISSION_GLSL
+#define JADE_TRANSMISSION_GLSL
+
+#include "attenuation.glsl"
+
+// Lights drawn with transmission (data.transmitters[0 … TRANSMISSION − 1]); 0: none.
+layout(constant_id = 2) const uint TRANSMISSION = 0;
+const uint kMaxTransmitters = 4;  // shading::kMaxTransmitters
+
+layout(binding = 3) uniform sampler2D light_depth_atlas;  // D32: depth nearest to each light, one tile per light
+layout(binding = 5) uniform usamplerBuffer transmission_table;  // A(t_i), A(t_{i+1}) as halves
+
+// How far light from transmitter k travels inside the object before it reaches `position`, mesh
+// units: its depth along the light minus the depth of the surface nearest to the light,
+// bilinear between the four nearest texels of its tile (atlas column `tile` − 1). The matrix is
+// the transmitter's own (data.light_depth[k]): a constant index, which lavapipe reads once,
+// not once per lane.
+float light_path(uint k, uint tile, vec3 position)
+{
+    vec4 p = data.light_depth[k] * vec4(position, 1.0);
+    float size = data.light_depth_map.x;
+    vec2 xy = clamp(p.xy * 0.5 + 0.5, 0.0, 1.0) * size - 0.5;
+    vec2 f = fract(xy);
+    ivec2 base = ivec2(floor(xy)), lo = ivec2(0), hi = ivec2(int(size) - 1);
+    int x0 = int(max(tile, 1u) - 1u) * int(size);
+    float d00 = texelFetch(light_depth_atlas, ivec2(x0, 0) + clamp(base, lo, hi), 0).r;
+    float d10 = texelFetch(light_depth_atlas, ivec2(x0, 0) + clamp(base + ivec2(1, 0), lo, hi), 0).r;
+    float d01 = texelFetch(light_depth_atlas, ivec2(x0, 0) + clamp(base + ivec2(0, 1), lo, hi), 0).r;
+    float d11 = texelFetch(light_depth_atlas, ivec2(x0, 0) + clamp(base + ivec2(1, 1), lo, hi), 0).r;
+    float entry = mix(mix(d00, d10, f.x), mix(d01, d11, f.x), f.y);
+    return max(p.z - entry, 0.0) * data.light_depth_map.z;
+}
+
+// Transmitter k's path t at `position`: the longer of the local thickness and the path from
+// where the light enters (a thin part that the body shadows from the light is dark).
+float transmitter_path(uint k, vec3 position, float thickness)
+{
+    uint tile = uint(data.transmitters[k].color.w);
+    return tile != 0u ? max(thickness, light_path(k, tile, position)) : thickness;
+}
+
+// Towards transmitter k from `position`, unit, and its irradiance there (e: the colour, times
+// the inverse-square falloff of a point light).
+void transmitter_at(uint k, vec3 position, out vec3 l, out vec3 e)
+{
+    GpuLight light = data.transmitters[k];
+    l = light.vector.xyz;
+    e = light.color.rgb;
+    if (light.vector.w != 0.0) {
+        l -= position;
+        e /= max(dot(l, l), 1e-20);
+    }
+    l = normalize(l);
+}
+
+// The forward lobe (n + 1)/(2π)·max(V·(−L), 0)^n of transmitter k: smooth over the surface (V
+// and L change little across a triangle), per vertex.
+float transmitter_lobe(uint k, vec3 position, vec3 v)
+{
+    vec3 l, e;
+    transmitter_at(k, position, l, e);
+    float mu = max(-dot(v, l), 0.0);
+    return mu > 0.0 ? data.transmission_shape.y * pow(mu, data.transmission_shape.x) : 0.0;
+}
+
+// How much of the lobe goes out at this normal: following −N·L by normal_mix (per fragment:
+// the kink at N·L = 0 is not smooth).
+float transmitter_follow(float n_dot_l)
+{
+    return (1.0 - data.transmission_shape.z) + data.transmission_shape.z * max(-n_dot_l, 0.0);
+}
+
+// A(t), interpolated from the table (the last entry, ~0, beyond it; a NaN t reads an end).
+vec3 attenuation_at(float t)
+{
+    float x = clamp(t * data.transmission_table_map.x, 0.0, data.transmission_table_map.y);
+    float i = min(floor(x), data.transmission_table_map.z);
+    uvec4 q = texelFetch(transmission_table, int(i));
+    vec2 rg = unpackHalf2x16(q.x), ba = unpackHalf2x16(q.y), gb = unpackHalf2x16(q.z);
+    return mix(vec3(rg, ba.x), vec3(ba.y, gb), x - i);
+}
+
+#endif
