@@ -12,17 +12,8 @@
 #include "rays.glsl"
 #include "bvh.glsl"  // ray_hits_box
 
-layout(push_constant, scalar) uniform Push {
-    uint vertex_count;
-    uint rays;
-    uint seed;
-    uint low_discrepancy;
-    float epsilon;       // origin offset along the normal, mesh units
-    float max_distance;  // mesh units
-    uint item_count;
-    uint slices;         // divides rays
-    uint slice;          // the slice traced by this dispatch
-} pc;
+#include "bake_interface.h"  // struct AoPush, shared with engine/src/bake
+layout(push_constant, scalar) uniform Push { AoPush pc; };
 
 layout(binding = 0, scalar) readonly buffer Positions { vec3 positions[]; };
 layout(binding = 1, scalar) readonly buffer Normals { vec3 normals[]; };

@@ -28,15 +28,8 @@
 #include "tm_common.glsl"
 #include "bvh.glsl"
 
-layout(push_constant, scalar) uniform Push {
-    uint vertex_count;
-    uint node_count;
-    float epsilon;    // θ, the opening ratio
-    uint work_budget; // loop iterations per dispatch (lavapipe's loop limit)
-    uint first_point; // texel of source 0, after the nodes
-    uint slot_begin;  // the targets of this dispatch: tree slots [slot_begin, slot_end)
-    uint slot_end;    // (all of them, or one slice of an amortised re-bake)
-} pc;
+#include "bake_interface.h"  // struct ClusterPush, shared with engine/src/bake
+layout(push_constant, scalar) uniform Push { ClusterPush pc; };
 
 // Nodes (cluster_refit.comp: 4 texels each), then the sources in tree order (tm_common.glsl:
 // 2 texels each), as RGBA32UI.

@@ -196,8 +196,8 @@ private:
 /// on a still mesh every frame equals the full re-bake; after the mesh stops moving, AO is exact
 /// after ao_slices frames and t_m after ao_slices + tm_slices − 1; a moving mesh lags behind by
 /// up to that many frames. The first record() after construction or set_amortisation does
-/// everything. Meshes small enough for the all-pairs t_m pass (TmMethod::Auto under 2,048
-/// vertices) always re-evaluate every vertex's t_m. `jade bench deform` measures the error
+/// everything. Meshes that TmMethod::Auto sums over all pairs (the small ones: docs/bake.md,
+/// "Choosing the far field") always re-evaluate every vertex's t_m. `jade bench deform` measures the error
 /// this adds against a from-scratch bake of each frame.
 struct Amortisation {
     uint32_t ao_slices = 1;  ///< ≥ 1, divides AoSettings::rays and ThicknessSettings::rays; 1: every ray every frame

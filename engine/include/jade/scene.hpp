@@ -137,7 +137,7 @@ struct SceneSettings {
 
 /// Analyses the scene (CPU only: prepares every mesh). Memory is estimated from the vertex and
 /// triangle counts with the byte sizes of the structures engine/src/bake and engine/src/shading
-/// upload (documented in scene/plan.cpp); tests compare it with Context::created_objects().
+/// upload (documented in bake/buffer_estimate.cpp); tests compare it with Context::created_objects().
 /// Throws jade::Error naming the object for an empty or invalid mesh, or a Curvature mode.
 ScenePlan plan_scene(const Scene& scene, const SceneSettings& settings, const StaticBakeSource& source = {});
 

@@ -18,6 +18,7 @@
 #include <jade/bake.hpp>
 #include <jade/context.hpp>
 
+#include "bake_interface.h"  // the passes' push constants, shared with the shaders
 #include "jade_shaders.hpp"
 
 #include <glm/common.hpp>
@@ -52,6 +53,11 @@ constexpr float kStaticNearMargin = 1.05f;
 constexpr float kDynamicNearMargin = 1.5f;
 // Below this many vertices the all-pairs pass is as fast as building and walking the tree.
 constexpr size_t kExactBelow = 2048;
+// Whether a bake of `vertices` sums t_m's far field over all pairs (TmMethod::Auto's first rule).
+inline bool uses_exact_tm(TmMethod method, size_t vertices)
+{
+    return method == TmMethod::Exact || (method == TmMethod::Auto && vertices < kExactBelow);
+}
 // The grid far field's near lists beyond this are refused (TmMethod::Grid) or avoided (Auto).
 constexpr uint64_t kGridMaxNearBytes = 512ull << 20;
 
@@ -60,27 +66,6 @@ constexpr uint64_t kGridMaxNearBytes = 512ull << 20;
 // 65,535 loop iterations, and desktop drivers reset a GPU whose dispatch runs for seconds.
 constexpr uint32_t kExactSourcesPerDispatch = 16384;
 constexpr uint32_t kClusterWorkPerDispatch = 32768;
-
-struct AoPush {
-    uint32_t vertex_count, rays, seed, low_discrepancy;
-    float epsilon, max_distance;
-    uint32_t item_count, slices, slice;
-};
-struct AoResolvePush { uint32_t vertex_count, rays, slices; };
-struct ThicknessPush {
-    uint32_t vertex_count, rays, seed;
-    float cos_cone, epsilon, max_distance;
-    uint32_t item_count, slices, slice;
-};
-struct ThicknessResolvePush { uint32_t vertex_count, rays, slices; float max_distance; };
-struct GatherPush { uint32_t vertex_count; };
-struct RefitPush { uint32_t count, first; };
-struct RayRefitPush { uint32_t count, first, mode; };
-struct NearPush { uint32_t first_slot, slot_count, index_base, source_base; float cut2, table_scale; };
-struct GridSplatPush { uint32_t vertex_count, level_count; float cube_side; };
-struct GridGatherPush { uint32_t level_count, slot_begin, slot_count; float cube_side; };
-struct ExactPush { uint32_t vertex_count, source_begin, source_end; };
-struct ClusterPush { uint32_t vertex_count, node_count; float epsilon; uint32_t work_budget, first_point, slot_begin, slot_end; };
 
 inline std::vector<VkDescriptorType> storage_bindings(size_t n) { return std::vector<VkDescriptorType>(n, kStorage); }
 
@@ -140,7 +125,7 @@ using bake::kTriangleLeafSize;
 using bake::kPointLeafSize;
 using bake::kStaticNearMargin;
 using bake::kDynamicNearMargin;
-using bake::kExactBelow;
+using bake::uses_exact_tm;
 using bake::kGridMaxNearBytes;
 using bake::kExactSourcesPerDispatch;
 using bake::kClusterWorkPerDispatch;

@@ -7,6 +7,8 @@
 
 #include <jade/material.hpp>
 
+#include "bake_interface.h"  // JADE_DISK_CAP, shared with tm_near.comp
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -60,7 +62,7 @@ inline double disk_integral(const ChannelProfile& p, double r, double rho)
 /// large neighbour's disk would otherwise cover the target and, for a stiff profile, count a
 /// second self term. The area beyond the capped disk stays a point at the vertex, so the
 /// neighbour's total area is kept. Regular meshes (ρ ≈ 0.56 r) are not affected.
-inline constexpr double kDiskCap = 0.6;
+inline constexpr double kDiskCap = JADE_DISK_CAP;
 
 inline double vertex_disk_term(const ChannelProfile& p, double r, double area)
 {

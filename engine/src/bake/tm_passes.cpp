@@ -10,7 +10,7 @@ void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Mater
     validate_tm_settings(s, ctx);
     const size_t n = mesh.vertex_count();
     m.variant = tm_variant(material);
-    m.exact = s.method == TmMethod::Exact || (s.method == TmMethod::Auto && n < kExactBelow);
+    m.exact = uses_exact_tm(s.method, n);
     bake::Bvh tree = bake::build_bvh(mesh.positions, mesh.positions, kPointLeafSize);
     // Auto takes the grid unless its grids had to be coarsened to fit in memory or its near
     // lists would be long (a mesh whose bounds are vast for its vertex spacing, or dense in
