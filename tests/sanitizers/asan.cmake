@@ -7,6 +7,11 @@
 # library that linked it would carry it in its exported link interface (install(EXPORT) refuses
 # a target outside the export set). The executables are known only once every directory has been
 # read, hence the call deferred to the end of the top-level directory.
+# Also included (as CMAKE_PROJECT_INCLUDE) by the consumer projects that tests/consumer builds
+# against a sanitized install, which may enable only C++.
+if(NOT CMAKE_C_COMPILER_LOADED)
+  enable_language(C)
+endif()
 add_library(jade_asan_keep_loaded OBJECT ${CMAKE_CURRENT_LIST_DIR}/keep_loaded.c)
 
 function(jade_asan_link_keep_loaded dir)
