@@ -63,7 +63,7 @@ void main()
     if (index >= pc.vertex_count * rays_in_slice) return;
     uint v = index / rays_in_slice, k = (index % rays_in_slice) * pc.slices + pc.slice;
     vec3 n = normals[v];
-    vec3 o = positions[v] + pc.epsilon * n;
+    vec3 o = positions[v] + pc.ray_offset * n;
     vec3 d = ray_direction(n, ray_sample(v, k, pc.rays, pc.seed, pc.low_discrepancy != 0u));
     if (occluded(o, d)) atomicAdd(hits[pc.slice * pc.vertex_count + v], 1u);
 }

@@ -35,7 +35,7 @@ struct AoPush {
     uint rays;
     uint seed;
     uint low_discrepancy;
-    float epsilon;       // ray origin offset along the normal, mesh units
+    float ray_offset;    // ray origin offset along the normal, mesh units
     float max_distance;  // mesh units
     uint item_count;
     uint slices;         // divides rays
@@ -55,7 +55,7 @@ struct ThicknessPush {
     uint rays;
     uint seed;
     float cos_cone;      // cosine of the cone's half-angle
-    float epsilon;       // ray origin offset against the normal, mesh units
+    float ray_offset;    // ray origin offset against the normal, mesh units
     float max_distance;  // mesh units
     uint item_count;
     uint slices;         // divides rays
@@ -136,7 +136,7 @@ struct ExactPush {
 struct ClusterPush {
     uint vertex_count;
     uint node_count;
-    float epsilon;     // θ, the opening ratio
+    float theta;       // the opening ratio (BakeSettings::tm_opening_ratio)
     uint work_budget;  // loop iterations per dispatch (lavapipe's loop limit)
     uint first_point;  // texel of source 0, after the nodes
     uint slot_begin;   // the targets of this dispatch: tree slots [slot_begin, slot_end)

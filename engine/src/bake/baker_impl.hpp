@@ -16,6 +16,7 @@
 #include "gpu/timer.hpp"
 
 #include <jade/bake.hpp>
+#include <jade/clock.hpp>
 #include <jade/context.hpp>
 
 #include "bake_interface.h"  // the passes' push constants, shared with the shaders
@@ -35,9 +36,6 @@
 
 namespace jade {
 namespace bake {
-
-using Clock = std::chrono::steady_clock;
-inline double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 constexpr VkDescriptorType kTexels = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
@@ -67,8 +65,6 @@ constexpr uint64_t kGridMaxNearBytes = 512ull << 20;
 constexpr uint32_t kExactSourcesPerDispatch = 16384;
 constexpr uint32_t kClusterWorkPerDispatch = 32768;
 
-inline std::vector<VkDescriptorType> storage_bindings(size_t n) { return std::vector<VkDescriptorType>(n, kStorage); }
-
 // Which t_m kernel variant a material needs: one channel when grey, and the profile kind
 // shared by all channels (3: mixed kinds, chosen per channel at run time).
 struct TmVariant {
@@ -87,7 +83,7 @@ inline void validate_ao_settings(const AoSettings& s)
     if (s.rays == 0 || s.rays > 65536) throw Error("AO: rays per vertex must be in 1..65536, got " + std::to_string(s.rays));
     if (!(s.max_distance_rel > 0) || !std::isfinite(s.max_distance_rel))
         throw Error("AO: max distance must be a positive fraction of the diagonal");
-    if (!(s.epsilon_rel >= 0) || !std::isfinite(s.epsilon_rel)) throw Error("AO: epsilon must be ≥ 0");
+    if (!(s.ray_offset_rel >= 0) || !std::isfinite(s.ray_offset_rel)) throw Error("AO: the ray offset must be ≥ 0");
 }
 
 // The thickness only feeds the transmission term: a material without one does not trace it.
@@ -99,7 +95,7 @@ inline BakeSettings without_unused_passes(BakeSettings s, const Material& materi
 
 inline void validate_tm_settings(const BakeSettings& s, const gpu::Context& ctx)
 {
-    if (!(s.tm_epsilon > 0) || !std::isfinite(s.tm_epsilon)) throw Error("t_m: epsilon must be > 0");
+    if (!(s.tm_opening_ratio > 0) || !std::isfinite(s.tm_opening_ratio)) throw Error("t_m: the opening ratio θ must be > 0");
     if (s.tm_float64_sums && !ctx.info().float64)
         throw Error("t_m: float64 sums (BakeSettings::tm_float64_sums) need shaderFloat64, which this device lacks");
 }
@@ -115,8 +111,6 @@ inline void finish_timings(BakeTimings& t, const gpu::GpuTimer& timer, double se
 }  // namespace bake
 
 // The bake's own vocabulary, for the two files that include this one.
-using bake::Clock;
-using bake::ms_since;
 using bake::kStorage;
 using bake::kTexels;
 using bake::kStorageUsage;
@@ -141,7 +135,7 @@ using bake::GridSplatPush;
 using bake::GridGatherPush;
 using bake::ExactPush;
 using bake::ClusterPush;
-using bake::storage_bindings;
+using gpu::storage_bindings;
 using bake::TmVariant;
 using bake::tm_variant;
 using bake::validate_ao_settings;
@@ -402,7 +396,7 @@ struct Baker::Impl {
         gpu::compute_barrier(cmd);
         const uint32_t rays_in_slice = s.rays / m.ao_slices;
         for (uint32_t slice = first; slice < first + count; ++slice) {
-            AoPush push{m.vertex_count, s.rays, s.seed, s.low_discrepancy ? 1u : 0u, s.epsilon_rel * m.diagonal,
+            AoPush push{m.vertex_count, s.rays, s.seed, s.low_discrepancy ? 1u : 0u, s.ray_offset_rel * m.diagonal,
                         s.max_distance_rel * m.diagonal, m.item_count, m.ao_slices, slice};
             ao_kernel().dispatch(cmd, uint64_t(m.vertex_count) * rays_in_slice, push,
                                  {m.positions, m.normals, m.ray_item_texels, m.hits});

@@ -39,7 +39,7 @@ void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Mater
         // never laxer than against the weight).
         double area = 0;
         for (float a : mesh.areas) area += a;
-        const double threshold = 1e-3 * std::pow(double(s.tm_epsilon), 3);
+        const double threshold = 1e-3 * std::pow(double(s.tm_opening_ratio), 3);
         for (int c = 0; c < 3; ++c)
             profiles[c].faint_radius = bake::faint_radius(material.profile[c], area, threshold, mesh.diagonal);
     }
@@ -163,7 +163,7 @@ void Baker::Impl::record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSetting
     // Every thread visits each node and each source at most once: this many dispatches finish
     // every traversal; threads that are done return at once.
     const uint32_t dispatches = (m.node_count + n) / kClusterWorkPerDispatch + 1;
-    ClusterPush push{n, m.node_count, s.tm_epsilon, kClusterWorkPerDispatch, m.first_point, slot_begin, slot_end};
+    ClusterPush push{n, m.node_count, s.tm_opening_ratio, kClusterWorkPerDispatch, m.first_point, slot_begin, slot_end};
     for (uint32_t d = 0; d < dispatches; ++d) {
         kernel.dispatch(cmd, slot_end - slot_begin, push, {m.profiles, m.tree_texels, m.point_order, m.resume, m.partial_sum, m.partial_comp, m.tm});
         gpu::compute_barrier(cmd);

@@ -1,5 +1,6 @@
 // deform/mesh_deformer.cpp - jade::MeshDeformer: the GPU passes that move the bake vertices
 // (procedural or skinned) and recompute normals and areas, each a gpu::Kernel.
+#include <jade/clock.hpp>
 #include <jade/context.hpp>
 #include <jade/deform.hpp>
 #include <jade/error.hpp>
@@ -27,6 +28,7 @@ namespace {
 constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                                         VK_BUFFER_USAGE_TRANSFER_DST_BIT;
 constexpr double kTwoPi = 6.283185307179586;
+using gpu::storage_bindings;
 
 struct ProceduralPush {
     uint32_t vertex_count, kind, axis;
@@ -44,11 +46,6 @@ struct NormalsPush {
     uint32_t vertex_count;
 };
 
-std::vector<VkDescriptorType> storage_bindings(size_t n)
-{
-    return std::vector<VkDescriptorType>(n, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
-}
-
 /// A buffer holding `data`, at least gpu::kMinBufferBytes (Vulkan has no empty buffers; the
 /// shaders do not read past the counts they get).
 template <class T> gpu::Buffer make_buffer(gpu::Context& ctx, const std::vector<T>& data, const char* name, bool host_visible = false)
@@ -60,11 +57,6 @@ template <class T> gpu::Buffer make_buffer(gpu::Context& ctx, const std::vector<
 
 // Bytes per triangle of the cross products (deform_triangles.comp: xyz the cross product, w the area).
 constexpr VkDeviceSize kTriangleBytes = sizeof(glm::vec4);
-
-double ms_since(std::chrono::steady_clock::time_point t0)
-{
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 }  // namespace
 
