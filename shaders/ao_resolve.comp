@@ -3,11 +3,8 @@
 // A_o = hits / rays per vertex, the hits summed over the ray slices (ao_trace.comp).
 #include "common.glsl"
 
-layout(push_constant, scalar) uniform Push {
-    uint vertex_count;
-    uint rays;
-    uint slices;
-} pc;
+#include "bake_interface.h"  // struct AoResolvePush, shared with engine/src/bake
+layout(push_constant, scalar) uniform Push { AoResolvePush pc; };
 
 layout(binding = 0, scalar) readonly buffer Hits { uint hits[]; };  // [slice][vertex]
 layout(binding = 1, scalar) writeonly buffer Ao { float ao[]; };

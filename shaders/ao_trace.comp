@@ -12,17 +12,8 @@
 #include "rays.glsl"
 #include "bvh.glsl"  // ray_hits_box
 
-layout(push_constant, scalar) uniform Push {
-    uint vertex_count;
-    uint rays;
-    uint seed;
-    uint low_discrepancy;
-    float epsilon;       // origin offset along the normal, mesh units
-    float max_distance;  // mesh units
-    uint item_count;
-    uint slices;         // divides rays
-    uint slice;          // the slice traced by this dispatch
-} pc;
+#include "bake_interface.h"  // struct AoPush, shared with engine/src/bake
+layout(push_constant, scalar) uniform Push { AoPush pc; };
 
 layout(binding = 0, scalar) readonly buffer Positions { vec3 positions[]; };
 layout(binding = 1, scalar) readonly buffer Normals { vec3 normals[]; };
@@ -72,7 +63,7 @@ void main()
     if (index >= pc.vertex_count * rays_in_slice) return;
     uint v = index / rays_in_slice, k = (index % rays_in_slice) * pc.slices + pc.slice;
     vec3 n = normals[v];
-    vec3 o = positions[v] + pc.epsilon * n;
+    vec3 o = positions[v] + pc.ray_offset * n;
     vec3 d = ray_direction(n, ray_sample(v, k, pc.rays, pc.seed, pc.low_discrepancy != 0u));
     if (occluded(o, d)) atomicAdd(hits[pc.slice * pc.vertex_count + v], 1u);
 }

@@ -16,10 +16,8 @@
 #include "bvh.glsl"
 #include "direction.glsl"
 
-layout(push_constant, scalar) uniform Push {
-    uint count;        // nodes in this level
-    uint first;        // first entry of this level in `level_nodes`
-} pc;
+#include "bake_interface.h"  // struct RefitPush, shared with engine/src/bake
+layout(push_constant, scalar) uniform Push { RefitPush pc; };
 
 struct TopologyNode {  // bake::BvhNode: the shape is fixed, the bounds are refitted here
     vec3 lo;

@@ -5,9 +5,8 @@
 #include "common.glsl"
 #include "direction.glsl"
 
-layout(push_constant, scalar) uniform Push {
-    uint vertex_count;
-} pc;
+#include "bake_interface.h"  // struct GatherPush, shared with engine/src/bake
+layout(push_constant, scalar) uniform Push { GatherPush pc; };
 
 layout(binding = 0, scalar) readonly buffer Positions { vec3 positions[]; };
 layout(binding = 1, scalar) readonly buffer Areas { float areas[]; };

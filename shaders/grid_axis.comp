@@ -21,15 +21,8 @@ layout(constant_id = 3) const uint FIXED = 0u;
 const int RUN = 8;
 const int INPUTS = STEP * (RUN - 1) + 2 * HALF_WIDTH + 1;
 
-layout(push_constant, scalar) uniform Push {
-    uvec3 in_dims;
-    uvec3 out_dims;  // differs from in_dims along `axis` only
-    uint axis;
-    int shift;       // 0 blur, −2 restrict
-    uint in_offset, out_offset;
-    float inv_scale;
-    float w[GRID_MAX_HALF_WIDTH + 1u];
-} pc;
+#include "bake_interface.h"  // struct GridAxisPush, shared with engine/src/bake
+layout(push_constant, scalar) uniform Push { GridAxisPush pc; };
 
 layout(binding = 0) uniform usamplerBuffer splat;  // texel fetches: lavapipe's storage loads are per-lane loops
 layout(binding = 1) uniform samplerBuffer source;

@@ -6,9 +6,8 @@
 #include "common.glsl"
 #include "grid.glsl"
 
-layout(push_constant, scalar) uniform Push {
-    uint vertex_count;
-} pc;
+#include "bake_interface.h"  // struct GatherPush, shared with engine/src/bake
+layout(push_constant, scalar) uniform Push { GatherPush pc; };
 
 layout(binding = 0, scalar) readonly buffer Positions { vec3 positions[]; };
 layout(binding = 1, scalar) buffer Bounds { uint bounds[6]; };  // ordered min xyz, then max xyz

@@ -9,12 +9,8 @@
 #include "grid.glsl"
 #include "tm_common.glsl"
 
-layout(push_constant, scalar) uniform Push {
-    uint level_count;
-    uint slot_begin;
-    uint slot_count;
-    float cube_side;  // > 0: a deforming mesh's grids follow its bounds (level_origin)
-} pc;
+#include "bake_interface.h"  // struct GridGatherPush, shared with engine/src/bake
+layout(push_constant, scalar) uniform Push { GridGatherPush pc; };
 
 layout(binding = 1, scalar) readonly buffer Levels { GridLevel levels[]; };
 layout(binding = 2, scalar) readonly buffer Positions { vec3 positions[]; };

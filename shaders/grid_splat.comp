@@ -9,12 +9,8 @@
 #include "common.glsl"
 #include "grid.glsl"
 
-layout(push_constant, scalar) uniform Push {
-    uint vertex_count;
-    uint level_count;
-    float cube_side;  // > 0: a deforming mesh's grids follow its bounds (level_origin)
-    uint field;       // 0: (1 − A_o)·area; 1, 2, 3: times n.x, n.y, n.z
-} pc;
+#include "bake_interface.h"  // struct GridSplatPush, shared with engine/src/bake
+layout(push_constant, scalar) uniform Push { GridSplatPush pc; };
 
 layout(binding = 0, scalar) readonly buffer Levels { GridLevel levels[]; };
 layout(binding = 1, scalar) readonly buffer Positions { vec3 positions[]; };

@@ -7,11 +7,8 @@
 // from the positions themselves, so a corner never falls outside its box by a rounding.
 #include "common.glsl"
 
-layout(push_constant, scalar) uniform Push {
-    uint count;  // work entries of this dispatch
-    uint first;  // first work entry
-    uint mode;   // 0: triangles, 1: nodes of one level
-} pc;
+#include "bake_interface.h"  // struct RayRefitPush, shared with engine/src/bake
+layout(push_constant, scalar) uniform Push { RayRefitPush pc; };
 
 layout(binding = 0, scalar) readonly buffer Positions { vec3 positions[]; };  // bake order
 layout(binding = 1, scalar) readonly buffer Indices { uint indices[]; };      // 3 per triangle

@@ -4,12 +4,8 @@
 // thickness_trace.comp added over the ray slices, divided by the ray count.
 #include "common.glsl"
 
-layout(push_constant, scalar) uniform Push {
-    uint vertex_count;
-    uint rays;
-    uint slices;
-    float max_distance;  // mesh units: one kQuantum of fixed point
-} pc;
+#include "bake_interface.h"  // struct ThicknessResolvePush, shared with engine/src/bake
+layout(push_constant, scalar) uniform Push { ThicknessResolvePush pc; };
 
 layout(binding = 0, scalar) readonly buffer Sums { uint sums[]; };  // [slice][vertex]
 layout(binding = 1, scalar) writeonly buffer Thickness { float thickness[]; };

@@ -12,17 +12,8 @@
 #include "rays.glsl"
 #include "bvh.glsl"  // ray_hits_box
 
-layout(push_constant, scalar) uniform Push {
-    uint vertex_count;
-    uint rays;
-    uint seed;
-    float cos_cone;      // cosine of the cone's half-angle
-    float epsilon;       // origin offset against the normal, mesh units
-    float max_distance;  // mesh units
-    uint item_count;
-    uint slices;         // divides rays
-    uint slice;          // the slice traced by this dispatch
-} pc;
+#include "bake_interface.h"  // struct ThicknessPush, shared with engine/src/bake
+layout(push_constant, scalar) uniform Push { ThicknessPush pc; };
 
 layout(binding = 0, scalar) readonly buffer Positions { vec3 positions[]; };
 layout(binding = 1, scalar) readonly buffer Normals { vec3 normals[]; };
@@ -72,10 +63,10 @@ void main()
     if (index >= pc.vertex_count * rays_in_slice) return;
     uint v = index / rays_in_slice, k = (index % rays_in_slice) * pc.slices + pc.slice;
     vec3 n = normals[v];
-    vec3 o = positions[v] - pc.epsilon * n;
+    vec3 o = positions[v] - pc.ray_offset * n;
     vec3 d = cone_direction(-n, ray_sample(v, k, pc.rays, pc.seed, true), pc.cos_cone);
     // The origin sits ε inside the surface: the ray's distance from the surface point itself adds
     // ε / cos θ (on a thin slab ε alone would be a percent of the thickness).
-    float t = min(nearest_hit(o, d) + pc.epsilon / max(dot(d, -n), 0.05), pc.max_distance);
+    float t = min(nearest_hit(o, d) + pc.ray_offset / max(dot(d, -n), 0.05), pc.max_distance);
     atomicAdd(sums[pc.slice * pc.vertex_count + v], uint(clamp(t / pc.max_distance, 0.0, 1.0) * kQuantum + 0.5));
 }

@@ -10,8 +10,8 @@
 //   W·R(r) + ½·[(R'' − R'/r)·uᵀCu + (R'/r)·tr C]        (the dipole term is 0 about the centroid)
 // with R', R'' analytic (Burley, Gaussians; finite differences for the dipole). What remains is
 // third order in s/r and s/ℓ, ℓ = R/|R'| the length over which the profile changes at r. A
-// node is accepted when s ≤ θ·min(r, ℓ) for every channel (θ = the push constant `epsilon`,
-// BakeSettings::tm_epsilon): the classic Barnes–Hut opening angle, tightened by the profile's
+// node is accepted when s ≤ θ·min(r, ℓ) for every channel (θ = the push constant `theta`,
+// BakeSettings::tm_opening_ratio): the classic Barnes–Hut opening angle, tightened by the profile's
 // own length scale - or when the node is faint (its nearest point adds less than θ³/1000 of
 // its share of an open plane's t_m). The error against θ is measured, not assumed.
 // The lanes of a subgroup hold neighbouring targets (tree order) and walk the tree together: a
@@ -28,15 +28,8 @@
 #include "tm_common.glsl"
 #include "bvh.glsl"
 
-layout(push_constant, scalar) uniform Push {
-    uint vertex_count;
-    uint node_count;
-    float epsilon;    // θ, the opening ratio
-    uint work_budget; // loop iterations per dispatch (lavapipe's loop limit)
-    uint first_point; // texel of source 0, after the nodes
-    uint slot_begin;  // the targets of this dispatch: tree slots [slot_begin, slot_end)
-    uint slot_end;    // (all of them, or one slice of an amortised re-bake)
-} pc;
+#include "bake_interface.h"  // struct ClusterPush, shared with engine/src/bake
+layout(push_constant, scalar) uniform Push { ClusterPush pc; };
 
 // Nodes (cluster_refit.comp: 4 texels each), then the sources in tree order (tm_common.glsl:
 // 2 texels each), as RGBA32UI.
@@ -126,7 +119,7 @@ void main()
             // open plane's t_m = 1, R(r − s)·A_total ≤ θ³/1000, a distance precomputed per
             // channel (Profile.faint_radius, bake/gpu_profile.hpp).
             bool is_faint = r - s >= prof[c].faint_radius;
-            accept = accept && (s <= pc.epsilon * min(r, decay_length) || is_faint);
+            accept = accept && (s <= pc.theta * min(r, decay_length) || is_faint);
             // (A point - a source, or a node of radius 0 - has no quadrupole; the dipole's finite
             // differences would divide by zero.)
             float quadrupole = s > 0.0 ? 0.5 * ((second - tangential) * cuu + tangential * trace) : 0.0;

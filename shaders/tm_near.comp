@@ -17,14 +17,8 @@
 #include "common.glsl"
 #include "tm_common.glsl"
 
-layout(push_constant, scalar) uniform Push {
-    uint first_slot;
-    uint slot_count;
-    uint index_base;   // list entry at the start of the bound window of near_indices
-    uint source_base;  // texel of source slot 0 in `sources`
-    float cut2;        // GRID: r_cut², beyond which a point pair is the grids' alone
-    float table_scale; // GRID: table entries per unit of distance
-} pc;
+#include "bake_interface.h"  // struct NearPush, shared with engine/src/bake
+layout(push_constant, scalar) uniform Push { NearPush pc; };
 
 layout(constant_id = 3) const uint GRID = 0u;
 
@@ -36,7 +30,7 @@ layout(binding = 5, scalar) readonly buffer Order { uint order[]; };            
 // GRID: S(r), then (R − S)(r)·r, per channel at r = k / table_scale (bake/grid_field.hpp).
 layout(binding = 6) uniform samplerBuffer smooth_table;
 
-const float DISK_CAP = 0.6;
+const float DISK_CAP = JADE_DISK_CAP;  // bake_interface.h: the float64 reference's kDiskCap too
 
 #define TM_STATE_BINDING 7
 #include "tm_state.glsl"
@@ -83,7 +77,7 @@ void main()
         bool disk = r2 < extra.x;
         float weight = disk ? extra.z : 0.0;
         // The disk reaches at most DISK_CAP·r towards the target; the rest of the area stays a
-        // point (kDiskCap in bake/disk_integral.hpp): irregular meshes must not count a second
+        // point (as kDiskCap in bake/disk_integral.hpp): irregular meshes must not count a second
         // self term for stiff profiles.
         // That rest lies around the source, at the RMS distance of its annulus from the target,
         // so a source (nearly) on top of the target stays finite (rest_distance in

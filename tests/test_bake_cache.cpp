@@ -89,7 +89,7 @@ TEST_F(BakeCacheTest, KeyCoversMeshProfilesAndSettingsButNotShadingParameters)
     more_rays.ao.rays += 1;
     EXPECT_NE(bake_key(sphere, material, more_rays), key);
     BakeSettings eps = settings;
-    eps.tm_epsilon *= 0.5f;
+    eps.tm_opening_ratio *= 0.5f;
     EXPECT_NE(bake_key(sphere, material, eps), key);
     PreparedMesh moved = sphere;
     moved.positions[5].x += 1e-6f;

@@ -42,12 +42,9 @@ struct Host {
     uint32_t family = UINT32_MAX;
     VkDevice device = VK_NULL_HANDLE;
     VkQueue queue = VK_NULL_HANDLE;
-    VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-    VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
-    VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
-    std::vector<const char*> extensions;
+    HostDeviceSetup setup;  // Jade's features and extensions, or none
 
-    explicit Host(bool with_jade_requirements)
+    explicit Host(bool with_jade_requirements) : setup(with_jade_requirements)
     {
         VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
         app.apiVersion = VK_API_VERSION_1_3;
@@ -88,21 +85,7 @@ struct Host {
             if (family != UINT32_MAX) { physical = pd; break; }
         }
         if (!physical) throw Error("test host: no Vulkan 1.3 device");
-        if (with_jade_requirements) {
-            Context::enable_required_features(f12, f13);
-            extensions = Context::required_device_extensions();
-        }
-        float priority = 1.0f;
-        VkDeviceQueueCreateInfo q{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
-        q.queueFamilyIndex = family;
-        q.queueCount = 1;
-        q.pQueuePriorities = &priority;
-        VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
-        dci.queueCreateInfoCount = 1;
-        dci.pQueueCreateInfos = &q;
-        dci.enabledExtensionCount = uint32_t(extensions.size());
-        dci.ppEnabledExtensionNames = extensions.data();
-        if (vkCreateDevice(physical, &dci, nullptr, &device) != VK_SUCCESS) throw Error("test host: vkCreateDevice failed");
+        device = setup.create(physical, family);
         vkGetDeviceQueue(device, family, 0, &queue);
     }
     ~Host()
@@ -113,21 +96,7 @@ struct Host {
         if (messenger) destroy(instance, messenger, nullptr);
         vkDestroyInstance(instance, nullptr);
     }
-    AdoptedVulkan adopted() const
-    {
-        AdoptedVulkan a;
-        a.instance = instance;
-        a.physical_device = physical;
-        a.device = device;
-        a.queue = queue;
-        a.queue_family = family;
-        a.api_version = VK_API_VERSION_1_3;
-        a.get_instance_proc_addr = vkGetInstanceProcAddr;
-        a.get_device_proc_addr = vkGetDeviceProcAddr;
-        a.enabled_features = &features;
-        a.enabled_extensions.assign(extensions.begin(), extensions.end());
-        return a;
-    }
+    AdoptedVulkan adopted() const { return setup.adopted(instance, physical, device, family, queue); }
 };
 
 class Embed : public ::testing::Test {

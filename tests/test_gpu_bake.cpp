@@ -4,6 +4,7 @@
 
 #include <jade/bake.hpp>
 #include <jade/io.hpp>
+#include <jade/reference.hpp>
 
 #include <glm/geometric.hpp>
 

@@ -12,6 +12,7 @@
 #include <jade/io.hpp>
 #include <jade/material.hpp>
 #include <jade/mesh.hpp>
+#include <jade/reference.hpp>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -297,7 +298,7 @@ TEST(ReferenceAo, ParallelPlaneMatchesAnalyticFraction)
         const double L = double(rel) * m.diagonal, eps = 1e-4 * double(m.diagonal);
         const double expected = std::max(0.0, 1.0 - std::pow((h - eps) / L, 2.0));
         for (bool ld : {true, false}) {
-            const AoSettings s{.rays = 4096, .low_discrepancy = ld, .seed = 3, .max_distance_rel = rel, .epsilon_rel = 1e-4f};
+            const AoSettings s{.rays = 4096, .low_discrepancy = ld, .seed = 3, .max_distance_rel = rel, .ray_offset_rel = 1e-4f};
             const float ao = reference_ao(m, s, std::vector<uint32_t>{centre})[0];
             // Low discrepancy: the hit set depends on u1 alone, stratified in 1/N. i.i.d.: 4σ.
             const double tol = ld ? 2.0 / 4096 : 4.0 * std::sqrt(expected * (1 - expected) / 4096) + 1e-9;

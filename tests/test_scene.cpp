@@ -5,6 +5,7 @@
 #include "test_support.hpp"
 
 #include <jade/cache.hpp>
+#include <jade/io.hpp>
 #include <jade/error.hpp>
 #include <jade/scene.hpp>
 

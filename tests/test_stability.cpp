@@ -9,6 +9,7 @@
 #include <jade/bake.hpp>
 #include <jade/error.hpp>
 #include <jade/lut.hpp>
+#include <jade/reference.hpp>
 #include <jade/render.hpp>
 
 #include <glm/geometric.hpp>

@@ -6,6 +6,7 @@
 
 #include <jade/bake.hpp>
 #include <jade/io.hpp>
+#include <jade/reference.hpp>
 #include <jade/render.hpp>
 
 #include <glm/geometric.hpp>

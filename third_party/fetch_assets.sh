@@ -5,7 +5,7 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 dest="${JADE_ASSETS:-$root/assets}"
-meshes=(bunny00.off ChineseDragon-10kv.off camel.off elephant.off hand.off)
+mapfile -t meshes < <(sed -e 's/#.*//' -e 's/[[:space:]]*$//' -e '/^$/d' "$root/third_party/assets.txt")
 have=1
 for m in "${meshes[@]}"; do [ -s "$dest/$m" ] || have=0; done
 [ $have -eq 1 ] && { echo "jade: assets present in $dest"; exit 0; }

@@ -2,6 +2,7 @@
 // instance rule of jade::GltfAsset) and the asset written back whole with the attributes.
 #include "bake_record.hpp"
 
+#include <jade/clock.hpp>
 #include <jade/io.hpp>
 
 #include <glm/common.hpp>
@@ -81,7 +82,7 @@ void bake_asset(const Args& args, const std::filesystem::path& in, const std::fi
            << ",\"timings_ms\":" << record::timings(r) << "}";
         bakes += std::string(bakes.empty() ? "" : ",") + os.str();
     }
-    const double wall = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    const double wall = ms_since(t0);
     std::ostringstream extras;
     extras << "{\"jade\":{\"version\":2," << record::units()
            << ",\"instance_rule\":\"each mesh baked once, all its triangle primitives together, in the world space of its "

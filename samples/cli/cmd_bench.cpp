@@ -5,7 +5,10 @@
 #include "commands.hpp"
 #include "embree_ao.hpp"
 
+#include <jade/clock.hpp>
+#include <jade/cache.hpp>
 #include <jade/io.hpp>
+#include <jade/reference.hpp>
 #include <jade/scene.hpp>
 
 #include <algorithm>
@@ -16,8 +19,6 @@
 namespace jade::cli {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 double max_rel_error(const std::vector<glm::vec3>& gpu, const std::vector<glm::dvec3>& ref, const std::vector<uint32_t>& at)
 {
@@ -53,7 +54,7 @@ void compare_far_fields(Baker& baker, const PreparedMesh& p, const std::vector<f
         ratio.push_back(tc.back() / tg.back());
     }
     std::printf("\nt_m far field, clustered (theta %g) and grid (resolution %g), %u alternating runs (GPU time of all "
-                "t_m passes, median):\n", double(s.tm_epsilon), double(s.tm_grid_resolution), pairs);
+                "t_m passes, median):\n", double(s.tm_opening_ratio), double(s.tm_grid_resolution), pairs);
     std::printf("  clustered  %10s   %7.2f MiB   max rel error %.2e\n", format_ms(median(tc)).c_str(),
                 double(rc.tm_bytes) / 1048576.0, max_rel_error(rc.tm, ref, at));
     std::printf("  grid       %10s   %7.2f MiB   max rel error %.2e\n", format_ms(median(tg)).c_str(),
@@ -75,7 +76,7 @@ int bench_bake(const Args& args)
     const double n = double(p.vertex_count());
     std::printf("mesh %s: %zu vertices, %zu triangles; device %s\n", mesh.name.c_str(), p.vertex_count(),
                 p.triangle_count(), ctx->device_info().name.c_str());
-    std::printf("material %s, %u AO rays, t_m epsilon %g\n\n", m.name.c_str(), s.ao.rays, s.tm_epsilon);
+    std::printf("material %s, %u AO rays, t_m epsilon %g\n\n", m.name.c_str(), s.ao.rays, s.tm_opening_ratio);
 
     baker.bake(p, m, s);  // warm-up: pipelines, caches
     BakeResult best;

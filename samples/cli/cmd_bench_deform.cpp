@@ -53,7 +53,7 @@ void bench_mesh(const Args& args, Context& ctx, const std::string& path, const s
 
     std::printf("\n%s: %zu bake vertices, %zu triangles; %s, %u frames of %.3g s; material %s, %u AO rays, theta %.2g\n",
                 mesh.name.c_str(), rest.vertex_count(), rest.triangle_count(), args.get_or("deformer", "twist").c_str(),
-                frames, step, material.name.c_str(), settings.ao.rays, settings.tm_epsilon);
+                frames, step, material.name.c_str(), settings.ao.rays, settings.tm_opening_ratio);
     // The clustered and the grid far fields, full re-bakes, alternately (two rounds each).
     BakeSettings clustered = settings, grid = settings;
     clustered.method = TmMethod::Clustered;

@@ -11,6 +11,7 @@
 // DynamicBake::record, Renderer::record_vertex_update and Renderer::record into one command buffer.
 #include "commands.hpp"
 
+#include <jade/clock.hpp>
 #include <jade/deform.hpp>
 #include <jade/io.hpp>
 #include <jade/render.hpp>
@@ -192,7 +193,7 @@ int cmd_deform(int argc, char** argv)
     std::printf("jade deform: %s, %zu bake vertices, %s, %u frames over %.3g s, bake %u AO rays, theta %.2g, %ux%u\n",
                 mesh.name.c_str(), rest.vertex_count(), gltf ? ("glTF animation '" + animated->animations[animation].name + "'").c_str()
                                                              : kind_name.c_str(),
-                frames, cycle, bake_settings.ao.rays, bake_settings.tm_epsilon, width, height);
+                frames, cycle, bake_settings.ao.rays, bake_settings.tm_opening_ratio, width, height);
     std::printf("GPU time per stage (ms; bake t_m includes the GPU BVH and cluster-tree refits); wall: the whole frame on the host\n");
     std::printf("%-7s %9s %9s %10s %10s %9s %10s\n", "frame", "deform", "normals", "bake AO", "bake t_m", "draw", "wall");
     std::vector<std::vector<float>> images;
@@ -213,7 +214,7 @@ int cmd_deform(int argc, char** argv)
         std::snprintf(name, sizeof name, "frame_%03u.png", f);
         save_image(out_dir / name, int(image.width), int(image.height), image.rgba);
         images.push_back(std::move(image.rgba));
-        st.wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        st.wall = ms_since(t0);
         print_row(std::to_string(f).c_str(), st);
         std::fflush(stdout);
         sum.deform += st.deform, sum.normals += st.normals, sum.ao += st.ao, sum.tm += st.tm, sum.draw += st.draw, sum.wall += st.wall;

@@ -4,6 +4,7 @@
 #include "commands.hpp"
 
 #include <jade/io.hpp>
+#include <jade/overlay.hpp>
 #include <jade/render.hpp>
 
 #include <glm/geometric.hpp>

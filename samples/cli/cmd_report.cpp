@@ -4,6 +4,7 @@
 // through samples/report/plot_report.py, DIR/*.png.
 #include "report.hpp"
 
+#include <jade/clock.hpp>
 #include <jade/io.hpp>
 
 #include <algorithm>
@@ -43,7 +44,7 @@ Plan make_plan(const std::string& name, uint32_t tm_sample, std::vector<float> e
     // ε is the far field's opening ratio (shaders/tm_cluster.comp): below ~0.25 the clustered
     // pass costs more than the all-pairs one. The presets' own values are always included.
     p.tm_epsilons = epsilons.empty() ? std::vector<float>{1.6f, 1.2f, 0.8f, 0.6f, 0.4f, 0.25f} : epsilons;
-    for (Quality q : {Quality::Draft, Quality::Default, Quality::High}) p.tm_epsilons.push_back(BakeSettings::preset(q).tm_epsilon);
+    for (Quality q : {Quality::Draft, Quality::Default, Quality::High}) p.tm_epsilons.push_back(BakeSettings::preset(q).tm_opening_ratio);
     std::sort(p.tm_epsilons.begin(), p.tm_epsilons.end(), std::greater<>());
     p.tm_epsilons.erase(std::unique(p.tm_epsilons.begin(), p.tm_epsilons.end()), p.tm_epsilons.end());
     p.tm_grey_d = {0.01, 0.05, 0.2};
@@ -203,7 +204,7 @@ int cmd_report(int argc, char** argv)
     steps.clear();
     write_file_atomically(dir / "summary.md", summary_markdown(rows, plan, ctx->device_info().name));
     std::fprintf(stderr, "jade report: %zu configurations in %s: %s, %s\n", rows.size(),
-                 format_ms(std::chrono::duration<double, std::milli>(Clock::now() - t0).count()).c_str(),
+                 format_ms(ms_since(t0)).c_str(),
                  (dir / "report.csv").string().c_str(), (dir / "summary.md").string().c_str());
     if (!args.flag("no-plot")) run_plots(dir);
     // How close the shading modes come to the committed path-traced references (when this runs

@@ -3,6 +3,7 @@
 // the planned passes (--verbose lists the passes that ran).
 #include "commands.hpp"
 
+#include <jade/cache.hpp>
 #include <jade/io.hpp>
 #include <jade/scene.hpp>
 

@@ -136,7 +136,7 @@ BakeSettings bake_settings_from_args(const Args& args)
     s.ao.rays = args.count("ao-rays", s.ao.rays, 1, 65536);
     s.ao.low_discrepancy = !args.flag("ao-iid");
     s.ao.max_distance_rel = float(args.number("ao-distance", s.ao.max_distance_rel, 1e-6, 1e6));
-    s.ao.epsilon_rel = float(args.number("ao-epsilon", s.ao.epsilon_rel, 0.0, 1.0));
+    s.ao.ray_offset_rel = float(args.number("ao-epsilon", s.ao.ray_offset_rel, 0.0, 1.0));
     s.ao.seed = args.count("seed", s.ao.seed, 0, 0xffffffffu);
     const std::string method = args.get_or("method", "auto");
     try {
@@ -144,7 +144,7 @@ BakeSettings bake_settings_from_args(const Args& args)
     } catch (const Error&) {
         args.fail("--method: '" + method + "' is not one of auto, exact, clustered, grid");
     }
-    s.tm_epsilon = float(args.number("epsilon", s.tm_epsilon, 1e-6, 4.0));
+    s.tm_opening_ratio = float(args.number("epsilon", s.tm_opening_ratio, 1e-6, 4.0));
     s.tm_grid_resolution = float(args.number("grid-resolution", s.tm_grid_resolution, 1.5, 4.0));
     return s;
 }

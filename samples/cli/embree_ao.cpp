@@ -3,6 +3,7 @@
 
 #include "commands.hpp"
 
+#include <jade/clock.hpp>
 #include <jade/error.hpp>
 
 #include <algorithm>
@@ -25,8 +26,6 @@ namespace {
 
 #ifdef JADE_CLI_HAVE_EMBREE
 
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 // One owner per Embree handle.
 struct DeviceDeleter {
@@ -78,7 +77,7 @@ public:
     {
         const size_t n = mesh_.vertex_count();
         const uint32_t rays = settings.rays;
-        const float eps = settings.epsilon_rel * mesh_.diagonal;         // mesh units
+        const float eps = settings.ray_offset_rel * mesh_.diagonal;         // mesh units
         const float t_max = settings.max_distance_rel * mesh_.diagonal;  // mesh units
         std::vector<glm::vec3> directions(n * rays);
         for (size_t v = 0; v < n; ++v)

@@ -46,7 +46,7 @@ struct Plan {
     float ao_default_distance = 0.1f;      ///< the distance t_m, the presets and images use
     bool iid_every_distance = true;        ///< false: the i.i.d. sweep only at the default distance
     uint32_t ao_agreement_rays = 64;       ///< GPU vs reference_ao (float64) comparison
-    std::vector<float> tm_epsilons;        ///< clustered far-field ε (BakeSettings::tm_epsilon), descending
+    std::vector<float> tm_epsilons;        ///< clustered far-field θ (BakeSettings::tm_opening_ratio), descending
     bool tm_jade = true;                   ///< the "jade" preset (RGB) besides the grey Burleys
     std::vector<double> tm_grey_d;         ///< grey Burley d, fractions of the diagonal
     uint32_t tm_sample = 300;              ///< vertices the float64 t_m reference runs on

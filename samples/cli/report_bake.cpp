@@ -8,6 +8,9 @@
 // end (their own AO), against the same reference.
 #include "report.hpp"
 
+#include <jade/clock.hpp>
+#include <jade/reference.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -16,8 +19,6 @@
 namespace jade::cli::report {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 std::string sampling_name(bool low_discrepancy) { return low_discrepancy ? "low-discrepancy" : "i.i.d."; }
 std::string distance_case(float d) { return strf("d=%g", double(d)); }
@@ -173,7 +174,7 @@ Step tm_step(Session& s, MeshState& st, size_t k, std::string knob, std::string 
         } else if (settings.method == TmMethod::Auto) {
             r.notes += b.method_used == TmMethod::Exact     ? std::string("; auto chose exact")
                        : b.method_used == TmMethod::Grid    ? strf("; auto chose grid, resolution %g", double(settings.tm_grid_resolution))
-                                                            : strf("; auto chose clustered eps=%g", double(settings.tm_epsilon));
+                                                            : strf("; auto chose clustered eps=%g", double(settings.tm_opening_ratio));
         }
         return r;
     }};
@@ -205,7 +206,7 @@ void add_tm_steps(Session& s, MeshState& st, std::vector<Step>& steps)
         for (float eps : plan.tm_epsilons) {
             BakeSettings clustered;
             clustered.method = TmMethod::Clustered;
-            clustered.tm_epsilon = eps;
+            clustered.tm_opening_ratio = eps;
             steps.push_back(tm_step(s, st, k, "tm_epsilon", strf("%g", double(eps)), "clustered", clustered, labels[k]));
         }
         for (Quality q : kQualities) {  // the grid at each preset's resolution
@@ -233,7 +234,7 @@ void add_quality_steps(Session& s, MeshState& st, std::vector<Step>& steps)
             const auto& ref_ao = st.ao_reference.at(settings.ao.max_distance_rel);
             ErrorStats ao = error_stats(ao_errors(b.ao, ref_ao));
             r.notes = strf("t_m relative vs float64 on %zu vertices (%u-ray AO); this bake: %u AO rays (AO RMS %.3g), eps=%g, %s",
-                           st.sample.size(), s.plan.ao_reference_rays, settings.ao.rays, ao.rms, double(settings.tm_epsilon),
+                           st.sample.size(), s.plan.ao_reference_rays, settings.ao.rays, ao.rms, double(settings.tm_opening_ratio),
                            tm_method_name(b.method_used));
             st.quality[quality_name(q)] = std::move(b);
             return r;

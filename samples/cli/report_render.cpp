@@ -10,6 +10,7 @@
 // perceptual metric: structure, contrast and luminance over 8×8 windows).
 #include "report.hpp"
 
+#include <jade/clock.hpp>
 #include <jade/lut.hpp>
 #include <jade/render.hpp>
 
@@ -23,8 +24,6 @@
 namespace jade::cli::report {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 const LutLayout kReferenceLut{4097, 1025};
 

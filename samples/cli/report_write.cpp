@@ -296,7 +296,7 @@ std::string recommended(const std::vector<Row>& rows, const Plan& plan)
                 true);
         // The preset as measured (its row's notes), else as compiled in.
         const BakeSettings preset = BakeSettings::preset(target.level);
-        std::string today = strf("%u rays, ε = %g", preset.ao.rays, double(preset.tm_epsilon));
+        std::string today = strf("%u rays, ε = %g", preset.ao.rays, double(preset.tm_opening_ratio));
         for (const Row& r : rows) {
             std::smatch m;
             static const std::regex measured("(\\d+) AO rays.*eps=([0-9.eE+-]+)");

@@ -205,39 +205,15 @@ void VulkanHost::pick_physical_device()
 
 void VulkanHost::create_device()
 {
-    jade::Context::enable_required_features(f12_, f13_);
-    extensions_ = jade::Context::required_device_extensions();
-    extensions_.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
-    float priority = 1.0f;
-    VkDeviceQueueCreateInfo q{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
-    q.queueFamilyIndex = family_;
-    q.queueCount = 1;
-    q.pQueuePriorities = &priority;
-    VkDeviceCreateInfo ci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features_};
-    ci.queueCreateInfoCount = 1;
-    ci.pQueueCreateInfos = &q;
-    ci.enabledExtensionCount = uint32_t(extensions_.size());
-    ci.ppEnabledExtensionNames = extensions_.data();
-    VkDevice device = VK_NULL_HANDLE;
-    check(vkCreateDevice(physical_, &ci, nullptr, &device), "vkCreateDevice");
+    setup_.extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+    VkDevice device = setup_.create(physical_, family_);
     device_ = Owned<VkDevice>(device, [](VkDevice d) { vkDestroyDevice(d, nullptr); });
     vkGetDeviceQueue(device, family_, 0, &queue_);
 }
 
 jade::AdoptedVulkan VulkanHost::adopted_vulkan() const
 {
-    jade::AdoptedVulkan a;
-    a.instance = instance_;
-    a.physical_device = physical_;
-    a.device = device_;
-    a.queue = queue_;
-    a.queue_family = family_;
-    a.api_version = VK_API_VERSION_1_3;
-    a.get_instance_proc_addr = vkGetInstanceProcAddr;
-    a.get_device_proc_addr = vkGetDeviceProcAddr;
-    a.enabled_features = &features_;
-    a.enabled_extensions.assign(extensions_.begin(), extensions_.end());
-    return a;
+    return setup_.adopted(instance_, physical_, device_, family_, queue_);
 }
 
 }  // namespace viewer

@@ -70,10 +70,7 @@ private:
     VkPhysicalDevice physical_ = VK_NULL_HANDLE;
     uint32_t family_ = 0;
     std::string device_name_;
-    VkPhysicalDeviceVulkan13Features f13_{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-    VkPhysicalDeviceVulkan12Features f12_{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13_};
-    VkPhysicalDeviceFeatures2 features_{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12_};
-    std::vector<const char*> extensions_;
+    jade::HostDeviceSetup setup_;  // Jade's features and extensions, plus the swapchain
     Owned<VkDevice> device_;
     VkQueue queue_ = VK_NULL_HANDLE;
 

@@ -3,7 +3,9 @@
 #ifndef JADE_GRID_GLSL
 #define JADE_GRID_GLSL
 
-const uint GRID_MAX_HALF_WIDTH = 16u;  // = kGridMaxHalfWidth
+#include "bake_interface.h"
+
+const uint GRID_MAX_HALF_WIDTH = JADE_GRID_MAX_HALF_WIDTH;  // = bake::kGridMaxHalfWidth
 
 // = bake::GpuGridLevel (scalar layout).
 struct GridLevel {

@@ -13,11 +13,8 @@
 #include "common.glsl"
 #include "tm_common.glsl"
 
-layout(push_constant, scalar) uniform Push {
-    uint vertex_count;
-    uint source_begin;
-    uint source_end;
-} pc;
+#include "bake_interface.h"  // struct ExactPush, shared with engine/src/bake
+layout(push_constant, scalar) uniform Push { ExactPush pc; };
 
 layout(binding = 1) uniform samplerBuffer points;  // tm_common.glsl, bake order
 

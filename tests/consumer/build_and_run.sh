@@ -13,6 +13,13 @@ rm -rf "$work/prefix" "$work/out" "$work/core_build"
 mkdir -p "$work"
 generator=()
 command -v ninja >/dev/null && generator=(-G Ninja)
+# A consumer of the installed static libraries compiles and links with the flags they were
+# built with (the asan preset's sanitizers, whose runtime they call), and gets the same
+# project-include hook (tests/sanitizers/asan.cmake, keep_loaded.c in its executables).
+cache_value() { sed -n "s/^$1:[A-Z]*=//p" "$build/CMakeCache.txt"; }
+same_flags=(-DCMAKE_CXX_FLAGS="$(cache_value CMAKE_CXX_FLAGS)" -DCMAKE_EXE_LINKER_FLAGS="$(cache_value CMAKE_EXE_LINKER_FLAGS)")
+hook=$(cache_value CMAKE_PROJECT_jade_INCLUDE)
+[ -n "$hook" ] && same_flags+=(-DCMAKE_PROJECT_INCLUDE="$hook")
 case "$mode" in
 install)
   cmake --install "$build" --prefix "$work/prefix" >/dev/null
@@ -21,11 +28,11 @@ install)
   test -f "$work/prefix/include/jade/render.hpp"
   # Core only: no io dependencies needed, jade::io not imported.
   cmake -S "$source/tests/consumer/core_only" -B "$work/core_build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release \
-        -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
+        -DCMAKE_PREFIX_PATH="$work/prefix" "${same_flags[@]}" >/dev/null
   cmake --build "$work/core_build" >/dev/null
   "$work/core_build/core_consumer"
   cmake -S "$source/samples/embed" -B "$work/build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release \
-        -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
+        -DCMAKE_PREFIX_PATH="$work/prefix" "${same_flags[@]}" >/dev/null
   ;;
 subdirectory)
   # Jade's sources are compiled again here: without optimisation (about half the compile time;

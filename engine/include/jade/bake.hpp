@@ -1,5 +1,5 @@
-// jade/bake.hpp - the precompute of the poster's equation (1), on the GPU, and its float64
-// CPU reference.
+// jade/bake.hpp - the precompute of the poster's equation (1), on the GPU (its float64 CPU
+// reference, the same rays and discretisation: jade/reference.hpp).
 //
 //   A_o(x)  ambient occlusion: the fraction of cosine-weighted hemisphere rays from x (offset
 //           along the vertex normal by ε) that hit the mesh within max_distance. 0 = open.
@@ -28,7 +28,6 @@
 #include <glm/vec3.hpp>
 #include <vulkan/vulkan.h>
 
-#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -44,7 +43,7 @@ struct AoSettings {
     bool low_discrepancy = true;     ///< Hammersley + per-vertex Cranley–Patterson rotation; false: i.i.d.
     uint32_t seed = 1;               ///< results are deterministic for a fixed seed
     float max_distance_rel = 0.1f;   ///< max hit distance, × the mesh diagonal
-    float epsilon_rel = 1e-4f;       ///< ray origin offset along the normal, × the diagonal
+    float ray_offset_rel = 1e-4f;    ///< ε: ray origin offset along the normal, × the diagonal
 };
 
 /// The per-vertex thickness t̄(x): the mean distance, mesh units, from x (offset against the
@@ -59,46 +58,10 @@ struct ThicknessSettings {
     uint32_t rays = 32;              ///< rays per vertex, 0..1023; 0: no thickness pass
     float cone_degrees = 60.0f;      ///< half-angle of the cone about −n, (0, 90]
     float max_distance_rel = 1.0f;   ///< cap on a ray's distance, × the mesh diagonal
-    float epsilon_rel = 1e-4f;       ///< ray origin offset against the normal, × the diagonal
+    float ray_offset_rel = 1e-4f;    ///< ε: ray origin offset against the normal, × the diagonal
     uint32_t seed = 2;
     bool enabled() const { return rays > 0; }
 };
-
-/// float64 CPU reference of the thickness pass: the same rays, intersected in double precision
-/// (nearest hit) over a BVH. `vertices` as in reference_ao.
-std::vector<double> reference_thickness(const PreparedMesh& mesh, const ThicknessSettings& settings,
-                                        std::span<const uint32_t> vertices = {});
-
-/// The direction of thickness ray k of `vertex` (unit, world space, in the cone about −normal).
-glm::vec3 thickness_ray_direction(glm::vec3 normal, uint32_t vertex, uint32_t k, const ThicknessSettings& settings);
-
-/// float64 CPU reference of the AO pass: the same rays as the GPU pass, intersected in double
-/// precision over a BVH, on all hardware threads. `vertices` limits it to a subset (empty = all);
-/// the result then holds one value per listed vertex.
-std::vector<float> reference_ao(const PreparedMesh& mesh, const AoSettings& settings,
-                                std::span<const uint32_t> vertices = {});
-
-/// float64 CPU reference of t_m: brute force over all vertex pairs with the vertex-disk rule,
-/// on all hardware threads. `ao` has one value per bake vertex. `vertices` as in reference_ao.
-std::vector<glm::dvec3> reference_tm(const PreparedMesh& mesh, std::span<const float> ao,
-                                     const Material& material, std::span<const uint32_t> vertices = {});
-
-/// float64 CPU reference of BakeResult::scattering_normal and normal_spread, over the same
-/// pairs and rule as reference_tm; one value per listed vertex.
-struct ReferenceScattering {
-    std::vector<glm::dvec3> normal;  ///< unit; the vertex normal where the sum vanishes
-    std::vector<glm::dvec3> spread;  ///< per channel, [0, 1]
-};
-ReferenceScattering reference_scattering(const PreparedMesh& mesh, std::span<const float> ao, const Material& material,
-                                         std::span<const uint32_t> vertices = {});
-
-/// The direction of ray k of vertex `vertex` (unit, world space, cosine-distributed about
-/// `normal`): the ray set both the GPU pass and reference_ao use.
-glm::vec3 ao_ray_direction(glm::vec3 normal, uint32_t vertex, uint32_t k, const AoSettings& settings);
-
-}  // namespace jade
-
-namespace jade {
 
 class Context;
 
@@ -114,7 +77,8 @@ enum class TmMethod {
 const char* tm_method_name(TmMethod method);
 TmMethod parse_tm_method(std::string_view name);
 
-/// Quality presets: the AO ray count and the t_m accuracy knob ε (see shaders/tm_cluster.comp).
+/// Quality presets: the AO ray count and the clustered far field's opening ratio θ
+/// (BakeSettings::tm_opening_ratio, shaders/tm_cluster.comp).
 ///   Draft: 16 rays, θ = 1.6   Default: 64 rays, θ = 1.2   High: 256 rays, θ = 0.4
 /// (θ's max relative t_m error on the bunny, Burley RGB with d at 1 %, 5 %, 20 % of the diagonal:
 /// 1.6 → 8.4e-3, 1.2 → 2.5e-3, 0.8 → 8e-4; tests assert default ≤ 1 %, high ≤ 0.1 %.)
@@ -135,7 +99,7 @@ struct BakeSettings {
     /// the profile's decay length at r. The error is third order in θ; measured max relative
     /// error on the bunny and the dragon (d = 5 % of the diagonal): θ = 1: 1.6e-3, 0.7: 4.7e-4,
     /// 0.5: 1.6e-4, 0.3: 1.6e-5.
-    float tm_epsilon = 1.2f;
+    float tm_opening_ratio = 1.2f;
     /// The grid far field's accuracy knob (TmMethod::Grid): grid cells per Gaussian σ, in
     /// [1.5, 4]. It also sets how far the exact near field reaches (2.5·resolution mean vertex
     /// spacings) and the finest Gaussian (that reach / resolution); memory grows as its cube.
@@ -218,8 +182,8 @@ private:
 /// on a still mesh every frame equals the full re-bake; after the mesh stops moving, AO is exact
 /// after ao_slices frames and t_m after ao_slices + tm_slices − 1; a moving mesh lags behind by
 /// up to that many frames. The first record() after construction or set_amortisation does
-/// everything. Meshes small enough for the all-pairs t_m pass (TmMethod::Auto under 2,048
-/// vertices) always re-evaluate every vertex's t_m. `jade bench deform` measures the error
+/// everything. Meshes that TmMethod::Auto sums over all pairs (the small ones: docs/bake.md,
+/// "Choosing the far field") always re-evaluate every vertex's t_m. `jade bench deform` measures the error
 /// this adds against a from-scratch bake of each frame.
 struct Amortisation {
     uint32_t ao_slices = 1;  ///< ≥ 1, divides AoSettings::rays and ThicknessSettings::rays; 1: every ray every frame
@@ -282,12 +246,6 @@ public:
     const Amortisation& amortisation() const;
 
 private:
-    struct BakeInputs {
-        VkBuffer positions, normals, areas;
-    };
-    void copy_inputs(VkCommandBuffer cmd, const BakeInputs& inputs);
-    void record_timed(VkCommandBuffer cmd, void* timer);
-    BakeResult submit_timed(const BakeInputs* inputs, std::chrono::steady_clock::time_point t0, bool read_back);
     struct State;
     std::unique_ptr<State> state_;
 };

@@ -20,6 +20,7 @@
 #include <jade/bake.hpp>
 #include <jade/material.hpp>
 #include <jade/mesh.hpp>
+#include <jade/scene.hpp>
 
 #include <cstdint>
 #include <filesystem>
@@ -57,22 +58,14 @@ private:
     std::filesystem::path dir_;
 };
 
-/// What bake_with_cache() did.
-enum class BakeSource {
-    Opaque,  ///< the material is opaque: nothing baked, `result` empty (Lambert needs no t_m)
-    Cache,   ///< read from the cache: no GPU work, no bake pipelines or buffers
-    Baked,   ///< baked on the GPU (a Baker made for the call) and stored in the cache
-};
-
-struct CachedBake {
-    BakeResult result;
-    BakeSource source = BakeSource::Baked;
-    std::string note;  ///< why the cache was not used ("missing", "checksum mismatch", ...)
-};
-
 /// The bake step of a static mesh: skips opaque materials, else reads the cache, else bakes
-/// and stores. Bakes as Baker::bake (submits to the Context's queue and waits).
+/// and stores (CachedBake and BakeSource: jade/scene.hpp). Bakes as Baker::bake (submits to
+/// the Context's queue and waits).
 CachedBake bake_with_cache(Context& context, const BakeCache& cache, const PreparedMesh& mesh, const Material& material,
                            const BakeSettings& settings = {});
+
+/// Static bakes of a scene through a BakeCache (bake_with_cache; `lookup` loads and checks the
+/// entry), for plan_scene and SceneRenderer (jade/scene.hpp).
+StaticBakeSource cached_bakes(const BakeCache& cache);
 
 }  // namespace jade

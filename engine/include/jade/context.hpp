@@ -72,6 +72,33 @@ struct AdoptedVulkan {
     std::vector<std::string> enabled_extensions;  ///< device extensions the host enabled
 };
 
+/// A host's device made the way AdoptedVulkan needs it, for hosts that create their own device
+/// for Jade to adopt (samples/embed, the viewer): Jade's features and device extensions enabled,
+/// one queue of the family the host picked, and the AdoptedVulkan to give Context. A host with
+/// needs of its own sets more fields of f12, f13 and features.features (or chains more structs
+/// after f13) and appends to `extensions` before create(). The chain points into this object and
+/// AdoptedVulkan::enabled_features at it: neither copied nor moved, it must outlive the Context.
+struct HostDeviceSetup {
+    VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
+    VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
+    std::vector<const char*> extensions;
+
+    /// With Jade's requirements (Context::enable_required_features, required_device_extensions)
+    /// or, `with_jade_requirements` false, none: a device Jade refuses to adopt (tests).
+    explicit HostDeviceSetup(bool with_jade_requirements = true);
+    HostDeviceSetup(const HostDeviceSetup&) = delete;
+    HostDeviceSetup& operator=(const HostDeviceSetup&) = delete;
+
+    /// vkCreateDevice with one queue of `queue_family` and these features and extensions. The
+    /// caller owns the device (vkDestroyDevice after the Context). Throws jade::Error.
+    VkDevice create(VkPhysicalDevice physical, uint32_t queue_family) const;
+    /// What Context(const AdoptedVulkan&) takes for a device made by create() on an instance
+    /// created with apiVersion 1.3 (the loader's entry points).
+    AdoptedVulkan adopted(VkInstance instance, VkPhysicalDevice physical, VkDevice device, uint32_t queue_family,
+                          VkQueue queue) const;
+};
+
 /// How many GPU objects a Context has created since construction (never decremented): lets
 /// tests prove that skipped work created nothing (e.g. a bake served from the cache).
 struct ObjectCounts {

@@ -5,6 +5,7 @@
 #include <jade/deform.hpp>
 #include <jade/material.hpp>
 #include <jade/mesh.hpp>
+#include <jade/scene.hpp>
 
 #include <filesystem>
 #include <memory>
@@ -143,5 +144,13 @@ struct LoadedImage {
 /// through OpenImageIO; 1 to 4 channels (grey is copied to RGB, missing alpha is 1). Throws
 /// jade::Error naming the file.
 LoadedImage load_image(const std::filesystem::path& path);
+
+/// A scene file (.gltf / .glb): one object per triangle primitive of each mesh instance of the
+/// default scene, in world space, with its material mapped as docs/scene.md says
+/// (KHR_materials_volume, KHR_materials_diffuse_transmission, baseColorFactor and
+/// extras.jade). Warnings about unknown or contradictory values (each names the file, the
+/// material and the value, and the fallback taken) go to `warnings`. Throws jade::Error naming
+/// the file and element for malformed files.
+Scene load_scene(const std::filesystem::path& path, std::vector<std::string>* warnings = nullptr);
 
 }  // namespace jade

@@ -322,13 +322,10 @@ private:
 /// area-weighted 1-ring averaging (scanned meshes are noisy at the scale of one edge).
 std::vector<float> mean_curvature(const PreparedMesh& mesh, uint32_t smoothing = 2);
 
-/// Host-side image helpers (the CLI's figure and the false-colour legend use them).
+/// The host-side finish of Renderer::render (and SceneRenderer::render), for images read back
+/// another way too: tone mapping, and the false-colour map with its legend. Text for figures:
+/// jade/overlay.hpp.
 void apply_tone_map(RenderedImage& image, ToneMap tone_map, float exposure = 1.0f);
-/// Draws ASCII text (a built-in 5×7 pixel font, scaled by `scale`) with its top-left corner at
-/// (x, y), clipped to the image. Unknown characters draw as a box.
-void draw_text(RenderedImage& image, int x, int y, std::string_view text, glm::vec3 color, int scale = 1);
-/// Width in pixels of `text` drawn by draw_text.
-int text_width(std::string_view text, int scale = 1);
 /// The colour map of TmFalseColor (viridis), linear RGB, for x in [0, 1].
 glm::vec3 false_color(float x);
 /// Draws the TmFalseColor colour bar, labelled `min_value` at the bottom and `max_value` at the

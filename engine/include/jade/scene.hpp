@@ -12,13 +12,12 @@
 //                        specialisation of shaders/mesh.frag); three otherwise
 // Objects are in world space, in mesh units (a glTF scene: metres).
 //
-// Core parts (this header) are in jade::jade; load_scene() and cached_bakes() are in jade::io
-// (they read and write files). Threading and lifetime as jade::Renderer: one thread, destroy
+// All of this header is in the core library jade::jade. Reading a scene file is jade::io's
+// (load_scene, jade/io.hpp), and so is the on-disk bake cache (cached_bakes, jade/cache.hpp). Threading and lifetime as jade::Renderer: one thread, destroy
 // before the Context. Errors: jade::Error naming the object and what is wrong.
 #pragma once
 
 #include <jade/bake.hpp>
-#include <jade/cache.hpp>
 #include <jade/context.hpp>
 #include <jade/deform.hpp>
 #include <jade/material.hpp>
@@ -110,8 +109,21 @@ struct ScenePlan {
     std::string describe() const;
 };
 
+/// Where a static bake came from (StaticBakeSource::bake, jade::io's bake_with_cache).
+enum class BakeSource {
+    Opaque,  ///< the material is opaque: nothing baked, `result` empty (Lambert needs no t_m)
+    Cache,   ///< read from a cache: no GPU work, no bake pipelines or buffers
+    Baked,   ///< baked on the GPU (a Baker made for the call), and stored when there is a cache
+};
+
+struct CachedBake {
+    BakeResult result;
+    BakeSource source = BakeSource::Baked;
+    std::string note;  ///< why the cache was not used ("missing", "checksum mismatch", ...)
+};
+
 /// Where static bakes come from. Default (empty functions): never cached, baked each time.
-/// jade::io's cached_bakes(cache) reads and fills a BakeCache.
+/// jade::io's cached_bakes(cache) (jade/cache.hpp) reads and fills a BakeCache.
 struct StaticBakeSource {
     struct Lookup {
         uint64_t key = 0;    ///< bake_key() of the bake
@@ -137,7 +149,7 @@ struct SceneSettings {
 
 /// Analyses the scene (CPU only: prepares every mesh). Memory is estimated from the vertex and
 /// triangle counts with the byte sizes of the structures engine/src/bake and engine/src/shading
-/// upload (documented in scene/plan.cpp); tests compare it with Context::created_objects().
+/// upload (documented in bake/buffer_estimate.cpp); tests compare it with Context::created_objects().
 /// Throws jade::Error naming the object for an empty or invalid mesh, or a Curvature mode.
 ScenePlan plan_scene(const Scene& scene, const SceneSettings& settings, const StaticBakeSource& source = {});
 
@@ -181,18 +193,5 @@ private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };
-
-// ------------------------------------------------------------------------ jade::io parts --
-
-/// A scene file (.gltf / .glb): one object per triangle primitive of each mesh instance of the
-/// default scene, in world space, with its material mapped as docs/scene.md says
-/// (KHR_materials_volume, KHR_materials_diffuse_transmission, baseColorFactor and
-/// extras.jade). Warnings about unknown or contradictory values (each names the file, the
-/// material and the value, and the fallback taken) go to `warnings`. Throws jade::Error naming
-/// the file and element for malformed files.
-Scene load_scene(const std::filesystem::path& path, std::vector<std::string>* warnings = nullptr);
-
-/// Static bakes through a BakeCache (bake_with_cache; `holds` loads and checks the entry).
-StaticBakeSource cached_bakes(const BakeCache& cache);
 
 }  // namespace jade

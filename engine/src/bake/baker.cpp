@@ -24,9 +24,9 @@ BakeSettings BakeSettings::preset(Quality q)
 {
     BakeSettings s;
     switch (q) {
-    case Quality::Draft: s.ao.rays = 16, s.thickness.rays = 16, s.tm_epsilon = 1.6f, s.tm_grid_resolution = 1.5f; break;
-    case Quality::Default: s.ao.rays = 64, s.thickness.rays = 32, s.tm_epsilon = 1.2f, s.tm_grid_resolution = 2.0f; break;
-    case Quality::High: s.ao.rays = 256, s.thickness.rays = 64, s.tm_epsilon = 0.4f, s.tm_grid_resolution = 3.0f; break;
+    case Quality::Draft: s.ao.rays = 16, s.thickness.rays = 16, s.tm_opening_ratio = 1.6f, s.tm_grid_resolution = 1.5f; break;
+    case Quality::Default: s.ao.rays = 64, s.thickness.rays = 32, s.tm_opening_ratio = 1.2f, s.tm_grid_resolution = 2.0f; break;
+    case Quality::High: s.ao.rays = 256, s.thickness.rays = 64, s.tm_opening_ratio = 0.4f, s.tm_grid_resolution = 3.0f; break;
     }
     return s;
 }

@@ -16,8 +16,10 @@
 #include "gpu/timer.hpp"
 
 #include <jade/bake.hpp>
+#include <jade/clock.hpp>
 #include <jade/context.hpp>
 
+#include "bake_interface.h"  // the passes' push constants, shared with the shaders
 #include "jade_shaders.hpp"
 
 #include <glm/common.hpp>
@@ -36,9 +38,6 @@
 namespace jade {
 namespace bake {
 
-using Clock = std::chrono::steady_clock;
-inline double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
-
 constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 constexpr VkDescriptorType kTexels = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
 constexpr VkBufferUsageFlags kStorageUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
@@ -53,6 +52,11 @@ constexpr float kStaticNearMargin = 1.05f;
 constexpr float kDynamicNearMargin = 1.5f;
 // Below this many vertices the all-pairs pass is as fast as building and walking the tree.
 constexpr size_t kExactBelow = 2048;
+// Whether a bake of `vertices` sums t_m's far field over all pairs (TmMethod::Auto's first rule).
+inline bool uses_exact_tm(TmMethod method, size_t vertices)
+{
+    return method == TmMethod::Exact || (method == TmMethod::Auto && vertices < kExactBelow);
+}
 // The grid far field's near lists beyond this are refused (TmMethod::Grid) or avoided (Auto).
 constexpr uint64_t kGridMaxNearBytes = 512ull << 20;
 
@@ -61,29 +65,6 @@ constexpr uint64_t kGridMaxNearBytes = 512ull << 20;
 // 65,535 loop iterations, and desktop drivers reset a GPU whose dispatch runs for seconds.
 constexpr uint32_t kExactSourcesPerDispatch = 16384;
 constexpr uint32_t kClusterWorkPerDispatch = 32768;
-
-struct AoPush {
-    uint32_t vertex_count, rays, seed, low_discrepancy;
-    float epsilon, max_distance;
-    uint32_t item_count, slices, slice;
-};
-struct AoResolvePush { uint32_t vertex_count, rays, slices; };
-struct ThicknessPush {
-    uint32_t vertex_count, rays, seed;
-    float cos_cone, epsilon, max_distance;
-    uint32_t item_count, slices, slice;
-};
-struct ThicknessResolvePush { uint32_t vertex_count, rays, slices; float max_distance; };
-struct GatherPush { uint32_t vertex_count; };
-struct RefitPush { uint32_t count, first; };
-struct RayRefitPush { uint32_t count, first, mode; };
-struct NearPush { uint32_t first_slot, slot_count, index_base, source_base; float cut2, table_scale; };
-struct GridSplatPush { uint32_t vertex_count, level_count; float cube_side; uint32_t field; };
-struct GridGatherPush { uint32_t level_count, slot_begin, slot_count; float cube_side; };
-struct ExactPush { uint32_t vertex_count, source_begin, source_end; };
-struct ClusterPush { uint32_t vertex_count, node_count; float epsilon; uint32_t work_budget, first_point, slot_begin, slot_end; };
-
-inline std::vector<VkDescriptorType> storage_bindings(size_t n) { return std::vector<VkDescriptorType>(n, kStorage); }
 
 // Which t_m kernel variant a material needs: one channel when grey, and the profile kind
 // shared by all channels (3: mixed kinds, chosen per channel at run time).
@@ -103,7 +84,7 @@ inline void validate_ao_settings(const AoSettings& s)
     if (s.rays == 0 || s.rays > 65536) throw Error("AO: rays per vertex must be in 1..65536, got " + std::to_string(s.rays));
     if (!(s.max_distance_rel > 0) || !std::isfinite(s.max_distance_rel))
         throw Error("AO: max distance must be a positive fraction of the diagonal");
-    if (!(s.epsilon_rel >= 0) || !std::isfinite(s.epsilon_rel)) throw Error("AO: epsilon must be ≥ 0");
+    if (!(s.ray_offset_rel >= 0) || !std::isfinite(s.ray_offset_rel)) throw Error("AO: the ray offset must be ≥ 0");
 }
 
 // The thickness only feeds the transmission term: a material without one does not trace it.
@@ -115,7 +96,7 @@ inline BakeSettings without_unused_passes(BakeSettings s, const Material& materi
 
 inline void validate_tm_settings(const BakeSettings& s, const gpu::Context& ctx)
 {
-    if (!(s.tm_epsilon > 0) || !std::isfinite(s.tm_epsilon)) throw Error("t_m: epsilon must be > 0");
+    if (!(s.tm_opening_ratio > 0) || !std::isfinite(s.tm_opening_ratio)) throw Error("t_m: the opening ratio θ must be > 0");
     if (s.tm_float64_sums && !ctx.info().float64)
         throw Error("t_m: float64 sums (BakeSettings::tm_float64_sums) need shaderFloat64, which this device lacks");
 }
@@ -156,8 +137,6 @@ inline void finish_timings(BakeTimings& t, const gpu::GpuTimer& timer, double se
 }  // namespace bake
 
 // The bake's own vocabulary, for the two files that include this one.
-using bake::Clock;
-using bake::ms_since;
 using bake::kStorage;
 using bake::kTexels;
 using bake::kStorageUsage;
@@ -166,7 +145,7 @@ using bake::kTriangleLeafSize;
 using bake::kPointLeafSize;
 using bake::kStaticNearMargin;
 using bake::kDynamicNearMargin;
-using bake::kExactBelow;
+using bake::uses_exact_tm;
 using bake::kGridMaxNearBytes;
 using bake::kExactSourcesPerDispatch;
 using bake::kClusterWorkPerDispatch;
@@ -182,7 +161,7 @@ using bake::GridSplatPush;
 using bake::GridGatherPush;
 using bake::ExactPush;
 using bake::ClusterPush;
-using bake::storage_bindings;
+using gpu::storage_bindings;
 using bake::TmVariant;
 using bake::tm_variant;
 using bake::validate_ao_settings;
@@ -448,7 +427,7 @@ struct Baker::Impl {
         gpu::compute_barrier(cmd);
         const uint32_t rays_in_slice = s.rays / m.ao_slices;
         for (uint32_t slice = first; slice < first + count; ++slice) {
-            AoPush push{m.vertex_count, s.rays, s.seed, s.low_discrepancy ? 1u : 0u, s.epsilon_rel * m.diagonal,
+            AoPush push{m.vertex_count, s.rays, s.seed, s.low_discrepancy ? 1u : 0u, s.ray_offset_rel * m.diagonal,
                         s.max_distance_rel * m.diagonal, m.item_count, m.ao_slices, slice};
             ao_kernel().dispatch(cmd, uint64_t(m.vertex_count) * rays_in_slice, push,
                                  {m.positions, m.normals, m.ray_item_texels, m.hits});

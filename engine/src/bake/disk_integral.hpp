@@ -7,6 +7,8 @@
 
 #include <jade/material.hpp>
 
+#include "bake_interface.h"  // JADE_DISK_CAP, shared with tm_near.comp
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -63,7 +65,7 @@ inline double disk_integral(const ChannelProfile& p, double r, double rho)
 /// √(r² + (ρ² + capped²)/2), so the neighbour's total area is kept and a neighbour (nearly) on
 /// top of the target stays finite: at r = 0 its whole area sits at ρ/√2. Regular meshes
 /// (ρ ≈ 0.56 r) are not affected.
-inline constexpr double kDiskCap = 0.6;
+inline constexpr double kDiskCap = JADE_DISK_CAP;
 
 inline double rest_distance(double r, double rho, double capped) { return std::sqrt(r * r + 0.5 * (rho * rho + capped * capped)); }
 

@@ -25,6 +25,16 @@ struct DynamicBake::State {
         const uint64_t begin = groups * (k % slices) / slices * 64, end = groups * (k % slices + 1) / slices * 64;
         return {uint32_t(std::min(begin, n)), uint32_t(std::min(end, n))};
     }
+
+    // Inputs taken from the caller's buffers (record with buffers, bake with buffers).
+    struct Inputs {
+        VkBuffer positions, normals, areas;
+    };
+    void copy_inputs(VkCommandBuffer cmd, const Inputs& in);
+    // The re-bake, with GPU timestamps per stage when `timer` is given.
+    void record(VkCommandBuffer cmd, gpu::GpuTimer* timer);
+    // Records (after copying `inputs` in, when given), submits, waits, reads back when asked.
+    BakeResult submit(const Inputs* inputs, Clock::time_point t0, bool read_back);
 };
 
 DynamicBake::DynamicBake(Baker& baker, const PreparedMesh& rest, const Material& material, const BakeSettings& settings)
@@ -48,17 +58,17 @@ DynamicBake::Buffers DynamicBake::buffers() const
             m.thickness ? m.thickness.handle() : VK_NULL_HANDLE, m.normal_sum.handle()};
 }
 
-void DynamicBake::record(VkCommandBuffer cmd) { record_timed(cmd, nullptr); }
+void DynamicBake::record(VkCommandBuffer cmd) { state_->record(cmd, nullptr); }
 
 void DynamicBake::record(VkCommandBuffer cmd, VkBuffer positions, VkBuffer normals, VkBuffer areas)
 {
-    copy_inputs(cmd, {positions, normals, areas});
-    record_timed(cmd, nullptr);  // begins with the barrier that orders the copies before the refit
+    state_->copy_inputs(cmd, {positions, normals, areas});
+    state_->record(cmd, nullptr);  // begins with the barrier that orders the copies before the refit
 }
 
-void DynamicBake::copy_inputs(VkCommandBuffer cmd, const BakeInputs& in)
+void DynamicBake::State::copy_inputs(VkCommandBuffer cmd, const Inputs& in)
 {
-    auto& m = state_->mesh;
+    auto& m = mesh;
     gpu::compute_barrier(cmd);  // the caller's writes before the copies read them
     const VkDeviceSize n = m.vertex_count;
     const VkBufferCopy vec3s{0, 0, n * 12}, floats{0, 0, n * 4};
@@ -67,32 +77,30 @@ void DynamicBake::copy_inputs(VkCommandBuffer cmd, const BakeInputs& in)
     vkCmdCopyBuffer(cmd, in.areas, m.areas.handle(), 1, &floats);
 }
 
-void DynamicBake::record_timed(VkCommandBuffer cmd, void* timer_ptr)
+void DynamicBake::State::record(VkCommandBuffer cmd, gpu::GpuTimer* timer)
 {
-    auto* timer = static_cast<gpu::GpuTimer*>(timer_ptr);
-    auto& impl = state_->impl;
-    auto& m = state_->mesh;
+    auto& m = mesh;
     gpu::compute_barrier(cmd);  // the inputs' writes (transfer or compute) before the refit reads them
     impl.record_ray_refit(cmd, m);
     if (timer) timer->mark(cmd, "BVH refit");
     // Amortised: one AO slice and one t_m slice per record(), in turn; everything when stale.
-    const bool full = state_->stale;
-    const uint64_t frame = state_->frame;
-    state_->stale = false;
-    state_->frame = full ? 1 : frame + 1;
-    if (full) impl.record_ao(cmd, m, state_->settings.ao);
-    else impl.record_ao(cmd, m, state_->settings.ao, uint32_t(frame % m.ao_slices), 1);
+    const bool full = stale;
+    const uint64_t this_frame = frame;
+    stale = false;
+    frame = full ? 1 : this_frame + 1;
+    if (full) impl.record_ao(cmd, m, settings.ao);
+    else impl.record_ao(cmd, m, settings.ao, uint32_t(this_frame % m.ao_slices), 1);
     gpu::compute_barrier(cmd);
     if (timer) timer->mark(cmd, "ao");
-    if (state_->settings.thickness.enabled()) {
-        if (full) impl.record_thickness(cmd, m, state_->settings.thickness);
-        else impl.record_thickness(cmd, m, state_->settings.thickness, uint32_t(frame % m.ao_slices), 1);
+    if (settings.thickness.enabled()) {
+        if (full) impl.record_thickness(cmd, m, settings.thickness);
+        else impl.record_thickness(cmd, m, settings.thickness, uint32_t(this_frame % m.ao_slices), 1);
         gpu::compute_barrier(cmd);
         if (timer) timer->mark(cmd, "thickness");
     }
     const auto [begin, end] = full ? std::pair<uint32_t, uint32_t>{0, m.vertex_count}
-                                   : state_->tm_slice(uint32_t(frame % state_->amortisation.tm_slices));
-    impl.record_tm(cmd, m, state_->settings, timer, begin, end);
+                                   : tm_slice(uint32_t(this_frame % amortisation.tm_slices));
+    impl.record_tm(cmd, m, settings, timer, begin, end);
 }
 
 void DynamicBake::set_amortisation(const Amortisation& a)
@@ -138,23 +146,23 @@ BakeResult DynamicBake::bake(std::span<const glm::vec3> positions, std::span<con
     m.positions.upload(positions.data(), positions.size_bytes());
     m.normals.upload(normals.data(), normals.size_bytes());
     m.areas.upload(areas.data(), areas.size_bytes());
-    return submit_timed(nullptr, t0, true);
+    return state_->submit(nullptr, t0, true);
 }
 
 BakeResult DynamicBake::bake(VkBuffer positions, VkBuffer normals, VkBuffer areas, bool read_back)
 {
-    const BakeInputs inputs{positions, normals, areas};
-    return submit_timed(&inputs, Clock::now(), read_back);
+    const State::Inputs inputs{positions, normals, areas};
+    return state_->submit(&inputs, Clock::now(), read_back);
 }
 
-BakeResult DynamicBake::submit_timed(const BakeInputs* inputs, std::chrono::steady_clock::time_point t0, bool read_back)
+BakeResult DynamicBake::State::submit(const Inputs* inputs, Clock::time_point t0, bool read_back)
 {
-    auto& m = state_->mesh;
-    gpu::GpuTimer timer(state_->impl.ctx);
-    state_->impl.ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+    auto& m = mesh;
+    gpu::GpuTimer timer(impl.ctx);
+    impl.ctx.submit_and_wait([&](VkCommandBuffer cmd) {
         timer.begin(cmd);
         if (inputs) copy_inputs(cmd, *inputs);
-        record_timed(cmd, &timer);
+        record(cmd, &timer);
     });
     BakeResult r;
     if (read_back) {

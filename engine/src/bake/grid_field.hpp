@@ -23,6 +23,8 @@
 #include <jade/material.hpp>
 #include <jade/mesh.hpp>
 
+#include "bake_interface.h"
+
 #include <glm/vec3.hpp>
 
 #include <array>
@@ -31,7 +33,7 @@
 
 namespace jade::bake {
 
-constexpr uint32_t kGridMaxHalfWidth = 16;    // = GRID_MAX_HALF_WIDTH in shaders/include/grid.glsl
+constexpr uint32_t kGridMaxHalfWidth = JADE_GRID_MAX_HALF_WIDTH;  // bake_interface.h, shared with grid.glsl
 constexpr uint32_t kGridTableSize = 1024;     // samples of S(r) for the near pass, over [0, table_range]
 constexpr uint64_t kGridMaxCells = 1ull << 25; // all grids together; past it r_cut grows (see plan_grid)
 constexpr double kGridMaxCoarsening = 1.5;      // ... by at most this factor (the near lists by its square)

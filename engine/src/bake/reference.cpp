@@ -10,6 +10,7 @@
 
 #include <jade/bake.hpp>
 #include <jade/error.hpp>
+#include <jade/reference.hpp>
 
 #include <glm/geometric.hpp>
 
@@ -62,8 +63,8 @@ void check_ao_settings(const AoSettings& s, const char* where)
     if (s.rays == 0) throw Error(w + ": AoSettings.rays must be >= 1");
     if (!(std::isfinite(s.max_distance_rel) && s.max_distance_rel > 0.0f))
         throw Error(w + ": AoSettings.max_distance_rel = " + std::to_string(s.max_distance_rel) + " must be finite and > 0");
-    if (!(std::isfinite(s.epsilon_rel) && s.epsilon_rel >= 0.0f))
-        throw Error(w + ": AoSettings.epsilon_rel = " + std::to_string(s.epsilon_rel) + " must be finite and >= 0");
+    if (!(std::isfinite(s.ray_offset_rel) && s.ray_offset_rel >= 0.0f))
+        throw Error(w + ": AoSettings.ray_offset_rel = " + std::to_string(s.ray_offset_rel) + " must be finite and >= 0");
 }
 
 /// The mesh's triangles in BVH order (v0 and two edges, double) and the BVH over them.
@@ -170,7 +171,7 @@ void check_thickness_settings(const ThicknessSettings& s, const char* where)
     if (!(s.cone_degrees > 0.0f && s.cone_degrees <= 90.0f)) throw Error(w + ": ThicknessSettings.cone_degrees must be in (0, 90]");
     if (!(std::isfinite(s.max_distance_rel) && s.max_distance_rel > 0.0f))
         throw Error(w + ": ThicknessSettings.max_distance_rel must be finite and > 0");
-    if (!(std::isfinite(s.epsilon_rel) && s.epsilon_rel >= 0.0f)) throw Error(w + ": ThicknessSettings.epsilon_rel must be >= 0");
+    if (!(std::isfinite(s.ray_offset_rel) && s.ray_offset_rel >= 0.0f)) throw Error(w + ": ThicknessSettings.ray_offset_rel must be >= 0");
 }
 
 double cos_cone(const ThicknessSettings& s) { return std::cos(double(s.cone_degrees) * std::numbers::pi / 180.0); }
@@ -205,7 +206,7 @@ std::vector<double> reference_thickness(const PreparedMesh& mesh, const Thicknes
     const std::vector<uint32_t> list = resolve_subset(mesh, vertices, "reference_thickness");
     const TriangleScene scene(mesh);
     const double diagonal = double(mesh.diagonal);
-    const double eps = double(settings.epsilon_rel) * diagonal, t_max = double(settings.max_distance_rel) * diagonal;
+    const double eps = double(settings.ray_offset_rel) * diagonal, t_max = double(settings.max_distance_rel) * diagonal;
     const double c = cos_cone(settings);
     std::vector<double> thickness(list.size());
     parallel_for(list.size(), 16, [&](size_t idx) {
@@ -230,7 +231,7 @@ std::vector<float> reference_ao(const PreparedMesh& mesh, const AoSettings& sett
     const std::vector<uint32_t> list = resolve_subset(mesh, vertices, "reference_ao");
     const TriangleScene scene(mesh);
     const double diagonal = double(mesh.diagonal);
-    const double eps = double(settings.epsilon_rel) * diagonal;          // mesh units
+    const double eps = double(settings.ray_offset_rel) * diagonal;          // mesh units
     const double t_max = double(settings.max_distance_rel) * diagonal;   // mesh units
     const uint32_t n = settings.rays;
     std::vector<float> ao(list.size());

@@ -44,16 +44,6 @@ void Baker::Impl::prepare_grid(MeshState& m, const bake::GridPlan& plan)
 
 namespace {
 
-// One separable pass of grid_axis.comp: blur (step 1) or restriction (step 2) along `axis`.
-struct AxisPass {
-    glm::uvec3 in_dims, out_dims;
-    uint32_t axis;
-    int32_t shift;
-    uint32_t in_offset, out_offset;
-    float inv_scale;
-    float w[bake::kGridMaxHalfWidth + 1];
-};
-
 constexpr uint32_t kAxisRun = 8;  // = RUN in grid_axis.comp: output cells per thread
 // Threads per group of grid_axis.comp, along x: rows of a coarse grid are short, and a group
 // wider than a row idles its other lanes.
@@ -76,7 +66,7 @@ void Baker::Impl::record_grid(VkCommandBuffer cmd, MeshState& m, gpu::GpuTimer* 
     // input: 0 float cells, 1 unsigned fixed point (field 0), 2 signed fixed point (the normal's fields)
     auto axis_kernel = [&](uint32_t half_width, uint32_t step, uint32_t input) -> const gpu::Kernel& {
         return kernel(grid_axis[input][step - 1][half_width], {"grid_axis", shaders::grid_axis_comp(), {kTexels, kTexels, kStorage},
-                                                               sizeof(AxisPass), kAxisGroup, {half_width, step, input}});
+                                                               sizeof(bake::GridAxisPush), kAxisGroup, {half_width, step, input}});
     };
     const auto& gather = kernel(grid_gather, {"grid_gather", shaders::grid_gather_comp(),
                                               {kStorage, kStorage, kStorage, kStorage, kTexels, kStorage, kStorage, kStorage, kStorage,
@@ -108,7 +98,7 @@ void Baker::Impl::record_grid(VkCommandBuffer cmd, MeshState& m, gpu::GpuTimer* 
         for (uint32_t axis = 0; axis < 3; ++axis) {
             glm::uvec3 out = in;
             out[axis] = out_dims[axis];
-            AxisPass p{in, out, axis, shift, 0, 0, 1.0f, {}};
+            bake::GridAxisPush p{in, out, axis, shift, 0, 0, 1.0f, {}};
             std::copy(w, w + half_width + 1, p.w);
             const gpu::TexelView* source = &m.grid_scratch_texels[(axis + 1) % 2];
             const gpu::Buffer* target = &m.grid_scratch[axis % 2];

@@ -10,7 +10,7 @@ void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Mater
     validate_tm_settings(s, ctx);
     const size_t n = mesh.vertex_count();
     m.variant = tm_variant(material);
-    m.exact = s.method == TmMethod::Exact || (s.method == TmMethod::Auto && n < kExactBelow);
+    m.exact = uses_exact_tm(s.method, n);
     bake::Bvh tree = bake::build_bvh(mesh.positions, mesh.positions, kPointLeafSize);
     // Auto takes the grid unless its grids had to be coarsened to fit in memory or its near
     // lists would be long (a mesh whose bounds are vast for its vertex spacing, or dense in
@@ -39,7 +39,7 @@ void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Mater
         // never laxer than against the weight).
         double area = 0;
         for (float a : mesh.areas) area += a;
-        const double threshold = 1e-3 * std::pow(double(s.tm_epsilon), 3);
+        const double threshold = 1e-3 * std::pow(double(s.tm_opening_ratio), 3);
         for (int c = 0; c < 3; ++c)
             profiles[c].faint_radius = bake::faint_radius(material.profile[c], area, threshold, mesh.diagonal);
     }
@@ -164,7 +164,7 @@ void Baker::Impl::record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSetting
     // Every thread visits each node and each source at most once: this many dispatches finish
     // every traversal; threads that are done return at once.
     const uint32_t dispatches = (m.node_count + n) / kClusterWorkPerDispatch + 1;
-    ClusterPush push{n, m.node_count, s.tm_epsilon, kClusterWorkPerDispatch, m.first_point, slot_begin, slot_end};
+    ClusterPush push{n, m.node_count, s.tm_opening_ratio, kClusterWorkPerDispatch, m.first_point, slot_begin, slot_end};
     for (uint32_t d = 0; d < dispatches; ++d) {
         kernel.dispatch(cmd, slot_end - slot_begin, push,
                         {m.profiles, m.tree_texels, m.point_order, m.resume, m.partial_sum, m.partial_comp, m.tm, m.normal_sum});

@@ -1,9 +1,11 @@
 // deform/mesh_deformer.cpp - jade::MeshDeformer: the GPU passes that move the bake vertices
 // (procedural or skinned) and recompute normals and areas, each a gpu::Kernel.
+#include <jade/clock.hpp>
 #include <jade/context.hpp>
 #include <jade/deform.hpp>
 #include <jade/error.hpp>
 
+#include "deform/buffer_estimate.hpp"
 #include "gpu/buffer.hpp"
 #include "gpu/context.hpp"
 #include "gpu/kernel.hpp"
@@ -26,6 +28,7 @@ namespace {
 constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                                         VK_BUFFER_USAGE_TRANSFER_DST_BIT;
 constexpr double kTwoPi = 6.283185307179586;
+using gpu::storage_bindings;
 
 struct ProceduralPush {
     uint32_t vertex_count, kind, axis;
@@ -43,26 +46,34 @@ struct NormalsPush {
     uint32_t vertex_count;
 };
 
-std::vector<VkDescriptorType> storage_bindings(size_t n)
-{
-    return std::vector<VkDescriptorType>(n, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
-}
-
-/// A buffer holding `data`, at least 16 bytes (Vulkan has no empty buffers; the shaders do not
-/// read past the counts they get).
+/// A buffer holding `data`, at least gpu::kMinBufferBytes (Vulkan has no empty buffers; the
+/// shaders do not read past the counts they get).
 template <class T> gpu::Buffer make_buffer(gpu::Context& ctx, const std::vector<T>& data, const char* name, bool host_visible = false)
 {
-    gpu::Buffer b(ctx, std::max<VkDeviceSize>(16, data.size() * sizeof(T)), kStorage, name, host_visible);
+    gpu::Buffer b(ctx, data.size() * sizeof(T), kStorage, name, host_visible);
     if (!data.empty()) b.upload(data.data(), data.size() * sizeof(T));
     return b;
 }
 
-double ms_since(std::chrono::steady_clock::time_point t0)
-{
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
+// Bytes per triangle of the cross products (deform_triangles.comp: xyz the cross product, w the area).
+constexpr VkDeviceSize kTriangleBytes = sizeof(glm::vec4);
 
 }  // namespace
+
+// The buffers of MeshDeformer::Impl's constructor below, in its order.
+std::vector<BufferEstimate> deform::estimate_buffers(size_t n, size_t tris)
+{
+    auto bytes = [](size_t b) { return std::max<uint64_t>(gpu::kMinBufferBytes, b); };
+    const size_t vec3 = sizeof(glm::vec3), word = sizeof(uint32_t);
+    return {{"deform: rest positions", bytes(vec3 * n)},
+            {"deform: triangles", bytes(3 * word * tris)},
+            {"deform: adjacency offsets", bytes(word * (n + 1))},
+            {"deform: adjacent triangles", bytes(3 * word * tris)},
+            {"deform: triangle cross products", bytes(kTriangleBytes * tris)},
+            {"deform: deformed positions", bytes(vec3 * n)},
+            {"deform: deformed normals", bytes(vec3 * n)},
+            {"deform: deformed areas", bytes(sizeof(float) * n)}};
+}
 
 struct MeshDeformer::Impl {
     gpu::Context& ctx;
@@ -94,7 +105,7 @@ struct MeshDeformer::Impl {
         indices = make_buffer(ctx, mesh.indices, "deform: triangles");
         adjacency_offsets = make_buffer(ctx, offsets, "deform: adjacency offsets");
         adjacent_triangles = make_buffer(ctx, list, "deform: adjacent triangles");
-        triangles = gpu::Buffer(ctx, std::max<VkDeviceSize>(16, VkDeviceSize(triangle_count) * 16), kStorage, "deform: triangle cross products");
+        triangles = gpu::Buffer(ctx, VkDeviceSize(triangle_count) * kTriangleBytes, kStorage, "deform: triangle cross products");
         positions = make_buffer(ctx, mesh.positions, "deform: deformed positions");
         normals = make_buffer(ctx, mesh.normals, "deform: deformed normals");
         areas = make_buffer(ctx, mesh.areas, "deform: deformed areas");

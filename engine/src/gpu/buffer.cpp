@@ -88,7 +88,7 @@ OwnedMemory allocate_memory(const Context& ctx, const VkMemoryRequirements& req,
 
 Buffer::Buffer(Context& ctx, VkDeviceSize bytes, VkBufferUsageFlags usage, const char* name, bool host_visible,
                StorageBinding binding)
-    : ctx_(&ctx), size_(std::max<VkDeviceSize>(bytes, 16))  // Vulkan forbids empty buffers
+    : ctx_(&ctx), size_(std::max(bytes, kMinBufferBytes))
 {
     check_buffer_size(limits_of(ctx, host_visible), size_, usage, binding, name);  // before any Vulkan call
     VkBufferCreateInfo ci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};

@@ -12,6 +12,9 @@ namespace jade::gpu {
 
 class Context;
 
+/// The smallest buffer: Vulkan forbids empty ones, so a Buffer of fewer bytes gets this many.
+inline constexpr VkDeviceSize kMinBufferBytes = 16;
+
 /// A storage (or other) buffer with dedicated memory. Memory is device-local; when the device
 /// also exposes it to the host (lavapipe, integrated GPUs, resizable BAR) it stays mapped and
 /// upload/download are memcpy, else they go through a temporary staging buffer.

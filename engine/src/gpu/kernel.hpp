@@ -31,6 +31,12 @@ struct KernelDesc {
     std::vector<uint32_t> constants;         ///< specialisation constants 1, 2, ... (32-bit each)
 };
 
+/// KernelDesc::bindings of a kernel that binds `n` storage buffers and nothing else.
+inline std::vector<VkDescriptorType> storage_bindings(size_t n)
+{
+    return std::vector<VkDescriptorType>(n, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+}
+
 /// A bound resource: a buffer range, a texel-buffer view, or an image view (storage image or
 /// sampled with sampler).
 struct Binding {

@@ -83,9 +83,9 @@ uint64_t bake_key(const PreparedMesh& mesh, const Material& material, const Bake
     f.value(s.ao.low_discrepancy);
     f.value(s.ao.seed);
     f.value(s.ao.max_distance_rel);
-    f.value(s.ao.epsilon_rel);
+    f.value(s.ao.ray_offset_rel);
     f.value(s.method);
-    f.value(s.tm_epsilon);
+    f.value(s.tm_opening_ratio);
     f.value(s.tm_grid_resolution);
     f.value(s.tm_float64_sums);
     // The thickness pass runs only for a material with transmission (jade/bake.hpp).
@@ -95,7 +95,7 @@ uint64_t bake_key(const PreparedMesh& mesh, const Material& material, const Bake
         f.value(s.thickness.rays);
         f.value(s.thickness.cone_degrees);
         f.value(s.thickness.max_distance_rel);
-        f.value(s.thickness.epsilon_rel);
+        f.value(s.thickness.ray_offset_rel);
         f.value(s.thickness.seed);
     }
     return f.h;

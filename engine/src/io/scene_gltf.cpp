@@ -4,6 +4,8 @@
 // in world space, with the material as io/gltf_materials.cpp maps it (docs/scene.md has the
 // table). Node extras {"jade": {"deform": "bend"}} (or twist, squash, wave; optional "axis"
 // 0..2) make the node's objects deforming, with ProceduralDeformer::fit.
+#include <jade/cache.hpp>
+#include <jade/io.hpp>
 #include <jade/scene.hpp>
 
 #include "io/common.hpp"

@@ -1,132 +1,24 @@
 // scene/plan.cpp - plan_scene: which passes each object needs and what they allocate.
 //
-// Memory estimate. Every byte count below is the size of a buffer that engine/src/bake,
-// engine/src/deform or engine/src/shading creates, written with the struct sizes those files
-// use (float3 = 12 bytes, GpuProfile = 72, ray items 3 texels of 16 bytes, ...). What depends on
-// the geometry rather than on the counts is estimated with three constants measured on the
-// test meshes (sphere, box, grid, bunny; tests/test_scene.cpp compares the total with the bytes
-// the Context really allocated, Context::created_objects().device_buffer_bytes):
-//   - the triangle BVH (leaves of ≤ 4 triangles) has about kRayNodesPerTriangle nodes per
-//     triangle, the point tree (leaves of ≤ 8 points) kPointNodesPerVertex nodes per vertex;
-//   - a near-field list holds about kNearEntriesPerVertex sources per vertex on a regular mesh
-//     (sources within 4 disk radii: π·(4·0.56 h)² / (0.87 h²) ≈ 18 neighbours at spacing h),
-//     times margin² for the dynamic bake's 1.5× margin.
-// Images (the LUTs) are listed but are not buffers; host-visible staging is not counted.
-#include "shading/transmission_table.hpp"
+// Memory estimate: each module reports the buffers it will create, named as it names them,
+// from its own sizes and constants (bake/buffer_estimate.cpp, which also says what is estimated
+// rather than known; deform/buffer_estimate.hpp; shading/buffer_estimate.hpp). The plan only
+// puts them together. Images (the LUTs) are listed but are not buffers; host-visible staging
+// is not counted.
 #include <jade/scene.hpp>
 
-#include "bake/gpu_profile.hpp"
-#include "bake/grid_field.hpp"
+#include "bake/buffer_estimate.hpp"
+#include "deform/buffer_estimate.hpp"
+#include "shading/buffer_estimate.hpp"
 
 #include <jade/error.hpp>
 
 #include <algorithm>
-#include <optional>
 #include <cstdio>
 #include <sstream>
 
 namespace jade {
 namespace {
-
-constexpr double kRayNodesPerTriangle = 0.6;
-constexpr double kPointNodesPerVertex = 0.3;
-constexpr double kNearEntriesPerVertex = 20.0;
-constexpr double kStaticNearMargin = 1.05, kDynamicNearMargin = 1.5;  // bake/baker.cpp
-constexpr size_t kExactBelow = 2048;                                 // bake/baker.cpp: TmMethod::Auto
-
-uint64_t at_least_16(double bytes) { return std::max<uint64_t>(16, uint64_t(bytes + 0.5)); }
-
-// The buffers of Baker::Impl::MeshState (bake/baker.cpp upload_mesh, prepare_ao,
-// prepare_thickness when the material has a transmission term, prepare_tm).
-std::vector<BufferEstimate> bake_buffers(const PreparedMesh& mesh, const Material& material, const BakeSettings& s,
-                                         bool dynamic, bool thickness)
-{
-    const size_t n = mesh.vertex_count(), tris = mesh.triangle_count();
-    const double ray_nodes = kRayNodesPerTriangle * double(tris);
-    const double ray_items = ray_nodes + double(tris);
-    const double margin = dynamic ? kDynamicNearMargin : kStaticNearMargin;
-    double near_entries = kNearEntriesPerVertex * double(n) * (margin * margin) / (kStaticNearMargin * kStaticNearMargin);
-    const bool exact = s.method == TmMethod::Exact || (s.method == TmMethod::Auto && n < kExactBelow);
-    // The grid far field: its own plan (bake/grid_field.hpp), as Baker::Impl::prepare_tm makes it.
-    std::optional<bake::GridPlan> grid;
-    if (!exact && (s.method == TmMethod::Grid || s.method == TmMethod::Auto)) {
-        grid = bake::plan_grid(mesh, material, material.grey() ? 1 : 3, s.tm_grid_resolution, dynamic, margin);
-        if (s.method == TmMethod::Auto && grid->coarsened) grid.reset();
-    }
-    if (grid) near_entries = double(grid->near_entries(n, margin));
-    std::vector<BufferEstimate> b = {
-        {"positions", at_least_16(12.0 * n)},
-        {"normals", at_least_16(12.0 * n)},
-        {"areas", at_least_16(4.0 * n)},
-        {"ray items (BVH nodes and triangles)", at_least_16(48.0 * ray_items)},
-        {"ao hit counts", at_least_16(4.0 * n)},
-        {"ao", at_least_16(4.0 * n)},
-        {"profiles", at_least_16(3.0 * sizeof(bake::GpuProfile))},
-        {"t_m", at_least_16(12.0 * n)},
-        {"t_m partial sums", at_least_16(12.0 * n)},
-        {"t_m partial compensation", at_least_16(12.0 * n)},
-        {"scattering normal sums (per channel)", at_least_16(36.0 * n)},
-        {"near-field offsets", at_least_16(4.0 * (n + 1))},
-        {"near-field disk candidates", at_least_16(4.0 * n)},
-        {"near-field sources", at_least_16(4.0 * (near_entries + 64))},
-        {"point order", at_least_16(4.0 * n)},
-    };
-    if (thickness && s.thickness.enabled()) {
-        b.push_back({"thickness sums (per ray slice)", at_least_16(4.0 * n)});
-        b.push_back({"thickness", at_least_16(4.0 * n)});
-    }
-    if (exact) {
-        b.push_back({"t_m sources", at_least_16(32.0 * n)});
-    } else if (grid) {
-        b.push_back({"t_m sources", at_least_16(32.0 * n)});
-        b.push_back({"t_m grid", at_least_16(double(grid->bytes()))});
-    } else {
-        const double nodes = kPointNodesPerVertex * double(n);
-        const double first_point = std::ceil(4.0 * nodes / 16.0) * 16.0;
-        b.push_back({"point tree nodes", at_least_16(32.0 * nodes)});  // bake::BvhNode: 2 × (vec3 + uint32)
-        b.push_back({"point tree levels", at_least_16(4.0 * nodes)});
-        b.push_back({"t_m cluster tree and sources", at_least_16(16.0 * first_point + 32.0 * n)});
-        b.push_back({"t_m traversal resume state", at_least_16(12.0 * n)});
-    }
-    if (dynamic) {  // refit data (prepare_ao with refittable = true)
-        b.push_back({"triangle indices", at_least_16(12.0 * tris)});
-        b.push_back({"ray item origins", at_least_16(4.0 * ray_items)});
-        b.push_back({"ray refit work", at_least_16(8.0 * ray_items)});
-    }
-    return b;
-}
-
-// deform/mesh_deformer.cpp: rest, triangles, adjacency, cross products, deformed outputs.
-std::vector<BufferEstimate> deform_buffers(size_t n, size_t tris)
-{
-    return {{"deform: rest positions", at_least_16(12.0 * n)},
-            {"deform: triangles", at_least_16(12.0 * tris)},
-            {"deform: adjacency offsets", at_least_16(4.0 * (n + 1))},
-            {"deform: adjacent triangles", at_least_16(12.0 * tris)},
-            {"deform: triangle cross products", at_least_16(16.0 * tris)},
-            {"deform: deformed positions", at_least_16(12.0 * n)},
-            {"deform: deformed normals", at_least_16(12.0 * n)},
-            {"deform: deformed areas", at_least_16(4.0 * n)}};
-}
-
-// shading/renderer.cpp: what one Renderer holds of its own while it draws.
-std::vector<BufferEstimate> draw_buffers(size_t n, size_t tris, const Material& material)
-{
-    return {{"mesh vertices", at_least_16(double(kRendererVertexBytes) * n)},
-            {"mesh indices", at_least_16(12.0 * tris)},
-            {"frame data", kRendererFrameDataBytes},
-            {"transmission table", shading::TransmissionTable::bytes(material.transmission)},
-            {"curvature LUT placeholder (image)", 16, true}};
-}
-
-// shading/lut.cpp: the translucency LUT, shared by every Renderer of the scene.
-std::vector<BufferEstimate> shared_buffers(const RendererOptions& o)
-{
-    const LutLayout& l = o.lut;
-    return {{"translucency LUT quads", at_least_16(16.0 * (l.width - 1) * (l.height - 1))},
-            {"translucency LUT (image)", uint64_t(l.width) * l.height * 4, true},
-            {"translucency LUT, 16 bit (image)", uint64_t(l.width) * l.height * 2, true}};
-}
 
 std::string bytes_text(uint64_t b)
 {
@@ -238,7 +130,7 @@ std::string ScenePlan::describe() const
         for (const auto& b : shared) out << "      " << b.name << "  " << bytes_text(b.bytes) << "\n";
     }
     out << "scene: " << objects.size() << " objects, " << bytes_text(resident_bytes()) << " kept while drawing, "
-        << bytes_text(transient_peak_bytes()) << " peak of once-only passes (estimates: see scene/plan.cpp)\n";
+        << bytes_text(transient_peak_bytes()) << " peak of once-only passes (estimates: see bake/buffer_estimate.cpp)\n";
     return out.str();
 }
 
@@ -287,22 +179,26 @@ ScenePlan plan_scene(const Scene& scene, const SceneSettings& settings, const St
             o.channels = obj.material.grey() ? 1 : 3;
             o.variant = {settings.mode, settings.mode == ShadingMode::Tm ? o.channels : 3};
             if (o.deforming) {
-                auto deform = deform_buffers(n, tris);
-                o.passes.push_back({PassKind::Deform, true, true, std::move(deform)});
-                o.passes.push_back({PassKind::DynamicBake, true, true, bake_buffers(prepared, obj.material, settings.bake, true, obj.material.transmission.enabled())});
+                o.passes.push_back({PassKind::Deform, true, true, deform::estimate_buffers(n, tris)});
+                o.passes.push_back({PassKind::DynamicBake, true, true,
+                                    bake::estimate_buffers(prepared, obj.material, settings.bake, true,
+                                                           obj.material.transmission.enabled())});
             } else {
                 if (source.lookup) {
                     const auto found = source.lookup(prepared, obj.material, settings.bake);
                     o.bake_key = found.key, o.cached = found.holds;
                 }
                 if (o.cached) o.passes.push_back({PassKind::CacheRead, false, false, {}});
-                else o.passes.push_back({PassKind::StaticBake, false, false, bake_buffers(prepared, obj.material, settings.bake, false, obj.material.transmission.enabled())});
+                else
+                    o.passes.push_back({PassKind::StaticBake, false, false,
+                                        bake::estimate_buffers(prepared, obj.material, settings.bake, false,
+                                                               obj.material.transmission.enabled())});
             }
         }
-        o.passes.push_back({PassKind::Draw, true, true, draw_buffers(n, tris, obj.material)});
+        o.passes.push_back({PassKind::Draw, true, true, shading::estimate_draw_buffers(n, tris, obj.material)});
         plan.objects.push_back(std::move(o));
     }
-    if (!plan.objects.empty()) plan.shared = shared_buffers(settings.renderer);
+    if (!plan.objects.empty()) plan.shared = shading::estimate_lut_buffers(settings.renderer.lut);
     return plan;
 }
 

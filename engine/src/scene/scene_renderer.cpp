@@ -6,6 +6,7 @@
 // Deforming objects also keep a MeshDeformer and a DynamicBake. render() runs the per-frame
 // passes, then records every object's draw into one set of targets (the first clears them,
 // the others load them) and reads the image back.
+#include <jade/clock.hpp>
 #include <jade/scene.hpp>
 
 #include "gpu/buffer.hpp"
@@ -23,8 +24,6 @@
 namespace jade {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 }  // namespace
 

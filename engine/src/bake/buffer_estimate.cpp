@@ -1,0 +1,99 @@
+// bake/buffer_estimate.cpp - estimate_buffers: the buffers of Baker::Impl::MeshState before a
+// bake allocates them (upload_mesh, prepare_ao, prepare_thickness, prepare_tm).
+//
+// Sizes are written with the same element types and constants the passes allocate with. What
+// depends on the geometry rather than on the counts is estimated with three constants measured
+// on the test meshes (sphere, box, grid, bunny; tests/test_scene.cpp compares the total with the
+// bytes the Context really allocated, Context::created_objects().device_buffer_bytes):
+//   - the triangle BVH (leaves of ≤ kTriangleLeafSize triangles) has about kRayNodesPerTriangle
+//     nodes per triangle, the point tree (leaves of ≤ kPointLeafSize points)
+//     kPointNodesPerVertex nodes per vertex;
+//   - a near-field list holds about kNearEntriesPerVertex sources per vertex on a regular mesh
+//     (sources within 4 disk radii: π·(4·0.56 h)² / (0.87 h²) ≈ 18 neighbours at spacing h),
+//     times (margin / kStaticNearMargin)² for a deforming mesh's wider margin.
+// Host-visible staging is not counted.
+#include "bake/buffer_estimate.hpp"
+
+#include "bake/baker_impl.hpp"
+
+#include <cmath>
+#include <optional>
+
+namespace jade::bake {
+namespace {
+
+constexpr double kRayNodesPerTriangle = 0.6;
+constexpr double kPointNodesPerVertex = 0.3;
+constexpr double kNearEntriesPerVertex = 20.0;
+// Bytes per ray item: three RGBA32UI texels (bake/ray_items.hpp).
+constexpr double kRayItemBytes = 3 * sizeof(glm::uvec4);
+// Bytes per t_m source: two RGBA32F texels (gather_sources.comp).
+constexpr double kSourceBytes = 2 * sizeof(glm::vec4);
+// Extra near-list entries for a window's aligned start and minimum size (prepare_tm).
+constexpr double kNearSlack = 64;
+
+uint64_t bytes(double b) { return std::max<uint64_t>(gpu::kMinBufferBytes, uint64_t(b + 0.5)); }
+
+}  // namespace
+
+std::vector<BufferEstimate> estimate_buffers(const PreparedMesh& mesh, const Material& material, const BakeSettings& s,
+                                             bool dynamic, bool thickness)
+{
+    const double n = double(mesh.vertex_count()), tris = double(mesh.triangle_count());
+    const double vec3 = sizeof(glm::vec3), word = sizeof(uint32_t);
+    const double ray_nodes = kRayNodesPerTriangle * tris;
+    const double ray_items = ray_nodes + tris;
+    const float margin = dynamic ? kDynamicNearMargin : kStaticNearMargin;
+    double near_entries = kNearEntriesPerVertex * n * (margin * margin) / (kStaticNearMargin * kStaticNearMargin);
+    const bool exact = uses_exact_tm(s.method, mesh.vertex_count());
+    // The grid far field: its own plan (bake/grid_field.hpp), as prepare_tm makes it.
+    std::optional<GridPlan> grid;
+    if (!exact && (s.method == TmMethod::Grid || s.method == TmMethod::Auto)) {
+        grid = plan_grid(mesh, material, material.grey() ? 1 : 3, s.tm_grid_resolution, dynamic, margin);
+        if (s.method == TmMethod::Auto && grid->coarsened) grid.reset();
+    }
+    if (grid) near_entries = double(grid->near_entries(mesh.vertex_count(), margin));
+    std::vector<BufferEstimate> b = {
+        {"positions", bytes(vec3 * n)},
+        {"normals", bytes(vec3 * n)},
+        {"areas", bytes(sizeof(float) * n)},
+        {"ray items (BVH nodes and triangles)", bytes(kRayItemBytes * ray_items)},
+        {"ao hit counts", bytes(word * n)},
+        {"ao", bytes(sizeof(float) * n)},
+        {"profiles", bytes(3.0 * sizeof(GpuProfile))},
+        {"t_m", bytes(vec3 * n)},
+        {"t_m partial sums", bytes(vec3 * n)},
+        {"t_m partial compensation", bytes(vec3 * n)},
+        {"scattering normal sums (per channel)", bytes(3 * vec3 * n)},
+        {"near-field offsets", bytes(word * (n + 1))},
+        {"near-field disk candidates", bytes(word * n)},
+        {"near-field sources", bytes(word * (near_entries + kNearSlack))},
+        {"point order", bytes(word * n)},
+    };
+    if (thickness && s.thickness.enabled()) {
+        b.push_back({"thickness sums (per ray slice)", bytes(word * n)});
+        b.push_back({"thickness", bytes(sizeof(float) * n)});
+    }
+    if (exact) {
+        b.push_back({"t_m sources", bytes(kSourceBytes * n)});
+    } else if (grid) {
+        b.push_back({"t_m sources", bytes(kSourceBytes * n)});
+        b.push_back({"t_m grid", bytes(double(grid->bytes()))});
+    } else {
+        const double nodes = kPointNodesPerVertex * n;
+        // Nodes (4 texels each) then the sources from a texel that is a multiple of 16.
+        const double first_point = std::ceil(4.0 * nodes / 16.0) * 16.0;
+        b.push_back({"point tree nodes", bytes(sizeof(BvhNode) * nodes)});
+        b.push_back({"point tree levels", bytes(word * nodes)});
+        b.push_back({"t_m cluster tree and sources", bytes(sizeof(glm::uvec4) * first_point + kSourceBytes * n)});
+        b.push_back({"t_m traversal resume state", bytes(vec3 * n)});
+    }
+    if (dynamic) {  // refit data (prepare_ao with refittable = true)
+        b.push_back({"triangle indices", bytes(3 * word * tris)});
+        b.push_back({"ray item origins", bytes(word * ray_items)});
+        b.push_back({"ray refit work", bytes(sizeof(glm::uvec2) * ray_items)});
+    }
+    return b;
+}
+
+}  // namespace jade::bake

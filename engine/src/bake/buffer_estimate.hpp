@@ -1,0 +1,20 @@
+// bake/buffer_estimate.hpp - what a bake will allocate on the GPU, before it runs (for
+// plan_scene, jade/scene.hpp). Private to the engine.
+#pragma once
+
+#include <jade/bake.hpp>
+#include <jade/scene.hpp>
+
+#include <vector>
+
+namespace jade::bake {
+
+/// The device buffers of one mesh's bake (Baker::Impl::MeshState, bake/baker_impl.hpp), named
+/// as the bake names them: a static bake (Baker::bake) or, with `dynamic`, the state a
+/// DynamicBake keeps; the thickness buffers only with `thickness` (a material with a
+/// transmission term) and settings.thickness enabled. What depends on the geometry (tree sizes,
+/// near-list lengths) is estimated: buffer_estimate.cpp says how.
+std::vector<BufferEstimate> estimate_buffers(const PreparedMesh& mesh, const Material& material, const BakeSettings& settings,
+                                             bool dynamic, bool thickness);
+
+}  // namespace jade::bake

@@ -1,0 +1,23 @@
+// shading/buffer_estimate.hpp - what the renderer allocates on the GPU, before it exists (for
+// plan_scene, jade/scene.hpp). Private to the engine.
+#pragma once
+
+#include <jade/render.hpp>
+#include <jade/scene.hpp>
+
+#include <cstddef>
+#include <vector>
+
+namespace jade::shading {
+
+/// What one Renderer holds of its own while it draws a mesh of `vertices` bake vertices and
+/// `triangles` triangles (shading/renderer.cpp: its Vertex and FrameData, whose sizes it
+/// asserts against kRendererVertexBytes and kRendererFrameDataBytes). Exact.
+/// `material`'s transmission sets the size of its attenuation table (shading/transmission_table.hpp).
+std::vector<BufferEstimate> estimate_draw_buffers(size_t vertices, size_t triangles, const Material& material);
+
+/// The translucency LUT of `layout` (shading/lut.cpp, TranslucencyLut), which every Renderer of
+/// a device shares: its quads buffer, its image and the image's 16-bit copy. Exact.
+std::vector<BufferEstimate> estimate_lut_buffers(const LutLayout& layout);
+
+}  // namespace jade::shading

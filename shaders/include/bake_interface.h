@@ -1,0 +1,157 @@
+// bake_interface.h - what the bake's C++ (engine/src/bake) and its compute shaders must agree
+// on, written once: the push constants of every bake pass and the constants both sides read.
+//
+// Included by the shaders (glslang's include directive) and by C++ (bake/baker_impl.hpp,
+// bake/disk_integral.hpp, bake/grid_field.hpp). In C++ the structs live in jade::bake and the
+// GLSL types are spelt with std::uint32_t and GLM. A shader declares its push constants as
+//     layout(push_constant, scalar) uniform Push { AoPush pc; };
+// and reads pc.rays as before. Scalar layout places these members (4-byte scalars, uvec3 and
+// float arrays at 4-byte alignment) exactly where C++ does; sizes are checked in C++ below.
+#ifndef JADE_BAKE_INTERFACE_H
+#define JADE_BAKE_INTERFACE_H
+
+// A neighbour's disk never reaches past DISK_CAP·r towards the target (bake/disk_integral.hpp
+// explains why): the near pass (tm_near.comp) and the float64 reference use the same cap.
+#define JADE_DISK_CAP 0.6
+// Blur taps on each side of a grid cell, at most (bake/grid_field.hpp, shaders/include/grid.glsl).
+#define JADE_GRID_MAX_HALF_WIDTH 16
+
+#ifdef __cplusplus
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+
+namespace jade::bake {
+namespace glsl {
+using uint = std::uint32_t;
+using uvec3 = glm::uvec3;
+}  // namespace glsl
+using namespace glsl;  // only these two names: the structs below are written in GLSL's words
+#endif
+
+// ao_trace.comp: one ray slice of the AO pass.
+struct AoPush {
+    uint vertex_count;
+    uint rays;
+    uint seed;
+    uint low_discrepancy;
+    float ray_offset;    // ray origin offset along the normal, mesh units
+    float max_distance;  // mesh units
+    uint item_count;
+    uint slices;         // divides rays
+    uint slice;          // the slice traced by this dispatch
+};
+
+// ao_resolve.comp: A_o from the hit counts of every slice.
+struct AoResolvePush {
+    uint vertex_count;
+    uint rays;
+    uint slices;
+};
+
+// thickness_trace.comp: one ray slice of the thickness pass.
+struct ThicknessPush {
+    uint vertex_count;
+    uint rays;
+    uint seed;
+    float cos_cone;      // cosine of the cone's half-angle
+    float ray_offset;    // ray origin offset against the normal, mesh units
+    float max_distance;  // mesh units
+    uint item_count;
+    uint slices;         // divides rays
+    uint slice;          // the slice traced by this dispatch
+};
+
+// thickness_resolve.comp: the mean distance from the sums of every slice.
+struct ThicknessResolvePush {
+    uint vertex_count;
+    uint rays;
+    uint slices;
+    float max_distance;  // mesh units: one kQuantum of fixed point
+};
+
+// gather_sources.comp and grid_bounds.comp: one thread per vertex.
+struct GatherPush {
+    uint vertex_count;
+};
+
+// cluster_refit.comp: one level of the cluster tree.
+struct RefitPush {
+    uint count;  // nodes in this level
+    uint first;  // first entry of this level in `level_nodes`
+};
+
+// ray_refit.comp: the triangles, or one level of the BVH's nodes.
+struct RayRefitPush {
+    uint count;  // work entries of this dispatch
+    uint first;  // first work entry
+    uint mode;   // 0: triangles, 1: nodes of one level
+};
+
+// tm_near.comp: the near field over a window of tree slots.
+struct NearPush {
+    uint first_slot;
+    uint slot_count;
+    uint index_base;    // list entry at the start of the bound window of near_indices
+    uint source_base;   // texel of source slot 0 in `sources`
+    float cut2;         // GRID: r_cut², beyond which a point pair is the grids' alone
+    float table_scale;  // GRID: table entries per unit of distance
+};
+
+// grid_splat.comp: the sources into the finest grids.
+struct GridSplatPush {
+    uint vertex_count;
+    uint level_count;
+    float cube_side;  // > 0: a deforming mesh's grids follow its bounds (level_origin)
+    uint field;       // 0: (1 − A_o)·area; 1, 2, 3: times n.x, n.y, n.z (the normal sums)
+};
+
+// grid_axis.comp: one separable pass, blur (step 1) or restriction (step 2) along `axis`.
+struct GridAxisPush {
+    uvec3 in_dims;
+    uvec3 out_dims;  // differs from in_dims along `axis` only
+    uint axis;
+    int shift;       // 0 blur, −2 restrict
+    uint in_offset;
+    uint out_offset;
+    float inv_scale;
+    float w[JADE_GRID_MAX_HALF_WIDTH + 1];
+};
+
+// grid_gather.comp: the grids' values at the targets of tree slots [slot_begin, + slot_count).
+struct GridGatherPush {
+    uint level_count;
+    uint slot_begin;
+    uint slot_count;
+    float cube_side;  // > 0: a deforming mesh's grids follow its bounds (level_origin)
+};
+
+// tm_exact.comp, tm_exact_f64.comp: the point pairs of sources [source_begin, source_end).
+struct ExactPush {
+    uint vertex_count;
+    uint source_begin;
+    uint source_end;
+};
+
+// tm_cluster.comp: one dispatch of the clustered far field.
+struct ClusterPush {
+    uint vertex_count;
+    uint node_count;
+    float theta;       // the opening ratio (BakeSettings::tm_opening_ratio)
+    uint work_budget;  // loop iterations per dispatch (lavapipe's loop limit)
+    uint first_point;  // texel of source 0, after the nodes
+    uint slot_begin;   // the targets of this dispatch: tree slots [slot_begin, slot_end)
+    uint slot_end;     // (all of them, or one slice of an amortised re-bake)
+};
+
+#ifdef __cplusplus
+// The sizes the shaders see (scalar layout: the sum of the members).
+static_assert(sizeof(AoPush) == 36 && sizeof(AoResolvePush) == 12 && sizeof(ThicknessPush) == 36 &&
+              sizeof(ThicknessResolvePush) == 16 && sizeof(GatherPush) == 4 && sizeof(RefitPush) == 8 &&
+              sizeof(RayRefitPush) == 12 && sizeof(NearPush) == 24 && sizeof(GridSplatPush) == 16 &&
+              sizeof(GridAxisPush) == 44 + 4 * (JADE_GRID_MAX_HALF_WIDTH + 1) && sizeof(GridGatherPush) == 16 &&
+              sizeof(ExactPush) == 12 && sizeof(ClusterPush) == 28);
+}  // namespace jade::bake
+#endif
+
+#endif  // JADE_BAKE_INTERFACE_H
