@@ -16,7 +16,7 @@
 
 layout(constant_id = 1) const int HALF_WIDTH = 8;
 layout(constant_id = 2) const int STEP = 1;
-// 1: the input is the unsigned fixed-point splat, 2: the signed one (inv_scale: area per unit)
+// 1: the input is the fixed-point splat (inv_scale: area per unit; x unsigned, yzw signed at half the scale)
 layout(constant_id = 3) const uint FIXED = 0u;
 const int RUN = 8;
 const int INPUTS = STEP * (RUN - 1) + 2 * HALF_WIDTH + 1;
@@ -24,15 +24,19 @@ const int INPUTS = STEP * (RUN - 1) + 2 * HALF_WIDTH + 1;
 #include "bake_interface.h"  // struct GridAxisPush, shared with engine/src/bake
 layout(push_constant, scalar) uniform Push { GridAxisPush pc; };
 
+// Four fields per cell, one RGBA texel (grid_splat.comp): one fetch serves them all, and
+// lavapipe pays per fetch, not per multiply-add.
 layout(binding = 0) uniform usamplerBuffer splat;  // texel fetches: lavapipe's storage loads are per-lane loops
 layout(binding = 1) uniform samplerBuffer source;
-layout(binding = 2, scalar) writeonly buffer Target { float target[]; };
+layout(binding = 2, scalar) writeonly buffer Target { vec4 target[]; };
 
-float fetch(int texel)
+vec4 fetch(int texel)
 {
-    if (FIXED == 1u) return float(texelFetch(splat, texel).x) * pc.inv_scale;
-    if (FIXED == 2u) return float(int(texelFetch(splat, texel).x)) * pc.inv_scale;
-    return texelFetch(source, texel).x;
+    if (FIXED == 1u) {
+        uvec4 u = texelFetch(splat, texel);
+        return vec4(float(u.x), vec3(ivec3(u.yzw)) * 2.0) * pc.inv_scale;
+    }
+    return texelFetch(source, texel);
 }
 
 void main()
@@ -48,16 +52,16 @@ void main()
     at[pc.axis] = 0u;
     int row = int(pc.in_offset + (at.z * id.y + at.y) * id.x + at.x);  // the input row's first cell
     int first = STEP * int(o[pc.axis]) + pc.shift - HALF_WIDTH, last = int(id[pc.axis]) - 1;
-    float inputs[INPUTS];
+    vec4 inputs[INPUTS];
     [[unroll]] for (int i = 0; i < INPUTS; ++i) {
         int at_i = first + i;
-        inputs[i] = at_i >= 0 && at_i <= last ? fetch(row + clamp(at_i, 0, last) * stride) : 0.0;
+        inputs[i] = at_i >= 0 && at_i <= last ? fetch(row + clamp(at_i, 0, last) * stride) : vec4(0.0);
     }
     int out_stride = pc.axis == 0u ? 1 : pc.axis == 1u ? int(od.x) : int(od.x * od.y);
     int out_at = int(pc.out_offset + (o.z * od.y + o.y) * od.x + o.x);
     int count = min(RUN, int(od[pc.axis] - o[pc.axis]));
     [[unroll]] for (int r = 0; r < RUN; ++r) {
-        float sum = 0.0;
+        vec4 sum = vec4(0.0);
         [[unroll]] for (int k = -HALF_WIDTH; k <= HALF_WIDTH; ++k) sum += pc.w[k < 0 ? -k : k] * inputs[STEP * r + HALF_WIDTH + k];
         if (r < count) target[out_at + r * out_stride] = sum;
     }

@@ -15,13 +15,10 @@ layout(push_constant, scalar) uniform Push { GridGatherPush pc; };
 layout(binding = 1, scalar) readonly buffer Levels { GridLevel levels[]; };
 layout(binding = 2, scalar) readonly buffer Positions { vec3 positions[]; };
 layout(binding = 3, scalar) readonly buffer Order { uint order[]; };  // slot → bake vertex
-layout(binding = 4) uniform samplerBuffer blurred;  // field 0: (1 − A_o)·area
+// Per cell: (1 − A_o)·area, and times n.x, n.y, n.z (grid_splat.comp), blurred.
+layout(binding = 4) uniform samplerBuffer blurred;
 
 layout(binding = 9, scalar) readonly buffer Bounds { uvec3 bounds_lo, bounds_hi; };  // grid_bounds.comp
-// Fields 1..3: times n.x, n.y, n.z (grid_splat.comp), for the scattering normal.
-layout(binding = 10) uniform samplerBuffer blurred_nx;
-layout(binding = 11) uniform samplerBuffer blurred_ny;
-layout(binding = 12) uniform samplerBuffer blurred_nz;
 
 #define TM_STATE_BINDING 5
 #include "tm_state.glsl"
@@ -42,24 +39,16 @@ void main()
         ivec3 base;
         vec4 wx, wy, wz;
         bspline_footprint(l, level_origin(l, pc.cube_side, corner), x, base, wx, wy, wz);
-        float value = 0.0;
-        vec3 n = vec3(0.0);
+        vec4 value = vec4(0.0);
         [[unroll]] for (int c = 0; c < 4; ++c)
             [[unroll]] for (int j = 0; j < 4; ++j) {
-                uint row = grid_cell(l, base + ivec3(0, j, c));
-                int at = int(row);
+                int at = int(grid_cell(l, base + ivec3(0, j, c)));
                 float w = wy[j] * wz[c];
-                value += w * dot(wx, vec4(texelFetch(blurred, at).x, texelFetch(blurred, at + 1).x, texelFetch(blurred, at + 2).x,
-                                          texelFetch(blurred, at + 3).x));
-                n.x += w * dot(wx, vec4(texelFetch(blurred_nx, at).x, texelFetch(blurred_nx, at + 1).x,
-                                        texelFetch(blurred_nx, at + 2).x, texelFetch(blurred_nx, at + 3).x));
-                n.y += w * dot(wx, vec4(texelFetch(blurred_ny, at).x, texelFetch(blurred_ny, at + 1).x,
-                                        texelFetch(blurred_ny, at + 2).x, texelFetch(blurred_ny, at + 3).x));
-                n.z += w * dot(wx, vec4(texelFetch(blurred_nz, at).x, texelFetch(blurred_nz, at + 1).x,
-                                        texelFetch(blurred_nz, at + 2).x, texelFetch(blurred_nz, at + 3).x));
+                value += w * (wx.x * texelFetch(blurred, at) + wx.y * texelFetch(blurred, at + 1) + wx.z * texelFetch(blurred, at + 2) +
+                              wx.w * texelFetch(blurred, at + 3));
             }
-        compensated_add(sum, comp, value * l.weight);
-        add_weighted(normal, l.weight, n);
+        compensated_add(sum, comp, value.x * l.weight);
+        add_weighted(normal, l.weight, value.yzw);
     }
     save_partial(k, v, sum, comp);
     add_normal_sums(v, normal);

@@ -3,9 +3,9 @@
 // The smooth part of t_m, step 1 of 3: every source's (1 − A_o)·area into every Gaussian's grid
 // with cubic B-spline weights (engine/src/bake/grid_field.hpp). Integer atomics on fixed-point
 // values: the sums do not depend on the order threads run in, so a bake is reproducible bit for
-// bit. One thread per vertex. Field 0 is the weight itself (unsigned fixed point); fields 1..3
-// are the weight times the normal's x, y, z, the scattering normal's sums (tm_state.glsl):
-// signed, two's complement at half the scale, so their sums stay within ±2^31.
+// bit. One thread per vertex. Four fields per cell, interleaved (4·cell + f): the weight itself
+// (unsigned fixed point), then the weight times the normal's x, y, z, the normal sums of
+// tm_state.glsl (signed, two's complement at half the scale, so their sums stay within ±2^31).
 #include "common.glsl"
 #include "grid.glsl"
 
@@ -16,7 +16,7 @@ layout(binding = 0, scalar) readonly buffer Levels { GridLevel levels[]; };
 layout(binding = 1, scalar) readonly buffer Positions { vec3 positions[]; };
 layout(binding = 2, scalar) readonly buffer Areas { float areas[]; };
 layout(binding = 3, scalar) readonly buffer Ao { float ao[]; };
-layout(binding = 4, scalar) buffer Cells { uint cells[]; };
+layout(binding = 4, scalar) buffer Cells { uint cells[]; };  // 4 per cell: field f at 4·cell + f
 layout(binding = 5, scalar) readonly buffer Bounds { uvec3 bounds_lo, bounds_hi; };  // grid_bounds.comp
 layout(binding = 6, scalar) readonly buffer Normals { vec3 normals[]; };
 
@@ -26,7 +26,7 @@ void main()
     if (v >= pc.vertex_count) return;
     vec3 x = positions[v];
     float weight = max(areas[v], 0.0) * (1.0 - ao[v]);
-    if (pc.field > 0u) weight *= 0.5 * normals[v][pc.field - 1u];
+    vec3 weight_n = 0.5 * weight * normals[v];
     vec3 corner = cube_corner(pc.cube_side, bounds_lo, bounds_hi);
     for (uint g = 0u; g < pc.level_count; ++g) {
         GridLevel l = levels[g];
@@ -34,11 +34,20 @@ void main()
         vec4 wx, wy, wz;
         bspline_footprint(l, level_origin(l, pc.cube_side, corner), x, base, wx, wy, wz);
         float w = weight * l.splat_scale;
+        vec3 wn = weight_n * l.splat_scale;
         [[unroll]] for (int k = 0; k < 4; ++k)
             [[unroll]] for (int j = 0; j < 4; ++j) {
-                float wjk = w * wy[j] * wz[k];
+                float b_jk = wy[j] * wz[k];
                 uint row = grid_cell(l, base + ivec3(0, j, k));
-                [[unroll]] for (int i = 0; i < 4; ++i) atomicAdd(cells[row + uint(i)], uint(int(floor(wjk * wx[i] + 0.5))));
+                [[unroll]] for (int i = 0; i < 4; ++i) {
+                    float b = b_jk * wx[i];
+                    uint at = 4u * (row + uint(i));
+                    atomicAdd(cells[at], uint(w * b + 0.5));
+                    ivec3 n = ivec3(floor(wn * b + 0.5));
+                    atomicAdd(cells[at + 1u], uint(n.x));
+                    atomicAdd(cells[at + 2u], uint(n.y));
+                    atomicAdd(cells[at + 3u], uint(n.z));
+                }
             }
     }
 }

@@ -103,7 +103,6 @@ struct GridSplatPush {
     uint vertex_count;
     uint level_count;
     float cube_side;  // > 0: a deforming mesh's grids follow its bounds (level_origin)
-    uint field;       // 0: (1 − A_o)·area; 1, 2, 3: times n.x, n.y, n.z (the normal sums)
 };
 
 // grid_axis.comp: one separable pass, blur (step 1) or restriction (step 2) along `axis`.
@@ -148,7 +147,7 @@ struct ClusterPush {
 // The sizes the shaders see (scalar layout: the sum of the members).
 static_assert(sizeof(AoPush) == 36 && sizeof(AoResolvePush) == 12 && sizeof(ThicknessPush) == 36 &&
               sizeof(ThicknessResolvePush) == 16 && sizeof(GatherPush) == 4 && sizeof(RefitPush) == 8 &&
-              sizeof(RayRefitPush) == 12 && sizeof(NearPush) == 24 && sizeof(GridSplatPush) == 16 &&
+              sizeof(RayRefitPush) == 12 && sizeof(NearPush) == 24 && sizeof(GridSplatPush) == 12 &&
               sizeof(GridAxisPush) == 44 + 4 * (JADE_GRID_MAX_HALF_WIDTH + 1) && sizeof(GridGatherPush) == 16 &&
               sizeof(ExactPush) == 12 && sizeof(ClusterPush) == 28);
 }  // namespace jade::bake

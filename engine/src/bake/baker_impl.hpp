@@ -177,7 +177,7 @@ struct Baker::Impl {
     std::optional<gpu::Kernel> tm_exact[2][4], tm_cluster[2][4];
     std::optional<gpu::Kernel> tm_near[2][2][4];  // [grid far field][grey][kind]
     std::optional<gpu::Kernel> grid_splat, grid_gather, grid_bounds;
-    std::optional<gpu::Kernel> grid_axis[3][2][bake::kGridMaxHalfWidth + 1];  // [input: float, fixed point, signed][blur, restrict][half-width]
+    std::optional<gpu::Kernel> grid_axis[2][2][bake::kGridMaxHalfWidth + 1];  // [fixed-point input][blur, restrict][half-width]
     std::optional<gpu::Kernel> tm_exact_f64[2][4];  // BakeSettings::tm_float64_sums
 
     explicit Impl(gpu::Context& c) : ctx(c) {}
@@ -291,17 +291,16 @@ struct Baker::Impl {
             VkDeviceSize bytes;
         };
         std::vector<NearWindow> near_windows;  // near-pass dispatches, each within one binding's range
-        // The grid far field: its plan's sizes, cells (fixed-point splats, blurred values) per
-        // field (grid_splat.comp: the weight, then times n.x, n.y, n.z), two blur buffers for
-        // the largest grid, the levels and S(r) table. smooth_table is a placeholder for the
+        // The grid far field: its plan's sizes, cells (fixed-point splats, blurred values; four
+        // fields per cell, grid_splat.comp: the weight, then times n.x, n.y, n.z), two blur
+        // buffers for the largest grid, the levels and S(r) table. smooth_table is a placeholder for the
         // other methods (the near pass always binds one).
         float grid_cut2 = 0, grid_table_scale = 0, grid_cube_side = 0;
         std::vector<bake::GpuGridLevel> grid_plan_levels;
         uint64_t grid_bytes = 0;
         double grid_r_cut = 0;
-        static constexpr uint32_t kGridFields = bake::kGridFields;
-        gpu::Buffer grid_levels, grid_splat[kGridFields], grid_cells[kGridFields], grid_scratch[2], smooth_table, grid_bounds;
-        gpu::TexelView smooth_table_texels, grid_splat_texels[kGridFields], grid_cell_texels[kGridFields], grid_scratch_texels[2];
+        gpu::Buffer grid_levels, grid_splat, grid_cells, grid_scratch[2], smooth_table, grid_bounds;
+        gpu::TexelView smooth_table_texels, grid_splat_texels, grid_cell_texels, grid_scratch_texels[2];
         uint32_t grid_level_count() const { return uint32_t(grid_plan_levels.size()); }
         TmMethod method() const { return exact ? TmMethod::Exact : grid ? TmMethod::Grid : TmMethod::Clustered; }
         uint64_t tm_bytes() const
@@ -309,9 +308,8 @@ struct Baker::Impl {
             uint64_t b = 0;
             for (const gpu::Buffer* x : {&profiles, &point_order, &points, &nodes, &node_levels, &tm, &normal_sum, &partial_sum,
                                          &partial_comp, &resume, &near_offsets, &near_disks, &near_indices, &grid_levels,
-                                         &grid_scratch[0], &grid_scratch[1], &smooth_table})
+                                         &grid_splat, &grid_cells, &grid_scratch[0], &grid_scratch[1], &smooth_table})
                 b += *x ? x->size() : 0;
-            for (uint32_t f = 0; f < kGridFields; ++f) b += (grid_splat[f] ? grid_splat[f].size() : 0) + (grid_cells[f] ? grid_cells[f].size() : 0);
             return b;
         }
     };

@@ -172,13 +172,13 @@ uint64_t GridPlan::near_entries(size_t vertices, double margin) const
 
 uint64_t GridPlan::bytes() const
 {
-    // Per field (the weight, and times each normal coordinate: grid_splat.comp) fixed-point
-    // splats of the two finest grids and every grid's cells; two buffers for the separable
-    // passes of the largest.
+    // Four fields per cell (the weight, and times each normal coordinate: grid_splat.comp):
+    // fixed-point splats of the two finest grids, every grid's cells, two buffers for the
+    // separable passes of the largest.
     uint64_t splat = 0;
     for (size_t g = 0; g < std::min<size_t>(levels.size(), kSplatLevels); ++g) splat += uint64_t(levels[g].dims.x) * levels[g].dims.y * levels[g].dims.z;
-    return kGridFields * (4 * splat + 4 * cells) + 8 * max_level_cells + levels.size() * sizeof(GpuGridLevel) +
-           table.size() * sizeof(glm::vec3);
+    const uint64_t cell = 4 * kGridFields;
+    return cell * (splat + cells + 2 * max_level_cells) + levels.size() * sizeof(GpuGridLevel) + table.size() * sizeof(glm::vec3);
 }
 
 namespace {

@@ -35,7 +35,7 @@ namespace jade::bake {
 
 constexpr uint32_t kGridMaxHalfWidth = JADE_GRID_MAX_HALF_WIDTH;  // bake_interface.h, shared with grid.glsl
 constexpr uint32_t kGridTableSize = 1024;     // samples of S(r) for the near pass, over [0, table_range]
-constexpr uint64_t kGridMaxCells = 1ull << 25; // all grids together; past it r_cut grows (see plan_grid)
+constexpr uint64_t kGridMaxCells = 1ull << 23; // all grids together (16 B a cell: one binding); past it r_cut grows (see plan_grid)
 constexpr double kGridMaxCoarsening = 1.5;      // ... by at most this factor (the near lists by its square)
 // Grids the sources are splatted into; grid g ≥ 2 is restricted from grid g − 2 (twice finer).
 constexpr uint32_t kSplatLevels = 2;

@@ -8,6 +8,9 @@
 
 namespace jade {
 
+// A grid cell: four floats (or fixed-point integers), the fields of grid_splat.comp.
+constexpr uint32_t kCellBytes = 4 * bake::kGridFields;
+
 void Baker::Impl::prepare_grid(MeshState& m, const bake::GridPlan& plan)
 {
     m.grid_r_cut = plan.r_cut;
@@ -24,21 +27,20 @@ void Baker::Impl::prepare_grid(MeshState& m, const bake::GridPlan& plan)
     m.smooth_table_texels = gpu::TexelView(ctx, m.smooth_table, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "t_m smooth-part table");
     if (plan.levels.empty()) return;  // the profile is within r_cut: the near pass is all of t_m
     m.grid_levels = gpu::Buffer::from(ctx, plan.levels, kStorageUsage, "t_m grid levels");
-    check_storage_range(plan.cells * 4, "t_m grid cells");
+    check_storage_range(plan.cells * kCellBytes, "t_m grid cells");
     uint64_t splat_cells = 0;
     for (uint32_t g = 0; g < std::min<uint32_t>(uint32_t(plan.levels.size()), bake::kSplatLevels); ++g)
         splat_cells += uint64_t(plan.levels[g].dims.x) * plan.levels[g].dims.y * plan.levels[g].dims.z;
-    // Per field (grid_splat.comp): the fixed-point splats, then each grid's sources
-    // (restricted) and in place its blurred values.
-    for (uint32_t f = 0; f < MeshState::kGridFields; ++f) {
-        m.grid_splat[f] = gpu::Buffer(ctx, splat_cells * 4, kTexelUsage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, "t_m grid splats");
-        m.grid_splat_texels[f] = gpu::TexelView(ctx, m.grid_splat[f], VK_FORMAT_R32_UINT, 4, "t_m grid splats (texels)");
-        m.grid_cells[f] = gpu::Buffer(ctx, plan.cells * 4, kTexelUsage, "t_m grid cells");
-        m.grid_cell_texels[f] = gpu::TexelView(ctx, m.grid_cells[f], VK_FORMAT_R32_SFLOAT, 4, "t_m grid cells (texels)");
-    }
+    // The fixed-point splats, then each grid's sources (restricted) and in place its blurred
+    // values: the four fields of a cell in one texel (grid_splat.comp).
+    m.grid_splat = gpu::Buffer(ctx, splat_cells * kCellBytes, kTexelUsage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, "t_m grid splats");
+    m.grid_splat_texels = gpu::TexelView(ctx, m.grid_splat, VK_FORMAT_R32G32B32A32_UINT, kCellBytes, "t_m grid splats (texels)");
+    m.grid_cells = gpu::Buffer(ctx, plan.cells * kCellBytes, kTexelUsage, "t_m grid cells");
+    m.grid_cell_texels = gpu::TexelView(ctx, m.grid_cells, VK_FORMAT_R32G32B32A32_SFLOAT, kCellBytes, "t_m grid cells (texels)");
     for (int i = 0; i < 2; ++i) {
-        m.grid_scratch[i] = gpu::Buffer(ctx, plan.max_level_cells * 4, kTexelUsage, "t_m grid pass scratch");
-        m.grid_scratch_texels[i] = gpu::TexelView(ctx, m.grid_scratch[i], VK_FORMAT_R32_SFLOAT, 4, "t_m grid pass scratch (texels)");
+        m.grid_scratch[i] = gpu::Buffer(ctx, plan.max_level_cells * kCellBytes, kTexelUsage, "t_m grid pass scratch");
+        m.grid_scratch_texels[i] =
+            gpu::TexelView(ctx, m.grid_scratch[i], VK_FORMAT_R32G32B32A32_SFLOAT, kCellBytes, "t_m grid pass scratch (texels)");
     }
 }
 
@@ -63,17 +65,16 @@ void Baker::Impl::record_grid(VkCommandBuffer cmd, MeshState& m, gpu::GpuTimer* 
     };
     const auto& splat = kernel(grid_splat, {"grid_splat", shaders::grid_splat_comp(), storage_bindings(7),
                                             sizeof(GridSplatPush), 64, {}});
-    // input: 0 float cells, 1 unsigned fixed point (field 0), 2 signed fixed point (the normal's fields)
-    auto axis_kernel = [&](uint32_t half_width, uint32_t step, uint32_t input) -> const gpu::Kernel& {
-        return kernel(grid_axis[input][step - 1][half_width], {"grid_axis", shaders::grid_axis_comp(), {kTexels, kTexels, kStorage},
-                                                               sizeof(bake::GridAxisPush), kAxisGroup, {half_width, step, input}});
+    auto axis_kernel = [&](uint32_t half_width, uint32_t step, bool fixed) -> const gpu::Kernel& {
+        return kernel(grid_axis[fixed][step - 1][half_width], {"grid_axis", shaders::grid_axis_comp(), {kTexels, kTexels, kStorage},
+                                                               sizeof(bake::GridAxisPush), kAxisGroup, {half_width, step, fixed ? 1u : 0u}});
     };
     const auto& gather = kernel(grid_gather, {"grid_gather", shaders::grid_gather_comp(),
                                               {kStorage, kStorage, kStorage, kStorage, kTexels, kStorage, kStorage, kStorage, kStorage,
-                                               kStorage, kTexels, kTexels, kTexels},
+                                               kStorage},
                                               sizeof(GridGatherPush), 64, tm_constants(m.variant)});
     const auto& L = m.grid_plan_levels;
-    for (const gpu::Buffer& b : m.grid_splat) vkCmdFillBuffer(cmd, b.handle(), 0, VK_WHOLE_SIZE, 0);
+    vkCmdFillBuffer(cmd, m.grid_splat.handle(), 0, VK_WHOLE_SIZE, 0);
     if (m.grid_cube_side > 0) {  // the current bounds, for grids that follow the mesh
         vkCmdFillBuffer(cmd, m.grid_bounds.handle(), 0, 12, ~0u);
         vkCmdFillBuffer(cmd, m.grid_bounds.handle(), 12, 12, 0);
@@ -82,15 +83,14 @@ void Baker::Impl::record_grid(VkCommandBuffer cmd, MeshState& m, gpu::GpuTimer* 
             .dispatch(cmd, m.vertex_count, GatherPush{m.vertex_count}, {m.positions, m.grid_bounds});
     }
     gpu::compute_barrier(cmd);
-    for (uint32_t f = 0; f < MeshState::kGridFields; ++f)
-        splat.dispatch(cmd, m.vertex_count, GridSplatPush{m.vertex_count, std::min(levels, bake::kSplatLevels), m.grid_cube_side, f},
-                       {m.grid_levels, m.positions, m.areas, m.ao, m.grid_splat[f], m.grid_bounds, m.normals});
+    splat.dispatch(cmd, m.vertex_count, GridSplatPush{m.vertex_count, std::min(levels, bake::kSplatLevels), m.grid_cube_side},
+                   {m.grid_levels, m.positions, m.areas, m.ao, m.grid_splat, m.grid_bounds, m.normals});
     gpu::compute_barrier(cmd);
     mark("t_m grid splat");
 
-    // Three passes x, y, z over field f from level `from` (its cells, or its fixed-point
-    // splat) into `to_offset` of the field's cell buffer, through the two scratch buffers.
-    auto separable = [&](uint32_t f, uint32_t from, glm::uvec3 out_dims, uint32_t step, int32_t shift, uint32_t half_width,
+    // Three passes x, y, z from level `from` (its cells, or its fixed-point splat) into
+    // `to_offset` of the cell buffer, through the two scratch buffers.
+    auto separable = [&](uint32_t from, glm::uvec3 out_dims, uint32_t step, int32_t shift, uint32_t half_width,
                          const float* w, uint32_t to_offset) {
         const bake::GpuGridLevel& src = L[from];
         const bool fixed = from < bake::kSplatLevels;
@@ -103,31 +103,27 @@ void Baker::Impl::record_grid(VkCommandBuffer cmd, MeshState& m, gpu::GpuTimer* 
             const gpu::TexelView* source = &m.grid_scratch_texels[(axis + 1) % 2];
             const gpu::Buffer* target = &m.grid_scratch[axis % 2];
             if (axis == 0) {
-                source = &m.grid_cell_texels[f];
+                source = &m.grid_cell_texels;
                 p.in_offset = src.offset;
-                p.inv_scale = (f == 0 ? 1.0f : 2.0f) / src.splat_scale;  // the normal's fields splat at half the scale
+                p.inv_scale = 1.0f / src.splat_scale;
             }
-            if (axis == 2) target = &m.grid_cells[f], p.out_offset = to_offset;
+            if (axis == 2) target = &m.grid_cells, p.out_offset = to_offset;
             glm::uvec3 runs = out;
             runs[axis] = (out[axis] + kAxisRun - 1) / kAxisRun;
-            const uint32_t input = fixed && axis == 0 ? (f == 0 ? 1u : 2u) : 0u;
-            axis_kernel(half_width, step, input).dispatch_3d(cmd, runs, p, {m.grid_splat_texels[f], *source, *target});
+            axis_kernel(half_width, step, fixed && axis == 0).dispatch_3d(cmd, runs, p, {m.grid_splat_texels, *source, *target});
             gpu::compute_barrier(cmd);
             in = out;
         }
     };
     static constexpr float kTwoScale[3] = {6.0f / 8, 4.0f / 8, 1.0f / 8};
-    for (uint32_t f = 0; f < MeshState::kGridFields; ++f)
-        for (uint32_t g = bake::kSplatLevels; g < levels; ++g)
-            separable(f, g - 2, dims_of(L[g]), 2, -2, 2, kTwoScale, L[g].offset);
+    for (uint32_t g = bake::kSplatLevels; g < levels; ++g) separable(g - 2, dims_of(L[g]), 2, -2, 2, kTwoScale, L[g].offset);
     mark("t_m grid restrict");
-    for (uint32_t f = 0; f < MeshState::kGridFields; ++f)
-        for (uint32_t g = 0; g < levels; ++g)
-            if (L[g].weight != glm::vec3(0)) separable(f, g, dims_of(L[g]), 1, 0, L[g].half_width, L[g].blur, L[g].offset);
+    for (uint32_t g = 0; g < levels; ++g)
+        if (L[g].weight != glm::vec3(0)) separable(g, dims_of(L[g]), 1, 0, L[g].half_width, L[g].blur, L[g].offset);
     mark("t_m grid blur");
     gather.dispatch(cmd, slot_end - slot_begin, GridGatherPush{levels, slot_begin, slot_end - slot_begin, m.grid_cube_side},
-                    {m.profiles, m.grid_levels, m.positions, m.point_order, m.grid_cell_texels[0], m.partial_sum, m.partial_comp,
-                     m.tm, m.normal_sum, m.grid_bounds, m.grid_cell_texels[1], m.grid_cell_texels[2], m.grid_cell_texels[3]});
+                    {m.profiles, m.grid_levels, m.positions, m.point_order, m.grid_cell_texels, m.partial_sum, m.partial_comp,
+                     m.tm, m.normal_sum, m.grid_bounds});
     gpu::compute_barrier(cmd);
     mark("t_m grid gather");
 }
