@@ -254,6 +254,7 @@ namespace {
 
 // t_m and the normal sums N_c = ∫R_c(1 − A_o)·n dS per listed vertex, by brute force.
 struct ReferenceSums {
+    std::vector<uint32_t> vertices;  // the listed vertices (resolve_subset)
     std::vector<glm::dvec3> tm;
     std::vector<std::array<glm::dvec3, 3>> normal;
 };
@@ -283,7 +284,7 @@ ReferenceSums reference_sums(const PreparedMesh& mesh, std::span<const float> ao
     const int channels = material.grey() ? 1 : 3;
     const auto& profile = material.profile;
 
-    ReferenceSums out{std::vector<glm::dvec3>(list.size()), std::vector<std::array<glm::dvec3, 3>>(list.size())};
+    ReferenceSums out{list, std::vector<glm::dvec3>(list.size()), std::vector<std::array<glm::dvec3, 3>>(list.size())};
     parallel_for(list.size(), 4, [&](size_t idx) {
         const uint32_t i = list[idx];
         double sum[3] = {0.0, 0.0, 0.0};
@@ -321,8 +322,8 @@ std::vector<glm::dvec3> reference_tm(const PreparedMesh& mesh, std::span<const f
 ReferenceScattering reference_scattering(const PreparedMesh& mesh, std::span<const float> ao, const Material& material,
                                          std::span<const uint32_t> vertices)
 {
-    const std::vector<uint32_t> list = resolve_subset(mesh, vertices, "reference_scattering");
     const ReferenceSums sums = reference_sums(mesh, ao, material, vertices, "reference_scattering");
+    const std::vector<uint32_t>& list = sums.vertices;
     ReferenceScattering out{std::vector<glm::dvec3>(list.size()), std::vector<glm::dvec3>(list.size())};
     for (size_t k = 0; k < list.size(); ++k) {
         const glm::dvec3 n = sums.normal[k][0] + sums.normal[k][1] + sums.normal[k][2];
