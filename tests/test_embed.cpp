@@ -44,8 +44,9 @@ struct Host {
     VkQueue queue = VK_NULL_HANDLE;
     HostDeviceSetup setup;  // Jade's features and extensions, or none
 
-    explicit Host(bool with_jade_requirements) : setup(with_jade_requirements)
+    explicit Host(bool with_jade_requirements, bool timeline_semaphores = false) : setup(with_jade_requirements)
     {
+        setup.f12.timelineSemaphore = timeline_semaphores ? VK_TRUE : VK_FALSE;
         VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
         app.apiVersion = VK_API_VERSION_1_3;
         const char* layer = "VK_LAYER_KHRONOS_validation";
@@ -168,6 +169,78 @@ TEST_F(Embed, AdoptedContextBakesLikeAnOwnedOneAndLeavesTheDeviceAlive)
     VkFence fence = VK_NULL_HANDLE;
     EXPECT_EQ(vkCreateFence(host.device, &fci, nullptr, &fence), VK_SUCCESS);
     vkDestroyFence(host.device, fence, nullptr);
+}
+
+// Jade never waits for the host's device: what it lets go of while recorded work is pending
+// outlives that work. The host's command buffer waits on a timeline semaphore that only the host
+// signals, after the Jade calls, so a vkDeviceWaitIdle (or a wait for the queue) in any of them
+// would never return; and the validation layer reports any object destroyed while the command
+// buffer that uses it is pending.
+TEST_F(Embed, ReleasesWhatRecordedWorkUsesWithoutWaitingForTheHost)
+{
+    const PreparedMesh sphere = prepare_mesh(procedural::sphere(1.0f, 12, 16));
+    const Material material = burley_material({0.3, 0.2, 0.1}, glm::vec3(0.8f));
+    Host host(true, true);
+    VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    pci.queueFamilyIndex = host.family;
+    VkCommandPool pool = VK_NULL_HANDLE;
+    ASSERT_EQ(vkCreateCommandPool(host.device, &pci, nullptr, &pool), VK_SUCCESS);
+    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    ai.commandPool = pool;
+    ai.commandBufferCount = 1;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    ASSERT_EQ(vkAllocateCommandBuffers(host.device, &ai, &cmd), VK_SUCCESS);
+    VkSemaphoreTypeCreateInfo timeline{VK_STRUCTURE_TYPE_SEMAPHORE_TYPE_CREATE_INFO};
+    timeline.semaphoreType = VK_SEMAPHORE_TYPE_TIMELINE;
+    VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO, &timeline};
+    VkSemaphore gate = VK_NULL_HANDLE;
+    ASSERT_EQ(vkCreateSemaphore(host.device, &sci, nullptr, &gate), VK_SUCCESS);
+    VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VkFence done = VK_NULL_HANDLE;
+    ASSERT_EQ(vkCreateFence(host.device, &fci, nullptr, &done), VK_SUCCESS);
+    {
+        Context context(host.adopted());
+        Baker baker(context);
+        auto renderer = std::make_unique<Renderer>(context);
+        renderer->set_mesh(sphere);
+        renderer->set_material(material);
+        auto rebake = std::make_unique<DynamicBake>(baker, sphere, material, BakeSettings::preset(Quality::Draft));
+
+        VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+        ASSERT_EQ(vkBeginCommandBuffer(cmd, &bi), VK_SUCCESS);
+        rebake->record(cmd);
+        ASSERT_EQ(vkEndCommandBuffer(cmd), VK_SUCCESS);
+        VkSemaphoreSubmitInfo wait{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+        wait.semaphore = gate;
+        wait.value = 1;
+        wait.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+        VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+        cbi.commandBuffer = cmd;
+        VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+        si.waitSemaphoreInfoCount = 1;
+        si.pWaitSemaphoreInfos = &wait;
+        si.commandBufferInfoCount = 1;
+        si.pCommandBufferInfos = &cbi;
+        ASSERT_EQ(vkQueueSubmit2(host.queue, 1, &si, done), VK_SUCCESS);
+
+        // While the re-bake waits for the gate: new per-slice sums (the recorded work writes
+        // the old ones), then the whole DynamicBake and the Renderer go. Each call returns.
+        rebake->set_amortisation({2, 1});
+        rebake.reset();
+        renderer.reset();
+        EXPECT_EQ(vkGetFenceStatus(host.device, done), VK_NOT_READY) << "the gated work ran early";
+
+        VkSemaphoreSignalInfo signal{VK_STRUCTURE_TYPE_SEMAPHORE_SIGNAL_INFO};
+        signal.semaphore = gate;
+        signal.value = 1;
+        ASSERT_EQ(vkSignalSemaphore(host.device, &signal), VK_SUCCESS);
+        ASSERT_EQ(vkWaitForFences(host.device, 1, &done, VK_TRUE, UINT64_MAX), VK_SUCCESS);
+        // A later bake on the same Context frees what the GPU is done with; ~Context the rest.
+        EXPECT_GT(baker.bake(sphere, material, BakeSettings::preset(Quality::Draft)).tm.size(), 0u);
+    }
+    vkDestroyFence(host.device, done, nullptr);
+    vkDestroySemaphore(host.device, gate, nullptr);
+    vkDestroyCommandPool(host.device, pool, nullptr);
 }
 
 namespace {

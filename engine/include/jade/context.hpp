@@ -2,7 +2,8 @@
 //
 // A Context owns (or, for embedding, adopts) a Vulkan 1.3 instance, device and one queue that
 // does both compute and graphics. It is not thread-safe: use one Context from one thread at a
-// time. Destroying it waits for its queue (owned: for the device) to be idle.
+// time. Destroying it waits for the GPU to finish with the objects it still holds (owned: for
+// the device to be idle; adopted: only for those objects' fences, see AdoptedVulkan).
 // See docs/embedding.md for adopting a host's device.
 #pragma once
 
@@ -56,9 +57,17 @@ struct ContextOptions {
 /// a host that bypasses the loader and talks to a driver directly is not supported.
 ///
 /// Queue use: Jade submits to `queue` itself (buffer uploads, LUT builds, bakes, render()) and
-/// waits for each submission with its own fence, and set_mesh/set_material/destructors of
-/// Renderer call vkDeviceWaitIdle. Vulkan requires the host to synchronise access to the queue
-/// and device externally: do not submit to it from another thread while a Jade call runs.
+/// waits for each submission with its own fence; it never waits for the device or the queue to
+/// be idle. Vulkan requires the host to synchronise access to the queue and device externally:
+/// do not submit to it from another thread while a Jade call runs.
+///
+/// Releasing objects: what Renderer::set_mesh/set_material, DynamicBake::set_amortisation and
+/// the destructors of Renderer, DynamicBake and MeshDeformer replace may still be used by
+/// command buffers the host recorded with their record() calls. Jade submits an empty batch with
+/// a fence to `queue` (its signal covers every earlier submission to the queue) and frees the
+/// objects in a later Jade call once that fence has signalled, without waiting; the Context's
+/// destructor waits for those fences only. So submit recorded command buffers to this queue,
+/// before such a call (or never).
 struct AdoptedVulkan {
     VkInstance instance = VK_NULL_HANDLE;
     VkPhysicalDevice physical_device = VK_NULL_HANDLE;

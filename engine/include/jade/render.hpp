@@ -236,8 +236,10 @@ public:
 
     /// The mesh to draw, with t_m per bake vertex (empty: zero, i.e. Lambert in every mode but
     /// Curvature). Shading uses the prepared mesh's area-weighted vertex normals (so normal
-    /// seams of the input are smoothed over). Computes the mean curvature. Waits for the GPU to be idle first, so command
-    /// buffers recorded earlier must have completed or not be submitted again.
+    /// seams of the input are smoothed over). Computes the mean curvature. Does not wait for
+    /// draws recorded earlier: the old buffers are released once the GPU has finished what was
+    /// submitted to the Context's queue before this call (Context: "Releasing objects"), so
+    /// command buffers recorded earlier must have been submitted to that queue by then, or never be.
     /// `thickness` (mesh units, per bake vertex, BakeResult::thickness; empty: none, and no
     /// transmission is drawn) feeds Material::transmission. `scattering_normal` (per bake
     /// vertex, BakeResult::scattering_normal; empty: the vertex normals) is what the `Tm`
@@ -273,7 +275,8 @@ public:
     void update_vertices(VkBuffer positions, VkBuffer normals, VkBuffer tm, VkBuffer thickness = VK_NULL_HANDLE,
                          VkBuffer scattering_normal = VK_NULL_HANDLE);
     /// Albedo, strength, specular parameters and profiles (the curvature LUT is rebuilt, on
-    /// the CPU in float64, when the profiles change). Waits for the GPU like set_mesh.
+    /// the CPU in float64, when the profiles change). Replaced GPU objects are released like
+    /// set_mesh's, without waiting for recorded draws.
     void set_material(const Material& material);
 
     /// Renders one image: draws into MSAA targets it owns (kept for the next call of the same
@@ -291,8 +294,9 @@ public:
     ///   by barriers against the previous record()'s shader reads, then one dynamic rendering.
     /// - after: the resolve (or color) image was written at COLOR_ATTACHMENT_OUTPUT with
     ///   COLOR_ATTACHMENT_WRITE; the caller adds the barrier for its next use.
-    /// The mesh, material and pipelines are the renderer's: set_mesh, set_material and the
-    /// destructor wait for the device to be idle before they release anything.
+    /// The mesh, material and pipelines are the renderer's. Submit the command buffer to the
+    /// Context's queue: set_mesh, set_material and the destructor release what they replace
+    /// when the GPU has finished the work submitted to that queue before them, never waiting.
     void record(VkCommandBuffer cmd, const RenderTarget& target, const Camera& camera, std::span<const Light> lights,
                 const RenderSettings& settings);
 

@@ -9,12 +9,13 @@ namespace jade {
 
 struct DynamicBake::State {
     Baker::Impl& impl;
+    gpu::Context& ctx;  // impl's: kept apart for ~DynamicBake, which must not need the Baker
     BakeSettings settings;
     Baker::Impl::MeshState mesh;
     Amortisation amortisation;
     uint64_t frame = 0;       // record() calls since the last full re-bake
     bool stale = true;        // the next record() re-bakes everything
-    State(Baker::Impl& i, const BakeSettings& s) : impl(i), settings(s) {}
+    State(Baker::Impl& i, const BakeSettings& s) : impl(i), ctx(i.ctx), settings(s) {}
 
     // Tree slots [begin, end) of t_m slice `k`: boundaries on multiples of 64 (a work group),
     // so the lanes of a subgroup stay neighbours in the tree (tm_cluster.comp).
@@ -49,7 +50,11 @@ DynamicBake::DynamicBake(Baker& baker, const PreparedMesh& rest, const Material&
     impl.prepare_tm(state_->mesh, rest, material, settings, kDynamicNearMargin);
 }
 
-DynamicBake::~DynamicBake() = default;
+DynamicBake::~DynamicBake()
+{
+    // Frames the host recorded may still be running: the buffers go when the GPU is done.
+    if (state_) state_->ctx.release_after_gpu(std::move(state_));
+}
 
 DynamicBake::Buffers DynamicBake::buffers() const
 {
@@ -116,7 +121,8 @@ void DynamicBake::set_amortisation(const Amortisation& a)
                     std::to_string(thickness_rays) + " thickness rays per vertex too");
     auto& m = state_->mesh;
     if (a.ao_slices != m.ao_slices) {
-        vkDeviceWaitIdle(state_->impl.ctx.device());  // recorded frames may still use the hit counts
+        // Recorded frames may still use the old per-slice sums.
+        state_->impl.ctx.release_after_gpu(std::move(m.hits), std::move(m.thickness_sums));
         m.hits = gpu::Buffer(state_->impl.ctx, VkDeviceSize(m.vertex_count) * a.ao_slices * sizeof(uint32_t), kStorageUsage,
                              "ao hit counts (per ray slice)");
         m.ao_slices = a.ao_slices;

@@ -189,7 +189,11 @@ MeshDeformer::MeshDeformer(Context& context, const PreparedMesh& rest)
     impl_ = std::make_unique<Impl>(context.gpu(), rest);
 }
 
-MeshDeformer::~MeshDeformer() = default;
+MeshDeformer::~MeshDeformer()
+{
+    // Frames the host recorded may still be running: the buffers go when the GPU is done.
+    if (impl_) impl_->ctx.release_after_gpu(std::move(impl_));
+}
 
 void MeshDeformer::set_skin(const SkinBinding& b)
 {

@@ -151,12 +151,15 @@ void Context::destroy()
 {
     if (adopted_) {
         // Only Jade's own objects go; the host's device and instance stay untouched.
-        if (queue_) vkQueueWaitIdle(queue_);
+        // Jade's own submissions were each waited for; what is left is what release_after_gpu()
+        // keeps for the host's submitted draws: wait for those fences only, not for the queue.
+        release_queue_.destroy_all();
         fence_.reset();
         command_pool_.reset();
         return;
     }
-    if (device_) vkDeviceWaitIdle(device_);
+    if (device_) vkDeviceWaitIdle(device_);  // Jade's own device: nobody else's work to stall
+    release_queue_.destroy_all();
     fence_.reset();
     command_pool_.reset();
     if (device_) vkDestroyDevice(device_, nullptr);
@@ -332,6 +335,7 @@ void Context::create_submission_objects()
     VkFence f;
     check(vkCreateFence(device_, &fci, nullptr, &f), "vkCreateFence");
     fence_ = OwnedFence(device_, f);
+    release_queue_ = ReleaseQueue(device_, queue_, !adopted_);
 }
 
 void Context::fill_info()
@@ -389,6 +393,7 @@ void Context::submit_and_wait(const std::function<void(VkCommandBuffer)>& record
     check(vkQueueSubmit2(queue_, 1, &si, f), "vkQueueSubmit2");
     check(vkWaitForFences(device_, 1, &f, VK_TRUE, UINT64_MAX), "vkWaitForFences");
     check(vkResetFences(device_, 1, &f), "vkResetFences");
+    release_queue_.collect();
 }
 
 void Context::count_created(VkObjectType type, bool compute, uint64_t device_bytes) const

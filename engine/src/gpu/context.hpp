@@ -1,12 +1,14 @@
 // gpu/context.hpp - instance, device, queue, and the one-shot command submission.
 #pragma once
 
+#include "gpu/release_queue.hpp"
 #include "gpu/vk.hpp"
 
 #include <jade/context.hpp>
 
 #include <atomic>
 #include <functional>
+#include <memory>
 #include <string_view>
 
 namespace jade::gpu {
@@ -36,6 +38,19 @@ public:
     /// Records commands with `record` into a fresh primary command buffer, submits it and waits.
     /// The simple path for bakes and tests; frame loops record into their own buffers.
     void submit_and_wait(const std::function<void(VkCommandBuffer)>& record);
+
+    /// Keeps `objects` (moved in) alive until the GPU has finished everything submitted to the
+    /// queue so far, without waiting (gpu/release_queue.hpp): what replaces vkDeviceWaitIdle
+    /// before releasing objects that recorded draws may still use.
+    template <class... T> void release_after_gpu(T&&... objects)
+    {
+        std::vector<std::shared_ptr<void>> owners;
+        (owners.push_back(std::make_shared<std::decay_t<T>>(std::move(objects))), ...);
+        release_queue_.release(std::move(owners));
+    }
+    /// Frees what release_after_gpu() kept, as far as the GPU is done with it; never waits.
+    void collect_released() { release_queue_.collect(); }
+    size_t released_pending() const { return release_queue_.pending(); }
 
     /// Names a Vulkan object for validation messages and debuggers (no-op without debug utils).
     void set_name(VkObjectType type, uint64_t handle, const char* name) const;
@@ -92,6 +107,7 @@ private:
     // Owned objects last: destroyed first, before the device (see ~Context).
     OwnedCommandPool command_pool_;
     OwnedFence fence_;
+    ReleaseQueue release_queue_;  // emptied first by destroy(): its objects may use the pool's device
 };
 
 }  // namespace jade::gpu

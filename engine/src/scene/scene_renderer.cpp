@@ -32,6 +32,9 @@ struct SceneRenderer::Impl {
     SceneSettings settings;
     ScenePlan plan;
     std::vector<PassRecord> passes;
+    // The DynamicBakes use its pipelines: kept, and declared before the objects so that it
+    // outlives them.
+    std::unique_ptr<Baker> dynamic_baker;
 
     struct Object {
         PreparedMesh rest;
@@ -45,7 +48,6 @@ struct SceneRenderer::Impl {
         std::unique_ptr<DynamicBake> dynamic_bake;
     };
     std::vector<Object> objects;
-    std::unique_ptr<Baker> dynamic_baker;  // the DynamicBakes use its pipelines: kept
     glm::vec3 lo{0.0f}, hi{0.0f};
 
     struct Targets {

@@ -52,7 +52,8 @@ VkFormat color_format(const RenderSettings& s) { return s.float32 ? VK_FORMAT_R3
 }  // namespace
 
 // Members are destroyed in reverse order: targets and pipelines first, the LUTs and sampler
-// last; ~Impl waits for the GPU first, as draws recorded with record() may still be running.
+// last. Draws recorded with record() may still be running: ~Renderer hands the Impl to the
+// Context's release queue, and set_mesh/set_material hand it what they replace.
 struct Renderer::Impl {
     gpu::Context& ctx;
     RendererOptions options;
@@ -99,7 +100,6 @@ struct Renderer::Impl {
         // Sampled-image descriptors need the image in its layout even if never read.
         c.submit_and_wait([&](VkCommandBuffer cmd) { placeholder.transition(cmd, gpu::use::kSampled); });
     }
-    ~Impl() { vkDeviceWaitIdle(ctx.device()); }
     Impl(const Impl&) = delete;
     Impl& operator=(const Impl&) = delete;
 
@@ -375,7 +375,10 @@ struct Renderer::Impl {
 };
 
 Renderer::Renderer(Context& context, const RendererOptions& options) : impl_(std::make_unique<Impl>(context.gpu(), options)) {}
-Renderer::~Renderer() = default;
+Renderer::~Renderer()
+{
+    if (impl_) impl_->ctx.release_after_gpu(std::move(impl_));
+}
 
 void Renderer::set_mesh(const PreparedMesh& mesh, const BakeResult& bake)
 {
@@ -394,7 +397,7 @@ void Renderer::set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm,
     const float tm_min = built.tm_min_mean, tm_max = built.tm_max_mean;
     const glm::vec3 tm_min_channel = built.tm_min;
     Impl& m = *impl_;
-    vkDeviceWaitIdle(m.ctx.device());  // the old buffers may still be read by recorded draws
+    if (m.has_mesh) m.ctx.release_after_gpu(std::move(m.vertices), std::move(m.indices));  // recorded draws may read them
     // Storage too: record_vertex_update() rewrites positions, normals and t_m on the GPU.
     m.vertices = gpu::Buffer::from(m.ctx, vertices, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                    "mesh vertices");
@@ -452,8 +455,10 @@ void Renderer::set_material(const Material& material)
     if (!(material.ior > 0.0f) || !(material.roughness >= 0.0f) || !(material.specular >= 0.0f))
         throw Error("material " + material.name + ": ior must be > 0, roughness and specular >= 0");
     Impl& m = *impl_;
-    vkDeviceWaitIdle(m.ctx.device());
-    if (m.curvature_lut && m.curvature_lut_profiles != material.profile) m.curvature_lut.reset();  // rebuilt on demand
+    if (m.curvature_lut && m.curvature_lut_profiles != material.profile) {
+        m.ctx.release_after_gpu(std::move(*m.curvature_lut));  // recorded draws may read it; rebuilt on demand
+        m.curvature_lut.reset();
+    }
     if (material.transmission.enabled()) m.transmission_table.update(material.transmission);
     m.material = material;
 }
@@ -473,6 +478,7 @@ TmEvaluation Renderer::tm_evaluation() const { return impl_->evaluation; }
 void Renderer::record(VkCommandBuffer cmd, const RenderTarget& target, const Camera& camera, std::span<const Light> lights,
                       const RenderSettings& settings)
 {
+    impl_->ctx.collect_released();  // once a frame: what earlier set_mesh calls replaced
     impl_->record(cmd, target, camera, lights, settings, uint32_t(settings.mode));
 }
 

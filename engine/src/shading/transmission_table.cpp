@@ -58,7 +58,7 @@ void TransmissionTable::update(const Transmission& tr)
     const glm::vec3 rates[] = {glm::min(tr.sigma_t, glm::vec3(3e38f)), glm::min(tr.sigma_tr, glm::vec3(3e38f)),
                                glm::min(tr.sigma_s_reduced, glm::vec3(3e38f))};
     if (buffer_.size() < VkDeviceSize(count) * 16) {
-        view_ = {};
+        if (buffer_) ctx_.release_after_gpu(std::move(view_), std::move(buffer_));  // recorded draws may read it
         buffer_ = gpu::Buffer(ctx_, VkDeviceSize(count) * 16,
                               VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "transmission table");
         view_ = gpu::TexelView(ctx_, buffer_, VK_FORMAT_R32G32B32A32_UINT, 16, "transmission table");
@@ -69,6 +69,9 @@ void TransmissionTable::update(const Transmission& tr)
     const TablePush push{glm::vec4(rates[0], tr.weight), glm::vec4(rates[1], tr.diffusion_weight),
                          glm::vec4(rates[2], float(step)), count};
     ctx_.submit_and_wait([&](VkCommandBuffer cmd) {
+        // After the reads of draws submitted earlier (the table is rewritten in place).
+        gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_NONE,
+                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_NONE);
         kernel_->dispatch(cmd, count, push, {buffer_});
         // For every later draw on the queue.
         gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_WRITE_BIT,
