@@ -11,6 +11,9 @@
 
 namespace jade::gpu {
 
+using OwnedCommandPool = Owned<VkCommandPool, vkDestroyCommandPool>;
+using OwnedFence = Owned<VkFence, vkDestroyFence>;
+
 class Context {
 public:
     explicit Context(const ContextOptions& options);
