@@ -1,5 +1,7 @@
 #include "vk_instance.hpp"
 
+#include <cstring>
+#include <string>
 
 namespace samples {
 
@@ -48,6 +50,28 @@ Instance create_instance(const InstanceOptions& options)
         out.messenger = Owned<VkDebugUtilsMessengerEXT>(messenger, [instance, destroy](VkDebugUtilsMessengerEXT m) { destroy(instance, m, nullptr); });
     }
     return out;
+}
+
+DeviceChoice find_device(VkInstance instance, const char* name)
+{
+    uint32_t n = 0;
+    vkEnumeratePhysicalDevices(instance, &n, nullptr);
+    std::vector<VkPhysicalDevice> devices(n);
+    vkEnumeratePhysicalDevices(instance, &n, devices.data());
+    for (VkPhysicalDevice pd : devices) {
+        VkPhysicalDeviceProperties p;
+        vkGetPhysicalDeviceProperties(pd, &p);
+        if (p.apiVersion < VK_API_VERSION_1_3 || (name && *name && !std::strstr(p.deviceName, name))) continue;
+        uint32_t nf = 0;
+        vkGetPhysicalDeviceQueueFamilyProperties(pd, &nf, nullptr);
+        std::vector<VkQueueFamilyProperties> families(nf);
+        vkGetPhysicalDeviceQueueFamilyProperties(pd, &nf, families.data());
+        for (uint32_t i = 0; i < nf; ++i)
+            if ((families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT))
+                return {pd, i};
+    }
+    throw std::runtime_error(std::string("no Vulkan 1.3 device with a graphics + compute queue") +
+                             (name && *name ? std::string(" named like '") + name + "'" : std::string()));
 }
 
 }  // namespace samples

@@ -1,4 +1,5 @@
-// samples/common - a host's instance (with the validation layer and a messenger on request).
+// samples/common - a host's instance (with the validation layer and a messenger on request)
+// and the choice of its physical device and queue family.
 #pragma once
 
 #include "vk_util.hpp"
@@ -30,5 +31,16 @@ struct Instance {
 /// Throws std::runtime_error when the instance cannot be created (with validation: the layer
 /// is not installed).
 Instance create_instance(const InstanceOptions& options);
+
+/// A physical device and one of its queue families.
+struct DeviceChoice {
+    VkPhysicalDevice physical = VK_NULL_HANDLE;
+    uint32_t family = 0;
+};
+
+/// The first Vulkan 1.3 device (whose name contains `name`, when that is given and not empty)
+/// with a queue family that does graphics and compute, and the first such family; Jade checks
+/// the rest when it adopts the device. Throws std::runtime_error when there is none.
+DeviceChoice find_device(VkInstance instance, const char* name = nullptr);
 
 }  // namespace samples
