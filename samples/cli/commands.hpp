@@ -10,6 +10,7 @@
 #include <jade/scene.hpp>
 
 #include <filesystem>
+#include <initializer_list>
 #include <memory>
 #include <string>
 #include <vector>
@@ -33,6 +34,14 @@ int cmd_fidelity(int argc, char** argv);
 std::vector<OptionSpec> device_options();
 std::vector<OptionSpec> material_options();
 std::vector<OptionSpec> bake_options();
+/// A command's options: the groups in order, e.g. all_options({device_options(), bake_options(),
+/// {{"out", "FILE", "output file"}}}).
+std::vector<OptionSpec> all_options(std::initializer_list<std::vector<OptionSpec>> groups);
+
+/// Prints `usage` (the synopsis and what the command does), a blank line and the options to stdout.
+void print_usage(const Args& args, const char* usage);
+/// With --help: prints the usage (print_usage) and returns true, and the command exits with 0.
+bool print_help(const Args& args, const char* usage);
 
 std::unique_ptr<Context> make_context(const Args& args);
 /// The material named by --material (default "jade") for `mesh`: physical presets use
