@@ -17,18 +17,20 @@
 
 namespace jade::cli {
 
-int cmd_info(int argc, char** argv);
-int cmd_bake(int argc, char** argv);
-int cmd_bench(int argc, char** argv);
-int cmd_render(int argc, char** argv);
-int cmd_figure1(int argc, char** argv);
-int cmd_bench_render(int argc, char** argv);
-int cmd_report(int argc, char** argv);
-int cmd_deform(int argc, char** argv);
-int cmd_bench_deform(int argc, char** argv);
-int cmd_plan(int argc, char** argv);
-int cmd_scene(int argc, char** argv);
-int cmd_fidelity(int argc, char** argv);
+/// A subcommand: `jade NAME ...` with the whole command line; returns the exit status.
+using Command = int(int argc, char** argv);
+Command cmd_info;
+Command cmd_bake;
+Command cmd_bench;
+Command cmd_render;
+Command cmd_figure1;
+Command cmd_bench_render;
+Command cmd_report;
+Command cmd_deform;
+Command cmd_bench_deform;
+Command cmd_plan;
+Command cmd_scene;
+Command cmd_fidelity;
 
 // Options most commands take.
 std::vector<OptionSpec> device_options();
