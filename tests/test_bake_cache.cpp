@@ -17,14 +17,8 @@ namespace {
 
 class BakeCacheTest : public test::GpuTest {
 protected:
-    void SetUp() override
-    {
-        GpuTest::SetUp();
-        dir = test::out("bake_cache/" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "/x")
-                  .parent_path();
-        std::filesystem::remove_all(dir);
-    }
-    std::filesystem::path dir;
+    // Made when the test's fixture is (the test's name is known then), emptied of earlier runs.
+    const std::filesystem::path dir = test::test_folder("bake_cache");
     const PreparedMesh sphere = prepare_mesh(procedural::sphere(1.0f, 10, 14));
     const Material material = burley_material({0.3, 0.2, 0.1}, glm::vec3(0.8f));
     const BakeSettings settings = BakeSettings::preset(Quality::Draft);

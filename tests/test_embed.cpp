@@ -3,6 +3,9 @@
 // The host instance here has the validation layer on and every test fails on any message.
 #include "test_support.hpp"
 
+#include "embed/scene.hpp"  // the sample's frame size, ground and camera
+#include "vk_instance.hpp"  // samples/common: the hosts' instance and device choice
+
 #include <jade/bake.hpp>
 #include <jade/context.hpp>
 #include <jade/render.hpp>
@@ -15,7 +18,6 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
 #include <sys/wait.h>
 #include <string>
 #include <vector>
@@ -34,70 +36,30 @@ VKAPI_ATTR VkBool32 VKAPI_CALL count_message(VkDebugUtilsMessageSeverityFlagBits
     return VK_FALSE;
 }
 
+samples::Instance validated_instance()
+{
+    samples::InstanceOptions options;
+    options.validation = true;
+    options.on_message = &count_message;
+    return samples::create_instance(options);
+}
+
 // A minimal host: its own instance (validation on) and a device with or without what Jade needs.
 struct Host {
-    VkInstance instance = VK_NULL_HANDLE;
-    VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
-    VkPhysicalDevice physical = VK_NULL_HANDLE;
-    uint32_t family = UINT32_MAX;
-    VkDevice device = VK_NULL_HANDLE;
-    VkQueue queue = VK_NULL_HANDLE;
+    samples::Instance instance = validated_instance();
+    // The same device Jade's own Context picks when JADE_DEVICE names one.
+    samples::DeviceChoice choice = samples::find_device(instance.instance, std::getenv("JADE_DEVICE"));
     HostDeviceSetup setup;  // Jade's features and extensions, or none
+    samples::Owned<VkDevice> device;
+    VkQueue queue = VK_NULL_HANDLE;
 
     explicit Host(bool with_jade_requirements, bool timeline_semaphores = false) : setup(with_jade_requirements)
     {
         setup.f12.timelineSemaphore = timeline_semaphores ? VK_TRUE : VK_FALSE;
-        VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
-        app.apiVersion = VK_API_VERSION_1_3;
-        const char* layer = "VK_LAYER_KHRONOS_validation";
-        const char* debug_utils = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
-        VkDebugUtilsMessengerCreateInfoEXT mci{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-        mci.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-        mci.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                          VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
-        mci.pfnUserCallback = &count_message;
-        VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO, &mci};
-        ci.pApplicationInfo = &app;
-        ci.enabledLayerCount = 1;
-        ci.ppEnabledLayerNames = &layer;
-        ci.enabledExtensionCount = 1;
-        ci.ppEnabledExtensionNames = &debug_utils;
-        if (vkCreateInstance(&ci, nullptr, &instance) != VK_SUCCESS) throw Error("test host: vkCreateInstance failed");
-        auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-            vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
-        create(instance, &mci, nullptr, &messenger);
-
-        uint32_t n = 0;
-        vkEnumeratePhysicalDevices(instance, &n, nullptr);
-        std::vector<VkPhysicalDevice> devices(n);
-        vkEnumeratePhysicalDevices(instance, &n, devices.data());
-        for (VkPhysicalDevice pd : devices) {
-            VkPhysicalDeviceProperties p;
-            vkGetPhysicalDeviceProperties(pd, &p);
-            // The same device Jade's own Context picks when JADE_DEVICE names one.
-            const char* wanted = std::getenv("JADE_DEVICE");
-            if (p.apiVersion < VK_API_VERSION_1_3 || (wanted && *wanted && !std::strstr(p.deviceName, wanted))) continue;
-            uint32_t nf = 0;
-            vkGetPhysicalDeviceQueueFamilyProperties(pd, &nf, nullptr);
-            std::vector<VkQueueFamilyProperties> fam(nf);
-            vkGetPhysicalDeviceQueueFamilyProperties(pd, &nf, fam.data());
-            for (uint32_t i = 0; i < nf && family == UINT32_MAX; ++i)
-                if ((fam[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (fam[i].queueFlags & VK_QUEUE_COMPUTE_BIT)) family = i;
-            if (family != UINT32_MAX) { physical = pd; break; }
-        }
-        if (!physical) throw Error("test host: no Vulkan 1.3 device");
-        device = setup.create(physical, family);
-        vkGetDeviceQueue(device, family, 0, &queue);
+        device = samples::Owned<VkDevice>(setup.create(choice.physical, choice.family), [](VkDevice d) { vkDestroyDevice(d, nullptr); });
+        vkGetDeviceQueue(device, choice.family, 0, &queue);
     }
-    ~Host()
-    {
-        if (device) vkDestroyDevice(device, nullptr);
-        auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
-            vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
-        if (messenger) destroy(instance, messenger, nullptr);
-        vkDestroyInstance(instance, nullptr);
-    }
-    AdoptedVulkan adopted() const { return setup.adopted(instance, physical, device, family, queue); }
+    AdoptedVulkan adopted() const { return setup.adopted(instance.instance, choice.physical, device, choice.family, queue); }
 };
 
 class Embed : public ::testing::Test {
@@ -182,7 +144,7 @@ TEST_F(Embed, ReleasesWhatRecordedWorkUsesWithoutWaitingForTheHost)
     const Material material = burley_material({0.3, 0.2, 0.1}, glm::vec3(0.8f));
     Host host(true, true);
     VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    pci.queueFamilyIndex = host.family;
+    pci.queueFamilyIndex = host.choice.family;
     VkCommandPool pool = VK_NULL_HANDLE;
     ASSERT_EQ(vkCreateCommandPool(host.device, &pci, nullptr, &pool), VK_SUCCESS);
     VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
@@ -281,17 +243,11 @@ TEST_F(Embed, SampleDrawsTheTranslucentSphereIntoTheHostsFrame)
 
     int w = 0, h = 0;
     const std::vector<float> img = read_png(png, w, h);
-    ASSERT_EQ(w, 320);
-    ASSERT_EQ(h, 240);
+    ASSERT_EQ(w, int(samples::embed::kWidth));
+    ASSERT_EQ(h, int(samples::embed::kHeight));
     auto px = [&](int x, int y) { return glm::vec3(img[(size_t(y) * w + x) * 4], img[(size_t(y) * w + x) * 4 + 1], img[(size_t(y) * w + x) * 4 + 2]); };
-    // The sample's camera (samples/embed/main.cpp), projected here to find where things are.
-    Camera camera;
-    camera.eye = {0.0f, 1.4f, 5.0f};
-    camera.target = {0.0f, -0.3f, 0.0f};
-    camera.fov_y_degrees = 35.0f;
-    camera.near_plane = 0.1f;
-    camera.far_plane = 50.0f;
-    const glm::mat4 clip = camera.view_projection(float(w) / float(h));
+    // The sample's camera, projected here to find where things are.
+    const glm::mat4 clip = samples::embed::camera().view_projection(float(w) / float(h));
     auto to_pixel = [&](glm::vec3 p) {
         glm::vec4 c = clip * glm::vec4(p, 1.0f);
         return glm::ivec2(int((c.x / c.w * 0.5f + 0.5f) * w), int((c.y / c.w * 0.5f + 0.5f) * h));
@@ -302,8 +258,9 @@ TEST_F(Embed, SampleDrawsTheTranslucentSphereIntoTheHostsFrame)
     EXPECT_NEAR(sky.r, 0.70, 0.02);
     EXPECT_NEAR(sky.g, 0.80, 0.02);
     EXPECT_NEAR(sky.b, 0.93, 0.02);
-    // Ground (plane y = -0.6, the sample's kGroundHeight) in front of and beside the sphere.
-    for (glm::vec3 p : {glm::vec3(1.4f, -0.6f, 1.0f), glm::vec3(-1.5f, -0.6f, 0.5f)}) {
+    // Ground (plane y = kGroundHeight) in front of and beside the sphere.
+    const float ground = samples::embed::kGroundHeight;
+    for (glm::vec3 p : {glm::vec3(1.4f, ground, 1.0f), glm::vec3(-1.5f, ground, 0.5f)}) {
         const glm::ivec2 q = to_pixel(p);
         const glm::vec3 g = px(q.x, q.y);
         EXPECT_NEAR(g.r, g.g, 1e-3f) << q.x << "," << q.y;

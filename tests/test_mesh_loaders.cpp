@@ -14,25 +14,15 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <functional>
-#include <map>
 #include <numbers>
 
 namespace {
 
 using jade::test::asset;
+using jade::test::closed_and_oriented;
 using jade::test::data;
+using jade::test::error_of;
 using jade::test::out;
-
-std::string error_of(const std::function<void()>& f)
-{
-    try {
-        f();
-    } catch (const jade::Error& e) {
-        return e.what();
-    }
-    return "(no jade::Error)";
-}
 
 std::string read_bytes(const std::filesystem::path& p)
 {
@@ -47,18 +37,6 @@ void expect_vec3_near(glm::vec3 actual, glm::vec3 expected, float tolerance, con
     EXPECT_NEAR(actual.z, expected.z, tolerance) << what;
 }
 
-bool closed_and_oriented(const jade::PreparedMesh& m)
-{
-    std::map<std::pair<uint32_t, uint32_t>, int> edges;
-    for (size_t t = 0; t < m.indices.size(); t += 3)
-        for (size_t k = 0; k < 3; ++k) ++edges[{m.indices[t + k], m.indices[t + (k + 1) % 3]}];
-    for (const auto& [edge, count] : edges) {
-        auto twin = edges.find({edge.second, edge.first});
-        if (count != 1 || twin == edges.end() || twin->second != 1) return false;
-    }
-    return true;
-}
-
 /// Geometric normals of all triangles point away from `centre`.
 void expect_outward(const jade::TriangleMesh& m, glm::vec3 centre)
 {
@@ -66,6 +44,27 @@ void expect_outward(const jade::TriangleMesh& m, glm::vec3 centre)
         const glm::vec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]], c = m.positions[m.indices[3 * t + 2]];
         EXPECT_GT(glm::dot(glm::cross(b - a, c - a), (a + b + c) / 3.0f - centre), 0.0f) << m.name << " triangle " << t;
     }
+}
+
+/// A mesh without duplicate positions or degenerate triangles: preparation keeps every vertex
+/// and triangle of it.
+void expect_prepared_whole(const jade::TriangleMesh& mesh, const jade::PreparedMesh& p)
+{
+    EXPECT_EQ(p.vertex_count(), mesh.positions.size()) << mesh.name;
+    EXPECT_EQ(p.triangle_count(), mesh.triangle_count()) << mesh.name;
+    EXPECT_EQ(p.welded_vertices, 0u) << mesh.name;
+    EXPECT_EQ(p.dropped_triangles, 0u) << mesh.name;
+    EXPECT_EQ(p.unused_vertices, 0u) << mesh.name;
+}
+
+/// The unit cube [0, 1]³ of the small test files: its triangles face outwards and, prepared, it
+/// is a closed and consistently oriented surface of area 6.
+void expect_unit_cube_surface(const jade::TriangleMesh& mesh)
+{
+    expect_outward(mesh, glm::vec3(0.5f));
+    const auto p = jade::prepare_mesh(mesh);
+    EXPECT_FLOAT_EQ(p.total_area(), 6.0f) << mesh.name;
+    EXPECT_TRUE(closed_and_oriented(p)) << mesh.name;
 }
 
 // ------------------------------------------------------------------------------ test assets --
@@ -79,12 +78,7 @@ TEST(io_load_off, BunnyLoadsWithAllVerticesAndTriangles)
     EXPECT_EQ(mesh.positions[0], glm::vec3(-0.167662f, -0.411917f, -0.0732205f));  // first vertex line
 
     const auto p = jade::prepare_mesh(mesh);
-    // The bunny has no duplicate positions and no degenerate triangles: preparation keeps all.
-    EXPECT_EQ(p.vertex_count(), 37706u);
-    EXPECT_EQ(p.triangle_count(), 75408u);
-    EXPECT_EQ(p.welded_vertices, 0u);
-    EXPECT_EQ(p.dropped_triangles, 0u);
-    EXPECT_EQ(p.unused_vertices, 0u);
+    expect_prepared_whole(mesh, p);
     EXPECT_EQ(p.indices, mesh.indices);
     EXPECT_EQ(p.bbox_min, glm::vec3(-0.498959f, -0.493434f, -0.38649f));
     EXPECT_EQ(p.bbox_max, glm::vec3(0.49922f, 0.493767f, 0.386086f));
@@ -102,11 +96,7 @@ TEST(io_load_off, DragonLoadsWithTenThousandVertices)
     ASSERT_EQ(mesh.positions.size(), 10000u);
     EXPECT_EQ(mesh.triangle_count(), 19994u);  // 19994 faces in the header, all triangles
     const auto p = jade::prepare_mesh(mesh);
-    EXPECT_EQ(p.vertex_count(), 10000u);
-    EXPECT_EQ(p.triangle_count(), 19994u);
-    EXPECT_EQ(p.welded_vertices, 0u);
-    EXPECT_EQ(p.dropped_triangles, 0u);
-    EXPECT_EQ(p.unused_vertices, 0u);
+    expect_prepared_whole(mesh, p);
     EXPECT_EQ(p.bbox_min, glm::vec3(-34.4333076f, -52.6971169f, -1036.63074f));
     EXPECT_EQ(p.bbox_max, glm::vec3(27.1646004f, 60.1910858f, -927.312439f));
     EXPECT_NEAR(p.diagonal, 168.7855f, 1e-3f);
@@ -123,10 +113,7 @@ TEST(io_load_off, ColouredQuadsAreFanTriangulated)
     // Face "4 0 4 6 2" becomes (0 4 6) (0 6 2).
     EXPECT_EQ(std::vector<uint32_t>(mesh.indices.begin(), mesh.indices.begin() + 6), (std::vector<uint32_t>{0, 4, 6, 0, 6, 2}));
     EXPECT_EQ(mesh.positions[7], glm::vec3(1, 1, 1));
-    expect_outward(mesh, glm::vec3(0.5f));
-    const auto p = jade::prepare_mesh(mesh);
-    EXPECT_FLOAT_EQ(p.total_area(), 6.0f);
-    EXPECT_TRUE(closed_and_oriented(p));
+    expect_unit_cube_surface(mesh);
 }
 
 TEST(io_load_off, NoffNormalsAreRead)
@@ -164,10 +151,7 @@ TEST(io_load_ply, AsciiAndBinaryBothEndiannessesGiveTheSameMesh)
     ASSERT_EQ(ascii.normals.size(), 8u);
     for (size_t v = 0; v < 8; ++v)
         expect_vec3_near(ascii.normals[v], glm::normalize(2.0f * ascii.positions[v] - 1.0f), 1e-6f);
-    expect_outward(ascii, glm::vec3(0.5f));
-    const auto p = jade::prepare_mesh(ascii);
-    EXPECT_FLOAT_EQ(p.total_area(), 6.0f);
-    EXPECT_TRUE(closed_and_oriented(p));
+    expect_unit_cube_surface(ascii);
 }
 
 TEST(io_load_obj, QuadsNormalsAndRelativeIndices)

@@ -3,18 +3,20 @@
 #include <jade/error.hpp>
 #include <jade/mesh.hpp>
 
+#include "test_support.hpp"
+
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <functional>
-#include <map>
 #include <numbers>
 
 namespace {
 
 using jade::PreparedMesh;
 using jade::TriangleMesh;
+using jade::test::closed_and_oriented;
+using jade::test::error_of;
 
 TriangleMesh make_mesh(std::vector<glm::vec3> positions, std::vector<uint32_t> indices, std::string name = "test")
 {
@@ -23,29 +25,6 @@ TriangleMesh make_mesh(std::vector<glm::vec3> positions, std::vector<uint32_t> i
     m.positions = std::move(positions);
     m.indices = std::move(indices);
     return m;
-}
-
-std::string error_of(const std::function<void()>& f)
-{
-    try {
-        f();
-    } catch (const jade::Error& e) {
-        return e.what();
-    }
-    return "(no jade::Error)";
-}
-
-/// Every edge of a closed, consistently oriented surface is used exactly once in each direction.
-bool closed_and_oriented(const PreparedMesh& m)
-{
-    std::map<std::pair<uint32_t, uint32_t>, int> edges;
-    for (size_t t = 0; t < m.indices.size(); t += 3)
-        for (size_t k = 0; k < 3; ++k) ++edges[{m.indices[t + k], m.indices[t + (k + 1) % 3]}];
-    for (const auto& [edge, count] : edges) {
-        auto twin = edges.find({edge.second, edge.first});
-        if (count != 1 || twin == edges.end() || twin->second != 1) return false;
-    }
-    return true;
 }
 
 glm::dvec3 triangle_normal(const PreparedMesh& m, size_t t)

@@ -268,14 +268,8 @@ namespace {
 
 class SceneGpuTest : public test::GpuTest {
 protected:
-    void SetUp() override
-    {
-        GpuTest::SetUp();
-        dir = test::out("scene_cache/" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "/x")
-                  .parent_path();
-        std::filesystem::remove_all(dir);
-    }
-    std::filesystem::path dir;
+    // Made when the test's fixture is (the test's name is known then), emptied of earlier runs.
+    const std::filesystem::path dir = test::test_folder("scene_cache");
     SceneSettings settings = [] {
         SceneSettings s;
         s.bake = BakeSettings::preset(Quality::Draft);

@@ -55,25 +55,22 @@ bool is_gltf(const std::filesystem::path& path)
 
 int cmd_bake(int argc, char** argv)
 {
-    auto specs = device_options();
-    for (auto& v : {material_options(), bake_options()}) specs.insert(specs.end(), v.begin(), v.end());
-    specs.push_back({"out", "FILE", "output .glb or .gltf (required unless --in-place)"});
-    specs.push_back({"in-place", "", "replace the glTF input itself (atomically: the old or the new file, never half)"});
-    Args args("bake", specs, argc, argv, 2);
-    if (args.flag("help")) {
-        std::printf("usage: jade bake MESH --out FILE.glb|.gltf [options]\n"
-                    "       jade bake ASSET.gltf|.glb --in-place [options]\n\n"
-                    "Bakes ambient occlusion, the translucency magnitude t_m and (for materials with transmission)\n"
-                    "the thickness on the GPU and writes them as per-vertex attributes _AO (SCALAR), _TM (VEC3,\n"
-                    "linear RGB) and _THICKNESS (SCALAR, mesh units), with the settings in the asset's extras.\n"
-                    "A glTF input is written back whole (scenes, nodes, materials, textures, skins, animations,\n"
-                    "morph targets, cameras, extensions, extras) with the attributes added to each triangle\n"
-                    "primitive; each mesh is baked once, in the world space of its first instance (a skinned\n"
-                    "mesh in its bind pose); see docs/gltf.md. Other meshes (.off, .ply, .obj) become a glTF of\n"
-                    "the mesh alone.\n\n%s",
-                    args.help().c_str());
+    Args args("bake",
+              all_options({device_options(), material_options(), bake_options(),
+                           {{"out", "FILE", "output .glb or .gltf (required unless --in-place)"},
+                            {"in-place", "", "replace the glTF input itself (atomically: the old or the new file, never half)"}}}),
+              argc, argv, 2);
+    if (print_help(args, "usage: jade bake MESH --out FILE.glb|.gltf [options]\n"
+                         "       jade bake ASSET.gltf|.glb --in-place [options]\n\n"
+                         "Bakes ambient occlusion, the translucency magnitude t_m and (for materials with transmission)\n"
+                         "the thickness on the GPU and writes them as per-vertex attributes _AO (SCALAR), _TM (VEC3,\n"
+                         "linear RGB) and _THICKNESS (SCALAR, mesh units), with the settings in the asset's extras.\n"
+                         "A glTF input is written back whole (scenes, nodes, materials, textures, skins, animations,\n"
+                         "morph targets, cameras, extensions, extras) with the attributes added to each triangle\n"
+                         "primitive; each mesh is baked once, in the world space of its first instance (a skinned\n"
+                         "mesh in its bind pose); see docs/gltf.md. Other meshes (.off, .ply, .obj) become a glTF of\n"
+                         "the mesh alone."))
         return 0;
-    }
     if (args.positional().size() != 1) args.fail("expects exactly one MESH");
     const std::string in = args.positional()[0];
     const bool in_place = args.flag("in-place");

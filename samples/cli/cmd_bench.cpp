@@ -198,19 +198,19 @@ int bench_render_scene(const Args& args)
 
 int cmd_bench(int argc, char** argv)
 {
-    auto specs = device_options();
-    for (auto& v : {material_options(), bake_options()}) specs.insert(specs.end(), v.begin(), v.end());
-    specs.push_back({"repeat", "N", "timed repetitions, best kept (default 3)"});
-    specs.push_back({"sample", "N", "vertices the float64 t_m reference runs on (default 256)"});
-    specs.push_back({"scene", "FILE", "render: a static glTF scene, cached against never baked"});
-    specs.push_back({"cache", "DIR", "render --scene: the bake cache (default: the system's temp folder)"});
-    specs.push_back({"mode", "M", "render --scene: tm | tm-false-color (default tm)"});
-    specs.push_back({"size", "N", "render --scene: square image size (default 512)"});
-    specs.push_back({"samples", "N", "render --scene: MSAA samples (default 4)"});
-    Args args("bench", specs, argc, argv, 2);
+    Args args("bench",
+              all_options({device_options(), material_options(), bake_options(),
+                           {{"repeat", "N", "timed repetitions, best kept (default 3)"},
+                            {"sample", "N", "vertices the float64 t_m reference runs on (default 256)"},
+                            {"scene", "FILE", "render: a static glTF scene, cached against never baked"},
+                            {"cache", "DIR", "render --scene: the bake cache (default: the system's temp folder)"},
+                            {"mode", "M", "render --scene: tm | tm-false-color (default tm)"},
+                            {"size", "N", "render --scene: square image size (default 512)"},
+                            {"samples", "N", "render --scene: MSAA samples (default 4)"}}}),
+              argc, argv, 2);
     if (args.flag("help") || args.positional().empty()) {
-        std::printf("usage: jade bench bake [MESH] [options]\n       jade bench render --scene SCENE.gltf [--cache DIR] "
-                    "[options]\n\n%s", args.help().c_str());
+        print_usage(args, "usage: jade bench bake [MESH] [options]\n"
+                          "       jade bench render --scene SCENE.gltf [--cache DIR] [options]");
         return args.flag("help") ? 0 : 2;
     }
     if (args.positional()[0] == "bake") return bench_bake(args);

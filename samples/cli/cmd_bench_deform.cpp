@@ -107,21 +107,18 @@ void bench_mesh(const Args& args, Context& ctx, const std::string& path, const s
 
 int cmd_bench_deform(int argc, char** argv)
 {
-    std::vector<OptionSpec> specs = device_options();
-    for (auto& v : {material_options(), bake_options()}) specs.insert(specs.end(), v.begin(), v.end());
-    specs.push_back({"deformer", "D", "bend | twist | squash | wave (default twist)"});
-    specs.push_back({"frames", "N", "frames per mode (default 8; the first of an amortised mode is a full re-bake)"});
-    specs.push_back({"fps", "F", "animation frames per second: each frame advances 1/F s of a 2 s cycle (default 15)"});
-    specs.push_back({"slices", "LIST", "amortised modes: AO and t_m slices per mode, e.g. 2,4,8 (default)"});
-    specs.push_back({"size", "N", "draw size in pixels, N x N (default 512)"});
-    Args args("bench deform", specs, argc, argv, 3);
-    if (args.flag("help")) {
-        std::printf("usage: jade bench deform [MESH...] [options]\n\nFrames per second of deform + full GPU re-bake + draw "
-                    "(default: the bunny and the dragon, 32 AO rays,\ndefault quality), the GPU time per stage, and amortised "
-                    "re-bakes with the error each adds\nagainst a from-scratch bake of every frame.\n\n%s",
-                    args.help().c_str());
+    Args args("bench deform",
+              all_options({device_options(), material_options(), bake_options(),
+                           {{"deformer", "D", "bend | twist | squash | wave (default twist)"},
+                            {"frames", "N", "frames per mode (default 8; the first of an amortised mode is a full re-bake)"},
+                            {"fps", "F", "animation frames per second: each frame advances 1/F s of a 2 s cycle (default 15)"},
+                            {"slices", "LIST", "amortised modes: AO and t_m slices per mode, e.g. 2,4,8 (default)"},
+                            {"size", "N", "draw size in pixels, N x N (default 512)"}}}),
+              argc, argv, 3);
+    if (print_help(args, "usage: jade bench deform [MESH...] [options]\n\nFrames per second of deform + full GPU re-bake + "
+                         "draw (default: the bunny and the dragon, 32 AO rays,\ndefault quality), the GPU time per stage, and "
+                         "amortised re-bakes with the error each adds\nagainst a from-scratch bake of every frame."))
         return 0;
-    }
     const std::vector<uint32_t> slices = parse_slices(args);
     std::vector<std::string> meshes = args.positional();
     if (meshes.empty()) {

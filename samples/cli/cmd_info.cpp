@@ -113,15 +113,11 @@ static void print_mesh(const std::string& path)
 
 int cmd_info(int argc, char** argv)
 {
-    auto specs = device_options();
-    specs.push_back({"materials", "", "list the material presets"});
-    Args args("info", specs, argc, argv, 2);
-    if (args.flag("help")) {
-        std::printf("usage: jade info [MESH]\n\nWithout MESH: the Vulkan device Jade would use. With MESH: counts after\n"
-                    "preparation (welding, degenerate triangles), bounds and timings; for a file written by jade bake,\n"
-                    "the ranges of the baked attributes and what was baked with which settings.\n\n%s", args.help().c_str());
+    Args args("info", all_options({device_options(), {{"materials", "", "list the material presets"}}}), argc, argv, 2);
+    if (print_help(args, "usage: jade info [MESH]\n\nWithout MESH: the Vulkan device Jade would use. With MESH: counts "
+                         "after\npreparation (welding, degenerate triangles), bounds and timings; for a file written by jade "
+                         "bake,\nthe ranges of the baked attributes and what was baked with which settings."))
         return 0;
-    }
     if (args.positional().size() > 1) args.fail("takes at most one mesh");
     if (args.flag("materials")) {
         for (const auto& n : material_preset_names()) std::printf("%s\n", n.c_str());

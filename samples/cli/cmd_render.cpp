@@ -163,13 +163,6 @@ Scene load_scene(const Args& args, Context& ctx, const std::string& path, bool n
     return s;
 }
 
-std::vector<OptionSpec> all_options(std::initializer_list<std::vector<OptionSpec>> groups)
-{
-    std::vector<OptionSpec> out;
-    for (const auto& g : groups) out.insert(out.end(), g.begin(), g.end());
-    return out;
-}
-
 // Copies `panel` into `figure` with its top-left corner at (x0, y0).
 void blit(RenderedImage& figure, const RenderedImage& panel, uint32_t x0, uint32_t y0)
 {
@@ -182,12 +175,10 @@ void blit(RenderedImage& figure, const RenderedImage& panel, uint32_t x0, uint32
 int cmd_render(int argc, char** argv)
 {
     Args args("render", all_options({device_options(), material_options(), bake_options(), render_options()}), argc, argv, 2);
-    if (args.flag("help")) {
-        std::printf("usage: jade render MESH|BAKED.glb [options]\n\nRenders the mesh with translucency-magnitude shading "
-                    "(Kubo et al. 2015). A file written by\n`jade bake` (with _TM) renders at once; any other mesh is baked "
-                    "first (with --material).\n\n%s", args.help().c_str());
+    if (print_help(args, "usage: jade render MESH|BAKED.glb [options]\n\nRenders the mesh with translucency-magnitude "
+                         "shading (Kubo et al. 2015). A file written by\n`jade bake` (with _TM) renders at once; any other "
+                         "mesh is baked first (with --material)."))
         return 0;
-    }
     if (args.positional().size() > 1) args.fail("expects one MESH");
     RenderSettings settings;
     std::tie(settings.width, settings.height) = parse_size(args, "512x512");
@@ -230,12 +221,10 @@ int cmd_figure1(int argc, char** argv)
                                      {"mesh", "MESH", "mesh or baked .glb (default: the Stanford bunny)"},
                                      {"tonemap", "", "tone map the shaded panels with the ACES fit"}, eval_option()}});
     Args first("figure1", specs, argc, argv, 2);
-    if (first.flag("help")) {
-        std::printf("usage: jade figure1 [options]\n\nThe poster's Figure 1: the bunny made of blue jewel under a back "
-                    "light, (a) Lambert,\n(b) curvature-based, (c) translucency magnitude (ours), (d) t_m in false colour."
-                    "\n(--material defaults to blue-jewel here.)\n\n%s", first.help().c_str());
+    if (print_help(first, "usage: jade figure1 [options]\n\nThe poster's Figure 1: the bunny made of blue jewel under a "
+                          "back light, (a) Lambert,\n(b) curvature-based, (c) translucency magnitude (ours), (d) t_m in false "
+                          "colour.\n(--material defaults to blue-jewel here.)"))
         return 0;
-    }
     if (!first.positional().empty()) first.fail("takes no positional arguments (use --mesh)");
     // The poster's material unless --material is given: parse again with it appended.
     std::vector<std::string> words(argv, argv + argc);
@@ -298,13 +287,10 @@ int cmd_bench_render(int argc, char** argv)
                                                                  "draws the transmission term too"},
                                             {"sizes", "N,N", "square image sizes (default 512,1024)"}, eval_option()}}),
               argc, argv, 3);
-    if (args.flag("help")) {
-        std::printf("usage: jade bench render [MESH] [options]\n\nFrame time of tm against lambert shading at 512x512 and "
-                    "1024x1024, the same scene,\nmeasured alternately in one run (GPU timestamps, wall time, and the CPU "
-                    "time of the\nprocess, which is lavapipe's work when the machine is shared).\n\n%s",
-                    args.help().c_str());
+    if (print_help(args, "usage: jade bench render [MESH] [options]\n\nFrame time of tm against lambert shading at 512x512 "
+                         "and 1024x1024, the same scene,\nmeasured alternately in one run (GPU timestamps, wall time, and the "
+                         "CPU time of the\nprocess, which is lavapipe's work when the machine is shared)."))
         return 0;
-    }
     const uint32_t repeat = args.count("repeat", 30, 1, 10000);
     const uint32_t samples = args.count("samples", 4, 1, 8);
     std::vector<uint32_t> sizes;

@@ -140,22 +140,20 @@ std::string describe(const Row& r)
 
 int cmd_report(int argc, char** argv)
 {
-    auto specs = device_options();
-    specs.push_back({"out", "DIR", "output folder (created): report.csv, summary.md, *.png"});
-    specs.push_back({"quick", "", "skip 1024 rays and i.i.d. rays at max distances other than 0.1"});
-    specs.push_back({"tiny", "", "a few configurations with a 1024-ray AO reference (tests, small meshes)"});
-    specs.push_back({"sample", "N", "vertices the float64 t_m reference runs on (default 300)"});
-    specs.push_back({"epsilons", "LIST", "clustered t_m epsilons, e.g. 1.2,0.8,0.4 (default 1.6..0.25 and the presets')"});
-    specs.push_back({"no-plot", "", "do not run samples/report/plot_report.py"});
-    specs.push_back({"summary-only", "", "measure nothing: rewrite summary.md and the plots from DIR/report.csv"});
-    Args args("report", specs, argc, argv, 2);
-    if (args.flag("help")) {
-        std::printf("usage: jade report [MESH...] --out DIR [--quick | --tiny]\n\n"
-                    "Measures each approximation's error against its GPU and wall time. MESH defaults to the\n"
-                    "bunny and assets/ChineseDragon-10kv.off (when present). Progress goes to stderr.\n\n%s",
-                    args.help().c_str());
+    Args args("report",
+              all_options({device_options(),
+                           {{"out", "DIR", "output folder (created): report.csv, summary.md, *.png"},
+                            {"quick", "", "skip 1024 rays and i.i.d. rays at max distances other than 0.1"},
+                            {"tiny", "", "a few configurations with a 1024-ray AO reference (tests, small meshes)"},
+                            {"sample", "N", "vertices the float64 t_m reference runs on (default 300)"},
+                            {"epsilons", "LIST", "clustered t_m epsilons, e.g. 1.2,0.8,0.4 (default 1.6..0.25 and the presets')"},
+                            {"no-plot", "", "do not run samples/report/plot_report.py"},
+                            {"summary-only", "", "measure nothing: rewrite summary.md and the plots from DIR/report.csv"}}}),
+              argc, argv, 2);
+    if (print_help(args, "usage: jade report [MESH...] --out DIR [--quick | --tiny]\n\n"
+                         "Measures each approximation's error against its GPU and wall time. MESH defaults to the\n"
+                         "bunny and assets/ChineseDragon-10kv.off (when present). Progress goes to stderr."))
         return 0;
-    }
     const auto out = args.get("out");
     if (!out || out->empty()) args.fail("--out DIR is required (the folder for report.csv, summary.md and the plots)");
     if (args.flag("quick") && args.flag("tiny")) args.fail("--quick and --tiny exclude each other");

@@ -53,16 +53,11 @@ Camera scene_camera(glm::vec3 lo, glm::vec3 hi, float aspect)
 
 int cmd_plan(int argc, char** argv)
 {
-    auto specs = scene_options();
-    for (auto& v : {bake_options()}) specs.insert(specs.end(), v.begin(), v.end());
-    Args args("plan", specs, argc, argv, 2);
-    if (args.flag("help")) {
-        std::printf("usage: jade plan SCENE.gltf [--cache DIR] [options]\n\nThe passes each object of the scene needs, "
-                    "their shader variants, buffers and\nestimated GPU memory, and whether the cache holds each static "
-                    "bake. No GPU is used.\n\n%s",
-                    args.help().c_str());
+    Args args("plan", all_options({scene_options(), bake_options()}), argc, argv, 2);
+    if (print_help(args, "usage: jade plan SCENE.gltf [--cache DIR] [options]\n\nThe passes each object of the scene "
+                         "needs, their shader variants, buffers and\nestimated GPU memory, and whether the cache holds each "
+                         "static bake. No GPU is used."))
         return 0;
-    }
     const Scene scene = load_scene_arg(args);
     const SceneSettings settings = scene_settings_from_args(args);
     const auto cache = cache_from_args(args);
@@ -75,19 +70,16 @@ int cmd_plan(int argc, char** argv)
 
 int cmd_scene(int argc, char** argv)
 {
-    auto specs = scene_options();
-    for (auto& v : {device_options(), bake_options()}) specs.insert(specs.end(), v.begin(), v.end());
-    specs.push_back({"out", "FILE", "output .png or .exr (default scene.png)"});
-    specs.push_back({"size", "N", "square image size in pixels (default 512)"});
-    specs.push_back({"time", "T", "seconds: the deformers' time (default 0.5)"});
-    specs.push_back({"samples", "N", "MSAA samples 1, 2, 4, 8 (default 4)"});
-    Args args("scene", specs, argc, argv, 2);
-    if (args.flag("help")) {
-        std::printf("usage: jade scene SCENE.gltf [--cache DIR] [--out F.png] [--verbose] [options]\n\nRenders a glTF scene "
-                    "running only the planned passes (see jade plan); --verbose\nlists the passes that ran.\n\n%s",
-                    args.help().c_str());
+    Args args("scene",
+              all_options({scene_options(), device_options(), bake_options(),
+                           {{"out", "FILE", "output .png or .exr (default scene.png)"},
+                            {"size", "N", "square image size in pixels (default 512)"},
+                            {"time", "T", "seconds: the deformers' time (default 0.5)"},
+                            {"samples", "N", "MSAA samples 1, 2, 4, 8 (default 4)"}}}),
+              argc, argv, 2);
+    if (print_help(args, "usage: jade scene SCENE.gltf [--cache DIR] [--out F.png] [--verbose] [options]\n\nRenders a glTF "
+                         "scene running only the planned passes (see jade plan); --verbose\nlists the passes that ran."))
         return 0;
-    }
     const std::filesystem::path out = args.get_or("out", "scene.png");
     check_output_file(args, "out", out, {".png", ".exr"});
     const Scene scene = load_scene_arg(args);

@@ -10,29 +10,40 @@
 #include <jade/scene.hpp>
 
 #include <filesystem>
+#include <initializer_list>
 #include <memory>
 #include <string>
 #include <vector>
 
 namespace jade::cli {
 
-int cmd_info(int argc, char** argv);
-int cmd_bake(int argc, char** argv);
-int cmd_bench(int argc, char** argv);
-int cmd_render(int argc, char** argv);
-int cmd_figure1(int argc, char** argv);
-int cmd_bench_render(int argc, char** argv);
-int cmd_report(int argc, char** argv);
-int cmd_deform(int argc, char** argv);
-int cmd_bench_deform(int argc, char** argv);
-int cmd_plan(int argc, char** argv);
-int cmd_scene(int argc, char** argv);
-int cmd_fidelity(int argc, char** argv);
+/// A subcommand: `jade NAME ...` with the whole command line; returns the exit status.
+using Command = int(int argc, char** argv);
+Command cmd_info;
+Command cmd_bake;
+Command cmd_bench;
+Command cmd_render;
+Command cmd_figure1;
+Command cmd_bench_render;
+Command cmd_report;
+Command cmd_deform;
+Command cmd_bench_deform;
+Command cmd_plan;
+Command cmd_scene;
+Command cmd_fidelity;
 
 // Options most commands take.
 std::vector<OptionSpec> device_options();
 std::vector<OptionSpec> material_options();
 std::vector<OptionSpec> bake_options();
+/// A command's options: the groups in order, e.g. all_options({device_options(), bake_options(),
+/// {{"out", "FILE", "output file"}}}).
+std::vector<OptionSpec> all_options(std::initializer_list<std::vector<OptionSpec>> groups);
+
+/// Prints `usage` (the synopsis and what the command does), a blank line and the options to stdout.
+void print_usage(const Args& args, const char* usage);
+/// With --help: prints the usage (print_usage) and returns true, and the command exits with 0.
+bool print_help(const Args& args, const char* usage);
 
 std::unique_ptr<Context> make_context(const Args& args);
 /// The material named by --material (default "jade") for `mesh`: physical presets use

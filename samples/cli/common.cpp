@@ -50,6 +50,22 @@ std::vector<OptionSpec> bake_options()
             {"epsilon", "T", "t_m far-field opening ratio theta (0.3: ~2e-5 error, 1: ~2e-3)"}};
 }
 
+std::vector<OptionSpec> all_options(std::initializer_list<std::vector<OptionSpec>> groups)
+{
+    std::vector<OptionSpec> out;
+    for (const auto& g : groups) out.insert(out.end(), g.begin(), g.end());
+    return out;
+}
+
+void print_usage(const Args& args, const char* usage) { std::printf("%s\n\n%s", usage, args.help().c_str()); }
+
+bool print_help(const Args& args, const char* usage)
+{
+    if (!args.flag("help")) return false;
+    print_usage(args, usage);
+    return true;
+}
+
 std::unique_ptr<Context> make_context(const Args& args)
 {
     ContextOptions o;

@@ -29,7 +29,89 @@
 #include <string>
 #include <vector>
 
-namespace embed {
+namespace samples::embed {
+namespace {
+
+// The frame, in one command buffer: the host's ground, Jade's sphere over it, the read-back.
+void record_frame(VkCommandBuffer cmd, const Host& host, jade::Renderer& renderer, const jade::Camera& camera)
+{
+    // 1. The host's pass: clear to a sky colour and draw the ground.
+    image_barrier(cmd, host.color.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_NONE, 0, VK_IMAGE_LAYOUT_UNDEFINED,
+                  VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    image_barrier(cmd, host.depth.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_PIPELINE_STAGE_2_NONE, 0, VK_IMAGE_LAYOUT_UNDEFINED,
+                  VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                  VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
+    VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    color.imageView = host.color.view;
+    color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    color.clearValue.color = {{0.45f, 0.6f, 0.85f, 1.0f}};
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depth.imageView = host.depth.view;
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    depth.clearValue.depthStencil = {1.0f, 0};
+    VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    ri.renderArea = {{0, 0}, {kWidth, kHeight}};
+    ri.layerCount = 1;
+    ri.colorAttachmentCount = 1;
+    ri.pColorAttachments = &color;
+    ri.pDepthAttachment = &depth;
+    vkCmdBeginRendering(cmd, &ri);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, host.pipeline);
+    VkViewport vp{0.0f, 0.0f, float(kWidth), float(kHeight), 0.0f, 1.0f};
+    VkRect2D scissor{{0, 0}, {kWidth, kHeight}};
+    vkCmdSetViewport(cmd, 0, 1, &vp);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    const glm::mat4 clip_from_world = camera.view_projection(float(kWidth) / float(kHeight));
+    struct { glm::mat4 clip_from_world; float half_size, height; } push{clip_from_world, 4.0f, kGroundHeight};
+    vkCmdPushConstants(cmd, host.layout, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(push), &push);
+    vkCmdDraw(cmd, 6, 1, 0, 0);
+    vkCmdEndRendering(cmd);
+
+    // 2. Jade's draw over it (docs/embedding.md): the host makes its attachment writes
+    //    visible to Jade's attachment reads and writes; layouts stay attachment-optimal.
+    image_barrier(cmd, host.color.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                  VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                  VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                  VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    const VkPipelineStageFlags2 fragment_tests =
+        VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
+    image_barrier(cmd, host.depth.image, VK_IMAGE_ASPECT_DEPTH_BIT, fragment_tests,
+                  VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                  fragment_tests,
+                  VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                  VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
+    jade::RenderSettings settings;
+    settings.width = kWidth;
+    settings.height = kHeight;
+    settings.samples = 1;
+    settings.mode = jade::ShadingMode::Tm;
+    jade::RenderTarget target;
+    target.color = host.color.view;
+    target.depth = host.depth.view;
+    target.width = kWidth;
+    target.height = kHeight;
+    target.load = true;
+    const auto lights = jade::default_lights(camera);
+    renderer.record(cmd, target, camera, lights, settings);
+
+    // 3. The host reads the frame back.
+    image_barrier(cmd, host.color.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                  VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                  VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    VkBufferImageCopy copy{};
+    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    copy.imageExtent = {kWidth, kHeight, 1};
+    vkCmdCopyImageToBuffer(cmd, host.color.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, host.readback.buffer, 1, &copy);
+    host_read_barrier(cmd);
+}
+
+}  // namespace
 
 int run(const char* output, bool validation)
 {
@@ -38,22 +120,14 @@ int run(const char* output, bool validation)
     host.create_device();
     host.create_frame();
     host.create_ground_pipeline();
-
-    // One camera for the host's ground and Jade's sphere: explicit planes make the depth
-    // buffer shared between the two draws meaningful.
-    jade::Camera camera;
-    camera.eye = {0.0f, 1.4f, 5.0f};
-    camera.target = {0.0f, -0.3f, 0.0f};
-    camera.fov_y_degrees = 35.0f;
-    camera.near_plane = 0.1f;
-    camera.far_plane = 50.0f;
-    const glm::mat4 clip_from_world = camera.view_projection(float(kWidth) / float(kHeight));
+    const jade::Camera camera = embed::camera();
 
     int status = 0;
     {
         // Jade adopts the host's objects; everything Jade creates is gone when this scope ends,
         // before ~Host destroys the device.
-        jade::Context context(host.setup.adopted(host.instance, host.physical, host.device, host.family, host.queue));
+        jade::Context context(
+            host.setup.adopted(host.instance.instance, host.physical, host.device, host.family, host.queue));
 
         // A unit sphere of jade (10 mm per unit), baked on the host's queue (Baker submits and waits).
         const jade::PreparedMesh sphere = jade::prepare_mesh(jade::procedural::sphere(1.0f, 32, 48));
@@ -64,112 +138,15 @@ int run(const char* output, bool validation)
         renderer.set_mesh(sphere, baked.tm);
         renderer.set_material(material);
 
-        VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-        ai.commandPool = host.pool;
-        ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-        ai.commandBufferCount = 1;
-        VkCommandBuffer cmd;
-        check(vkAllocateCommandBuffers(host.device, &ai, &cmd), "vkAllocateCommandBuffers");
-        VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-        bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-        check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
-
-        // 1. The host's pass: clear to a sky colour and draw the ground.
-        image_barrier(cmd, host.color.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_NONE, 0, VK_IMAGE_LAYOUT_UNDEFINED,
-                      VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
-                      VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-        image_barrier(cmd, host.depth.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_PIPELINE_STAGE_2_NONE, 0, VK_IMAGE_LAYOUT_UNDEFINED,
-                      VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
-        VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        color.imageView = host.color.view;
-        color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        color.clearValue.color = {{0.45f, 0.6f, 0.85f, 1.0f}};
-        VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        depth.imageView = host.depth.view;
-        depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-        depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        depth.clearValue.depthStencil = {1.0f, 0};
-        VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
-        ri.renderArea = {{0, 0}, {kWidth, kHeight}};
-        ri.layerCount = 1;
-        ri.colorAttachmentCount = 1;
-        ri.pColorAttachments = &color;
-        ri.pDepthAttachment = &depth;
-        vkCmdBeginRendering(cmd, &ri);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, host.pipeline);
-        VkViewport vp{0.0f, 0.0f, float(kWidth), float(kHeight), 0.0f, 1.0f};
-        VkRect2D scissor{{0, 0}, {kWidth, kHeight}};
-        vkCmdSetViewport(cmd, 0, 1, &vp);
-        vkCmdSetScissor(cmd, 0, 1, &scissor);
-        struct { glm::mat4 clip_from_world; float half_size, height; } push{clip_from_world, 4.0f, kGroundHeight};
-        vkCmdPushConstants(cmd, host.layout, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(push), &push);
-        vkCmdDraw(cmd, 6, 1, 0, 0);
-        vkCmdEndRendering(cmd);
-
-        // 2. Jade's draw over it (docs/embedding.md): the host makes its attachment writes
-        //    visible to Jade's attachment reads and writes; layouts stay attachment-optimal.
-        image_barrier(cmd, host.color.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                      VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                      VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                      VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
-                      VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-        const VkPipelineStageFlags2 fragment_tests =
-            VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
-        image_barrier(cmd, host.depth.image, VK_IMAGE_ASPECT_DEPTH_BIT, fragment_tests,
-                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                      fragment_tests,
-                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-                      VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
-        jade::RenderSettings settings;
-        settings.width = kWidth;
-        settings.height = kHeight;
-        settings.samples = 1;
-        settings.mode = jade::ShadingMode::Tm;
-        jade::RenderTarget target;
-        target.color = host.color.view;
-        target.depth = host.depth.view;
-        target.width = kWidth;
-        target.height = kHeight;
-        target.load = true;
-        const auto lights = jade::default_lights(camera);
-        renderer.record(cmd, target, camera, lights, settings);
-
-        // 3. The host reads the frame back.
-        image_barrier(cmd, host.color.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                      VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-        VkBufferImageCopy copy{};
-        copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-        copy.imageExtent = {kWidth, kHeight, 1};
-        vkCmdCopyImageToBuffer(cmd, host.color.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, host.readback, 1, &copy);
-        VkMemoryBarrier2 to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-        to_host.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-        to_host.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-        to_host.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-        to_host.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        dep.memoryBarrierCount = 1;
-        dep.pMemoryBarriers = &to_host;
-        vkCmdPipelineBarrier2(cmd, &dep);
-        check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
-
-        VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-        si.commandBufferCount = 1;
-        si.pCommandBuffers = &cmd;
-        check(vkQueueSubmit(host.queue, 1, &si, host.fence), "vkQueueSubmit");
-        check(vkWaitForFences(host.device, 1, &host.fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
-        vkFreeCommandBuffers(host.device, host.pool, 1, &cmd);
+        submit_and_wait(host.device, host.queue, host.family,
+                        [&](VkCommandBuffer cmd) { record_frame(cmd, host, renderer, camera); });
 
         void* mapped = nullptr;
-        check(vkMapMemory(host.device, host.readback_memory, 0, VK_WHOLE_SIZE, 0, &mapped), "vkMapMemory");
+        check(vkMapMemory(host.device, host.readback.memory, 0, VK_WHOLE_SIZE, 0, &mapped), "vkMapMemory");
         const auto* half = static_cast<const uint16_t*>(mapped);
         std::vector<float> rgba(size_t(kWidth) * kHeight * 4);
         for (size_t i = 0; i < rgba.size(); ++i) rgba[i] = glm::unpackHalf1x16(half[i]);
-        vkUnmapMemory(host.device, host.readback_memory);
+        vkUnmapMemory(host.device, host.readback.memory);
         jade::save_image(output, int(kWidth), int(kHeight), rgba);
         std::printf("jade_embed: wrote %s (%ux%u), sphere of %zu vertices baked in %.1f ms\n", output, kWidth, kHeight,
                     sphere.vertex_count(), baked.timings.wall_ms);
@@ -181,7 +158,7 @@ int run(const char* output, bool validation)
     return status;
 }
 
-}  // namespace embed
+}  // namespace samples::embed
 
 int main(int argc, char** argv)
 {
@@ -201,7 +178,7 @@ int main(int argc, char** argv)
         return 1;
     }
     try {
-        return embed::run(output, validation);
+        return samples::embed::run(output, validation);
     } catch (const std::exception& e) {  // jade::Error and the host's own failures
         std::fprintf(stderr, "jade_embed: %s\n", e.what());
         return 1;

@@ -16,7 +16,7 @@
 #include <memory>
 #include <numeric>
 
-namespace viewer {
+namespace samples::viewer {
 
 namespace {
 
@@ -157,15 +157,7 @@ void record_frame(FrameSync& sync, Scene& scene, const ViewState& state, const R
         layout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
         stage = VK_PIPELINE_STAGE_2_COPY_BIT;
         access = 0;
-        VkMemoryBarrier2 to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-        to_host.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-        to_host.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-        to_host.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-        to_host.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        dep.memoryBarrierCount = 1;
-        dep.pMemoryBarriers = &to_host;
-        vkCmdPipelineBarrier2(cmd, &dep);
+        host_read_barrier(cmd);
     }
     if (layout != VK_IMAGE_LAYOUT_PRESENT_SRC_KHR)
         image_barrier(cmd, present, VK_IMAGE_ASPECT_COLOR_BIT, stage, access, layout, VK_PIPELINE_STAGE_2_NONE, 0,
@@ -345,4 +337,4 @@ int run(const Options& options)
     return messages ? 2 : 0;
 }
 
-}  // namespace viewer
+}  // namespace samples::viewer

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-namespace viewer {
+namespace samples::viewer {
 
 struct Options {
     std::string mesh = "bunny";       ///< file, "bunny" or "sphere"
@@ -25,4 +25,4 @@ struct Options {
 /// anything. Throws std::exception (jade::Error included) on errors.
 int run(const Options& options);
 
-}  // namespace viewer
+}  // namespace samples::viewer

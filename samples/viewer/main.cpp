@@ -65,9 +65,9 @@ int index_of(const std::string& flag, const std::string& value, const List& name
     return int(it - names.begin());
 }
 
-viewer::Options parse(int argc, char** argv)
+samples::viewer::Options parse(int argc, char** argv)
 {
-    viewer::Options o;
+    samples::viewer::Options o;
     if (const char* v = std::getenv("JADE_VALIDATION"); v && *v && std::strcmp(v, "0") != 0) o.validation = true;
     bool mesh_given = false, strength_given = false;
     for (int i = 1; i < argc; ++i) {
@@ -93,7 +93,7 @@ viewer::Options parse(int argc, char** argv)
             o.state.strength = float(number(a, value(), 0, 1e6));
             strength_given = true;
         } else if (a == "--quality") o.state.quality = jade::Quality(index_of(a, value(), std::vector<std::string>{"draft", "default", "high"}));
-        else if (a == "--deform") o.state.deformation = index_of(a, value(), viewer::deformation_names());
+        else if (a == "--deform") o.state.deformation = index_of(a, value(), samples::viewer::deformation_names());
         else if (a == "--time") o.state.time = number(a, value(), 0, 1e6);
         else if (a == "--no-animate") o.state.animate = false;
         else if (a == "--lights") o.state.figure1_lights = index_of(a, value(), std::vector<std::string>{"default", "figure1"}) == 1;
@@ -125,7 +125,7 @@ int main(int argc, char** argv)
             std::fputs(kUsage, stdout);
             return 0;
         }
-    viewer::Options options;
+    samples::viewer::Options options;
     try {
         options = parse(argc, argv);
     } catch (const std::exception& e) {
@@ -133,7 +133,7 @@ int main(int argc, char** argv)
         return 2;
     }
     try {
-        return viewer::run(options);
+        return samples::viewer::run(options);
     } catch (const std::exception& e) {  // jade::Error and the viewer's own failures
         std::fprintf(stderr, "jade-view: error: %s\n", e.what());
         return 1;

@@ -12,7 +12,7 @@
 #include <cstdlib>
 #include <filesystem>
 
-namespace viewer {
+namespace samples::viewer {
 
 namespace {
 
@@ -191,4 +191,4 @@ void Scene::record(VkCommandBuffer cmd, const jade::RenderTarget& target, const 
     renderer_.record(cmd, target, cam, l, settings);
 }
 
-}  // namespace viewer
+}  // namespace samples::viewer

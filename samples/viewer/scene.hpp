@@ -19,7 +19,7 @@
 #include <utility>
 #include <vector>
 
-namespace viewer {
+namespace samples::viewer {
 
 /// Everything the panel (or the command line) sets. Angles in degrees.
 struct ViewState {
@@ -88,4 +88,4 @@ private:
     void deform_and_rebake(const ViewState& state);
 };
 
-}  // namespace viewer
+}  // namespace samples::viewer

@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-namespace viewer {
+namespace samples::viewer {
 
 namespace {
 
@@ -82,14 +82,7 @@ Swapchain::Swapchain(const VulkanHost& host, VkExtent2D extent, bool vsync, Swap
     images_.resize(n);
     vkGetSwapchainImagesKHR(device, swapchain, &n, images_.data());
     for (VkImage image : images_) {
-        VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-        vi.image = image;
-        vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
-        vi.format = format_;
-        vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        VkImageView view = VK_NULL_HANDLE;
-        check(vkCreateImageView(device, &vi, nullptr, &view), "vkCreateImageView");
-        views_.push_back(own(device, view, vkDestroyImageView));
+        views_.push_back(make_view(device, image, format_, VK_IMAGE_ASPECT_COLOR_BIT));
         VkSemaphoreCreateInfo si{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
         VkSemaphore semaphore = VK_NULL_HANDLE;
         check(vkCreateSemaphore(device, &si, nullptr, &semaphore), "vkCreateSemaphore");
@@ -112,4 +105,4 @@ RenderImages::RenderImages(const VulkanHost& host, VkExtent2D extent_, VkSampleC
                        VK_IMAGE_ASPECT_DEPTH_BIT);
 }
 
-}  // namespace viewer
+}  // namespace samples::viewer

@@ -12,7 +12,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace viewer {
+namespace samples::viewer {
 
 class VulkanHost;
 
@@ -56,4 +56,4 @@ struct RenderImages {
     VkImage presented_source() const { return samples == VK_SAMPLE_COUNT_1_BIT ? color.image.get() : resolve.image.get(); }
 };
 
-}  // namespace viewer
+}  // namespace samples::viewer

@@ -12,7 +12,7 @@
 #include <cmath>
 #include <cstdio>
 
-namespace viewer {
+namespace samples::viewer {
 
 namespace {
 
@@ -127,27 +127,7 @@ Ui::Ui(const VulkanHost& host, GLFWwindow* window, const Swapchain& swapchain) :
     vulkan_backend_ = true;
 
     // Font upload: a one-off command buffer on the host's queue.
-    VkCommandPoolCreateInfo ci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    ci.queueFamilyIndex = host.queue_family();
-    VkCommandPool cmd_pool = VK_NULL_HANDLE;
-    check(vkCreateCommandPool(device_, &ci, nullptr, &cmd_pool), "vkCreateCommandPool");
-    Owned<VkCommandPool> owned_pool = own(device_, cmd_pool, vkDestroyCommandPool);
-    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    ai.commandPool = cmd_pool;
-    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    ai.commandBufferCount = 1;
-    VkCommandBuffer cmd = VK_NULL_HANDLE;
-    check(vkAllocateCommandBuffers(device_, &ai, &cmd), "vkAllocateCommandBuffers");
-    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
-    ImGui_ImplVulkan_CreateFontsTexture(cmd);
-    check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
-    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    si.commandBufferCount = 1;
-    si.pCommandBuffers = &cmd;
-    check(vkQueueSubmit(host.queue(), 1, &si, VK_NULL_HANDLE), "vkQueueSubmit");
-    check(vkQueueWaitIdle(host.queue()), "vkQueueWaitIdle");
+    submit_and_wait(device_, host.queue(), host.queue_family(), [](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
     ImGui_ImplVulkan_DestroyFontUploadObjects();
 }
 
@@ -268,4 +248,4 @@ void Ui::record(VkCommandBuffer cmd, uint32_t index, VkExtent2D extent)
     vkCmdEndRenderPass(cmd);
 }
 
-}  // namespace viewer
+}  // namespace samples::viewer

@@ -14,7 +14,7 @@
 
 struct GLFWwindow;
 
-namespace viewer {
+namespace samples::viewer {
 
 class Swapchain;
 class VulkanHost;
@@ -62,4 +62,4 @@ private:
     bool imgui_context_ = false, glfw_backend_ = false, vulkan_backend_ = false;
 };
 
-}  // namespace viewer
+}  // namespace samples::viewer

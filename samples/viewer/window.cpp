@@ -10,7 +10,7 @@
 #include <cstdlib>
 #include <cstring>
 
-namespace viewer {
+namespace samples::viewer {
 
 // ------------------------------------------------------------------------------------ window --
 
@@ -94,8 +94,8 @@ VulkanHost::VulkanHost(const Window& window, bool validation)
 {
     create_instance(validation);
     VkSurfaceKHR surface = VK_NULL_HANDLE;
-    check(glfwCreateWindowSurface(instance_, window.handle(), nullptr, &surface), "glfwCreateWindowSurface");
-    surface_ = Owned<VkSurfaceKHR>(surface, [inst = instance_.get()](VkSurfaceKHR s) { vkDestroySurfaceKHR(inst, s, nullptr); });
+    check(glfwCreateWindowSurface(instance(), window.handle(), nullptr, &surface), "glfwCreateWindowSurface");
+    surface_ = Owned<VkSurfaceKHR>(surface, [inst = instance()](VkSurfaceKHR s) { vkDestroySurfaceKHR(inst, s, nullptr); });
     pick_physical_device();
     create_device();
 }
@@ -110,53 +110,17 @@ void VulkanHost::create_instance(bool validation)
     uint32_t glfw_count = 0;
     const char** glfw_extensions = glfwGetRequiredInstanceExtensions(&glfw_count);
     if (!glfw_extensions) throw std::runtime_error("GLFW reports no Vulkan surface extensions for this display");
-    std::vector<const char*> extensions(glfw_extensions, glfw_extensions + glfw_count);
-
-    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
-    app.pApplicationName = "jade-view";
-    app.apiVersion = VK_API_VERSION_1_3;
-    const char* layer = "VK_LAYER_KHRONOS_validation";
-    VkDebugUtilsMessengerCreateInfoEXT mci{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-    mci.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-    mci.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                      VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
-    mci.pfnUserCallback = &on_message;
-    VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
-    ci.pApplicationInfo = &app;
+    InstanceOptions options;
+    options.application = "jade-view";
+    options.extensions.assign(glfw_extensions, glfw_extensions + glfw_count);
+    options.validation = validation;
     // JADE_SYNC_VALIDATION=1 adds the layer's synchronization validation (hazards between the
     // viewer's and Jade's commands), as for the engine's own Context.
     const char* sync_env = std::getenv("JADE_SYNC_VALIDATION");
-    const bool sync = sync_env && *sync_env && std::strcmp(sync_env, "0") != 0;
-    const VkValidationFeatureEnableEXT sync_feature = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
-    VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
-    features.enabledValidationFeatureCount = 1;
-    features.pEnabledValidationFeatures = &sync_feature;
-    if (validation || sync) {
-        extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
-        ci.enabledLayerCount = 1;
-        ci.ppEnabledLayerNames = &layer;
-        ci.pNext = &mci;  // also reports messages of vkCreateInstance / vkDestroyInstance
-        if (sync) {
-            features.pNext = &mci;
-            ci.pNext = &features;
-            std::fprintf(stderr, "jade-view: Vulkan synchronization validation on\n");
-        }
-        validation = true;
-    }
-    validation_ = validation;
-    ci.enabledExtensionCount = uint32_t(extensions.size());
-    ci.ppEnabledExtensionNames = extensions.data();
-    VkInstance instance = VK_NULL_HANDLE;
-    check(vkCreateInstance(&ci, nullptr, &instance),
-          validation ? "vkCreateInstance with VK_LAYER_KHRONOS_validation (install vulkan-validationlayers)" : "vkCreateInstance");
-    instance_ = Owned<VkInstance>(instance, [](VkInstance i) { vkDestroyInstance(i, nullptr); });
-    if (validation) {
-        auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
-        auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
-        VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
-        check(create(instance, &mci, nullptr, &messenger), "vkCreateDebugUtilsMessengerEXT");
-        messenger_ = Owned<VkDebugUtilsMessengerEXT>(messenger, [instance, destroy](VkDebugUtilsMessengerEXT m) { destroy(instance, m, nullptr); });
-    }
+    options.synchronization_validation = sync_env && *sync_env && std::strcmp(sync_env, "0") != 0;
+    if (options.synchronization_validation) std::fprintf(stderr, "jade-view: Vulkan synchronization validation on\n");
+    options.on_message = &on_message;
+    instance_ = samples::create_instance(options);
 }
 
 // The best Vulkan 1.3 device (discrete first, JADE_DEVICE narrows by name) with one queue family
@@ -165,9 +129,9 @@ void VulkanHost::pick_physical_device()
 {
     const char* wanted = std::getenv("JADE_DEVICE");
     uint32_t n = 0;
-    vkEnumeratePhysicalDevices(instance_, &n, nullptr);
+    vkEnumeratePhysicalDevices(instance(), &n, nullptr);
     std::vector<VkPhysicalDevice> devices(n);
-    vkEnumeratePhysicalDevices(instance_, &n, devices.data());
+    vkEnumeratePhysicalDevices(instance(), &n, devices.data());
     std::string rejected;
     int best_rank = 1 << 30;
     for (VkPhysicalDevice pd : devices) {
@@ -213,7 +177,7 @@ void VulkanHost::create_device()
 
 jade::AdoptedVulkan VulkanHost::adopted_vulkan() const
 {
-    return setup_.adopted(instance_, physical_, device_, family_, queue_);
+    return setup_.adopted(instance(), physical_, device_, family_, queue_);
 }
 
-}  // namespace viewer
+}  // namespace samples::viewer

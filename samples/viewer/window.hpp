@@ -8,6 +8,7 @@
 // of the viewer's objects.
 #pragma once
 
+#include "vk_instance.hpp"  // samples/common
 #include "vk_util.hpp"
 
 #include <jade/context.hpp>
@@ -18,7 +19,7 @@
 
 struct GLFWwindow;
 
-namespace viewer {
+namespace samples::viewer {
 
 /// GLFW initialised and one window without a client API (Vulkan draws into it).
 class Window {
@@ -49,23 +50,21 @@ public:
     VulkanHost(const VulkanHost&) = delete;
     VulkanHost& operator=(const VulkanHost&) = delete;
 
-    VkInstance instance() const { return instance_; }
+    VkInstance instance() const { return instance_.instance; }
     VkSurfaceKHR surface() const { return surface_; }
     VkPhysicalDevice physical() const { return physical_; }
     VkDevice device() const { return device_; }
     VkQueue queue() const { return queue_; }
     uint32_t queue_family() const { return family_; }
     const std::string& device_name() const { return device_name_; }
-    bool validation() const { return validation_; }  ///< the layer is on (--validation, JADE_VALIDATION, JADE_SYNC_VALIDATION)
+    bool validation() const { return instance_.validation; }  ///< the layer is on (--validation, JADE_VALIDATION, JADE_SYNC_VALIDATION)
     /// What jade::Context(const AdoptedVulkan&) needs to adopt this device.
     jade::AdoptedVulkan adopted_vulkan() const;
     /// Warnings and errors the validation layer reported so far (also printed to stderr).
     static uint64_t validation_messages();
 
 private:
-    bool validation_ = false;
-    Owned<VkInstance> instance_;
-    Owned<VkDebugUtilsMessengerEXT> messenger_;
+    Instance instance_;  // and its messenger
     Owned<VkSurfaceKHR> surface_;
     VkPhysicalDevice physical_ = VK_NULL_HANDLE;
     uint32_t family_ = 0;
@@ -79,4 +78,4 @@ private:
     void create_device();
 };
 
-}  // namespace viewer
+}  // namespace samples::viewer

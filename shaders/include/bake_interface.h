@@ -49,17 +49,18 @@ struct AoResolvePush {
     uint slices;
 };
 
-// thickness_trace.comp: one ray slice of the thickness pass.
+// thickness_trace.comp: one ray slice of the thickness pass. The ray and slice members mean
+// what AoPush's do, but the rays start offset against the normal (into the mesh).
 struct ThicknessPush {
     uint vertex_count;
     uint rays;
     uint seed;
-    float cos_cone;      // cosine of the cone's half-angle
-    float ray_offset;    // ray origin offset against the normal, mesh units
-    float max_distance;  // mesh units
+    float cos_cone;  // cosine of the cone's half-angle
+    float ray_offset;
+    float max_distance;
     uint item_count;
-    uint slices;         // divides rays
-    uint slice;          // the slice traced by this dispatch
+    uint slices;
+    uint slice;
 };
 
 // thickness_resolve.comp: the mean distance from the sums of every slice.

@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -68,18 +69,28 @@ void touch_all(const Args& args, const std::vector<OptionSpec>& specs)
     }
 }
 
-void run_bake(int argc, char** argv)
+/// The command's Args with every accessor touched; nothing after --help (the command prints
+/// the help and stops).
+std::optional<Args> parse(const char* command, const std::vector<OptionSpec>& specs, int argc, char** argv)
 {
-    using namespace jade::cli;
-    auto specs = device_options();
-    for (auto& v : {material_options(), bake_options()}) specs.insert(specs.end(), v.begin(), v.end());
-    specs.push_back({"out", "FILE", "output .glb or .gltf (required)"});
-    Args args("bake", specs, argc, argv, 2);
+    Args args(command, specs, argc, argv, 2);
     touch_all(args, specs);
     if (args.flag("help")) {
         (void)args.help();
-        return;
+        return std::nullopt;
     }
+    return args;
+}
+
+void run_bake(int argc, char** argv)
+{
+    using namespace jade::cli;
+    const auto parsed = parse("bake",
+                              all_options({device_options(), material_options(), bake_options(),
+                                           {{"out", "FILE", "output .glb or .gltf (required)"}}}),
+                              argc, argv);
+    if (!parsed) return;
+    const Args& args = *parsed;
     if (args.positional().size() != 1) args.fail("expects exactly one MESH");
     if (!args.get("out")) args.fail("--out FILE is required");
     (void)bake_settings_from_args(args);
@@ -89,15 +100,8 @@ void run_bake(int argc, char** argv)
 void run_info(int argc, char** argv)
 {
     using namespace jade::cli;
-    auto specs = device_options();
-    specs.push_back({"materials", "", "list the material presets"});
-    Args args("info", specs, argc, argv, 2);
-    touch_all(args, specs);
-    if (args.flag("help")) {
-        (void)args.help();
-        return;
-    }
-    if (args.positional().size() > 1) args.fail("takes at most one mesh");
+    const auto args = parse("info", all_options({device_options(), {{"materials", "", "list the material presets"}}}), argc, argv);
+    if (args && args->positional().size() > 1) args->fail("takes at most one mesh");
 }
 
 }  // namespace

@@ -1,8 +1,11 @@
 #include "test_support.hpp"
 
+#include <jade/error.hpp>
+
 #include <gtest/gtest.h>
 
 #include <array>
+#include <map>
 #include <cstdio>
 #include <cstdlib>
 #include <sys/wait.h>
@@ -39,6 +42,36 @@ std::filesystem::path out(const std::string& name)
     std::filesystem::create_directories(p.parent_path());
     std::filesystem::remove(p);
     return p;
+}
+
+std::filesystem::path test_folder(const std::string& folder)
+{
+    const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    const std::filesystem::path dir = out(folder + "/" + test + "/x").parent_path();
+    std::filesystem::remove_all(dir);
+    return dir;
+}
+
+std::string error_of(const std::function<void()>& f)
+{
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "(no jade::Error)";
+}
+
+bool closed_and_oriented(const PreparedMesh& m)
+{
+    std::map<std::pair<uint32_t, uint32_t>, int> edges;
+    for (size_t t = 0; t < m.indices.size(); t += 3)
+        for (size_t k = 0; k < 3; ++k) ++edges[{m.indices[t + k], m.indices[t + (k + 1) % 3]}];
+    for (const auto& [edge, count] : edges) {
+        auto twin = edges.find({edge.second, edge.first});
+        if (count != 1 || twin == edges.end() || twin->second != 1) return false;
+    }
+    return true;
 }
 
 std::filesystem::path cli() { return env_path("JADE_CLI"); }

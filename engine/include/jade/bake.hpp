@@ -24,6 +24,7 @@
 
 #include <jade/material.hpp>
 #include <jade/mesh.hpp>
+#include <jade/noncopyable.hpp>
 
 #include <glm/vec3.hpp>
 #include <vulkan/vulkan.h>
@@ -149,12 +150,10 @@ struct BakeResult {
 /// Context's queue (the host's queue for an adopted Context) and blocks until they complete;
 /// its GPU buffers are released when the call returns. Errors (jade::Error): an empty mesh,
 /// `ao` of the wrong size, settings out of range, a failed Vulkan call.
-class Baker {
+class Baker : NonCopyable {
 public:
     explicit Baker(Context& context);
     ~Baker();
-    Baker(const Baker&) = delete;
-    Baker& operator=(const Baker&) = delete;
 
     /// AO, the thickness (when settings.thickness.enabled()) then t_m (the material's profiles,
     /// per channel; one channel when grey()).
@@ -199,12 +198,10 @@ struct Amortisation {
 /// no mesh data goes through the CPU. A refit keeps the tree's shape: for large deformations
 /// build a new DynamicBake (a rebuild) now and then. AO distances stay fractions of the rest
 /// pose's diagonal. Not thread-safe; uses the Baker's pipelines, so the Baker must outlive it.
-class DynamicBake {
+class DynamicBake : NonCopyable {
 public:
     DynamicBake(Baker& baker, const PreparedMesh& rest, const Material& material, const BakeSettings& settings = {});
     ~DynamicBake();
-    DynamicBake(const DynamicBake&) = delete;
-    DynamicBake& operator=(const DynamicBake&) = delete;
 
     /// The GPU buffers, one entry per bake vertex, tightly packed: positions and normals
     /// (float3, mesh units, unit normals), areas (float, units²) - written by a deformer (usage:

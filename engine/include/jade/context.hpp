@@ -7,6 +7,8 @@
 // See docs/embedding.md for adopting a host's device.
 #pragma once
 
+#include <jade/noncopyable.hpp>
+
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
@@ -87,7 +89,7 @@ struct AdoptedVulkan {
 /// needs of its own sets more fields of f12, f13 and features.features (or chains more structs
 /// after f13) and appends to `extensions` before create(). The chain points into this object and
 /// AdoptedVulkan::enabled_features at it: neither copied nor moved, it must outlive the Context.
-struct HostDeviceSetup {
+struct HostDeviceSetup : private NonCopyable {
     VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
@@ -96,8 +98,6 @@ struct HostDeviceSetup {
     /// With Jade's requirements (Context::enable_required_features, required_device_extensions)
     /// or, `with_jade_requirements` false, none: a device Jade refuses to adopt (tests).
     explicit HostDeviceSetup(bool with_jade_requirements = true);
-    HostDeviceSetup(const HostDeviceSetup&) = delete;
-    HostDeviceSetup& operator=(const HostDeviceSetup&) = delete;
 
     /// vkCreateDevice with one queue of `queue_family` and these features and extensions. The
     /// caller owns the device (vkDestroyDevice after the Context). Throws jade::Error.
@@ -137,7 +137,7 @@ struct DeviceInfo {
 
 /// The device Jade runs on; every other GPU object (Baker, Renderer) takes one and must be
 /// destroyed before it. Move-less and not copyable.
-class Context {
+class Context : NonCopyable {
 public:
     /// Creates an instance and device. Throws jade::Error when no suitable device exists, with
     /// every device considered and why it was rejected, and what to install.
@@ -149,8 +149,6 @@ public:
     /// host's messenger sees Jade's messages); `log` and `verbose` apply.
     Context(const AdoptedVulkan& host, const ContextOptions& options = {});
     ~Context();
-    Context(const Context&) = delete;
-    Context& operator=(const Context&) = delete;
 
     const DeviceInfo& device_info() const;  ///< filled once at construction
     /// Validation warnings and errors seen so far (0 when validation is off).

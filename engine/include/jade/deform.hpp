@@ -13,6 +13,7 @@
 #pragma once
 
 #include <jade/mesh.hpp>
+#include <jade/noncopyable.hpp>
 
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat4x4.hpp>
@@ -168,12 +169,10 @@ struct DeformedVertices {
 /// Owns the GPU buffers of one mesh's deformation: rest positions, the triangles and each
 /// vertex's adjacent triangles (built once on the CPU), the deformed positions, normals and
 /// areas. Create one per mesh and Context; not thread-safe; destroy before the Context.
-class MeshDeformer {
+class MeshDeformer : NonCopyable {
 public:
     MeshDeformer(Context& context, const PreparedMesh& rest);
     ~MeshDeformer();
-    MeshDeformer(const MeshDeformer&) = delete;
-    MeshDeformer& operator=(const MeshDeformer&) = delete;
 
     /// Uploads skin and morph data (from bind_skin on the same PreparedMesh).
     void set_skin(const SkinBinding& binding);

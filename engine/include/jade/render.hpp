@@ -20,6 +20,7 @@
 #include <jade/error.hpp>
 #include <jade/material.hpp>
 #include <jade/mesh.hpp>
+#include <jade/noncopyable.hpp>
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
@@ -223,7 +224,7 @@ inline constexpr uint64_t kRendererFrameDataBytes = 2752;
 
 /// Draws one mesh with one material. Owns its GPU buffers, LUT images and pipelines (created
 /// lazily per mode, sample count and format). Threading and lifetime as in the header comment.
-class Renderer {
+class Renderer : NonCopyable {
 public:
     /// Builds the translucency LUT on the GPU (submits to the Context's queue and waits), or
     /// shares the one another living Renderer of the same device and LUT size already built
@@ -231,8 +232,6 @@ public:
     /// Throws jade::Error for an even or too small LUT width/height or missing format support.
     explicit Renderer(Context& context, const RendererOptions& options = {});
     ~Renderer();
-    Renderer(const Renderer&) = delete;
-    Renderer& operator=(const Renderer&) = delete;
 
     /// The mesh to draw, with t_m per bake vertex (empty: zero, i.e. Lambert in every mode but
     /// Curvature). Shading uses the prepared mesh's area-weighted vertex normals (so normal

@@ -22,6 +22,7 @@
 #include <jade/deform.hpp>
 #include <jade/material.hpp>
 #include <jade/mesh.hpp>
+#include <jade/noncopyable.hpp>
 #include <jade/render.hpp>
 
 #include <cstdint>
@@ -165,12 +166,10 @@ struct PassRecord {
 /// render(). Keeps, per object, only a Renderer (mesh vertices with t_m, LUT) and, when the
 /// object deforms, its MeshDeformer and DynamicBake. The Baker of static bakes is made for the
 /// constructor and destroyed at its end.
-class SceneRenderer {
+class SceneRenderer : NonCopyable {
 public:
     SceneRenderer(Context& context, const Scene& scene, const SceneSettings& settings, const StaticBakeSource& source = {});
     ~SceneRenderer();
-    SceneRenderer(const SceneRenderer&) = delete;
-    SceneRenderer& operator=(const SceneRenderer&) = delete;
 
     const ScenePlan& plan() const;
     /// Every pass run so far, in order (once-only passes first).

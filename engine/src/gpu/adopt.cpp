@@ -6,6 +6,8 @@
 #include <jade/context.hpp>
 
 #include <algorithm>
+#include <cstddef>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -46,46 +48,60 @@ struct RequiredFeatures {
     bool dynamic_rendering = false, synchronization2 = false, maintenance4 = false;
     bool scalar_block_layout = false, host_query_reset = false, float64 = false;
 
-    void read(const void* chain)
-    {
-        for (auto* s = static_cast<const VkBaseInStructure*>(chain); s; s = s->pNext) {
-            switch (s->sType) {
-            case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2:
-                float64 |= bool(reinterpret_cast<const VkPhysicalDeviceFeatures2*>(s)->features.shaderFloat64);
-                break;
-            case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES: {
-                auto* f = reinterpret_cast<const VkPhysicalDeviceVulkan12Features*>(s);
-                scalar_block_layout |= bool(f->scalarBlockLayout);
-                host_query_reset |= bool(f->hostQueryReset);
-                break;
+    void read(const void* chain);
+};
+
+// The single-feature structs that Vulkan 1.2 and 1.3 promoted into their Vulkan12/13 structs:
+// each is a header and one VkBool32, which enables the requirement `flag`.
+struct PromotedFeature {
+    VkStructureType type;
+    bool RequiredFeatures::*flag;
+    size_t offset;  // of the VkBool32
+};
+constexpr PromotedFeature kPromotedFeatures[] = {
+    {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES, &RequiredFeatures::dynamic_rendering,
+     offsetof(VkPhysicalDeviceDynamicRenderingFeatures, dynamicRendering)},
+    {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SYNCHRONIZATION_2_FEATURES, &RequiredFeatures::synchronization2,
+     offsetof(VkPhysicalDeviceSynchronization2Features, synchronization2)},
+    {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_FEATURES, &RequiredFeatures::maintenance4,
+     offsetof(VkPhysicalDeviceMaintenance4Features, maintenance4)},
+    {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SCALAR_BLOCK_LAYOUT_FEATURES, &RequiredFeatures::scalar_block_layout,
+     offsetof(VkPhysicalDeviceScalarBlockLayoutFeatures, scalarBlockLayout)},
+    {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_HOST_QUERY_RESET_FEATURES, &RequiredFeatures::host_query_reset,
+     offsetof(VkPhysicalDeviceHostQueryResetFeatures, hostQueryReset)},
+};
+
+void RequiredFeatures::read(const void* chain)
+{
+    for (auto* s = static_cast<const VkBaseInStructure*>(chain); s; s = s->pNext) {
+        switch (s->sType) {
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2:
+            float64 |= bool(reinterpret_cast<const VkPhysicalDeviceFeatures2*>(s)->features.shaderFloat64);
+            break;
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES: {
+            auto* f = reinterpret_cast<const VkPhysicalDeviceVulkan12Features*>(s);
+            scalar_block_layout |= bool(f->scalarBlockLayout);
+            host_query_reset |= bool(f->hostQueryReset);
+            break;
+        }
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES: {
+            auto* f = reinterpret_cast<const VkPhysicalDeviceVulkan13Features*>(s);
+            dynamic_rendering |= bool(f->dynamicRendering);
+            synchronization2 |= bool(f->synchronization2);
+            maintenance4 |= bool(f->maintenance4);
+            break;
+        }
+        default:
+            for (const PromotedFeature& p : kPromotedFeatures) {
+                if (s->sType != p.type) continue;
+                VkBool32 enabled;
+                std::memcpy(&enabled, reinterpret_cast<const char*>(s) + p.offset, sizeof enabled);
+                this->*p.flag |= bool(enabled);
             }
-            case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES: {
-                auto* f = reinterpret_cast<const VkPhysicalDeviceVulkan13Features*>(s);
-                dynamic_rendering |= bool(f->dynamicRendering);
-                synchronization2 |= bool(f->synchronization2);
-                maintenance4 |= bool(f->maintenance4);
-                break;
-            }
-            case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES:
-                dynamic_rendering |= bool(reinterpret_cast<const VkPhysicalDeviceDynamicRenderingFeatures*>(s)->dynamicRendering);
-                break;
-            case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SYNCHRONIZATION_2_FEATURES:
-                synchronization2 |= bool(reinterpret_cast<const VkPhysicalDeviceSynchronization2Features*>(s)->synchronization2);
-                break;
-            case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_FEATURES:
-                maintenance4 |= bool(reinterpret_cast<const VkPhysicalDeviceMaintenance4Features*>(s)->maintenance4);
-                break;
-            case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SCALAR_BLOCK_LAYOUT_FEATURES:
-                scalar_block_layout |= bool(reinterpret_cast<const VkPhysicalDeviceScalarBlockLayoutFeatures*>(s)->scalarBlockLayout);
-                break;
-            case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_HOST_QUERY_RESET_FEATURES:
-                host_query_reset |= bool(reinterpret_cast<const VkPhysicalDeviceHostQueryResetFeatures*>(s)->hostQueryReset);
-                break;
-            default: break;
-            }
+            break;
         }
     }
-};
+}
 
 }  // namespace
 

@@ -13,14 +13,14 @@
 
 namespace jade::gpu {
 
-class Context {
+using OwnedCommandPool = Owned<VkCommandPool, vkDestroyCommandPool>;
+
+class Context : NonCopyable {
 public:
     explicit Context(const ContextOptions& options);
     /// Adopts the host's objects (jade/context.hpp AdoptedVulkan); destroys only its own.
     Context(const AdoptedVulkan& host, const ContextOptions& options);
     ~Context();
-    Context(const Context&) = delete;
-    Context& operator=(const Context&) = delete;
 
     VkInstance instance() const { return instance_; }
     VkPhysicalDevice physical_device() const { return physical_; }

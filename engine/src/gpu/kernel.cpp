@@ -54,6 +54,14 @@ OwnedPipelineLayout make_pipeline_layout(const Context& ctx, VkDescriptorSetLayo
     return OwnedPipelineLayout(ctx.device(), pl);
 }
 
+OwnedPipeline own_pipeline(const Context& ctx, VkPipeline pipeline, const char* name, bool compute)
+{
+    OwnedPipeline owned(ctx.device(), pipeline);
+    ctx.set_name(pipeline, VK_OBJECT_TYPE_PIPELINE, name);
+    ctx.count_created(VK_OBJECT_TYPE_PIPELINE, compute);
+    return owned;
+}
+
 Kernel::Kernel(Context& ctx, const KernelDesc& desc)
     : ctx_(&ctx), name_(desc.name), bindings_(desc.bindings), push_size_(desc.push_size), local_size_(desc.local_size)
 {
@@ -79,9 +87,7 @@ Kernel::Kernel(Context& ctx, const KernelDesc& desc)
     VkPipeline p;
     check(vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &p),
           (std::string("vkCreateComputePipelines ") + desc.name).c_str());
-    pipeline_ = OwnedPipeline(ctx.device(), p);
-    ctx.set_name(p, VK_OBJECT_TYPE_PIPELINE, desc.name);
-    ctx.count_created(VK_OBJECT_TYPE_PIPELINE, true);
+    pipeline_ = own_pipeline(ctx, p, desc.name, true);
 }
 
 void Kernel::check_push(size_t bytes) const

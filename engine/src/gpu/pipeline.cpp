@@ -87,9 +87,7 @@ GraphicsPipeline::GraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& des
     VkPipeline p;
     check(vkCreateGraphicsPipelines(ctx.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &p),
           (std::string("vkCreateGraphicsPipelines ") + desc.name).c_str());
-    pipeline_ = OwnedPipeline(ctx.device(), p);
-    ctx.set_name(p, VK_OBJECT_TYPE_PIPELINE, desc.name);
-    ctx.count_created(VK_OBJECT_TYPE_PIPELINE, false);
+    pipeline_ = own_pipeline(ctx, p, desc.name, false);
 }
 
 void GraphicsPipeline::bind(VkCommandBuffer cmd, VkExtent2D extent, const void* push, size_t push_bytes,

@@ -22,6 +22,8 @@
 
 namespace jade::gpu {
 
+using OwnedFence = Owned<VkFence, vkDestroyFence>;  // also the Context's own submission fence
+
 class ReleaseQueue {
 public:
     ReleaseQueue() = default;

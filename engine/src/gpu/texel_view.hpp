@@ -16,6 +16,8 @@ namespace jade::gpu {
 class Buffer;
 class Context;
 
+using OwnedBufferView = Owned<VkBufferView, vkDestroyBufferView>;
+
 class TexelView {
 public:
     TexelView() = default;

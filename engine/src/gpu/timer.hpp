@@ -11,6 +11,8 @@ namespace jade::gpu {
 
 class Context;
 
+using OwnedQueryPool = Owned<VkQueryPool, vkDestroyQueryPool>;
+
 /// Records a timestamp before and after named stages of one command buffer. After the
 /// submission has finished, `stages()` gives each stage's GPU time in milliseconds.
 class GpuTimer {

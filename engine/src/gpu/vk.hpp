@@ -52,8 +52,9 @@ private:
     T handle_ = VK_NULL_HANDLE;
 };
 
+// The owners several modules share. One module's own kind (texel views, query pools, the
+// command pool and fences) is declared in that module's header.
 using OwnedBuffer = Owned<VkBuffer, vkDestroyBuffer>;
-using OwnedBufferView = Owned<VkBufferView, vkDestroyBufferView>;
 using OwnedImage = Owned<VkImage, vkDestroyImage>;
 using OwnedImageView = Owned<VkImageView, vkDestroyImageView>;
 using OwnedSampler = Owned<VkSampler, vkDestroySampler>;
@@ -62,9 +63,6 @@ using OwnedPipeline = Owned<VkPipeline, vkDestroyPipeline>;
 using OwnedPipelineLayout = Owned<VkPipelineLayout, vkDestroyPipelineLayout>;
 using OwnedSetLayout = Owned<VkDescriptorSetLayout, vkDestroyDescriptorSetLayout>;
 using OwnedShaderModule = Owned<VkShaderModule, vkDestroyShaderModule>;
-using OwnedCommandPool = Owned<VkCommandPool, vkDestroyCommandPool>;
-using OwnedFence = Owned<VkFence, vkDestroyFence>;
-using OwnedQueryPool = Owned<VkQueryPool, vkDestroyQueryPool>;
 
 /// One global memory barrier (synchronization2): writes of `src_access` in `src_stage` made
 /// visible to `dst_access` in `dst_stage`. Every barrier Jade records goes through here.

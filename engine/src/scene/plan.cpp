@@ -29,6 +29,14 @@ std::string bytes_text(uint64_t b)
     return buf;
 }
 
+// Σ of the estimates that are buffers: images (the LUTs) are listed but are not buffers.
+uint64_t buffer_bytes_of(const std::vector<BufferEstimate>& estimates)
+{
+    uint64_t sum = 0;
+    for (const auto& b : estimates) sum += b.image ? 0 : b.bytes;
+    return sum;
+}
+
 }  // namespace
 
 std::string_view pass_kind_name(PassKind kind)
@@ -50,12 +58,7 @@ uint64_t PassPlan::bytes() const
     return sum;
 }
 
-uint64_t PassPlan::buffer_bytes() const
-{
-    uint64_t sum = 0;
-    for (const auto& b : buffers) sum += b.image ? 0 : b.bytes;
-    return sum;
-}
+uint64_t PassPlan::buffer_bytes() const { return buffer_bytes_of(buffers); }
 
 uint64_t ObjectPlan::resident_bytes() const
 {
@@ -76,12 +79,7 @@ bool ObjectPlan::runs(PassKind kind) const
     return std::any_of(passes.begin(), passes.end(), [&](const PassPlan& p) { return p.kind == kind; });
 }
 
-uint64_t ScenePlan::shared_buffer_bytes() const
-{
-    uint64_t sum = 0;
-    for (const auto& b : shared) sum += b.image ? 0 : b.bytes;
-    return sum;
-}
+uint64_t ScenePlan::shared_buffer_bytes() const { return buffer_bytes_of(shared); }
 
 uint64_t ScenePlan::resident_bytes() const
 {

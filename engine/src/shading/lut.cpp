@@ -66,6 +66,22 @@ void check_size(uint32_t width, uint32_t height, const char* what)
                     " must have an odd width ≥ 3 (cos θ = 0 on a texel centre) and a height ≥ 2");
 }
 
+// A sampled image of `desc` (usage: sampled, transfer destination) holding `texels`, tightly
+// packed rows, copied in through a host-visible staging buffer named `staging_name`.
+template <class T>
+gpu::Image upload_image(gpu::Context& ctx, const gpu::ImageDesc& desc, const std::vector<T>& texels, const char* staging_name)
+{
+    gpu::Buffer staging(ctx, texels.size() * sizeof(T), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, staging_name, true);
+    staging.upload(texels.data(), texels.size() * sizeof(T));
+    gpu::Image image(ctx, desc);
+    ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+        image.transition(cmd, gpu::use::kTransferDst);
+        image.copy_from_buffer(cmd, staging.handle());
+        image.transition(cmd, gpu::use::kSampled);
+    });
+    return image;
+}
+
 }  // namespace
 
 gpu::OwnedSampler make_lut_sampler(const gpu::Context& ctx)
@@ -113,15 +129,9 @@ TranslucencyLut::TranslucencyLut(gpu::Context& ctx, const LutLayout& layout) : l
                    "translucency LUT (16 bit)");
     std::vector<uint16_t> unorm(f.size());
     for (size_t i = 0; i < f.size(); ++i) unorm[i] = uint16_t(std::lround(std::clamp(f[i], 0.0f, 1.0f) * 65535.0f));
-    gpu::Buffer staging(ctx, unorm.size() * sizeof(uint16_t), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, "translucency LUT upload", true);
-    staging.upload(unorm.data(), unorm.size() * sizeof(uint16_t));
-    filtered_ = gpu::Image(ctx, {"translucency LUT (16 bit)", W, H, VK_FORMAT_R16_UNORM,
-                                 VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
-    ctx.submit_and_wait([&](VkCommandBuffer cmd) {
-        filtered_.transition(cmd, gpu::use::kTransferDst);
-        filtered_.copy_from_buffer(cmd, staging.handle());
-        filtered_.transition(cmd, gpu::use::kSampled);
-    });
+    filtered_ = upload_image(ctx, {"translucency LUT (16 bit)", W, H, VK_FORMAT_R16_UNORM,
+                                   VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT},
+                             unorm, "translucency LUT upload");
 }
 
 glm::vec4 TranslucencyLut::shader_map() const
@@ -194,15 +204,9 @@ CurvatureLut::CurvatureLut(gpu::Context& ctx, const Material& material, uint32_t
     require_format(ctx, VK_FORMAT_R32G32B32A32_SFLOAT,
                    VK_FORMAT_FEATURE_TRANSFER_DST_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT, "curvature LUT");
     std::vector<glm::vec4> texels = evaluate(material, width, height);
-    gpu::Buffer staging(ctx, texels.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, "curvature LUT upload", true);
-    staging.upload(texels.data(), texels.size() * sizeof(glm::vec4));
-    image_ = gpu::Image(ctx, {"curvature LUT", width, height, VK_FORMAT_R32G32B32A32_SFLOAT,
-                              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
-    ctx.submit_and_wait([&](VkCommandBuffer cmd) {
-        image_.transition(cmd, gpu::use::kTransferDst);
-        image_.copy_from_buffer(cmd, staging.handle());
-        image_.transition(cmd, gpu::use::kSampled);
-    });
+    image_ = upload_image(ctx, {"curvature LUT", width, height, VK_FORMAT_R32G32B32A32_SFLOAT,
+                                VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT},
+                          texels, "curvature LUT upload");
 }
 
 glm::vec4 CurvatureLut::shader_map() const

@@ -1,16 +1,18 @@
-// samples/viewer - small Vulkan helpers of the viewer: one owner per handle, error checks,
-// images with their memory and view, image barriers. The viewer is a host program: it owns
-// every Vulkan object it creates (Jade adopts its device and destroys none of them).
+// samples/common - the Vulkan helpers both host programs (samples/embed, samples/viewer) use:
+// one owner per handle, error checks, images with their memory and view, host-visible buffers,
+// barriers and a one-off submission. A host owns every Vulkan object it creates (Jade adopts
+// its device and destroys none of them).
 #pragma once
 
 #include <vulkan/vulkan.h>
 
+#include <cstdint>
 #include <functional>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
-namespace viewer {
+namespace samples {
 
 /// Throws std::runtime_error naming the call when a Vulkan call failed.
 inline void check(VkResult r, const char* what)
@@ -73,6 +75,9 @@ struct HostBuffer {
 };
 
 uint32_t memory_type(VkPhysicalDevice physical, uint32_t bits, VkMemoryPropertyFlags wanted);
+/// A 2-D view of the whole of `image` (one mip, one layer).
+Owned<VkImageView> make_view(VkDevice device, VkImage image, VkFormat format, VkImageAspectFlags aspect);
+/// A 2-D image (one mip, one layer, optimal tiling) in device-local memory, with its view.
 Image make_image(VkPhysicalDevice physical, VkDevice device, VkFormat format, VkExtent2D extent,
                  VkSampleCountFlagBits samples, VkImageUsageFlags usage, VkImageAspectFlags aspect);
 HostBuffer make_host_buffer(VkPhysicalDevice physical, VkDevice device, VkDeviceSize size, VkBufferUsageFlags usage);
@@ -81,5 +86,12 @@ HostBuffer make_host_buffer(VkPhysicalDevice physical, VkDevice device, VkDevice
 void image_barrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkPipelineStageFlags2 src_stage,
                    VkAccessFlags2 src_access, VkImageLayout old_layout, VkPipelineStageFlags2 dst_stage,
                    VkAccessFlags2 dst_access, VkImageLayout new_layout);
+/// Makes the writes of earlier copies (into a read-back buffer) visible to the host.
+void host_read_barrier(VkCommandBuffer cmd);
 
-}  // namespace viewer
+/// Records `record` into a one-off command buffer (from a pool of its own on `queue_family`),
+/// submits it to `queue` and waits for it with a fence.
+void submit_and_wait(VkDevice device, VkQueue queue, uint32_t queue_family,
+                     const std::function<void(VkCommandBuffer)>& record);
+
+}  // namespace samples
