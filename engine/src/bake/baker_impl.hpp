@@ -42,7 +42,8 @@ constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 constexpr VkDescriptorType kTexels = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
 constexpr VkBufferUsageFlags kStorageUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
 // Written by one pass as a storage buffer, fetched by the next as texels (gpu/texel_view.hpp).
-constexpr VkBufferUsageFlags kTexelUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+constexpr VkBufferUsageFlags kTexelUsage =
+    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
 constexpr uint32_t kTriangleLeafSize = 4;
 constexpr uint32_t kPointLeafSize = 8;
 static_assert(kPointLeafSize <= 8, "cluster_refit.comp scans at most 8 sources per leaf");
@@ -81,7 +82,8 @@ inline TmVariant tm_variant(const Material& m)
 
 inline void validate_ao_settings(const AoSettings& s)
 {
-    if (s.rays == 0 || s.rays > 65536) throw Error("AO: rays per vertex must be in 1..65536, got " + std::to_string(s.rays));
+    if (s.rays == 0 || s.rays > 65536)
+        throw Error("AO: rays per vertex must be in 1..65536, got " + std::to_string(s.rays));
     if (!(s.max_distance_rel > 0) || !std::isfinite(s.max_distance_rel))
         throw Error("AO: max distance must be a positive fraction of the diagonal");
     if (!(s.ray_offset_rel >= 0) || !std::isfinite(s.ray_offset_rel)) throw Error("AO: the ray offset must be ≥ 0");
@@ -96,7 +98,8 @@ inline BakeSettings without_unused_passes(BakeSettings s, const Material& materi
 
 inline void validate_tm_settings(const BakeSettings& s, const gpu::Context& ctx)
 {
-    if (!(s.tm_opening_ratio > 0) || !std::isfinite(s.tm_opening_ratio)) throw Error("t_m: the opening ratio θ must be > 0");
+    if (!(s.tm_opening_ratio > 0) || !std::isfinite(s.tm_opening_ratio))
+        throw Error("t_m: the opening ratio θ must be > 0");
     if (s.tm_float64_sums && !ctx.info().float64)
         throw Error("t_m: float64 sums (BakeSettings::tm_float64_sums) need shaderFloat64, which this device lacks");
 }
@@ -113,7 +116,8 @@ inline void read_scattering_normals(BakeResult& r, const gpu::Buffer& sums, cons
     for (uint32_t i = 0; i < n; ++i) {
         const glm::vec3 v = s[3 * i] + s[3 * i + 1] + s[3 * i + 2];
         const float len2 = glm::dot(v, v);
-        if (len2 > 1e-30f && std::isfinite(len2)) r.scattering_normal[i] = v / std::sqrt(len2);
+        if (len2 > 1e-30f && std::isfinite(len2))
+            r.scattering_normal[i] = v / std::sqrt(len2);
         else {
             if (fallback.empty()) fallback = normals.read<glm::vec3>(n);
             r.scattering_normal[i] = fallback[i];
@@ -137,37 +141,37 @@ inline void finish_timings(BakeTimings& t, const gpu::GpuTimer& timer, double se
 }  // namespace bake
 
 // The bake's own vocabulary, for the two files that include this one.
-using bake::kStorage;
-using bake::kTexels;
-using bake::kStorageUsage;
-using bake::kTexelUsage;
-using bake::kTriangleLeafSize;
-using bake::kPointLeafSize;
-using bake::kStaticNearMargin;
-using bake::kDynamicNearMargin;
-using bake::uses_exact_tm;
-using bake::kGridMaxNearBytes;
-using bake::kExactSourcesPerDispatch;
-using bake::kClusterWorkPerDispatch;
 using bake::AoPush;
 using bake::AoResolvePush;
+using bake::ClusterPush;
+using bake::ExactPush;
+using bake::finish_timings;
+using bake::GatherPush;
+using bake::GridGatherPush;
+using bake::GridSplatPush;
+using bake::kClusterWorkPerDispatch;
+using bake::kDynamicNearMargin;
+using bake::kExactSourcesPerDispatch;
+using bake::kGridMaxNearBytes;
+using bake::kPointLeafSize;
+using bake::kStaticNearMargin;
+using bake::kStorage;
+using bake::kStorageUsage;
+using bake::kTexels;
+using bake::kTexelUsage;
+using bake::kTriangleLeafSize;
+using bake::NearPush;
+using bake::RayRefitPush;
+using bake::read_scattering_normals;
+using bake::RefitPush;
 using bake::ThicknessPush;
 using bake::ThicknessResolvePush;
-using bake::GatherPush;
-using bake::RefitPush;
-using bake::RayRefitPush;
-using bake::NearPush;
-using bake::GridSplatPush;
-using bake::GridGatherPush;
-using bake::ExactPush;
-using bake::ClusterPush;
-using gpu::storage_bindings;
-using bake::TmVariant;
 using bake::tm_variant;
+using bake::TmVariant;
+using bake::uses_exact_tm;
 using bake::validate_ao_settings;
 using bake::validate_tm_settings;
-using bake::finish_timings;
-using bake::read_scattering_normals;
+using gpu::storage_bindings;
 
 struct Baker::Impl {
     gpu::Context& ctx;
@@ -177,8 +181,9 @@ struct Baker::Impl {
     std::optional<gpu::Kernel> tm_exact[2][4], tm_cluster[2][4];
     std::optional<gpu::Kernel> tm_near[2][2][4];  // [grid far field][grey][kind]
     std::optional<gpu::Kernel> grid_splat, grid_gather, grid_bounds;
-    std::optional<gpu::Kernel> grid_axis[2][2][bake::kGridMaxHalfWidth + 1];  // [fixed-point input][blur, restrict][half-width]
-    std::optional<gpu::Kernel> tm_exact_f64[2][4];  // BakeSettings::tm_float64_sums
+    std::optional<gpu::Kernel>
+        grid_axis[2][2][bake::kGridMaxHalfWidth + 1];  // [fixed-point input][blur, restrict][half-width]
+    std::optional<gpu::Kernel> tm_exact_f64[2][4];     // BakeSettings::tm_float64_sums
 
     explicit Impl(gpu::Context& c) : ctx(c) {}
 
@@ -189,34 +194,48 @@ struct Baker::Impl {
     }
     const gpu::Kernel& ao_kernel()
     {
-        return kernel(ao_trace, {"ao_trace", shaders::ao_trace_comp(), {kStorage, kStorage, kTexels, kStorage},
-                                 sizeof(AoPush), 64, {}});
+        return kernel(
+            ao_trace,
+            {"ao_trace", shaders::ao_trace_comp(), {kStorage, kStorage, kTexels, kStorage}, sizeof(AoPush), 64, {}});
     }
     const gpu::Kernel& ao_resolve_kernel()
     {
-        return kernel(ao_resolve, {"ao_resolve", shaders::ao_resolve_comp(), storage_bindings(2), sizeof(AoResolvePush), 64, {}});
+        return kernel(ao_resolve,
+                      {"ao_resolve", shaders::ao_resolve_comp(), storage_bindings(2), sizeof(AoResolvePush), 64, {}});
     }
     const gpu::Kernel& thickness_kernel()
     {
-        return kernel(thickness_trace, {"thickness_trace", shaders::thickness_trace_comp(),
-                                        {kStorage, kStorage, kTexels, kStorage}, sizeof(ThicknessPush), 64, {}});
+        return kernel(thickness_trace, {"thickness_trace",
+                                        shaders::thickness_trace_comp(),
+                                        {kStorage, kStorage, kTexels, kStorage},
+                                        sizeof(ThicknessPush),
+                                        64,
+                                        {}});
     }
     const gpu::Kernel& thickness_resolve_kernel()
     {
-        return kernel(thickness_resolve, {"thickness_resolve", shaders::thickness_resolve_comp(), storage_bindings(2),
-                                          sizeof(ThicknessResolvePush), 64, {}});
+        return kernel(thickness_resolve, {"thickness_resolve",
+                                          shaders::thickness_resolve_comp(),
+                                          storage_bindings(2),
+                                          sizeof(ThicknessResolvePush),
+                                          64,
+                                          {}});
     }
     const gpu::Kernel& gather_kernel()
     {
-        return kernel(gather, {"gather_sources", shaders::gather_sources_comp(), storage_bindings(6), sizeof(GatherPush), 64, {}});
+        return kernel(
+            gather,
+            {"gather_sources", shaders::gather_sources_comp(), storage_bindings(6), sizeof(GatherPush), 64, {}});
     }
     const gpu::Kernel& refit_kernel()
     {
-        return kernel(refit, {"cluster_refit", shaders::cluster_refit_comp(), storage_bindings(4), sizeof(RefitPush), 64, {}});
+        return kernel(refit,
+                      {"cluster_refit", shaders::cluster_refit_comp(), storage_bindings(4), sizeof(RefitPush), 64, {}});
     }
     const gpu::Kernel& ray_refit_kernel()
     {
-        return kernel(ray_refit, {"ray_refit", shaders::ray_refit_comp(), storage_bindings(5), sizeof(RayRefitPush), 64, {}});
+        return kernel(ray_refit,
+                      {"ray_refit", shaders::ray_refit_comp(), storage_bindings(5), sizeof(RayRefitPush), 64, {}});
     }
     // Specialisation constants of the t_m kernels: channel count and profile kind.
     static std::vector<uint32_t> tm_constants(const TmVariant& v) { return {v.grey ? 1u : 3u, v.kind}; }
@@ -224,10 +243,13 @@ struct Baker::Impl {
     {
         std::vector<uint32_t> constants = tm_constants(v);
         constants.push_back(grid ? 1u : 0u);
-        return kernel(tm_near[grid][v.grey][v.kind],
-                      {"tm_near", shaders::tm_near_comp(),
-                       {kStorage, kTexels, kStorage, kStorage, kStorage, kStorage, kTexels, kStorage, kStorage, kStorage, kStorage},
-                       sizeof(NearPush), 64, constants});
+        return kernel(tm_near[grid][v.grey][v.kind], {"tm_near",
+                                                      shaders::tm_near_comp(),
+                                                      {kStorage, kTexels, kStorage, kStorage, kStorage, kStorage,
+                                                       kTexels, kStorage, kStorage, kStorage, kStorage},
+                                                      sizeof(NearPush),
+                                                      64,
+                                                      constants});
     }
     const gpu::Kernel& exact_kernel(const TmVariant& v, bool float64_sums)
     {
@@ -235,14 +257,20 @@ struct Baker::Impl {
         if (!slot) require_subgroup_groups();  // once, when the kernel is made
         return kernel(slot, {float64_sums ? "tm_exact_f64" : "tm_exact",
                              float64_sums ? shaders::tm_exact_f64_comp() : shaders::tm_exact_comp(),
-                             {kStorage, kTexels, kStorage, kStorage, kStorage, kStorage}, sizeof(ExactPush), 64, tm_constants(v)});
+                             {kStorage, kTexels, kStorage, kStorage, kStorage, kStorage},
+                             sizeof(ExactPush),
+                             64,
+                             tm_constants(v)});
     }
     const gpu::Kernel& cluster_kernel(const TmVariant& v)
     {
         if (!tm_cluster[v.grey][v.kind]) require_subgroup_groups();
         return kernel(tm_cluster[v.grey][v.kind],
-                      {"tm_cluster", shaders::tm_cluster_comp(),
-                       {kStorage, kTexels, kStorage, kStorage, kStorage, kStorage, kStorage, kStorage}, sizeof(ClusterPush), 64,
+                      {"tm_cluster",
+                       shaders::tm_cluster_comp(),
+                       {kStorage, kTexels, kStorage, kStorage, kStorage, kStorage, kStorage, kStorage},
+                       sizeof(ClusterPush),
+                       64,
                        tm_constants(v)});
     }
     // The far passes share fetches across subgroups of at least 8 lanes (tm_common.glsl).
@@ -255,10 +283,10 @@ struct Baker::Impl {
             VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_VOTE_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT;
         if (sub.subgroupSize < 8 || !(sub.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) ||
             (sub.supportedOperations & need) != need)
-            throw Error("t_m: the device's compute subgroups (" + std::to_string(sub.subgroupSize) +
-                        " lanes) lack what the far passes need: 8 or more lanes with basic, vote and ballot operations");
+            throw Error(
+                "t_m: the device's compute subgroups (" + std::to_string(sub.subgroupSize) +
+                " lanes) lack what the far passes need: 8 or more lanes with basic, vote and ballot operations");
     }
-
 
     // GPU state of one mesh's bake: uploaded inputs, both trees, the passes' buffers. A static
     // bake builds it, records once and drops it; a DynamicBake keeps it and records every frame.
@@ -272,8 +300,8 @@ struct Baker::Impl {
         uint32_t ao_slices = 1;
         gpu::TexelView ray_item_texels;
         gpu::Buffer indices, item_origin, ray_work;  // dynamic only
-        gpu::Buffer thickness_sums, thickness;      // thickness pass: per ray slice, per vertex; result
-        std::vector<uint32_t> ray_work_offsets;     // [0, triangles) then one range per level
+        gpu::Buffer thickness_sums, thickness;       // thickness pass: per ray slice, per vertex; result
+        std::vector<uint32_t> ray_work_offsets;      // [0, triangles) then one range per level
         // t_m.
         bool exact = false;
         bool grid = false;  // the grid far field (bake/tm_grid.cpp) instead of the cluster tree
@@ -306,9 +334,10 @@ struct Baker::Impl {
         uint64_t tm_bytes() const
         {
             uint64_t b = 0;
-            for (const gpu::Buffer* x : {&profiles, &point_order, &points, &nodes, &node_levels, &tm, &normal_sum, &partial_sum,
-                                         &partial_comp, &resume, &near_offsets, &near_disks, &near_indices, &grid_levels,
-                                         &grid_splat, &grid_cells, &grid_scratch[0], &grid_scratch[1], &smooth_table})
+            for (const gpu::Buffer* x :
+                 {&profiles, &point_order, &points, &nodes, &node_levels, &tm, &normal_sum, &partial_sum, &partial_comp,
+                  &resume, &near_offsets, &near_disks, &near_indices, &grid_levels, &grid_splat, &grid_cells,
+                  &grid_scratch[0], &grid_scratch[1], &smooth_table})
                 b += *x ? x->size() : 0;
             return b;
         }
@@ -318,37 +347,15 @@ struct Baker::Impl {
     void check_storage_range(VkDeviceSize bytes, const char* what) const
     {
         if (bytes > ctx.limits().maxStorageBufferRange)
-            throw Error(std::string(what) + ": " + std::to_string(bytes) + " bytes exceed the device's maxStorageBufferRange (" +
-                        std::to_string(ctx.limits().maxStorageBufferRange) + "): the mesh has too many vertices for this device");
+            throw Error(std::string(what) + ": " + std::to_string(bytes) +
+                        " bytes exceed the device's maxStorageBufferRange (" +
+                        std::to_string(ctx.limits().maxStorageBufferRange) +
+                        "): the mesh has too many vertices for this device");
     }
 
     // Splits the slots into runs whose near-list entries fit one storage-buffer binding
-    // (maxStorageBufferRange), each window starting at an allowed binding offset.
-    void plan_near_windows(MeshState& m, const std::vector<uint32_t>& offsets) const
-    {
-        const auto& lim = ctx.limits();
-        const VkDeviceSize align = std::max<VkDeviceSize>(lim.minStorageBufferOffsetAlignment, 4);
-        const VkDeviceSize max_bytes = (VkDeviceSize(lim.maxStorageBufferRange) / align) * align - align;
-        const uint32_t slots = uint32_t(offsets.size() - 1);
-        m.near_windows.clear();
-        for (uint32_t k0 = 0; k0 < slots;) {
-            const VkDeviceSize start = (VkDeviceSize(offsets[k0]) * 4 / align) * align;
-            uint32_t k1 = k0 + 1;
-            if (VkDeviceSize(offsets[k1]) * 4 - start > max_bytes)
-                throw Error("t_m: the near-field list of one vertex exceeds the device's storage-buffer range");
-            // The longest run from k0 that fits (binary search over the monotone offsets).
-            uint32_t lo = k1, hi = slots;
-            while (lo < hi) {
-                const uint32_t mid = lo + (hi - lo + 1) / 2;
-                if (VkDeviceSize(offsets[mid]) * 4 - start <= max_bytes) lo = mid;
-                else hi = mid - 1;
-            }
-            k1 = lo;
-            const VkDeviceSize bytes = std::max<VkDeviceSize>(VkDeviceSize(offsets[k1]) * 4 - start, 4);
-            m.near_windows.push_back({k0, k1 - k0, uint32_t(start / 4), bytes});
-            k0 = k1;
-        }
-    }
+    // (maxStorageBufferRange), each window starting at an allowed binding offset (tm_passes.cpp).
+    void plan_near_windows(MeshState& m, const std::vector<uint32_t>& offsets) const;
 
     void upload_mesh(MeshState& m, const PreparedMesh& mesh, VkBufferUsageFlags extra_usage = 0)
     {
@@ -359,91 +366,26 @@ struct Baker::Impl {
         m.areas = gpu::Buffer::from(ctx, mesh.areas, kStorageUsage | extra_usage, "areas");
     }
 
-    void prepare_ao(MeshState& m, const PreparedMesh& mesh, bool refittable)
-    {
-        const size_t tris = mesh.triangle_count();
-        std::vector<glm::vec3> lo(tris), hi(tris);
-        for (size_t t = 0; t < tris; ++t) {
-            glm::vec3 a = mesh.positions[mesh.indices[3 * t]], b = mesh.positions[mesh.indices[3 * t + 1]],
-                      c = mesh.positions[mesh.indices[3 * t + 2]];
-            lo[t] = glm::min(a, glm::min(b, c));
-            hi[t] = glm::max(a, glm::max(b, c));
-        }
-        bake::Bvh bvh = bake::build_bvh(lo, hi, kTriangleLeafSize, bake::BvhSplit::Sah);
-        bake::RayItems items = bake::flatten_ray_items(bvh, mesh);
-        m.item_count = items.count();
-        // Fetched as texels; bound whole as a storage buffer only by a refit (checked below).
-        m.ray_items = gpu::Buffer(ctx, items.texels.size() * 16, kTexelUsage, "ray items (BVH nodes and triangles)", false,
-                                  gpu::StorageBinding::Windows);
-        m.ray_items.upload(items.texels.data(), items.texels.size() * 16);
-        m.ray_item_texels = gpu::TexelView(ctx, m.ray_items, VK_FORMAT_R32G32B32A32_UINT, 16, "ray items (texels)");
-        m.hits = gpu::Buffer(ctx, mesh.vertex_count() * sizeof(uint32_t), kStorageUsage, "ao hit counts");
-        m.ao = gpu::Buffer(ctx, mesh.vertex_count() * sizeof(float), kStorageUsage, "ao");
-        if (!refittable) return;
-        check_storage_range(VkDeviceSize(items.count()) * 48, "ray items (refitted as a storage buffer)");
-        // Work for ray_refit.comp: every triangle item, then the node items level by level,
-        // deepest first, each with its leaf's triangle count (0: inner node).
-        std::vector<uint32_t> item_of_node(bvh.nodes.size());
-        std::vector<glm::uvec2> work;
-        for (uint32_t k = 0; k < items.count(); ++k) {
-            if (items.origin[k] & bake::kItemTriangleBit) work.push_back({k, 0});
-            else item_of_node[items.origin[k]] = k;
-        }
-        m.ray_work_offsets = {0, uint32_t(work.size())};
-        bake::BvhLevels levels = bake::bvh_levels(bvh);
-        for (size_t l = 0; l < levels.count(); ++l) {
-            for (uint32_t k = levels.offsets[l]; k < levels.offsets[l + 1]; ++k) {
-                const bake::BvhNode& node = bvh.nodes[levels.nodes[k]];
-                work.push_back({item_of_node[levels.nodes[k]], node.leaf() ? node.leaf_count() : 0});
-            }
-            m.ray_work_offsets.push_back(uint32_t(work.size()));
-        }
-        m.indices = gpu::Buffer::from(ctx, mesh.indices, kStorageUsage, "triangle indices");
-        m.item_origin = gpu::Buffer::from(ctx, items.origin, kStorageUsage, "ray item origins");
-        m.ray_work = gpu::Buffer::from(ctx, work, kStorageUsage, "ray refit work");
-    }
-
-    // Ray items follow the current positions: triangles, then node boxes bottom-up.
-    void record_ray_refit(VkCommandBuffer cmd, MeshState& m)
-    {
-        const auto& k = ray_refit_kernel();
-        for (size_t r = 0; r + 1 < m.ray_work_offsets.size(); ++r) {
-            const uint32_t first = m.ray_work_offsets[r], count = m.ray_work_offsets[r + 1] - first;
-            k.dispatch(cmd, count, RayRefitPush{count, first, r == 0 ? 0u : 1u},
-                       {m.positions, m.indices, m.item_origin, m.ray_work, m.ray_items});
-            gpu::compute_barrier(cmd);
-        }
-    }
-
+    // The AO pass (bake/ao.cpp): the BVH as ray items (with refit work when the mesh deforms),
+    // the ray items refitted to the current positions, and the traced and resolved A_o.
+    void prepare_ao(MeshState& m, const PreparedMesh& mesh, bool refittable);
+    void record_ray_refit(VkCommandBuffer cmd, MeshState& m);
     // Traces the ray slices [first, first + count) of m.ao_slices (ao_trace.comp) into their
     // hit counts, then resolves A_o from the counts of every slice.
-    void record_ao(VkCommandBuffer cmd, MeshState& m, const AoSettings& s, uint32_t first = 0, uint32_t count = 0)
-    {
-        if (count == 0) count = m.ao_slices;
-        const VkDeviceSize slice_bytes = VkDeviceSize(m.vertex_count) * sizeof(uint32_t);
-        vkCmdFillBuffer(cmd, m.hits.handle(), first * slice_bytes, count * slice_bytes, 0);
-        gpu::compute_barrier(cmd);
-        const uint32_t rays_in_slice = s.rays / m.ao_slices;
-        for (uint32_t slice = first; slice < first + count; ++slice) {
-            AoPush push{m.vertex_count, s.rays, s.seed, s.low_discrepancy ? 1u : 0u, s.ray_offset_rel * m.diagonal,
-                        s.max_distance_rel * m.diagonal, m.item_count, m.ao_slices, slice};
-            ao_kernel().dispatch(cmd, uint64_t(m.vertex_count) * rays_in_slice, push,
-                                 {m.positions, m.normals, m.ray_item_texels, m.hits});
-        }
-        gpu::compute_barrier(cmd);
-        ao_resolve_kernel().dispatch(cmd, m.vertex_count, AoResolvePush{m.vertex_count, s.rays, m.ao_slices}, {m.hits, m.ao});
-    }
+    void record_ao(VkCommandBuffer cmd, MeshState& m, const AoSettings& s, uint32_t first = 0, uint32_t count = 0);
 
     // The thickness pass (bake/thickness.cpp) traces the AO pass's ray items: prepare_ao first.
     void prepare_thickness(MeshState& m, const ThicknessSettings& s);
     // Traces the thickness ray slices [first, first + count) of m.ao_slices (all by default),
     // then resolves the mean distance from the sums of every slice.
-    void record_thickness(VkCommandBuffer cmd, MeshState& m, const ThicknessSettings& s, uint32_t first = 0, uint32_t count = 0);
+    void record_thickness(VkCommandBuffer cmd, MeshState& m, const ThicknessSettings& s, uint32_t first = 0,
+                          uint32_t count = 0);
 
     // The t_m passes (bake/tm_passes.cpp). Sets up gather → near field → (all pairs | refit →
     // clustered | grid), reading m.ao, writing m.tm. `near_margin` (bake/near_field.hpp) covers
     // how much closer vertices may come.
-    void prepare_tm(MeshState& m, const PreparedMesh& mesh, const Material& material, const BakeSettings& s, float near_margin);
+    void prepare_tm(MeshState& m, const PreparedMesh& mesh, const Material& material, const BakeSettings& s,
+                    float near_margin);
 
     // The near pass over tree slots [slot_begin, slot_end): starts every target's partial sums.
     void record_near(VkCommandBuffer cmd, MeshState& m, uint32_t slot_begin, uint32_t slot_end);
@@ -456,8 +398,8 @@ struct Baker::Impl {
     // Gathers every source and refits the cluster tree, then evaluates t_m for the targets in
     // tree slots [slot_begin, slot_end) (every slot by default; the all-pairs method always
     // evaluates every target).
-    void record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSettings& s, gpu::GpuTimer* timer, uint32_t slot_begin = 0,
-                   uint32_t slot_end = ~0u);
+    void record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSettings& s, gpu::GpuTimer* timer,
+                   uint32_t slot_begin = 0, uint32_t slot_end = ~0u);
 };
 
 }  // namespace jade

@@ -5,7 +5,38 @@
 
 namespace jade {
 
-void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Material& material, const BakeSettings& s, float near_margin)
+// Splits the slots into runs whose near-list entries fit one storage-buffer binding
+// (maxStorageBufferRange), each window starting at an allowed binding offset.
+void Baker::Impl::plan_near_windows(MeshState& m, const std::vector<uint32_t>& offsets) const
+{
+    const auto& lim = ctx.limits();
+    const VkDeviceSize align = std::max<VkDeviceSize>(lim.minStorageBufferOffsetAlignment, 4);
+    const VkDeviceSize max_bytes = (VkDeviceSize(lim.maxStorageBufferRange) / align) * align - align;
+    const uint32_t slots = uint32_t(offsets.size() - 1);
+    m.near_windows.clear();
+    for (uint32_t k0 = 0; k0 < slots;) {
+        const VkDeviceSize start = (VkDeviceSize(offsets[k0]) * 4 / align) * align;
+        uint32_t k1 = k0 + 1;
+        if (VkDeviceSize(offsets[k1]) * 4 - start > max_bytes)
+            throw Error("t_m: the near-field list of one vertex exceeds the device's storage-buffer range");
+        // The longest run from k0 that fits (binary search over the monotone offsets).
+        uint32_t lo = k1, hi = slots;
+        while (lo < hi) {
+            const uint32_t mid = lo + (hi - lo + 1) / 2;
+            if (VkDeviceSize(offsets[mid]) * 4 - start <= max_bytes)
+                lo = mid;
+            else
+                hi = mid - 1;
+        }
+        k1 = lo;
+        const VkDeviceSize bytes = std::max<VkDeviceSize>(VkDeviceSize(offsets[k1]) * 4 - start, 4);
+        m.near_windows.push_back({k0, k1 - k0, uint32_t(start / 4), bytes});
+        k0 = k1;
+    }
+}
+
+void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Material& material, const BakeSettings& s,
+                             float near_margin)
 {
     validate_tm_settings(s, ctx);
     const size_t n = mesh.vertex_count();
@@ -19,17 +50,19 @@ void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Mater
     if (!m.exact && (s.method == TmMethod::Grid || s.method == TmMethod::Auto)) {
         grid_plan = bake::plan_grid(mesh, material, m.variant.grey ? 1 : 3, s.tm_grid_resolution,
                                     near_margin > kStaticNearMargin, near_margin);
-        const uint64_t entries = grid_plan->feasible ? bake::sample_near_entries(mesh, tree, near_margin, float(grid_plan->r_cut)) : 0;
+        const uint64_t entries =
+            grid_plan->feasible ? bake::sample_near_entries(mesh, tree, near_margin, float(grid_plan->r_cut)) : 0;
         const bool long_lists = entries * 4 > kGridMaxNearBytes;
         if (s.method == TmMethod::Grid && (!grid_plan->feasible || long_lists))
             throw Error("t_m grid: " + std::to_string(n) + " vertices spread over these bounds need " +
                         std::to_string(grid_plan->cells_needed) + " grid cells at resolution " +
                         std::to_string(s.tm_grid_resolution) + " (the limit is " + std::to_string(bake::kGridMaxCells) +
                         ") or near lists of ~" + std::to_string(entries * 4 >> 20) + " MiB (the limit is " +
-                        std::to_string(kGridMaxNearBytes >> 20) + " MiB): use the clustered far field "
+                        std::to_string(kGridMaxNearBytes >> 20) +
+                        " MiB): use the clustered far field "
                         "(TmMethod::Clustered, --method clustered) or a lower resolution");
-        if (s.method == TmMethod::Auto && (grid_plan->coarsened || long_lists ||
-                                            entries > 4 * grid_plan->near_entries(n, near_margin)))
+        if (s.method == TmMethod::Auto &&
+            (grid_plan->coarsened || long_lists || entries > 4 * grid_plan->near_entries(n, near_margin)))
             grid_plan.reset();
     }
     m.grid = grid_plan.has_value();
@@ -48,10 +81,12 @@ void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Mater
     m.normal_sum = gpu::Buffer(ctx, n * 36, kStorageUsage, "scattering normal sums (per channel)");
     m.partial_sum = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m partial sums");
     m.partial_comp = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m partial compensation");
-    if (m.grid) prepare_grid(m, *grid_plan);
+    if (m.grid)
+        prepare_grid(m, *grid_plan);
     else {
         m.smooth_table = gpu::Buffer(ctx, 16, kTexelUsage, "smooth-part table (unused)");
-        m.smooth_table_texels = gpu::TexelView(ctx, m.smooth_table, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "smooth-part table");
+        m.smooth_table_texels =
+            gpu::TexelView(ctx, m.smooth_table, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "smooth-part table");
     }
     bake::NearLists near = bake::build_near_lists(mesh, tree, near_margin, float(m.grid_r_cut));
     std::vector<uint32_t> identity;
@@ -60,7 +95,8 @@ void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Mater
         std::iota(identity.begin(), identity.end(), 0u);
     }
     // Rows in slot order, so a range of slots has a contiguous window of entries.
-    near = bake::reorder_rows(near, m.exact ? std::span<const uint32_t>(identity) : std::span<const uint32_t>(tree.order));
+    near =
+        bake::reorder_rows(near, m.exact ? std::span<const uint32_t>(identity) : std::span<const uint32_t>(tree.order));
     // Entries name source slots: the near pass reads the sources in slot order as texels.
     if (!m.exact) {
         std::vector<uint32_t> slot_of(n);
@@ -80,7 +116,8 @@ void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Mater
                                 : gpu::Buffer::from(ctx, tree.order, kStorageUsage, "point tree order");
         m.points = gpu::Buffer(ctx, n * 32, kTexelUsage, "t_m sources");
         m.point_texels = gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "t_m sources (texels)");
-        m.source_texels = gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_UINT, 16, "t_m sources (integer texels)");
+        m.source_texels =
+            gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_UINT, 16, "t_m sources (integer texels)");
         return;
     }
     m.point_order = gpu::Buffer::from(ctx, tree.order, kStorageUsage, "point tree order");
@@ -96,10 +133,13 @@ void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Mater
     m.first_point = (4 * m.node_count + 15) / 16 * 16;
     check_storage_range(VkDeviceSize(n) * 32, "t_m sources");
     check_storage_range(VkDeviceSize(m.node_count) * 64, "t_m cluster nodes");
-    m.points = gpu::Buffer(ctx, VkDeviceSize(m.first_point) * 16 + n * 32, kTexelUsage, "t_m cluster tree and sources", false,
-                           gpu::StorageBinding::Windows);  // bound as two windows, each checked above
-    m.tree_texels = gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_UINT, 16, "t_m cluster tree and sources (texels)");
-    m.source_texels = gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_UINT, 16, "t_m cluster tree and sources (texels)");
+    m.points =
+        gpu::Buffer(ctx, VkDeviceSize(m.first_point) * 16 + n * 32, kTexelUsage, "t_m cluster tree and sources", false,
+                    gpu::StorageBinding::Windows);  // bound as two windows, each checked above
+    m.tree_texels =
+        gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_UINT, 16, "t_m cluster tree and sources (texels)");
+    m.source_texels =
+        gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_UINT, 16, "t_m cluster tree and sources (texels)");
     m.source_base = m.first_point;
     m.resume = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m traversal resume state");
 }
@@ -107,7 +147,8 @@ void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Mater
 void Baker::Impl::record_near(VkCommandBuffer cmd, MeshState& m, uint32_t slot_begin, uint32_t slot_end)
 {
     for (const auto& w : m.near_windows) {
-        const uint32_t first = std::max(w.first_slot, slot_begin), end = std::min(w.first_slot + w.slot_count, slot_end);
+        const uint32_t first = std::max(w.first_slot, slot_begin),
+                       end = std::min(w.first_slot + w.slot_count, slot_end);
         if (first >= end) continue;
         near_kernel(m.variant, m.grid)
             .dispatch(cmd, end - first,
@@ -119,8 +160,8 @@ void Baker::Impl::record_near(VkCommandBuffer cmd, MeshState& m, uint32_t slot_b
     gpu::compute_barrier(cmd);
 }
 
-void Baker::Impl::record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSettings& s, gpu::GpuTimer* timer, uint32_t slot_begin,
-                   uint32_t slot_end)
+void Baker::Impl::record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSettings& s, gpu::GpuTimer* timer,
+                            uint32_t slot_begin, uint32_t slot_end)
 {
     auto mark = [&](const char* stage) {
         if (timer) timer->mark(cmd, stage);
@@ -130,7 +171,8 @@ void Baker::Impl::record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSetting
     slot_end = std::min(slot_end, n);
     const gpu::Binding nodes_window(m.points.handle(), 0, std::max<VkDeviceSize>(VkDeviceSize(m.node_count) * 64, 16));
     const gpu::Binding points_window(m.points.handle(), VkDeviceSize(m.first_point) * 16, VkDeviceSize(n) * 32);
-    gather_kernel().dispatch(cmd, n, GatherPush{n}, {m.positions, m.areas, m.ao, m.point_order, points_window, m.normals});
+    gather_kernel().dispatch(cmd, n, GatherPush{n},
+                             {m.positions, m.areas, m.ao, m.point_order, points_window, m.normals});
     gpu::compute_barrier(cmd);
     mark("gather");
     if (m.grid) {
@@ -142,7 +184,8 @@ void Baker::Impl::record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSetting
     if (!m.exact) {
         for (size_t l = 0; l + 1 < m.level_offsets.size(); ++l) {
             const uint32_t first = m.level_offsets[l], count = m.level_offsets[l + 1] - first;
-            refit_kernel().dispatch(cmd, count, RefitPush{count, first}, {m.nodes, m.node_levels, nodes_window, points_window});
+            refit_kernel().dispatch(cmd, count, RefitPush{count, first},
+                                    {m.nodes, m.node_levels, nodes_window, points_window});
             gpu::compute_barrier(cmd);
         }
         mark("refit");
@@ -154,7 +197,8 @@ void Baker::Impl::record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSetting
         const auto& kernel = exact_kernel(m.variant, s.tm_float64_sums);
         for (uint32_t begin = 0; begin < n; begin += kExactSourcesPerDispatch) {
             ExactPush push{n, begin, std::min(n, begin + kExactSourcesPerDispatch)};
-            kernel.dispatch(cmd, n, push, {m.profiles, m.point_texels, m.partial_sum, m.partial_comp, m.tm, m.normal_sum});
+            kernel.dispatch(cmd, n, push,
+                            {m.profiles, m.point_texels, m.partial_sum, m.partial_comp, m.tm, m.normal_sum});
             gpu::compute_barrier(cmd);
         }
         mark("t_m far field (all pairs)");
@@ -166,8 +210,9 @@ void Baker::Impl::record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSetting
     const uint32_t dispatches = (m.node_count + n) / kClusterWorkPerDispatch + 1;
     ClusterPush push{n, m.node_count, s.tm_opening_ratio, kClusterWorkPerDispatch, m.first_point, slot_begin, slot_end};
     for (uint32_t d = 0; d < dispatches; ++d) {
-        kernel.dispatch(cmd, slot_end - slot_begin, push,
-                        {m.profiles, m.tree_texels, m.point_order, m.resume, m.partial_sum, m.partial_comp, m.tm, m.normal_sum});
+        kernel.dispatch(
+            cmd, slot_end - slot_begin, push,
+            {m.profiles, m.tree_texels, m.point_order, m.resume, m.partial_sum, m.partial_comp, m.tm, m.normal_sum});
         gpu::compute_barrier(cmd);
     }
     mark("t_m far field (clustered)");

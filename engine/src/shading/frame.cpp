@@ -6,11 +6,13 @@
 #include <jade/context.hpp>
 #include <jade/error.hpp>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <numbers>
 #include <string>
 
 namespace jade::shading {
@@ -25,18 +27,20 @@ void check_settings(const gpu::Context& ctx, const RenderSettings& s, std::span<
         throw Error("render: " + std::to_string(lights.size()) + " lights, at most " + std::to_string(kMaxLights));
     for (size_t k = 0; k < lights.size(); ++k) {
         const Light& l = lights[k];
-        bool ok = std::isfinite(l.vector.x + l.vector.y + l.vector.z) && std::isfinite(l.color.r + l.color.g + l.color.b) &&
+        bool ok = std::isfinite(l.vector.x + l.vector.y + l.vector.z) &&
+                  std::isfinite(l.color.r + l.color.g + l.color.b) &&
                   (l.type == Light::Type::Point || glm::length(l.vector) > 0.0f);
         if (!ok) throw Error("render: light " + std::to_string(k) + " has a non-finite value or a zero direction");
     }
-    const VkSampleCountFlags supported = ctx.limits().framebufferColorSampleCounts &
-                                         ctx.limits().framebufferDepthSampleCounts;
+    const VkSampleCountFlags supported =
+        ctx.limits().framebufferColorSampleCounts & ctx.limits().framebufferDepthSampleCounts;
     if ((s.samples != 1 && s.samples != 2 && s.samples != 4 && s.samples != 8) || !(supported & s.samples))
         throw Error("render settings: " + std::to_string(s.samples) + " MSAA samples are not supported by " +
                     ctx.info().name + " (supported mask " + std::to_string(supported) + ")");
 }
 
-FramePush frame_push(const Camera& cam, glm::vec3 bbox_min, glm::vec3 bbox_max, uint32_t width, uint32_t height, uint32_t light_count)
+FramePush frame_push(const Camera& cam, glm::vec3 bbox_min, glm::vec3 bbox_max, uint32_t width, uint32_t height,
+                     uint32_t light_count)
 {
     const glm::vec3 back = cam.eye - cam.target;
     if (!(glm::length(back) > 0.0f)) throw Error("camera: eye and target are the same point");
@@ -57,14 +61,72 @@ FramePush frame_push(const Camera& cam, glm::vec3 bbox_min, glm::vec3 bbox_max, 
     return {fitted.view_projection(float(width) / float(height)), cam.eye, light_count};
 }
 
+FrameData material_constants(const Material& m)
+{
+    FrameData d{};
+    d.albedo_strength = glm::vec4(m.albedo, m.strength);
+    const float f0 = std::pow((m.ior - 1.0f) / (m.ior + 1.0f), 2.0f);
+    d.specular = glm::vec4(f0, std::max(m.roughness * m.roughness, 1e-3f), m.specular, m.spread_strength);
+    const Transmission& tr = m.transmission;
+    d.transmission = glm::vec4(glm::min(tr.sigma_t, glm::vec3(3.0e38f)), tr.weight);
+    d.transmission_diffusion = glm::vec4(glm::min(tr.sigma_tr, glm::vec3(3.0e38f)), tr.diffusion_weight);
+    d.transmission_scatter = glm::vec4(glm::min(tr.sigma_s_reduced, glm::vec3(3.0e38f)), 0.0f);
+    d.transmission_shape = glm::vec4(tr.lobe, (tr.lobe + 1.0f) / (2.0f * float(std::numbers::pi)), tr.normal_mix,
+                                     m.boundary_transmittance ? 1.0f : 0.0f);
+    return d;
+}
+
+void check_target(const RenderTarget& t, const RenderSettings& s)
+{
+    if (t.width != s.width || t.height != s.height || !t.color || !t.depth || (s.samples > 1) != bool(t.resolve))
+        throw Error("render target: size or views do not match the settings (" + std::to_string(s.width) + "x" +
+                    std::to_string(s.height) + ", " + std::to_string(s.samples) + " samples)");
+}
+
+void begin_rendering(VkCommandBuffer cmd, const RenderTarget& t, const RenderSettings& s)
+{
+    VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    color.imageView = t.color;
+    color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    color.loadOp = t.load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
+    color.storeOp = t.resolve && !t.keep ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
+    // Only a cleared attachment gets a clear value: lavapipe (Mesa 22.3) clears a LOAD
+    // attachment whose clear value is non-zero (seen in samples/embed: the host's frame
+    // came back as the background colour).
+    if (!t.load)
+        color.clearValue.color = {
+            {s.background.r, s.background.g, s.background.b, s.transparent_background ? 0.0f : 1.0f}};
+    if (t.resolve) {
+        color.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
+        color.resolveImageView = t.resolve;
+        color.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    }
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depth.imageView = t.depth;
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depth.loadOp = t.load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth.storeOp = t.load || t.keep ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    if (!t.load) depth.clearValue.depthStencil = {1.0f, 0};  // as for colour above
+    VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    ri.renderArea = {{0, 0}, {s.width, s.height}};
+    ri.layerCount = 1;
+    ri.colorAttachmentCount = 1;
+    ri.pColorAttachments = &color;
+    ri.pDepthAttachment = &depth;
+    vkCmdBeginRendering(cmd, &ri);
+}
+
 float half_to_float(uint16_t h)
 {
     const uint32_t sign = uint32_t(h >> 15) << 31, exponent = (h >> 10) & 0x1f, mantissa = h & 0x3ff;
     uint32_t bits;
-    if (exponent == 0x1f) bits = sign | 0x7f800000u | (mantissa << 13);       // inf, NaN
-    else if (exponent != 0) bits = sign | ((exponent + 112) << 23) | (mantissa << 13);
-    else if (mantissa == 0) bits = sign;                                         // ±0
-    else {                                                                       // subnormal
+    if (exponent == 0x1f)
+        bits = sign | 0x7f800000u | (mantissa << 13);  // inf, NaN
+    else if (exponent != 0)
+        bits = sign | ((exponent + 112) << 23) | (mantissa << 13);
+    else if (mantissa == 0)
+        bits = sign;  // ±0
+    else {            // subnormal
         float f = std::ldexp(float(mantissa), -24);
         return sign ? -f : f;
     }

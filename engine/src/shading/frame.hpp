@@ -1,6 +1,7 @@
 // shading/frame.hpp - the per-draw checks and constants of jade::Renderer that need none of its
 // state: the settings and lights validated, the push constants with near and far fitted to the
-// mesh's bounds, and the half floats of the read-back decoded.
+// mesh's bounds, the material's part of the frame constants, the dynamic-rendering begin on a
+// RenderTarget, and the half floats of the read-back decoded.
 #pragma once
 
 #include "shading/mesh_pipeline.hpp"
@@ -10,7 +11,9 @@
 #include <cstdint>
 #include <span>
 
-namespace jade::gpu { class Context; }
+namespace jade::gpu {
+class Context;
+}
 
 namespace jade::shading {
 
@@ -22,6 +25,17 @@ void check_settings(const gpu::Context& ctx, const RenderSettings& s, std::span<
 /// bbox_max] unless the camera gives both. Throws jade::Error for a degenerate camera.
 FramePush frame_push(const Camera& cam, glm::vec3 bbox_min, glm::vec3 bbox_max, uint32_t width, uint32_t height,
                      uint32_t light_count);
+
+/// The material's part of FrameData (albedo, strength, specular, transmission); the rest is zero.
+FrameData material_constants(const Material& m);
+
+/// Throws jade::Error unless the target's size and views match the settings (resolve view
+/// exactly when multisampled).
+void check_target(const RenderTarget& t, const RenderSettings& s);
+
+/// vkCmdBeginRendering on the target: colour (resolved when t.resolve) and depth, cleared to the
+/// background unless t.load, stored as t.keep and t.load ask.
+void begin_rendering(VkCommandBuffer cmd, const RenderTarget& t, const RenderSettings& s);
 
 /// IEEE half to float (inf, NaN, subnormals included).
 float half_to_float(uint16_t h);

@@ -47,7 +47,10 @@ using shading::kMaxLights;
 using shading::Vertex;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 
-VkFormat color_format(const RenderSettings& s) { return s.float32 ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT; }
+VkFormat color_format(const RenderSettings& s)
+{
+    return s.float32 ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT;
+}
 
 }  // namespace
 
@@ -58,7 +61,7 @@ struct Renderer::Impl {
     gpu::Context& ctx;
     RendererOptions options;
     gpu::OwnedSampler sampler, nearest;
-    std::shared_ptr<shading::TranslucencyLut> lut;        // shared by the Renderers of this device and layout
+    std::shared_ptr<shading::TranslucencyLut> lut;         // shared by the Renderers of this device and layout
     std::optional<shading::CurvatureLut> curvature_lut;    // made on demand: curvature_image()
     std::array<ChannelProfile, 3> curvature_lut_profiles;  // what curvature_lut was built for
     gpu::Image placeholder;                                // 1×1, bound when curvature_lut is not
@@ -92,9 +95,13 @@ struct Renderer::Impl {
 
     Impl(gpu::Context& c, const RendererOptions& o)
         : ctx(c), options(o), sampler(shading::make_lut_sampler(c)),
-          nearest(gpu::make_sampler(c, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "light depth sampler")), lut(shading::shared_translucency_lut(c, o.lut)),
-          placeholder(c, {"curvature LUT placeholder", 1, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_SAMPLED_BIT}),
-          frame_data(c, sizeof(FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, "frame data"),
+          nearest(
+              gpu::make_sampler(c, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "light depth sampler")),
+          lut(shading::shared_translucency_lut(c, o.lut)),
+          placeholder(c,
+                      {"curvature LUT placeholder", 1, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_SAMPLED_BIT}),
+          frame_data(c, sizeof(FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                     "frame data"),
           evaluation(shading::resolve_evaluation(o.tm_evaluation, c)), pipelines(c), transmission_table(c)
     {
         // Sampled-image descriptors need the image in its layout even if never read.
@@ -132,11 +139,13 @@ struct Renderer::Impl {
     // sphere (exact for directional lights; point lights always count).
     bool transmission_reaches_camera(const Camera& cam, std::span<const Light> lights, const RenderSettings& s) const
     {
-        if (s.mode != ShadingMode::Tm || !s.transmission || !has_thickness || !material->transmission.enabled()) return false;
+        if (s.mode != ShadingMode::Tm || !s.transmission || !has_thickness || !material->transmission.enabled())
+            return false;
         const glm::vec3 centre = 0.5f * (bbox_min + bbox_max);
         const float radius = 0.5f * glm::length(bbox_max - bbox_min);
-        return std::any_of(lights.begin(), lights.end(),
-                           [&](const Light& l) { return shading::LightDepth::may_transmit(cam.eye, l, centre, radius); });
+        return std::any_of(lights.begin(), lights.end(), [&](const Light& l) {
+            return shading::LightDepth::may_transmit(cam.eye, l, centre, radius);
+        });
     }
 
     // The lights drawn with transmission: the first kMaxTransmitters that may shine through the
@@ -156,10 +165,11 @@ struct Renderer::Impl {
         const float radius = 0.5f * glm::length(bbox_max - bbox_min);
         auto transmits = [&](const Light& l) { return shading::LightDepth::may_transmit(cam.eye, l, centre, radius); };
         std::vector<uint32_t> tiles(lights.size(), 0);
-        if (std::any_of(lights.begin(), lights.end(), [&](const Light& l) { return l.type == Light::Type::Directional && transmits(l); })) {
+        if (std::any_of(lights.begin(), lights.end(),
+                        [&](const Light& l) { return l.type == Light::Type::Directional && transmits(l); })) {
             if (!light_depth) light_depth.emplace(ctx, options.light_depth_size);
-            tiles = light_depth->record(cmd, cam.eye, lights, vertices.handle(), sizeof(Vertex), indices.handle(), index_count,
-                                        centre, radius, geometry_version);
+            tiles = light_depth->record(cmd, cam.eye, lights, vertices.handle(), sizeof(Vertex), indices.handle(),
+                                        index_count, centre, radius, geometry_version);
         }
         for (size_t k = 0; k < lights.size() && out.lights.size() < shading::kMaxTransmitters; ++k)
             if (transmits(lights[k])) {
@@ -189,25 +199,17 @@ struct Renderer::Impl {
         return curvature_lut ? curvature_lut->image() : placeholder;
     }
 
-    FrameData frame_constants(std::span<const Light> lights, const RenderSettings& s, const Transmitting& transmitting) const
+    FrameData frame_constants(std::span<const Light> lights, const RenderSettings& s,
+                              const Transmitting& transmitting) const
     {
-        const Material& m = *material;
-        FrameData d{};
-        d.albedo_strength = glm::vec4(m.albedo, m.strength);
-        const float f0 = std::pow((m.ior - 1.0f) / (m.ior + 1.0f), 2.0f);
-        d.specular = glm::vec4(f0, std::max(m.roughness * m.roughness, 1e-3f), m.specular, m.spread_strength);
+        FrameData d = shading::material_constants(*material);
         d.lut_map = lut->shader_map();
         const auto [lo, hi] = false_color_range(s);
         d.curvature_map = curvature_lut ? curvature_lut->shader_map() : glm::vec4(0.0f);
-        d.params = glm::vec4(float(1.0 / LutLayout::kMaxVariance), curvature_lut ? float(curvature_lut->scale()) : 0.0f, lo,
-                             // finite: the shader multiplies (t_m − lo) by it, 0 · Inf would be NaN
-                             float(std::min(1.0 / (double(hi) - double(lo)), double(FLT_MAX))));
-        const Transmission& tr = m.transmission;
-        d.transmission = glm::vec4(glm::min(tr.sigma_t, glm::vec3(3.0e38f)), tr.weight);
-        d.transmission_diffusion = glm::vec4(glm::min(tr.sigma_tr, glm::vec3(3.0e38f)), tr.diffusion_weight);
-        d.transmission_scatter = glm::vec4(glm::min(tr.sigma_s_reduced, glm::vec3(3.0e38f)), 0.0f);
-        d.transmission_shape = glm::vec4(tr.lobe, (tr.lobe + 1.0f) / (2.0f * float(std::numbers::pi)), tr.normal_mix,
-                                         m.boundary_transmittance ? 1.0f : 0.0f);
+        d.params =
+            glm::vec4(float(1.0 / LutLayout::kMaxVariance), curvature_lut ? float(curvature_lut->scale()) : 0.0f, lo,
+                      // finite: the shader multiplies (t_m − lo) by it, 0 · Inf would be NaN
+                      float(std::min(1.0 / (double(hi) - double(lo)), double(FLT_MAX))));
         if (light_depth) {
             d.light_depth_map = glm::vec4(float(light_depth->tile_size()), float(shading::LightDepth::kMaxLights),
                                           light_depth->depth_range(), 0.0f);
@@ -227,53 +229,28 @@ struct Renderer::Impl {
                 const RenderSettings& s, uint32_t mode)
     {
         check_ready(s, lights);
-        if (t.width != s.width || t.height != s.height || !t.color || !t.depth || (s.samples > 1) != bool(t.resolve))
-            throw Error("render target: size or views do not match the settings (" + std::to_string(s.width) + "x" +
-                        std::to_string(s.height) + ", " + std::to_string(s.samples) + " samples)");
+        shading::check_target(t, s);
         const FramePush push = shading::frame_push(cam, bbox_min, bbox_max, s.width, s.height, uint32_t(lights.size()));
-        const gpu::Image& curvature =
-            s.mode == ShadingMode::Curvature ? curvature_image() : curvature_lut ? curvature_lut->image() : placeholder;
+        const gpu::Image& curvature = s.mode == ShadingMode::Curvature ? curvature_image()
+                                      : curvature_lut                  ? curvature_lut->image()
+                                                                       : placeholder;
         const Transmitting transmitting = record_transmission(cmd, cam, lights, s);
         const FrameData data = frame_constants(lights, s, transmitting);
-        const auto& pipe = pipelines.get(variant(mode, uint32_t(transmitting.lights.size())), color_format(s), s.samples);
+        const auto& pipe =
+            pipelines.get(variant(mode, uint32_t(transmitting.lights.size())), color_format(s), s.samples);
         const gpu::Image& light_depth_image = transmitting.tiles ? light_depth->atlas() : placeholder;
 
         // The frame constants are rewritten in the command stream: wait for the previous draw's
         // shader reads (write-after-read), then make the new values visible to this draw.
         const size_t bytes = offsetof(FrameData, lights) + lights.size() * sizeof(GpuLight);
-        constexpr VkPipelineStageFlags2 shaders = VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+        constexpr VkPipelineStageFlags2 shaders =
+            VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
         gpu::memory_barrier(cmd, shaders, 0, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
         vkCmdUpdateBuffer(cmd, frame_data.handle(), 0, (bytes + 3) & ~size_t(3), &data);
         gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, shaders,
                             VK_ACCESS_2_UNIFORM_READ_BIT);
 
-        VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        color.imageView = t.color;
-        color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        color.loadOp = t.load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
-        color.storeOp = t.resolve && !t.keep ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
-        // Only a cleared attachment gets a clear value: lavapipe (Mesa 22.3) clears a LOAD
-        // attachment whose clear value is non-zero (seen in samples/embed: the host's frame
-        // came back as the background colour).
-        if (!t.load) color.clearValue.color = {{s.background.r, s.background.g, s.background.b, s.transparent_background ? 0.0f : 1.0f}};
-        if (t.resolve) {
-            color.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
-            color.resolveImageView = t.resolve;
-            color.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        }
-        VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        depth.imageView = t.depth;
-        depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-        depth.loadOp = t.load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
-        depth.storeOp = t.load || t.keep ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
-        if (!t.load) depth.clearValue.depthStencil = {1.0f, 0};  // as for colour above
-        VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
-        ri.renderArea = {{0, 0}, {s.width, s.height}};
-        ri.layerCount = 1;
-        ri.colorAttachmentCount = 1;
-        ri.pColorAttachments = &color;
-        ri.pDepthAttachment = &depth;
-        vkCmdBeginRendering(cmd, &ri);
+        shading::begin_rendering(cmd, t, s);
         pipe.bind(cmd, {s.width, s.height}, push,
                   {frame_data, lut->quads(),
                    gpu::Binding::image(curvature.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler),
@@ -296,11 +273,14 @@ struct Renderer::Impl {
         t = Targets{};
         const auto msaa = VkSampleCountFlagBits(s.samples);
         const VkImageUsageFlags attachment = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
-        t.color = gpu::Image(ctx, {"render colour", s.width, s.height, format,
-                                   attachment | (s.samples == 1 ? VkImageUsageFlags(VK_IMAGE_USAGE_TRANSFER_SRC_BIT) : 0u), msaa});
+        t.color = gpu::Image(
+            ctx, {"render colour", s.width, s.height, format,
+                  attachment | (s.samples == 1 ? VkImageUsageFlags(VK_IMAGE_USAGE_TRANSFER_SRC_BIT) : 0u), msaa});
         if (s.samples > 1)
-            t.resolve = gpu::Image(ctx, {"render resolve", s.width, s.height, format, attachment | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
-        t.depth = gpu::Image(ctx, {"render depth", s.width, s.height, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, msaa});
+            t.resolve = gpu::Image(
+                ctx, {"render resolve", s.width, s.height, format, attachment | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+        t.depth = gpu::Image(
+            ctx, {"render depth", s.width, s.height, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, msaa});
         t.readback = gpu::Buffer(ctx, t.color.bytes(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, "render read-back", true);
         t.width = s.width, t.height = s.height, t.samples = s.samples, t.format = format;
     }
@@ -320,7 +300,8 @@ struct Renderer::Impl {
             t.color.transition(cmd, gpu::use::kColorAttachment, true);
             t.depth.transition(cmd, gpu::use::kDepthAttachment, true);
             if (t.resolve) t.resolve.transition(cmd, gpu::use::kColorAttachment, true);
-            record(cmd, {t.color.view(), t.resolve ? t.resolve.view() : VK_NULL_HANDLE, t.depth.view(), s.width, s.height},
+            record(cmd,
+                   {t.color.view(), t.resolve ? t.resolve.view() : VK_NULL_HANDLE, t.depth.view(), s.width, s.height},
                    cam, lights, s, mode);
             timer->mark(cmd, "draw");
             result.transition(cmd, gpu::use::kTransferSrc);
@@ -331,7 +312,8 @@ struct Renderer::Impl {
         img.width = s.width, img.height = s.height;
         const size_t n = size_t(s.width) * s.height * 4;
         img.rgba.resize(n);
-        if (s.float32) t.readback.download(img.rgba.data(), n * sizeof(float));
+        if (s.float32)
+            t.readback.download(img.rgba.data(), n * sizeof(float));
         else {
             std::vector<uint16_t> half = t.readback.read<uint16_t>(n);
             for (size_t i = 0; i < n; ++i) img.rgba[i] = shading::half_to_float(half[i]);
@@ -354,7 +336,8 @@ struct Renderer::Impl {
         ShadingInputs in;
         in.width = s.width, in.height = s.height;
         std::vector<glm::vec4> paths;  // of the transmitting lights, in their order
-        std::vector<glm::vec4>* planes[] = {&in.position, &in.normal, &in.tm, &paths, &in.scattering_normal, &in.normal_spread};
+        std::vector<glm::vec4>* planes[] = {&in.position,          &in.normal,       &in.tm, &paths,
+                                            &in.scattering_normal, &in.normal_spread};
         for (uint32_t k = 0; k < shading::kInputsSlots; ++k) {
             const RenderedImage img = render(cam, lights, s, shading::kInputsMode + k);
             planes[k]->resize(pixels);
@@ -374,7 +357,10 @@ struct Renderer::Impl {
     }
 };
 
-Renderer::Renderer(Context& context, const RendererOptions& options) : impl_(std::make_unique<Impl>(context.gpu(), options)) {}
+Renderer::Renderer(Context& context, const RendererOptions& options)
+    : impl_(std::make_unique<Impl>(context.gpu(), options))
+{
+}
 Renderer::~Renderer()
 {
     if (impl_) impl_->ctx.release_after_gpu(std::move(impl_));
@@ -392,15 +378,17 @@ void Renderer::set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm,
     if (mesh.normals.size() != n || mesh.indices.empty())
         throw Error("Renderer::set_mesh: the mesh is empty or not prepared (use prepare_mesh)");
     std::vector<float> curvature = mean_curvature(mesh, impl_->options.curvature_smoothing);
-    shading::MeshVertices built = shading::build_vertices(mesh, tm, thickness, scattering_normal, normal_spread, curvature);
+    shading::MeshVertices built =
+        shading::build_vertices(mesh, tm, thickness, scattering_normal, normal_spread, curvature);
     std::vector<Vertex>& vertices = built.vertices;
     const float tm_min = built.tm_min_mean, tm_max = built.tm_max_mean;
     const glm::vec3 tm_min_channel = built.tm_min;
     Impl& m = *impl_;
-    if (m.has_mesh) m.ctx.release_after_gpu(std::move(m.vertices), std::move(m.indices));  // recorded draws may read them
+    if (m.has_mesh)
+        m.ctx.release_after_gpu(std::move(m.vertices), std::move(m.indices));  // recorded draws may read them
     // Storage too: record_vertex_update() rewrites positions, normals and t_m on the GPU.
-    m.vertices = gpu::Buffer::from(m.ctx, vertices, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                   "mesh vertices");
+    m.vertices = gpu::Buffer::from(
+        m.ctx, vertices, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "mesh vertices");
     m.vertex_count = uint32_t(n);
     m.indices = gpu::Buffer::from(m.ctx, mesh.indices, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "mesh indices");
     m.index_count = uint32_t(mesh.indices.size());
@@ -413,28 +401,37 @@ void Renderer::set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm,
     m.has_thickness = !thickness.empty();
 }
 
-void Renderer::record_vertex_update(VkCommandBuffer cmd, VkBuffer positions, VkBuffer normals, VkBuffer tm, VkBuffer thickness,
-                                    VkBuffer scattering_normal)
+void Renderer::record_vertex_update(VkCommandBuffer cmd, VkBuffer positions, VkBuffer normals, VkBuffer tm,
+                                    VkBuffer thickness, VkBuffer scattering_normal)
 {
     Impl& m = *impl_;
     if (!m.has_mesh) throw Error("Renderer::record_vertex_update: no mesh (call set_mesh first)");
     if (!positions || !normals || !tm) throw Error("Renderer::record_vertex_update: a buffer is VK_NULL_HANDLE");
-    struct PackPush { uint32_t vertex_count, has_thickness, has_scattering_normal; };
+    struct PackPush {
+        uint32_t vertex_count, has_thickness, has_scattering_normal;
+    };
     if (!m.pack_vertices)
-        m.pack_vertices.emplace(m.ctx, gpu::KernelDesc{"pack_vertices", shaders::pack_vertices_comp(),
-                                                      std::vector<VkDescriptorType>(6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
-                                                      sizeof(PackPush), 64, {}});
+        m.pack_vertices.emplace(m.ctx,
+                                gpu::KernelDesc{"pack_vertices",
+                                                shaders::pack_vertices_comp(),
+                                                std::vector<VkDescriptorType>(6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
+                                                sizeof(PackPush),
+                                                64,
+                                                {}});
     const VkDeviceSize stream = VkDeviceSize(m.vertex_count) * 12;
     // Earlier compute or transfer writes to the inputs, and earlier draws' reads of the vertices.
-    gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT |
-                                 VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT,
-                        VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+    gpu::memory_barrier(cmd,
+                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT |
+                            VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT,
+                        VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                         VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT);
     // Without a thickness or scattering-normal stream the binding gets the t_m stream (never read).
-    m.pack_vertices->dispatch(cmd, m.vertex_count, PackPush{m.vertex_count, thickness ? 1u : 0u, scattering_normal ? 1u : 0u},
-                              {gpu::Binding(positions, 0, stream), gpu::Binding(normals, 0, stream), gpu::Binding(tm, 0, stream),
-                               m.vertices, gpu::Binding(thickness ? thickness : tm, 0, stream / 3),
-                               gpu::Binding(scattering_normal ? scattering_normal : tm, 0, stream)});
+    m.pack_vertices->dispatch(
+        cmd, m.vertex_count, PackPush{m.vertex_count, thickness ? 1u : 0u, scattering_normal ? 1u : 0u},
+        {gpu::Binding(positions, 0, stream), gpu::Binding(normals, 0, stream), gpu::Binding(tm, 0, stream), m.vertices,
+         gpu::Binding(thickness ? thickness : tm, 0, stream / 3),
+         gpu::Binding(scattering_normal ? scattering_normal : tm, 0, stream)});
     if (thickness) m.has_thickness = true;
     m.tm_min = glm::vec3(0.0f);  // t_m now comes from the GPU: the evaluation must hold for any t
     ++m.geometry_version;
@@ -442,7 +439,8 @@ void Renderer::record_vertex_update(VkCommandBuffer cmd, VkBuffer positions, VkB
                         VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT, VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT);
 }
 
-void Renderer::update_vertices(VkBuffer positions, VkBuffer normals, VkBuffer tm, VkBuffer thickness, VkBuffer scattering_normal)
+void Renderer::update_vertices(VkBuffer positions, VkBuffer normals, VkBuffer tm, VkBuffer thickness,
+                               VkBuffer scattering_normal)
 {
     impl_->ctx.submit_and_wait(
         [&](VkCommandBuffer cmd) { record_vertex_update(cmd, positions, normals, tm, thickness, scattering_normal); });
@@ -468,15 +466,16 @@ RenderedImage Renderer::render(const Camera& camera, std::span<const Light> ligh
     return impl_->render(camera, lights, settings, uint32_t(settings.mode));
 }
 
-ShadingInputs Renderer::shading_inputs(const Camera& camera, std::span<const Light> lights, const RenderSettings& settings)
+ShadingInputs Renderer::shading_inputs(const Camera& camera, std::span<const Light> lights,
+                                       const RenderSettings& settings)
 {
     return impl_->shading_inputs(camera, lights, settings);
 }
 
 TmEvaluation Renderer::tm_evaluation() const { return impl_->evaluation; }
 
-void Renderer::record(VkCommandBuffer cmd, const RenderTarget& target, const Camera& camera, std::span<const Light> lights,
-                      const RenderSettings& settings)
+void Renderer::record(VkCommandBuffer cmd, const RenderTarget& target, const Camera& camera,
+                      std::span<const Light> lights, const RenderSettings& settings)
 {
     impl_->ctx.collect_released();  // once a frame: what earlier set_mesh calls replaced
     impl_->record(cmd, target, camera, lights, settings, uint32_t(settings.mode));
