@@ -97,7 +97,8 @@ TEST_F(BakeCacheTest, CorruptOrStaleEntriesAreDetectedAndRebaked)
     const CachedBake good = bake_with_cache(context(), cache, sphere, material, settings);
     const auto path = cache.entry_path(key);
     const auto size = std::filesystem::file_size(path);
-    EXPECT_EQ(size, 40 + sphere.vertex_count() * (16 + 24)) << "header, AO and t_m, scattering normal and normal spread";
+    EXPECT_EQ(size, 40 + sphere.vertex_count() * (16 + 24))
+        << "header, AO and t_m, scattering normal and normal spread";
 
     auto patch = [&](std::streamoff offset, char byte) {
         std::fstream f(path, std::ios::binary | std::ios::in | std::ios::out);
@@ -118,7 +119,8 @@ TEST_F(BakeCacheTest, CorruptOrStaleEntriesAreDetectedAndRebaked)
     // Another format version (byte 8: the version's low byte).
     patch(8, char(kBakeCacheVersion + 1));
     EXPECT_FALSE(cache.load(key, sphere.vertex_count(), &why));
-    EXPECT_EQ(why, "version " + std::to_string(kBakeCacheVersion + 1) + ", expected " + std::to_string(kBakeCacheVersion));
+    EXPECT_EQ(why,
+              "version " + std::to_string(kBakeCacheVersion + 1) + ", expected " + std::to_string(kBakeCacheVersion));
     EXPECT_EQ(bake_with_cache(context(), cache, sphere, material, settings).source, BakeSource::Baked);
 
     // Truncated (a crash of a writer that did not use temp + rename), and a wrong vertex count.

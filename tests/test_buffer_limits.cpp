@@ -47,7 +47,8 @@ TEST(buffer_limits, EachLimitRefusesTheFirstByteOverIt)
     EXPECT_EQ(refusal(l, 1024 * kMiB + 1, kVertex),
               "GPU buffer 't_m sources' of 1073741825 bytes (1024 MiB) exceeds the device's maxMemoryAllocationSize of "
               "1073741824 bytes (1024 MiB)");
-    EXPECT_NE(refusal(l, 1024 * kMiB + 1, kStorage, StorageBinding::Windows).find("maxMemoryAllocationSize"), std::string::npos);
+    EXPECT_NE(refusal(l, 1024 * kMiB + 1, kStorage, StorageBinding::Windows).find("maxMemoryAllocationSize"),
+              std::string::npos);
     // A heap smaller than the allocation limit (an integrated GPU's carve-out): the heap decides.
     const BufferLimits small_heap{128 * kMiB, 8192 * kMiB, 256 * kMiB};
     EXPECT_EQ(refusal(small_heap, 256 * kMiB, kVertex), "");
@@ -56,7 +57,8 @@ TEST(buffer_limits, EachLimitRefusesTheFirstByteOverIt)
               "268435456 bytes (256 MiB)");
     // maxMemoryAllocationSize 0 (not reported): only the heap bounds the size.
     EXPECT_EQ(refusal({128 * kMiB, 0, 4096 * kMiB}, 2048 * kMiB, kVertex), "");
-    EXPECT_NE(refusal({128 * kMiB, 0, 4096 * kMiB}, 4096 * kMiB + 1, kVertex).find("largest memory heap"), std::string::npos);
+    EXPECT_NE(refusal({128 * kMiB, 0, 4096 * kMiB}, 4096 * kMiB + 1, kVertex).find("largest memory heap"),
+              std::string::npos);
     // Sizes near 2^64 do not wrap: still refused.
     EXPECT_NE(refusal(l, ~VkDeviceSize(0), kVertex).find("maxMemoryAllocationSize"), std::string::npos);
 }
@@ -71,7 +73,8 @@ TEST_F(buffer_limits_device, LimitsComeFromTheDevice)
     for (bool host_visible : {false, true}) {
         const BufferLimits l = jade::gpu::buffer_limits(context(), host_visible);
         EXPECT_EQ(l.max_storage_range, info.max_storage_buffer_range);
-        EXPECT_GE(l.max_allocation, 1024 * kMiB) << "maxMemoryAllocationSize must be at least 2^30 in Vulkan, got " << l.max_allocation;
+        EXPECT_GE(l.max_allocation, 1024 * kMiB)
+            << "maxMemoryAllocationSize must be at least 2^30 in Vulkan, got " << l.max_allocation;
         EXPECT_GT(l.heap_bytes, 64 * kMiB);
         EXPECT_EQ(refusal(l, l.max_storage_range, kStorage), "");
         EXPECT_NE(refusal(l, l.max_storage_range + 1, kStorage).find("maxStorageBufferRange"), std::string::npos);

@@ -41,7 +41,8 @@ void expect_no_crash(const std::vector<std::string>& args, const jade::test::Cli
 {
     EXPECT_GE(r.exit_code, 0) << "could not run: " << describe(args, r);
     EXPECT_LT(r.exit_code, 128) << "killed by signal " << r.exit_code - 128 << ": " << describe(args, r);
-    for (const char* marker : {"Sanitizer", "runtime error:", "internal error", "terminate called", "Segmentation fault"})
+    for (const char* marker :
+         {"Sanitizer", "runtime error:", "internal error", "terminate called", "Segmentation fault"})
         EXPECT_EQ(r.output.find(marker), std::string::npos) << "'" << marker << "' in output: " << describe(args, r);
 }
 
@@ -76,7 +77,8 @@ TEST(cli_bad_input, InfoFailsCleanlyOnEveryMalformedFile)
         expect_no_crash(args, r);
         EXPECT_EQ(r.exit_code, kError) << describe(args, r);
         EXPECT_NE(r.output.find("jade info: error: "), std::string::npos) << describe(args, r);
-        EXPECT_NE(r.output.find(path.filename().string()), std::string::npos) << "the file is not named: " << describe(args, r);
+        EXPECT_NE(r.output.find(path.filename().string()), std::string::npos)
+            << "the file is not named: " << describe(args, r);
     }
 }
 
@@ -89,7 +91,8 @@ TEST(cli_bad_input, BakeFailsCleanlyOnEveryMalformedFileAndWritesNothing)
         expect_no_crash(args, r);
         EXPECT_EQ(r.exit_code, kError) << describe(args, r);
         EXPECT_NE(r.output.find("jade bake: error: "), std::string::npos) << describe(args, r);
-        EXPECT_NE(r.output.find(path.filename().string()), std::string::npos) << "the file is not named: " << describe(args, r);
+        EXPECT_NE(r.output.find(path.filename().string()), std::string::npos)
+            << "the file is not named: " << describe(args, r);
         EXPECT_FALSE(fs::exists(output)) << "output written: " << describe(args, r);
         EXPECT_EQ(temporaries(output.parent_path()), std::vector<std::string>{}) << describe(args, r);
     }
@@ -143,7 +146,8 @@ TEST_P(cli_bad_flags, AreUsageErrorsNamingTheFlag)
     const auto r = run_cli(args);
     expect_no_crash(args, r);
     EXPECT_EQ(r.exit_code, kUsage) << describe(args, r);
-    EXPECT_NE(r.output.find(GetParam().expected), std::string::npos) << "expected '" << GetParam().expected << "': " << describe(args, r);
+    EXPECT_NE(r.output.find(GetParam().expected), std::string::npos)
+        << "expected '" << GetParam().expected << "': " << describe(args, r);
     EXPECT_FALSE(fs::exists(output)) << describe(args, r);
     EXPECT_EQ(temporaries(output.parent_path()), std::vector<std::string>{}) << describe(args, r);
 }
@@ -186,11 +190,10 @@ INSTANTIATE_TEST_SUITE_P(
                       BadCommandLine{{"info", "MESH", "MESH"}, "takes at most one mesh"}),
     [](const auto& info) { return "case" + std::to_string(info.index); });
 
-INSTANTIATE_TEST_SUITE_P(
-    Main, cli_bad_flags,
-    ::testing::Values(BadCommandLine{{}, "usage: jade COMMAND"},
-                      BadCommandLine{{"frobnicate", "MESH"}, "unknown command 'frobnicate'"}),
-    [](const auto& info) { return "case" + std::to_string(info.index); });
+INSTANTIATE_TEST_SUITE_P(Main, cli_bad_flags,
+                         ::testing::Values(BadCommandLine{{}, "usage: jade COMMAND"},
+                                           BadCommandLine{{"frobnicate", "MESH"}, "unknown command 'frobnicate'"}),
+                         [](const auto& info) { return "case" + std::to_string(info.index); });
 
 // ------------------------------------------------------------- bad output paths, early --
 
@@ -210,20 +213,32 @@ TEST(cli_bad_input, BadOutputPathsFailBeforeAnyWork)
     fs::create_directories(dir / "a_folder.glb");
     std::ofstream(dir / "a_file.txt") << "not a folder\n";
     const std::vector<BadOutput> cases = {
-        {{"bake", "MESH", "--out", "DIR/x.stl"}, kUsage, "--out DIR/x.stl: unsupported extension '.stl' (supported: .glb, .gltf)"},
+        {{"bake", "MESH", "--out", "DIR/x.stl"},
+         kUsage,
+         "--out DIR/x.stl: unsupported extension '.stl' (supported: .glb, .gltf)"},
         {{"bake", "MESH", "--out", "DIR/x"}, kUsage, "--out DIR/x: unsupported extension ''"},
         {{"bake", "MESH", "--out", "DIR/x.png"}, kUsage, "unsupported extension '.png' (supported: .glb, .gltf)"},
-        {{"bake", "MESH", "--out", "DIR/missing/x.glb"}, kError, "--out DIR/missing/x.glb: folder 'DIR/missing' does not exist"},
+        {{"bake", "MESH", "--out", "DIR/missing/x.glb"},
+         kError,
+         "--out DIR/missing/x.glb: folder 'DIR/missing' does not exist"},
         {{"bake", "MESH", "--out", "DIR/a_folder.glb"}, kError, "--out DIR/a_folder.glb: is a folder, not a file"},
         {{"bake", "MESH", "--out", "DIR/a_file.txt/x.glb"}, kError, "'DIR/a_file.txt' is not a folder"},
         // Root ignores permission bits; /proc refuses new files to everyone.
-        {{"bake", "MESH", "--out", "/proc/jade-test.glb"}, kError, "--out /proc/jade-test.glb: cannot create a file in folder '/proc'"},
-        {{"render", "MESH", "--out", "DIR/x.jpg"}, kUsage, "--out DIR/x.jpg: unsupported extension '.jpg' (supported: .png, .exr)"},
+        {{"bake", "MESH", "--out", "/proc/jade-test.glb"},
+         kError,
+         "--out /proc/jade-test.glb: cannot create a file in folder '/proc'"},
+        {{"render", "MESH", "--out", "DIR/x.jpg"},
+         kUsage,
+         "--out DIR/x.jpg: unsupported extension '.jpg' (supported: .png, .exr)"},
         {{"render", "MESH", "--out", "DIR/missing/x.png"}, kError, "folder 'DIR/missing' does not exist"},
         {{"figure1", "--mesh", "MESH", "--out", "DIR/x.tga"}, kUsage, "--out DIR/x.tga: unsupported extension '.tga'"},
         {{"figure1", "--mesh", "MESH", "--out", "/proc/f.png"}, kError, "cannot create a file in folder '/proc'"},
-        {{"report", "MESH", "--tiny", "--out", "DIR/a_file.txt"}, kError, "--out DIR/a_file.txt: cannot create the folder"},
-        {{"report", "MESH", "--tiny", "--out", "/proc/jade-report"}, kError, "--out /proc/jade-report: cannot create the folder"},
+        {{"report", "MESH", "--tiny", "--out", "DIR/a_file.txt"},
+         kError,
+         "--out DIR/a_file.txt: cannot create the folder"},
+        {{"report", "MESH", "--tiny", "--out", "/proc/jade-report"},
+         kError,
+         "--out /proc/jade-report: cannot create the folder"},
     };
     const auto substitute = [&](std::string s) {
         if (s == "MESH") return tiny_mesh().string();
@@ -237,7 +252,8 @@ TEST(cli_bad_input, BadOutputPathsFailBeforeAnyWork)
         const auto r = run_cli(args);
         expect_no_crash(args, r);
         EXPECT_EQ(r.exit_code, c.exit_code) << describe(args, r);
-        EXPECT_NE(r.output.find(substitute(c.expected)), std::string::npos) << "expected '" << c.expected << "': " << describe(args, r);
+        EXPECT_NE(r.output.find(substitute(c.expected)), std::string::npos)
+            << "expected '" << c.expected << "': " << describe(args, r);
         EXPECT_EQ(r.output.find("baking"), std::string::npos) << "the bake ran: " << describe(args, r);
     }
     // Nothing created: only the two entries made above, no temporary or probe file anywhere.

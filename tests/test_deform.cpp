@@ -104,7 +104,8 @@ glm::dvec3 deform_reference(const ProceduralDeformer& d, double t, glm::dvec3 p)
 double enclosed_volume(const std::vector<glm::dvec3>& p, const std::vector<uint32_t>& idx)
 {
     double vol = 0.0;
-    for (size_t t = 0; t < idx.size(); t += 3) vol += glm::dot(p[idx[t]], glm::cross(p[idx[t + 1]], p[idx[t + 2]])) / 6.0;
+    for (size_t t = 0; t < idx.size(); t += 3)
+        vol += glm::dot(p[idx[t]], glm::cross(p[idx[t + 1]], p[idx[t + 2]])) / 6.0;
     return vol;
 }
 
@@ -121,7 +122,8 @@ Errors compare(const DeformedVertices& gpu, const Reference& ref)
     for (size_t v = 0; v < ref.positions.size(); ++v) {
         e.position = std::max(e.position, glm::length(glm::dvec3(gpu.positions[v]) - ref.positions[v]));
         e.area_rel = std::max(e.area_rel, std::abs(double(gpu.areas[v]) - ref.areas[v]) / ref.areas[v]);
-        const double c = std::clamp(glm::dot(glm::dvec3(gpu.normals[v]), ref.normals[v]) / glm::length(glm::dvec3(gpu.normals[v])), -1.0, 1.0);
+        const double c = std::clamp(
+            glm::dot(glm::dvec3(gpu.normals[v]), ref.normals[v]) / glm::length(glm::dvec3(gpu.normals[v])), -1.0, 1.0);
         angles.push_back(std::acos(c));
     }
     std::sort(angles.begin(), angles.end());
@@ -155,8 +157,8 @@ TEST_F(DeformGpu, ProceduralDeformersMatchFloat64OnSeveralFrames)
             for (uint32_t axis : {0u, 1u, 2u}) {
                 ProceduralDeformer d = ProceduralDeformer::fit(kind, rest, axis);
                 for (double t : {0.0, 0.3, 0.85, 1.55}) {
-                    SCOPED_TRACE(std::string(which) + " " + std::string(deformer_name(kind)) + " axis " + std::to_string(axis) +
-                                 " t " + std::to_string(t));
+                    SCOPED_TRACE(std::string(which) + " " + std::string(deformer_name(kind)) + " axis " +
+                                 std::to_string(axis) + " t " + std::to_string(t));
                     const DeformTimings timings = deformer.deform(d, t);
                     EXPECT_GE(timings.deform_ms, 0.0);
                     const DeformedVertices gpu = deformer.read();
@@ -189,7 +191,8 @@ TEST_F(DeformGpu, GpuVertexUpdateRendersLikeTheHostPath)
     const Material material = burley_material(glm::dvec3(0.1, 0.2, 0.3), glm::vec3(0.8f));
     Baker baker(context());
     DynamicBake rebake(baker, rest, material, BakeSettings::preset(Quality::Draft));
-    const BakeResult baked = rebake.bake(deformer.positions_buffer(), deformer.normals_buffer(), deformer.areas_buffer());
+    const BakeResult baked =
+        rebake.bake(deformer.positions_buffer(), deformer.normals_buffer(), deformer.areas_buffer());
 
     Camera camera = Camera::framing(rest.bbox_min - glm::vec3(0.5f), rest.bbox_max + glm::vec3(0.5f));
     camera.near_plane = 0.1f, camera.far_plane = 50.0f;  // the same planes for both paths
@@ -269,14 +272,16 @@ TEST_F(DeformGpu, SquashPreservesVolumeAndBendPreservesAxisLength)
     ProceduralDeformer bend = ProceduralDeformer::fit(DeformerKind::Bend, flat, 1);
     bend.axis = 1;
     bend.amplitude = float(kPi / 2);  // the top ends at 90°
-    bend_deformer.deform(bend, 0.5);   // s(t) = sin(π/2) = 1
+    bend_deformer.deform(bend, 0.5);  // s(t) = sin(π/2) = 1
     const auto bent = bend_deformer.read();
     // The axis line (x = 0 in the grid; v = x for axis y) maps to a quarter circle of radius
     // 2/(π/2): its top vertex goes to (R, R) in (h, v).
     const double radius = 2.0 / (kPi / 2);
     size_t top = 0;
     for (size_t v = 0; v < flat.vertex_count(); ++v)
-        if (glm::distance(flat.positions[v], glm::vec3(0, 1, 0)) < glm::distance(flat.positions[top], glm::vec3(0, 1, 0))) top = v;
+        if (glm::distance(flat.positions[v], glm::vec3(0, 1, 0)) <
+            glm::distance(flat.positions[top], glm::vec3(0, 1, 0)))
+            top = v;
     ASSERT_LT(glm::distance(flat.positions[top], glm::vec3(0, 1, 0)), 1e-6f);
     EXPECT_NEAR(bent.positions[top].y - flat.bbox_min.y, radius, 1e-5);
     EXPECT_NEAR(bent.positions[top].x, radius, 1e-5);
@@ -289,7 +294,8 @@ TEST_F(DeformGpu, TwoSidedSheetTakesTheLargestTrianglesNormal)
     // ties — here the front side (listed first), so after a wave every normal faces +z-ish.
     TriangleMesh sheet = procedural::grid(16, 0.1f);
     const size_t front = sheet.indices.size();
-    for (size_t t = 0; t < front; t += 3) sheet.indices.insert(sheet.indices.end(), {sheet.indices[t], sheet.indices[t + 2], sheet.indices[t + 1]});
+    for (size_t t = 0; t < front; t += 3)
+        sheet.indices.insert(sheet.indices.end(), {sheet.indices[t], sheet.indices[t + 2], sheet.indices[t + 1]});
     const PreparedMesh rest = prepare_mesh(sheet);
     MeshDeformer deformer(context(), rest);
     ProceduralDeformer wave = ProceduralDeformer::fit(DeformerKind::Wave, rest, 0);  // displaces along v = z
@@ -418,7 +424,8 @@ TEST(DeformAnimation, PoseJointMatricesAndMorphWeights)
         for (int j = 0; j < 2; ++j)
             for (int c = 0; c < 4; ++c)
                 for (int r = 0; r < 4; ++r)
-                    EXPECT_NEAR(pose.joint_matrices[size_t(j)][c][r], want[size_t(j)][c][r], 1e-6) << "t " << t << " joint " << j;
+                    EXPECT_NEAR(pose.joint_matrices[size_t(j)][c][r], want[size_t(j)][c][r], 1e-6)
+                        << "t " << t << " joint " << j;
         ASSERT_EQ(pose.morph_weights.size(), 1u);
         EXPECT_NEAR(pose.morph_weights[0], 2.0 * (t * t * t - 2 * t * t + t) + (-2 * t * t * t + 3 * t * t), 1e-6);
     }
@@ -529,14 +536,16 @@ TEST(DeformCli, WritesFramesGifAndTheStageTable)
 {
     const auto dir = test::out("deform_cli/frame_000.png").parent_path();
     std::filesystem::remove_all(dir);  // written by the CLI (it creates the folder)
-    const auto r = test::run_cli({"deform", test::data("skinned_morph_anim.gltf").string(), "--deformer", "gltf", "--frames",
-                                  "3", "--size", "64x64", "--out", dir.string(), "--validation"});
+    const auto r = test::run_cli({"deform", test::data("skinned_morph_anim.gltf").string(), "--deformer", "gltf",
+                                  "--frames", "3", "--size", "64x64", "--out", dir.string(), "--validation"});
     ASSERT_EQ(r.exit_code, 0) << r.output;
-    for (const char* f : {"frame_000.png", "frame_002.png", "deform.gif"}) EXPECT_TRUE(std::filesystem::exists(dir / f)) << f;
+    for (const char* f : {"frame_000.png", "frame_002.png", "deform.gif"})
+        EXPECT_TRUE(std::filesystem::exists(dir / f)) << f;
     for (const char* word : {"deform", "normals", "bake AO", "bake t_m", "draw", "average"})
         EXPECT_NE(r.output.find(word), std::string::npos) << word << "\n" << r.output;
-    const auto twist = test::run_cli({"deform", test::data("cube_seams.gltf").string(), "--deformer", "twist", "--frames", "2",
-                                      "--size", "32x32", "--out", dir.string(), "--anim", "twist.gif"});
+    const auto twist =
+        test::run_cli({"deform", test::data("cube_seams.gltf").string(), "--deformer", "twist", "--frames", "2",
+                       "--size", "32x32", "--out", dir.string(), "--anim", "twist.gif"});
     ASSERT_EQ(twist.exit_code, 0) << twist.output;
     EXPECT_TRUE(std::filesystem::exists(dir / "twist.gif"));
 }
@@ -546,7 +555,8 @@ TEST(DeformCli, BadArgumentsNameTheFlag)
     const auto bad = test::run_cli({"deform", "--deformer", "spin"});
     EXPECT_EQ(bad.exit_code, 2);
     EXPECT_NE(bad.output.find("--deformer"), std::string::npos) << bad.output;
-    const auto amp = test::run_cli({"deform", test::data("cube_seams.gltf").string(), "--deformer", "squash", "--amplitude", "1.5"});
+    const auto amp =
+        test::run_cli({"deform", test::data("cube_seams.gltf").string(), "--deformer", "squash", "--amplitude", "1.5"});
     EXPECT_EQ(amp.exit_code, 2);
     EXPECT_NE(amp.output.find("squash amplitude"), std::string::npos) << amp.output;
     const auto noanim = test::run_cli({"deform", test::data("cube_seams.gltf").string(), "--deformer", "gltf"});

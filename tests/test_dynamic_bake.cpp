@@ -122,7 +122,8 @@ TEST_F(GpuTest, GridReBakeOfAStillMeshIsBitIdentical)
     EXPECT_EQ(a.tm, b.tm);
     const BakeResult fresh = baker.bake_tm(rest, a.ao, material, settings);
     double apart = 0;
-    for (size_t i = 0; i < a.tm.size(); ++i) apart = std::max(apart, double(std::abs(a.tm[i].x - fresh.tm[i].x) / fresh.tm[i].x));
+    for (size_t i = 0; i < a.tm.size(); ++i)
+        apart = std::max(apart, double(std::abs(a.tm[i].x - fresh.tm[i].x) / fresh.tm[i].x));
     EXPECT_LE(apart, 2e-3) << "the dynamic grid (padded bounds) against a static one";
 }
 
@@ -178,8 +179,10 @@ TEST_F(GpuTest, AmortisedDynamicBakeConvergesToTheFullReBake)
         SCOPED_TRACE("frame " + std::to_string(f) + " after the pose changed");
         if (f < slices.ao_slices) EXPECT_GT(ao_off, r.ao.size() / 20) << "AO should still lag";
         if (f >= slices.ao_slices) EXPECT_EQ(ao_off, 0u);
-        if (f < frames) EXPECT_GT(tm_off, 0u) << "t_m should still lag";
-        else EXPECT_EQ(tm_off, 0u);
+        if (f < frames)
+            EXPECT_GT(tm_off, 0u) << "t_m should still lag";
+        else
+            EXPECT_EQ(tm_off, 0u);
     }
 }
 

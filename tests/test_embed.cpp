@@ -56,10 +56,14 @@ struct Host {
     explicit Host(bool with_jade_requirements, bool timeline_semaphores = false) : setup(with_jade_requirements)
     {
         setup.f12.timelineSemaphore = timeline_semaphores ? VK_TRUE : VK_FALSE;
-        device = samples::Owned<VkDevice>(setup.create(choice.physical, choice.family), [](VkDevice d) { vkDestroyDevice(d, nullptr); });
+        device = samples::Owned<VkDevice>(setup.create(choice.physical, choice.family),
+                                          [](VkDevice d) { vkDestroyDevice(d, nullptr); });
         vkGetDeviceQueue(device, choice.family, 0, &queue);
     }
-    AdoptedVulkan adopted() const { return setup.adopted(instance.instance, choice.physical, device, choice.family, queue); }
+    AdoptedVulkan adopted() const
+    {
+        return setup.adopted(instance.instance, choice.physical, device, choice.family, queue);
+    }
 };
 
 class Embed : public ::testing::Test {
@@ -245,7 +249,10 @@ TEST_F(Embed, SampleDrawsTheTranslucentSphereIntoTheHostsFrame)
     const std::vector<float> img = read_png(png, w, h);
     ASSERT_EQ(w, int(samples::embed::kWidth));
     ASSERT_EQ(h, int(samples::embed::kHeight));
-    auto px = [&](int x, int y) { return glm::vec3(img[(size_t(y) * w + x) * 4], img[(size_t(y) * w + x) * 4 + 1], img[(size_t(y) * w + x) * 4 + 2]); };
+    auto px = [&](int x, int y) {
+        return glm::vec3(img[(size_t(y) * w + x) * 4], img[(size_t(y) * w + x) * 4 + 1],
+                         img[(size_t(y) * w + x) * 4 + 2]);
+    };
     // The sample's camera, projected here to find where things are.
     const glm::mat4 clip = samples::embed::camera().view_projection(float(w) / float(h));
     auto to_pixel = [&](glm::vec3 p) {
@@ -296,13 +303,16 @@ TEST_F(Embed, SampleDrawsTheTranslucentSphereIntoTheHostsFrame)
 
 TEST(EmbedCamera, ViewProjectionNeedsExplicitPlanesAndMapsThemToDepthZeroAndOne)
 {
-    Camera camera;  // eye (0, 0, 5) looking at the origin
+    Camera camera;                                      // eye (0, 0, 5) looking at the origin
     EXPECT_THROW(camera.view_projection(1.0f), Error);  // planes 0, 0: fitted per mesh, no matrix
     camera.near_plane = 1.0f;
     camera.far_plane = 9.0f;
     EXPECT_THROW(camera.view_projection(0.0f), Error);
     const glm::mat4 m = camera.view_projection(2.0f);
-    auto ndc = [&](glm::vec3 p) { glm::vec4 c = m * glm::vec4(p, 1.0f); return glm::vec3(c) / c.w; };
+    auto ndc = [&](glm::vec3 p) {
+        glm::vec4 c = m * glm::vec4(p, 1.0f);
+        return glm::vec3(c) / c.w;
+    };
     EXPECT_NEAR(ndc({0, 0, 4}).z, 0.0f, 1e-6f);   // 1 unit from the eye: the near plane
     EXPECT_NEAR(ndc({0, 0, -4}).z, 1.0f, 1e-6f);  // 9 units: the far plane
     // y flipped for Vulkan: a point above the target lands in the upper half (negative y).

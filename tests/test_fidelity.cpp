@@ -19,7 +19,8 @@ const nlohmann::json& scenes()
     static nlohmann::json doc = [] {
         const auto out = test::out("fidelity.json");
         const auto refs = test::data("../../tools/groundtruth/references");
-        const auto r = test::run_cli({"fidelity", "--validation", "--references", refs.string(), "--json", out.string()});
+        const auto r =
+            test::run_cli({"fidelity", "--validation", "--references", refs.string(), "--json", out.string()});
         EXPECT_EQ(r.exit_code, 0) << r.output;
         std::ifstream f(out);
         return f ? nlohmann::json::parse(f)["scenes"] : nlohmann::json::array();
@@ -59,7 +60,8 @@ void front_and_side_lit_scenes_are_closer_than_lambert_and_curvature_everywhere(
     for (const auto& s : scenes()) {
         if (s["light"] == "back") continue;
         const std::string light = s["light"];
-        ours[light] += flip(s, "default"), lambert[light] += flip(s, "lambert"), curvature[light] += flip(s, "curvature");
+        ours[light] += flip(s, "default"), lambert[light] += flip(s, "lambert"),
+            curvature[light] += flip(s, "curvature");
         closer += flip(s, "default") < flip(s, "lambert") ? 1 : 0;
         closer_than_curvature += flip(s, "default") < flip(s, "curvature") ? 1 : 0;
         ++lit;

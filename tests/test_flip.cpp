@@ -31,7 +31,8 @@ Image read_ppm(const std::filesystem::path& path)
     uint32_t w = 0, h = 0, maxval = 0;
     f >> magic >> w >> h >> maxval;
     f.get();  // the single whitespace byte before the pixels
-    if (magic != "P6" || maxval != 255 || w == 0 || h == 0) throw std::runtime_error("bad PPM header in " + path.string());
+    if (magic != "P6" || maxval != 255 || w == 0 || h == 0)
+        throw std::runtime_error("bad PPM header in " + path.string());
     std::vector<uint8_t> px(size_t(w) * h * 3);
     f.read(reinterpret_cast<char*>(px.data()), std::streamsize(px.size()));
     if (!f) throw std::runtime_error("truncated PPM " + path.string());
@@ -68,9 +69,7 @@ TEST(Flip, MatchesReference)
         const Image ref = read_ppm(jade::test::data("flip/" + e["reference"].get<std::string>()));
         const Image tst = read_ppm(jade::test::data("flip/" + e["test"].get<std::string>()));
         const double ppd = e["default_ppd"].get<bool>() ? jade::flip::pixels_per_degree() : e["ppd"].get<double>();
-        if (e["default_ppd"].get<bool>()) {
-            EXPECT_DOUBLE_EQ(ppd, e["ppd"].get<double>());
-        }
+        if (e["default_ppd"].get<bool>()) { EXPECT_DOUBLE_EQ(ppd, e["ppd"].get<double>()); }
         std::vector<float> map;
         const double mean = jade::flip::ldr_flip(ref, tst, ppd, nullptr, &map);
         ASSERT_EQ(map.size(), size_t(ref.width) * ref.height);

@@ -40,8 +40,8 @@ struct Baked {
 std::vector<std::filesystem::path> inputs()
 {
     std::vector<std::filesystem::path> out;
-    for (const char* s : {"2CylinderEngine.glb", "BoxTextured.glb", "BoxTextured_external/BoxTextured.gltf", "simple_skin.gltf",
-                          "AnimatedMorphCube.gltf"})
+    for (const char* s : {"2CylinderEngine.glb", "BoxTextured.glb", "BoxTextured_external/BoxTextured.gltf",
+                          "simple_skin.gltf", "AnimatedMorphCube.gltf"})
         out.push_back(jade::test::data("gltf_samples") / s);
     for (const auto& entry : std::filesystem::directory_iterator(jade::test::data("")))
         if (entry.path().extension() == ".gltf" || entry.path().extension() == ".glb") out.push_back(entry.path());
@@ -57,8 +57,9 @@ const Baked& baked(const std::filesystem::path& input)
     Baked& b = it->second;
     if (added) {
         b.input = input;
-        b.output = jade::test::out("gltf_roundtrip/" + input.stem().string() + "_from_" + input.extension().string().substr(1) +
-                                   (input.extension() == ".glb" ? ".gltf" : ".glb"));
+        b.output =
+            jade::test::out("gltf_roundtrip/" + input.stem().string() + "_from_" +
+                            input.extension().string().substr(1) + (input.extension() == ".glb" ? ".gltf" : ".glb"));
         b.cli = jade::test::run_cli({"bake", input.string(), "--out", b.output.string(), "--quality", "draft"});
     }
     return b;
@@ -73,12 +74,14 @@ const json& member(const json& j, const char* key)
     return j.is_object() && j.contains(key) ? j[key] : none;
 }
 
-void expect_same_accessor(const GltfFile& in, const json& ia, const GltfFile& out, const json& ib, const std::string& where)
+void expect_same_accessor(const GltfFile& in, const json& ia, const GltfFile& out, const json& ib,
+                          const std::string& where)
 {
     ASSERT_TRUE(ia.is_number_integer() && ib.is_number_integer()) << where;
     const json& a = in.doc["accessors"][ia.get<size_t>()];
     const json& b = out.doc["accessors"][ib.get<size_t>()];
-    for (const char* key : {"componentType", "type", "count", "normalized", "name", "min", "max", "extras", "extensions"})
+    for (const char* key :
+         {"componentType", "type", "count", "normalized", "name", "min", "max", "extras", "extensions"})
         if (a.contains(key)) EXPECT_EQ(a[key], member(b, key)) << where << ": accessor property " << key;
     EXPECT_TRUE(in.elements(ia.get<int>()) == out.elements(ib.get<int>())) << where << ": accessor data differ";
 }
@@ -97,15 +100,17 @@ void expect_asset_kept(const GltfFile& in, const GltfFile& out)
     const json& b = out.doc;
     // Scenes, nodes (names, TRS, matrices, hierarchy), cameras, textures, samplers, top-level
     // extensions and extras, and any property Jade does not know: identical JSON.
-    expect_same_except(a, b, {"asset", "buffers", "bufferViews", "accessors", "images", "meshes", "skins", "animations",
-                              "materials", "extensionsUsed"},
+    expect_same_except(a, b,
+                       {"asset", "buffers", "bufferViews", "accessors", "images", "meshes", "skins", "animations",
+                        "materials", "extensionsUsed"},
                        "document");
     EXPECT_EQ(a["asset"]["version"], b["asset"]["version"]);
     expect_same_except(a["asset"], b["asset"], {"extras"}, "asset");
     for (const auto& [key, value] : member(a["asset"], "extras").items())
         if (key != "jade") EXPECT_EQ(value, b["asset"]["extras"][key]) << "asset.extras." << key;
     for (const auto& ext : member(a, "extensionsUsed"))
-        EXPECT_NE(std::find(b["extensionsUsed"].begin(), b["extensionsUsed"].end(), ext), b["extensionsUsed"].end()) << ext;
+        EXPECT_NE(std::find(b["extensionsUsed"].begin(), b["extensionsUsed"].end(), ext), b["extensionsUsed"].end())
+            << ext;
 
     ASSERT_EQ(member(a, "meshes").size(), member(b, "meshes").size());
     for (size_t m = 0; m < member(a, "meshes").size(); ++m) {
@@ -119,8 +124,10 @@ void expect_asset_kept(const GltfFile& in, const GltfFile& out)
             const json& pb = mb["primitives"][p];
             expect_same_except(pa, pb, {"attributes", "indices", "targets"}, where);
             for (const auto& [name, index] : pa["attributes"].items())
-                if (!kBaked.count(name)) expect_same_accessor(in, index, out, member(pb["attributes"], name.c_str()), where + " " + name);
-            if (pa.contains("indices")) expect_same_accessor(in, pa["indices"], out, member(pb, "indices"), where + " indices");
+                if (!kBaked.count(name))
+                    expect_same_accessor(in, index, out, member(pb["attributes"], name.c_str()), where + " " + name);
+            if (pa.contains("indices"))
+                expect_same_accessor(in, pa["indices"], out, member(pb, "indices"), where + " indices");
             ASSERT_EQ(member(pa, "targets").size(), member(pb, "targets").size()) << where;
             for (size_t t = 0; t < member(pa, "targets").size(); ++t)
                 for (const auto& [name, index] : pa["targets"][t].items())
@@ -132,7 +139,8 @@ void expect_asset_kept(const GltfFile& in, const GltfFile& out)
     for (size_t s = 0; s < member(a, "skins").size(); ++s) {
         expect_same_except(a["skins"][s], b["skins"][s], {"inverseBindMatrices"}, "skin " + std::to_string(s));
         if (a["skins"][s].contains("inverseBindMatrices"))
-            expect_same_accessor(in, a["skins"][s]["inverseBindMatrices"], out, b["skins"][s]["inverseBindMatrices"], "skin");
+            expect_same_accessor(in, a["skins"][s]["inverseBindMatrices"], out, b["skins"][s]["inverseBindMatrices"],
+                                 "skin");
     }
     ASSERT_EQ(member(a, "animations").size(), member(b, "animations").size());
     for (size_t k = 0; k < member(a, "animations").size(); ++k) {
@@ -178,7 +186,8 @@ void expect_baked_attributes(const GltfFile& out)
             if (mode < 4) continue;  // points and lines are not baked
             const std::string where = "mesh " + std::to_string(m) + " primitive " + std::to_string(p);
             const size_t n = out.doc["accessors"][prim["attributes"]["POSITION"].get<size_t>()]["count"].get<size_t>();
-            for (const auto& [name, type] : std::map<std::string, std::string>{{"_AO", "SCALAR"}, {"_TM", "VEC3"}, {"_THICKNESS", "SCALAR"}}) {
+            for (const auto& [name, type] :
+                 std::map<std::string, std::string>{{"_AO", "SCALAR"}, {"_TM", "VEC3"}, {"_THICKNESS", "SCALAR"}}) {
                 if (name == "_THICKNESS" && !prim["attributes"].contains(name)) continue;
                 ASSERT_TRUE(prim["attributes"].contains(name)) << where << " has no " << name;
                 const int index = prim["attributes"][name].get<int>();
@@ -188,8 +197,10 @@ void expect_baked_attributes(const GltfFile& out)
                 EXPECT_EQ(a["componentType"], 5126) << where << " " << name;
                 for (float v : out.floats(index)) {
                     ASSERT_TRUE(std::isfinite(v)) << where << " " << name;
-                    if (name == "_AO") ASSERT_TRUE(v >= 0.0f && v <= 1.0f) << where << " _AO " << v;
-                    else ASSERT_GE(v, 0.0f) << where << " " << name;
+                    if (name == "_AO")
+                        ASSERT_TRUE(v >= 0.0f && v <= 1.0f) << where << " _AO " << v;
+                    else
+                        ASSERT_GE(v, 0.0f) << where << " " << name;
                 }
             }
         }
@@ -231,8 +242,8 @@ TEST(GltfRoundTrip, LoadersAndRenderReadTheBakedAttributes)
     EXPECT_EQ(mesh.baked_ao.size(), mesh.positions.size());
     EXPECT_EQ(mesh.baked_tm.size(), mesh.positions.size());
     EXPECT_EQ(mesh.baked_thickness.size(), mesh.positions.size());
-    const auto render = jade::test::run_cli({"render", engine.output.string(), "--mode", "tm", "--size", "64x64", "--out",
-                                             jade::test::out("gltf_roundtrip/engine.png").string()});
+    const auto render = jade::test::run_cli({"render", engine.output.string(), "--mode", "tm", "--size", "64x64",
+                                             "--out", jade::test::out("gltf_roundtrip/engine.png").string()});
     EXPECT_EQ(render.exit_code, 0) << render.output;
     EXPECT_NE(render.output.find("t_m read from"), std::string::npos) << render.output;  // not baked again
 
@@ -258,10 +269,12 @@ TEST(GltfRoundTrip, LoadersAndRenderReadTheBakedAttributes)
 
 TEST(GltfRoundTrip, DeformPlaysTheBakedSkinAndMorphTargets)
 {
-    for (const Baked* b : {&sample("simple_skin.gltf"), &sample("AnimatedMorphCube.gltf"), &own("skinned_morph_anim.gltf")}) {
+    for (const Baked* b :
+         {&sample("simple_skin.gltf"), &sample("AnimatedMorphCube.gltf"), &own("skinned_morph_anim.gltf")}) {
         const std::string name = b->input.filename().string();
-        const auto r = jade::test::run_cli({"deform", b->output.string(), "--deformer", "gltf", "--frames", "3", "--size",
-                                            "48x48", "--out", jade::test::out("gltf_roundtrip/deform_" + name + "/x").parent_path().string()});
+        const auto r = jade::test::run_cli(
+            {"deform", b->output.string(), "--deformer", "gltf", "--frames", "3", "--size", "48x48", "--out",
+             jade::test::out("gltf_roundtrip/deform_" + name + "/x").parent_path().string()});
         EXPECT_EQ(r.exit_code, 0) << name << "\n" << r.output;
         EXPECT_NE(r.output.find("glTF animation"), std::string::npos) << r.output;
     }
@@ -271,8 +284,9 @@ TEST(GltfRoundTrip, InfoSaysWhatWasBakedAndHow)
 {
     const auto r = jade::test::run_cli({"info", sample("2CylinderEngine.glb").output.string()});
     ASSERT_EQ(r.exit_code, 0) << r.output;
-    for (const char* phrase : {"baked by jade     record version 2; AO 16 rays", "instance rule     each mesh baked once",
-                               "(first of 2 instances)", "material 0        jade", "bake              mesh 28 primitives 0,1:"})
+    for (const char* phrase :
+         {"baked by jade     record version 2; AO 16 rays", "instance rule     each mesh baked once",
+          "(first of 2 instances)", "material 0        jade", "bake              mesh 28 primitives 0,1:"})
         EXPECT_NE(r.output.find(phrase), std::string::npos) << phrase << "\n" << r.output;
     const auto skin = jade::test::run_cli({"info", sample("simple_skin.gltf").output.string()});
     EXPECT_NE(skin.output.find("its bind pose"), std::string::npos) << skin.output;
@@ -294,7 +308,8 @@ TEST(GltfBakeInPlace, OutEqualToTheInputNeedsInPlace)
     auto r = jade::test::run_cli({"bake", asset.string(), "--out", asset.string()});
     EXPECT_EQ(r.exit_code, 2) << r.output;
     EXPECT_NE(r.output.find("is the input file; give --in-place to replace it"), std::string::npos) << r.output;
-    r = jade::test::run_cli({"bake", asset.string(), "--in-place", "--out", (asset.parent_path() / "other.glb").string()});
+    r = jade::test::run_cli(
+        {"bake", asset.string(), "--in-place", "--out", (asset.parent_path() / "other.glb").string()});
     EXPECT_EQ(r.exit_code, 2) << r.output;
     r = jade::test::run_cli({"bake", jade::test::data("cube.obj").string(), "--in-place"});
     EXPECT_EQ(r.exit_code, 2) << r.output;
@@ -306,7 +321,8 @@ TEST(GltfBakeInPlace, OutEqualToTheInputNeedsInPlace)
         r = jade::test::run_cli({"bake", asset.string(), "--in-place", "--quality", "draft"});
         ASSERT_EQ(r.exit_code, 0) << r.output;
     }
-    const GltfFile once = jade::test::read_gltf_file(jade::test::out("gltf_in_place/unused.glb").parent_path() / "box.glb");
+    const GltfFile once =
+        jade::test::read_gltf_file(jade::test::out("gltf_in_place/unused.glb").parent_path() / "box.glb");
     const GltfFile in = jade::test::read_gltf_file(jade::test::data("gltf_samples/BoxTextured.glb"));
     expect_asset_kept(in, once);
     expect_baked_attributes(once);
@@ -374,7 +390,8 @@ TEST(GltfBakeInPlace, SigkillAtAnyMomentLeavesTheOriginalOrTheCompleteNewFile)
     int old_file = 0, new_file = 0, leftovers = 0;
     std::vector<std::filesystem::path> completed;
     std::vector<Kill> kills;
-    for (double f : {0.0, 0.05, 0.4, 0.8, 1.3}) kills.push_back({std::chrono::microseconds(int64_t(f * double(whole.count())))});
+    for (double f : {0.0, 0.05, 0.4, 0.8, 1.3})
+        kills.push_back({std::chrono::microseconds(int64_t(f * double(whole.count())))});
     for (int us : {0, 300, 1000, 3000, 10000}) kills.push_back({std::chrono::microseconds(us), true});
     for (const Kill& kill : kills) {
         SCOPED_TRACE("SIGKILL " + std::to_string(kill.delay.count()) + " us after " +
@@ -398,12 +415,15 @@ TEST(GltfBakeInPlace, SigkillAtAnyMomentLeavesTheOriginalOrTheCompleteNewFile)
         // A killed writer may leave its temporary file: never under the asset's name.
         for (const auto& entry : std::filesystem::directory_iterator(dir)) {
             const std::string name = entry.path().filename().string();
-            if (name.rfind("engine.glb.tmp-", 0) == 0) ++leftovers, std::filesystem::remove(entry.path());
-            else EXPECT_TRUE(name == "engine.glb" || name.rfind("completed_", 0) == 0) << name;
+            if (name.rfind("engine.glb.tmp-", 0) == 0)
+                ++leftovers, std::filesystem::remove(entry.path());
+            else
+                EXPECT_TRUE(name == "engine.glb" || name.rfind("completed_", 0) == 0) << name;
         }
     }
-    std::printf("[ kill     ] whole bake %.0f ms; %d kills left the original, %d the new file, %d temporary files left\n",
-                double(whole.count()) / 1000.0, old_file, new_file, leftovers);
+    std::printf(
+        "[ kill     ] whole bake %.0f ms; %d kills left the original, %d the new file, %d temporary files left\n",
+        double(whole.count()) / 1000.0, old_file, new_file, leftovers);
     EXPECT_GE(old_file, 1);
     EXPECT_GE(new_file, 1);
     std::string why;

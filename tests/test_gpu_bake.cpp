@@ -40,7 +40,8 @@ std::vector<uint32_t> sample_vertices(size_t n, size_t count)
 struct RelError {
     double max = 0, rms = 0;
 };
-RelError relative_error(const std::vector<glm::vec3>& gpu, const std::vector<glm::dvec3>& ref, std::span<const uint32_t> at)
+RelError relative_error(const std::vector<glm::vec3>& gpu, const std::vector<glm::dvec3>& ref,
+                        std::span<const uint32_t> at)
 {
     RelError e;
     for (size_t k = 0; k < at.size(); ++k)
@@ -66,7 +67,8 @@ double max_angle(const std::vector<glm::vec3>& gpu, const std::vector<glm::dvec3
 }
 
 // The largest absolute difference of per-channel values against the reference's.
-double max_abs_error(const std::vector<glm::vec3>& gpu, const std::vector<glm::dvec3>& ref, std::span<const uint32_t> at)
+double max_abs_error(const std::vector<glm::vec3>& gpu, const std::vector<glm::dvec3>& ref,
+                     std::span<const uint32_t> at)
 {
     double worst = 0;
     for (size_t k = 0; k < at.size(); ++k)
@@ -150,12 +152,14 @@ TEST_P(TmAccuracy, DragonAgainstFloat64)
             expect_finite_nonnegative(r.tm);
             e = relative_error(r.tm, ref, at);
             EXPECT_LE(e.max, q == Quality::High ? 1e-3 : 1e-2)
-                << tm_method_name(method) << ", " << (q == Quality::High ? "high" : "default") << " quality, rms " << e.rms;
+                << tm_method_name(method) << ", " << (q == Quality::High ? "high" : "default") << " quality, rms "
+                << e.rms;
             // The grid carries the normal's sums exactly as t_m's; the clustered far field takes
             // each accepted node's normal sum as a monopole, whose error the sum's cancellation
             // over a wide profile magnifies (measured 0.12 rad at d = 20 %, default quality).
             const double angle = max_angle(r.scattering_normal, ref_normal, at);
-            const double bound = method == TmMethod::Grid ? (q == Quality::High ? 1e-3 : 2e-3) : (q == Quality::High ? 1.5e-2 : 0.15);
+            const double bound =
+                method == TmMethod::Grid ? (q == Quality::High ? 1e-3 : 2e-3) : (q == Quality::High ? 1.5e-2 : 0.15);
             EXPECT_LE(angle, bound) << tm_method_name(method) << ", " << quality_name(q) << ": the scattering normal";
             const double spread = max_abs_error(r.normal_spread, ref_scattering.spread, at);
             std::printf("%s %s: angle %.2e spread %.2e\n", tm_method_name(method), quality_name(q), angle, spread);
@@ -184,7 +188,8 @@ TEST_F(GpuTest, Float64SumsAgreeWithCompensatedFloat32Sums)
     const auto a = baker.bake_tm(mesh, ao, m, f32).tm;
     const uint64_t pipelines = context().created_objects().compute_pipelines;
     const auto b = baker.bake_tm(mesh, ao, m, f64).tm;
-    EXPECT_EQ(context().created_objects().compute_pipelines, pipelines + 1) << "the float64 variant is a kernel of its own";
+    EXPECT_EQ(context().created_objects().compute_pipelines, pipelines + 1)
+        << "the float64 variant is a kernel of its own";
     auto at = sample_vertices(mesh.vertex_count(), 200);
     const auto ref = reference_tm(mesh, ao, m, at);
     EXPECT_LE(relative_error(a, ref, at).max, 1e-4);
@@ -227,7 +232,8 @@ TEST_P(GridAccuracy, BunnyAgainstFloat64)
         const BakeResult g = baker.bake_tm(mesh, ao, m, grid);
         expect_finite_nonnegative(g.tm);
         const auto e = relative_error(g.tm, ref, at);
-        EXPECT_LE(e.max, q == Quality::High ? 1e-3 : 1e-2) << (q == Quality::High ? "high" : "default") << ", rms " << e.rms;
+        EXPECT_LE(e.max, q == Quality::High ? 1e-3 : 1e-2)
+            << (q == Quality::High ? "high" : "default") << ", rms " << e.rms;
         RecordProperty(q == Quality::High ? "high_max_error" : "default_max_error", std::to_string(e.max));
     }
 }
@@ -244,11 +250,13 @@ TriangleMesh long_tube(float length, float radius, uint32_t rings, uint32_t segm
     for (uint32_t r = 0; r < rings; ++r)
         for (uint32_t s = 0; s < segments; ++s) {
             const float a = 2.0f * float(M_PI) * float(s) / float(segments);
-            t.positions.push_back({length * (float(r) / float(rings - 1) - 0.5f), radius * std::cos(a), radius * std::sin(a)});
+            t.positions.push_back(
+                {length * (float(r) / float(rings - 1) - 0.5f), radius * std::cos(a), radius * std::sin(a)});
         }
     for (uint32_t r = 0; r + 1 < rings; ++r)
         for (uint32_t s = 0; s < segments; ++s) {
-            const uint32_t a = r * segments + s, b = r * segments + (s + 1) % segments, c = a + segments, d = b + segments;
+            const uint32_t a = r * segments + s, b = r * segments + (s + 1) % segments, c = a + segments,
+                           d = b + segments;
             t.indices.insert(t.indices.end(), {a, c, b, b, c, d});
         }
     const uint32_t end[2] = {uint32_t(t.positions.size()), uint32_t(t.positions.size()) + 1};

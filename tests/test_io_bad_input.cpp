@@ -94,7 +94,8 @@ const std::map<std::string, std::string> kExpectedErrors = {
     {"BoxTextured_missing_bin.gltf", "File not found : BoxTextured0.bin"},
     {"BoxWithInfinites.glb", "vertex 0 position is infinite"},
     // found by the libFuzzer targets (tests/fuzz); each was a finding before its fix
-    {"fuzz-gltf-1.gltf", "required extension KHR_draco_mesh?compression is not supported"},  // raw 0x7f byte in the message
+    {"fuzz-gltf-1.gltf",
+     "required extension KHR_draco_mesh?compression is not supported"},  // raw 0x7f byte in the message
     {"fuzz-obj-1.obj", "contains no triangles"},  // UB in tinyobjloader's "vw" line parser (joint id 1e390 to int)
     // not a mesh format
     {"mesh.stl", "unsupported mesh format '.stl' (supported: .gltf, .glb, .off, .ply, .obj)"},
@@ -127,7 +128,8 @@ TEST(io_bad_input, EveryMalformedFileFailsWithAMessageNamingIt)
         const auto message = load_error(entry.path());
         ASSERT_EQ(message.rfind(name + ": ", 0), 0u) << name << " -> " << message;
         const auto expected = kExpectedErrors.find(name);
-        ASSERT_NE(expected, kExpectedErrors.end()) << name << " has no expectation in kExpectedErrors; it gave: " << message;
+        ASSERT_NE(expected, kExpectedErrors.end())
+            << name << " has no expectation in kExpectedErrors; it gave: " << message;
         EXPECT_NE(message.find(expected->second), std::string::npos) << name << " -> " << message;
         ++checked;
     }
@@ -160,12 +162,15 @@ TEST(io_bad_input, AbsurdHeaderCountsFailFastBeforeAllocating)
     const std::string faces = "element face 1\nproperty list uchar int vertex_indices\n";
     // The messages compare the count with the bytes present: the check ran before any allocation.
     expect_fast_failure("vertices.off", "OFF\n4000000000 1 0\n0 0 0\n3 0 0 0\n", "header declares 4000000000 vertices");
-    expect_fast_failure("faces.off", "OFF\n3 4000000000 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "header declares 4000000000 faces");
-    expect_fast_failure("vertices_ascii.ply", "ply\nformat ascii 1.0\nelement vertex 4000000000\n" + xyz + faces + "end_header\n0 0 0\n",
+    expect_fast_failure("faces.off", "OFF\n3 4000000000 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+                        "header declares 4000000000 faces");
+    expect_fast_failure("vertices_ascii.ply",
+                        "ply\nformat ascii 1.0\nelement vertex 4000000000\n" + xyz + faces + "end_header\n0 0 0\n",
                         "header declares 4000000000 'vertex' elements");
     expect_fast_failure("faces_binary.ply",
                         "ply\nformat binary_little_endian 1.0\nelement vertex 3\n" + xyz +
-                            "element face 4000000000\nproperty list uchar int vertex_indices\nend_header\n" + std::string(36, '\0'),
+                            "element face 4000000000\nproperty list uchar int vertex_indices\nend_header\n" +
+                            std::string(36, '\0'),
                         "header declares 4000000000 'face' elements");
     expect_fast_failure("skipped_binary.ply",
                         "ply\nformat binary_little_endian 1.0\nelement vertex 3\n" + xyz + faces +
@@ -285,14 +290,14 @@ TEST_P(io_damaged_files, TruncatedOrCorruptedCopiesLoadOrFailCleanly)
 }
 
 INSTANTIATE_TEST_SUITE_P(GoodTestData, io_damaged_files,
-                         ::testing::Values("cube_seams.gltf", "cube_seams.glb", "nodes_transforms.gltf", "strip_fan.gltf", "sparse_cube.gltf",
-                                           "cube_ascii.ply", "cube_binary_le.ply", "cube_binary_be.ply", "cube.obj",
-                                           "cube_colors.off", "tetra_normals.off"),
+                         ::testing::Values("cube_seams.gltf", "cube_seams.glb", "nodes_transforms.gltf",
+                                           "strip_fan.gltf", "sparse_cube.gltf", "cube_ascii.ply", "cube_binary_le.ply",
+                                           "cube_binary_be.ply", "cube.obj", "cube_colors.off", "tetra_normals.off"),
                          [](const auto& param) {
-                             std::string name = param.param;
-                             for (auto& c : name)
-                                 if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                             return name;
-                         });
+    std::string name = param.param;
+    for (auto& c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    return name;
+});
 
 }  // namespace

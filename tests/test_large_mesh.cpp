@@ -38,7 +38,8 @@ TEST_F(GpuTest, MillionVertexMeshBakesInChunksAndMatchesTheFloat64Reference)
     for (size_t i = 0; i < r.tm.size(); ++i) {
         ASSERT_TRUE(r.ao[i] >= 0.0f && r.ao[i] <= 1.0f) << "AO of vertex " << i << " = " << r.ao[i];
         for (int c = 0; c < 3; ++c)
-            ASSERT_TRUE(std::isfinite(r.tm[i][c]) && r.tm[i][c] >= 0.0f) << "t_m of vertex " << i << " = " << r.tm[i][c];
+            ASSERT_TRUE(std::isfinite(r.tm[i][c]) && r.tm[i][c] >= 0.0f)
+                << "t_m of vertex " << i << " = " << r.tm[i][c];
     }
 
     // Sampled vertices spread over the whole index range (every chunk of every pass).

@@ -34,9 +34,12 @@ const std::vector<Query>& queries()
         const double v_max = std::pow(40.0 / LutLayout::kMaxVariance, 0.25);
         for (int k = 0; k < 100000; ++k) {
             double c = 2.0 * unit(rng) - 1.0, t;
-            if (k % 3 == 0) t = 40.0 * unit(rng);
-            else if (k % 3 == 1) t = LutLayout::kMaxVariance * std::pow(v_max * unit(rng), 4.0);
-            else c *= 0.02, t = LutLayout::kMaxVariance * std::pow(0.1 * unit(rng), 4.0);
+            if (k % 3 == 0)
+                t = 40.0 * unit(rng);
+            else if (k % 3 == 1)
+                t = LutLayout::kMaxVariance * std::pow(v_max * unit(rng), 4.0);
+            else
+                c *= 0.02, t = LutLayout::kMaxVariance * std::pow(0.1 * unit(rng), 4.0);
             if (k == 0) t = 40.0, c = -1.0;  // the corners and the clamped region
             if (k == 1) t = 0.0, c = 1.0;
             out.push_back({c, t, lut_reference(c, t)});
@@ -57,7 +60,8 @@ double sample(const std::vector<float>& lut, const LutLayout& layout, double cos
     const float i = std::min(std::floor(x), W - 2.0f), j = std::min(std::floor(y), H - 2.0f);
     const double a = double(x - i), b = double(y - j);
     auto texel = [&](float ii, float jj) { return double(lut[size_t(jj) * layout.width + size_t(ii)]); };
-    return (1 - b) * ((1 - a) * texel(i, j) + a * texel(i + 1, j)) + b * ((1 - a) * texel(i, j + 1) + a * texel(i + 1, j + 1));
+    return (1 - b) * ((1 - a) * texel(i, j) + a * texel(i + 1, j)) +
+           b * ((1 - a) * texel(i, j + 1) + a * texel(i + 1, j + 1));
 }
 
 struct MaxError {
@@ -85,14 +89,16 @@ TEST_F(Lut, EveryTexelMatchesFloat64Reference)
     uint32_t wi = 0, wj = 0;
     for (uint32_t j = 0; j < layout.height; ++j)
         for (uint32_t i = 0; i < layout.width; ++i) {
-            const double d = std::abs(double(lut[size_t(j) * layout.width + i]) - lut_reference(layout.cos_theta(i), layout.variance(j)));
+            const double d = std::abs(double(lut[size_t(j) * layout.width + i]) -
+                                      lut_reference(layout.cos_theta(i), layout.variance(j)));
             if (d > worst) worst = d, wi = i, wj = j;
         }
     std::printf("LUT %ux%u: max texel error vs float64 %.3g at cos θ = %.6f, t = %.6g\n", layout.width, layout.height,
                 worst, layout.cos_theta(wi), layout.variance(wj));
     EXPECT_LE(worst, 2e-6);
     // Row 0 is Lambert exactly, and the kink sits on the centre texel.
-    for (uint32_t i = 0; i < layout.width; ++i) ASSERT_EQ(lut[i], float(std::max(layout.cos_theta(i), 0.0))) << "texel " << i;
+    for (uint32_t i = 0; i < layout.width; ++i)
+        ASSERT_EQ(lut[i], float(std::max(layout.cos_theta(i), 0.0))) << "texel " << i;
     EXPECT_EQ(layout.cos_theta((layout.width - 1) / 2), 0.0);
 }
 
@@ -122,7 +128,8 @@ TEST_F(Lut, ZeroVarianceIsLambertUnderLinearFiltering)
 // The table docs/shading.md quotes: error against size (the first row is the default).
 TEST_F(Lut, ErrorTableBySize)
 {
-    const LutLayout sizes[] = {{}, {1025, 257}, {1281, 257}, {1409, 193}, {1409, 257}, {1537, 129}, {1537, 193}, {1537, 257}, {2049, 129}};
+    const LutLayout sizes[] = {{},          {1025, 257}, {1281, 257}, {1409, 193}, {1409, 257},
+                               {1537, 129}, {1537, 193}, {1537, 257}, {2049, 129}};
     std::printf("%-12s %-14s %s\n", "LUT size", "max error", "at (cos θ, t)");
     for (const LutLayout& size : sizes) {
         RendererOptions o;

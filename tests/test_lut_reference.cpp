@@ -22,8 +22,7 @@ constexpr double kPi = std::numbers::pi;
 /// ∫_{−π}^{π} g(θ) dθ for an even g given as a function of cos θ. For small t, f has a feature
 /// of width √t at the terminator θ = π/2 that a quadrature node may never see: split there
 /// at π/2 ± 10^−k.
-template <class G>
-double integrate_over_angle(G&& g)
+template <class G> double integrate_over_angle(G&& g)
 {
     std::vector<double> breaks = {0.0, kPi};
     for (double e = 1e-1; e > 1e-8; e *= 0.1) breaks.insert(breaks.end(), {kPi / 2 - e, kPi / 2 + e});
@@ -31,7 +30,8 @@ double integrate_over_angle(G&& g)
     std::sort(breaks.begin(), breaks.end());
     double sum = 0.0;
     for (size_t k = 0; k + 1 < breaks.size(); ++k)
-        sum += jade::bake::integrate([&](double theta) { return g(std::cos(theta)); }, breaks[k], breaks[k + 1], 1e-13, 1e-16);
+        sum += jade::bake::integrate([&](double theta) { return g(std::cos(theta)); }, breaks[k], breaks[k + 1], 1e-13,
+                                     1e-16);
     return 2.0 * sum;
 }
 
@@ -128,8 +128,9 @@ TEST(CurvatureLut, UniformLightingIsAQuarter)
     for (const auto& p : {jade::ChannelProfile::burley(0.5), jade::ChannelProfile::dipole(1.0, 0.05, 1.3),
                           jade::ChannelProfile::gaussians(w, v), skin_red})
         for (double r : {0.05, 0.5, 3.0}) {
-            const double avg = 0.5 * jade::bake::integrate(
-                                         [&](double c) { return jade::curvature_lut_reference(c, r, p); }, -1.0, 1.0, 1e-11);
+            const double avg =
+                0.5 * jade::bake::integrate([&](double c) { return jade::curvature_lut_reference(c, r, p); }, -1.0, 1.0,
+                                            1e-11);
             EXPECT_NEAR(avg, 0.25, 1e-9) << r;
         }
 }

@@ -132,7 +132,8 @@ TEST(Medium, ExtremeMediaGiveFiniteDocumentedResults)
         m.sigma_s = glm::dvec3(k), m.sigma_a = glm::dvec3(0.1 * k);
         const Material mat = Material::from_medium(m);
         finite(mat);
-        EXPECT_NEAR(mat.profile[0].d * k, Material::from_medium(m.scaled(1.0 / k)).profile[0].d, 1e-9 * mat.profile[0].d * k)
+        EXPECT_NEAR(mat.profile[0].d * k, Material::from_medium(m.scaled(1.0 / k)).profile[0].d,
+                    1e-9 * mat.profile[0].d * k)
             << "the profile scales with the mean free path at " << k;
     }
 }

@@ -41,7 +41,8 @@ void expect_vec3_near(glm::vec3 actual, glm::vec3 expected, float tolerance, con
 void expect_outward(const jade::TriangleMesh& m, glm::vec3 centre)
 {
     for (size_t t = 0; t < m.triangle_count(); ++t) {
-        const glm::vec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]], c = m.positions[m.indices[3 * t + 2]];
+        const glm::vec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]],
+                        c = m.positions[m.indices[3 * t + 2]];
         EXPECT_GT(glm::dot(glm::cross(b - a, c - a), (a + b + c) / 3.0f - centre), 0.0f) << m.name << " triangle " << t;
     }
 }
@@ -111,7 +112,8 @@ TEST(io_load_off, ColouredQuadsAreFanTriangulated)
     EXPECT_EQ(mesh.triangle_count(), 12u);
     EXPECT_TRUE(mesh.normals.empty());
     // Face "4 0 4 6 2" becomes (0 4 6) (0 6 2).
-    EXPECT_EQ(std::vector<uint32_t>(mesh.indices.begin(), mesh.indices.begin() + 6), (std::vector<uint32_t>{0, 4, 6, 0, 6, 2}));
+    EXPECT_EQ(std::vector<uint32_t>(mesh.indices.begin(), mesh.indices.begin() + 6),
+              (std::vector<uint32_t>{0, 4, 6, 0, 6, 2}));
     EXPECT_EQ(mesh.positions[7], glm::vec3(1, 1, 1));
     expect_unit_cube_surface(mesh);
 }
@@ -183,7 +185,7 @@ TEST(io_load_gltf, NodeTransformsAreApplied)
         {2, 0, 0},  {0, 1, 0},  {2, 0, 1},   // node 5: scale (2, 1, 1) of the slope x + y = 1
     };
     const std::vector<glm::vec3> normals = {
-        {0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1},
+        {0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1},     {0, 0, 1},     {0, 0, 1},
         {0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {s, 2 * s, 0}, {s, 2 * s, 0}, {s, 2 * s, 0},
     };
     for (size_t v = 0; v < 12; ++v) {
@@ -354,13 +356,17 @@ TEST(io_save_gltf, FailuresLeaveNoFileBehind)
     const auto before = read_bytes(path);
 
     b.attributes.extras_json = "{not json";
-    EXPECT_NE(error_of([&] { jade::save_baked_gltf(path, b.mesh, b.attributes); }).find("atomic.glb: extras_json is not valid JSON"),
+    EXPECT_NE(error_of([&] {
+                  jade::save_baked_gltf(path, b.mesh, b.attributes);
+              }).find("atomic.glb: extras_json is not valid JSON"),
               std::string::npos);
     b.attributes.extras_json = "[1, 2]";
-    EXPECT_EQ(error_of([&] { jade::save_baked_gltf(path, b.mesh, b.attributes); }), "atomic.glb: extras_json must be a JSON object");
+    EXPECT_EQ(error_of([&] { jade::save_baked_gltf(path, b.mesh, b.attributes); }),
+              "atomic.glb: extras_json must be a JSON object");
     b.attributes.extras_json.clear();
     b.attributes.ao.pop_back();
-    EXPECT_NE(error_of([&] { jade::save_baked_gltf(path, b.mesh, b.attributes); }).find("_AO values for"), std::string::npos);
+    EXPECT_NE(error_of([&] { jade::save_baked_gltf(path, b.mesh, b.attributes); }).find("_AO values for"),
+              std::string::npos);
     EXPECT_EQ(read_bytes(path), before);  // the earlier file is untouched
 
     const auto missing_dir = path.parent_path() / "no such folder" / "x.glb";
@@ -392,7 +398,8 @@ std::vector<float> gradient(int width, int height)
     std::vector<float> rgba;
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x)
-            rgba.insert(rgba.end(), {float(x) / float(width - 1), float(y) / float(height - 1), 0.25f, 1.0f - 0.5f * float(x) / float(width - 1)});
+            rgba.insert(rgba.end(), {float(x) / float(width - 1), float(y) / float(height - 1), 0.25f,
+                                     1.0f - 0.5f * float(x) / float(width - 1)});
     return rgba;
 }
 
@@ -401,9 +408,9 @@ TEST(io_save_image, PngIsSrgbEncodedEightBitWithAlpha)
     const auto path = out("image/gradient.png");
     const int w = 9, h = 3;
     auto rgba = gradient(w, h);
-    rgba[0] = -1.0f;                                       // clamped to 0
-    rgba[1] = 7.0f;                                        // clamped to 1
-    rgba[2] = std::numeric_limits<float>::quiet_NaN();     // NaN becomes 0
+    rgba[0] = -1.0f;                                    // clamped to 0
+    rgba[1] = 7.0f;                                     // clamped to 1
+    rgba[2] = std::numeric_limits<float>::quiet_NaN();  // NaN becomes 0
     jade::save_image(path, w, h, rgba);
     OIIO::ImageSpec spec;
     const auto back = read_image(path, spec);
@@ -417,7 +424,8 @@ TEST(io_save_image, PngIsSrgbEncodedEightBitWithAlpha)
     };
     for (size_t i = 0; i < back.size(); ++i) {
         const float source = std::isnan(rgba[i]) ? 0.0f : rgba[i];
-        const float expected = std::round((i % 4 == 3 ? std::clamp(source, 0.0f, 1.0f) : srgb(source)) * 255.0f) / 255.0f;
+        const float expected =
+            std::round((i % 4 == 3 ? std::clamp(source, 0.0f, 1.0f) : srgb(source)) * 255.0f) / 255.0f;
         ASSERT_NEAR(back[i], expected, 1e-6f) << "value " << i;
     }
     EXPECT_NEAR(back[4 * 4], 188.0f / 255.0f, 1e-6f);  // linear 0.5 (x = 4 of 8) is sRGB 188
@@ -434,7 +442,8 @@ TEST(io_save_image, ExrIsLinearHalfFloat)
     const auto back = read_image(path, spec);
     ASSERT_EQ(back.size(), rgba.size());
     EXPECT_EQ(spec.format, OIIO::TypeDesc::HALF);
-    for (size_t i = 0; i < back.size(); ++i) EXPECT_NEAR(back[i], rgba[i], 1e-3f * std::max(1.0f, rgba[i])) << "value " << i;
+    for (size_t i = 0; i < back.size(); ++i)
+        EXPECT_NEAR(back[i], rgba[i], 1e-3f * std::max(1.0f, rgba[i])) << "value " << i;
     EXPECT_EQ(back[0], 3.5f);
 }
 

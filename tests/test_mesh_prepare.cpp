@@ -29,7 +29,8 @@ TriangleMesh make_mesh(std::vector<glm::vec3> positions, std::vector<uint32_t> i
 
 glm::dvec3 triangle_normal(const PreparedMesh& m, size_t t)
 {
-    const glm::dvec3 a(m.positions[m.indices[3 * t]]), b(m.positions[m.indices[3 * t + 1]]), c(m.positions[m.indices[3 * t + 2]]);
+    const glm::dvec3 a(m.positions[m.indices[3 * t]]), b(m.positions[m.indices[3 * t + 1]]),
+        c(m.positions[m.indices[3 * t + 2]]);
     return glm::cross(b - a, c - a);
 }
 
@@ -68,8 +69,8 @@ TEST(mesh_prepare, WeldsVerticesSplitAtASeam)
 
 TEST(mesh_prepare, WeldsNegativeZeroWithPositiveZero)
 {
-    const auto p = jade::prepare_mesh(make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-0.0f, 0, -0.0f}, {0, 0, 1}},
-                                                {0, 1, 2, 3, 2, 4}));
+    const auto p = jade::prepare_mesh(
+        make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-0.0f, 0, -0.0f}, {0, 0, 1}}, {0, 1, 2, 3, 2, 4}));
     EXPECT_EQ(p.vertex_count(), 4u);
     EXPECT_EQ(p.render_to_bake[3], p.render_to_bake[0]);
 }
@@ -77,7 +78,8 @@ TEST(mesh_prepare, WeldsNegativeZeroWithPositiveZero)
 TEST(mesh_prepare, DoesNotWeldNearbyButDifferentPositions)
 {
     const float e = std::nextafter(1.0f, 2.0f);
-    const auto p = jade::prepare_mesh(make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {e, 0, 0}, {1, 1, 0}}, {0, 1, 2, 3, 4, 2}));
+    const auto p =
+        jade::prepare_mesh(make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {e, 0, 0}, {1, 1, 0}}, {0, 1, 2, 3, 4, 2}));
     EXPECT_EQ(p.vertex_count(), 5u);
     EXPECT_EQ(p.welded_vertices, 0u);
 }
@@ -115,7 +117,8 @@ TEST(mesh_prepare, DropsDegenerateTrianglesAndUnusedVertices)
 
 TEST(mesh_prepare, ToRenderVerticesFillsUnusedVertices)
 {
-    const auto p = jade::prepare_mesh(make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {9, 9, 9}, {0, 0, 0}}, {0, 1, 2, 4, 1, 2}));
+    const auto p =
+        jade::prepare_mesh(make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {9, 9, 9}, {0, 0, 0}}, {0, 1, 2, 4, 1, 2}));
     const auto values = jade::to_render_vertices(p, std::vector<float>{10.0f, 20.0f, 30.0f}, -1.0f);
     EXPECT_EQ(values, (std::vector<float>{10.0f, 20.0f, 30.0f, -1.0f, 10.0f}));
 }
@@ -179,17 +182,29 @@ TEST(mesh_prepare, BoundsIgnoreUnusedVertices)
 
 TEST(mesh_prepare, ErrorsNameTheMeshAndTheElement)
 {
-    EXPECT_EQ(error_of([] { jade::prepare_mesh(make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {0, 1, 2, 0, 7, 3}, "bunny.off")); }),
-              "bunny.off: triangle 1 (vertex index 7) out of range for 4 vertices");
+    EXPECT_EQ(
+        error_of(
+            [] {
+        jade::prepare_mesh(make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {0, 1, 2, 0, 7, 3}, "bunny.off"));
+        }),
+        "bunny.off: triangle 1 (vertex index 7) out of range for 4 vertices");
     const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
-    EXPECT_EQ(error_of([&] { jade::prepare_mesh(make_mesh({{0, 0, 0}, {1, 0, 0}, {0, nan, 0}}, {0, 1, 2}, "x.ply")); }),
+    EXPECT_EQ(error_of([&] {
+                  jade::prepare_mesh(make_mesh({{0, 0, 0}, {1, 0, 0}, {0, nan, 0}}, {0, 1, 2}, "x.ply"));
+              }),
               "x.ply: vertex 2 position is NaN");
-    EXPECT_EQ(error_of([&] { jade::prepare_mesh(make_mesh({{0, 0, 0}, {inf, 0, 0}, {0, 1, 0}}, {0, 1, 2}, "x.ply")); }),
+    EXPECT_EQ(error_of([&] {
+                  jade::prepare_mesh(make_mesh({{0, 0, 0}, {inf, 0, 0}, {0, 1, 0}}, {0, 1, 2}, "x.ply"));
+              }),
               "x.ply: vertex 1 position is infinite");
     EXPECT_EQ(error_of([] { jade::prepare_mesh(make_mesh({}, {}, "empty.obj")); }), "empty.obj: has no triangles");
-    EXPECT_EQ(error_of([] { jade::prepare_mesh(make_mesh({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}, {0, 1, 2, 0, 0, 1}, "flat.off")); }),
+    EXPECT_EQ(error_of([] {
+                  jade::prepare_mesh(make_mesh({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}, {0, 1, 2, 0, 0, 1}, "flat.off"));
+              }),
               "flat.off: all 2 triangles are degenerate");
-    EXPECT_EQ(error_of([] { jade::prepare_mesh(make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2, 0}, "odd.off")); }),
+    EXPECT_EQ(error_of([] {
+                  jade::prepare_mesh(make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2, 0}, "odd.off"));
+              }),
               "odd.off: index count 4 is not a multiple of 3");
 }
 
@@ -216,7 +231,8 @@ TEST(mesh_procedural, SphereIsClosedAndItsAreaApproaches4PiR2)
             EXPECT_GT(glm::dot(p.normals[v], glm::normalize(p.positions[v])), 0.99f);
         }
         for (size_t t = 0; t < p.triangle_count(); ++t)
-            EXPECT_GT(glm::dot(triangle_normal(p, t), glm::dvec3(p.positions[p.indices[3 * t]])), 0.0) << "inward triangle " << t;
+            EXPECT_GT(glm::dot(triangle_normal(p, t), glm::dvec3(p.positions[p.indices[3 * t]])), 0.0)
+                << "inward triangle " << t;
     }
     EXPECT_LT(previous_error, 2e-4);  // 1.25e-4 at 128 rings × 256 segments
 }
@@ -282,7 +298,8 @@ TEST(mesh_procedural, RejectsBadParameters)
     EXPECT_THROW(jade::procedural::grid(0, 1.0f), jade::Error);
     EXPECT_THROW(jade::procedural::grid(4, 0.0f), jade::Error);
     EXPECT_THROW(jade::procedural::grid(1u << 20, 1.0f), jade::Error);  // 2^40 vertices
-    EXPECT_NE(error_of([] { jade::procedural::sphere(1.0f, 1, 8); }).find("procedural::sphere: rings"), std::string::npos);
+    EXPECT_NE(error_of([] { jade::procedural::sphere(1.0f, 1, 8); }).find("procedural::sphere: rings"),
+              std::string::npos);
 }
 
 }  // namespace

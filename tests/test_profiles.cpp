@@ -139,7 +139,8 @@ TEST(Profiles, DipoleMatchesJensenFormulaAndIsNormalised)
     auto Rd = [&](double r) {
         const double dr = std::sqrt(r * r + zr * zr), dv = std::sqrt(r * r + zv * zv);
         return alpha / (4 * kPi) *
-               (zr * (1 + str * dr) * std::exp(-str * dr) / (dr * dr * dr) + zv * (1 + str * dv) * std::exp(-str * dv) / (dv * dv * dv));
+               (zr * (1 + str * dr) * std::exp(-str * dr) / (dr * dr * dr) +
+                zv * (1 + str * dv) * std::exp(-str * dv) / (dv * dv * dv));
     };
     const auto p = ChannelProfile::dipole(ss, sa, eta);
     EXPECT_NEAR(p.z_r, zr, 1e-15 * zr);
@@ -148,7 +149,11 @@ TEST(Profiles, DipoleMatchesJensenFormulaAndIsNormalised)
     for (double r : {0.0, 0.01, 0.5, 3.0, 40.0}) EXPECT_NEAR(p.R(r) * p.dipole_total, Rd(r), 1e-12 * Rd(r)) << r;
     // The total reflectance by quadrature (substitution r = u/(1−u) maps [0, ∞) to [0, 1)).
     const double total = jade::bake::integrate(
-        [&](double u) { const double r = u / (1 - u); return 2 * kPi * r * Rd(r) / ((1 - u) * (1 - u)); }, 0.0, 1.0, 1e-13);
+        [&](double u) {
+        const double r = u / (1 - u);
+        return 2 * kPi * r * Rd(r) / ((1 - u) * (1 - u));
+        },
+        0.0, 1.0, 1e-13);
     EXPECT_NEAR(p.dipole_total, total, 1e-9 * total);
     // Jensen's closed form R_d = α'/2 (1 + e^{−4/3 A √(3(1−α'))}) e^{−√(3(1−α'))}.
     const double s3 = std::sqrt(3 * (1 - alpha));
@@ -175,7 +180,8 @@ TEST(Profiles, ValidationNamesTheParameter)
     EXPECT_NE(message([&] { ChannelProfile::burley(0.0); }).find("d ="), std::string::npos);
     EXPECT_NE(message([&] { ChannelProfile::burley(nan); }).find("d ="), std::string::npos);
     EXPECT_NE(message([&] { ChannelProfile::burley_from_albedo(1.5, 1.0); }).find("albedo"), std::string::npos);
-    EXPECT_NE(message([&] { ChannelProfile::burley_from_albedo(0.5, -1.0); }).find("mean_free_path"), std::string::npos);
+    EXPECT_NE(message([&] { ChannelProfile::burley_from_albedo(0.5, -1.0); }).find("mean_free_path"),
+              std::string::npos);
     const double zero[2] = {0.0, 0.0}, neg[2] = {1.0, -0.5}, v[2] = {1.0, 2.0}, badv[2] = {1.0, 0.0};
     EXPECT_NE(message([&] { ChannelProfile::gaussians(zero, v); }).find("zero"), std::string::npos);
     EXPECT_NE(message([&] { ChannelProfile::gaussians(neg, v); }).find("weight[1]"), std::string::npos);
@@ -246,8 +252,7 @@ TEST(Presets, UnitsAndKnownValues)
     for (const char* n : {"marble", "skin", "jade", "blue-jewel"}) {
         const Material a = jade::material_preset(n, 1.0), b = jade::material_preset(n, 2.0), c = a.scaled(0.5);
         for (int ch = 0; ch < 3; ++ch)
-            for (double r : {0.05, 0.3, 1.0, 4.0})
-                EXPECT_NEAR(b.profile[ch].cdf(r), c.profile[ch].cdf(r), 1e-14) << n;
+            for (double r : {0.05, 0.3, 1.0, 4.0}) EXPECT_NEAR(b.profile[ch].cdf(r), c.profile[ch].cdf(r), 1e-14) << n;
     }
     // jade, red: σ_s = 0.10/mm, σ_a = 0.06/mm, g = 0.3 → ℓ = 1/σ_t' = 1/0.13 mm, A = R_d(0.07/0.13, 1.66),
     // d = ℓ / (1.85 − A + 7|A − 0.8|³)

@@ -85,84 +85,88 @@ TEST(Bvh, StructureOrderAndEscapePointers)
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> u(-10.0f, 10.0f), s(0.0f, 0.5f);
     for (const bake::BvhSplit split : {bake::BvhSplit::Median, bake::BvhSplit::Sah})
-    for (uint32_t n : {0u, 1u, 2u, 5u, 64u, 1000u, 1001u}) {
-        for (uint32_t leaf : {1u, 4u, 7u}) {
-            const bool median = split == bake::BvhSplit::Median;
-            std::vector<glm::vec3> lo(n), hi(n);
-            for (uint32_t i = 0; i < n; ++i) {
-                lo[i] = {u(rng), u(rng), (i % 3 == 0) ? 1.0f : u(rng)};  // some coincident coordinates
-                hi[i] = lo[i] + glm::vec3(s(rng), s(rng), s(rng));
-            }
-            const bake::Bvh bvh = bake::build_bvh(lo, hi, leaf, split);
-            SCOPED_TRACE("n = " + std::to_string(n) + ", leaf_size = " + std::to_string(leaf) + (median ? ", median" : ", SAH"));
-            ASSERT_EQ(bvh.nodes.size(), bvh.counts.size());
-            ASSERT_EQ(bvh.order.size(), n);
-            if (n == 0) {
-                EXPECT_TRUE(bvh.nodes.empty());
-                EXPECT_EQ(bvh.depth, 0u);
-                continue;
-            }
-            std::vector<uint32_t> sorted = bvh.order;
-            std::sort(sorted.begin(), sorted.end());
-            for (uint32_t i = 0; i < n; ++i) ASSERT_EQ(sorted[i], i) << "order is not a permutation";
-            const uint32_t count = uint32_t(bvh.nodes.size());
-            EXPECT_EQ(bvh.nodes[0].escape, count);
-            EXPECT_EQ(bvh.counts[0], n);
-            if (median) EXPECT_LE(bvh.depth, uint32_t(std::ceil(std::log2(std::max(1.0, double(n) / leaf)))) + 1);
-            else EXPECT_LE(bvh.depth, 48u + uint32_t(std::ceil(std::log2(std::max(1.0, double(n))))));
-
-            std::vector<int> seen(n, 0);
-            for (uint32_t i = 0; i < count; ++i) {
-                const bake::BvhNode& node = bvh.nodes[i];
-                const uint32_t first = node.first(), c = bvh.counts[i];
-                ASSERT_LE(first + c, n);
-                ASSERT_GE(c, 1u);
-                glm::vec3 ulo = lo[bvh.order[first]], uhi = hi[bvh.order[first]];
-                for (uint32_t k = first; k < first + c; ++k) {
-                    ulo = glm::min(ulo, lo[bvh.order[k]]);
-                    uhi = glm::max(uhi, hi[bvh.order[k]]);
+        for (uint32_t n : {0u, 1u, 2u, 5u, 64u, 1000u, 1001u}) {
+            for (uint32_t leaf : {1u, 4u, 7u}) {
+                const bool median = split == bake::BvhSplit::Median;
+                std::vector<glm::vec3> lo(n), hi(n);
+                for (uint32_t i = 0; i < n; ++i) {
+                    lo[i] = {u(rng), u(rng), (i % 3 == 0) ? 1.0f : u(rng)};  // some coincident coordinates
+                    hi[i] = lo[i] + glm::vec3(s(rng), s(rng), s(rng));
                 }
-                EXPECT_EQ(node.lo, ulo) << "node " << i << " bounds are not the union of its range";
-                EXPECT_EQ(node.hi, uhi) << "node " << i;
-                ASSERT_GT(node.escape, i);
-                ASSERT_LE(node.escape, count);
-                if (node.leaf()) {
-                    EXPECT_LE(c, leaf);
-                    EXPECT_EQ(node.leaf_count(), c) << "leaf count packed in the range";
-                    EXPECT_EQ(node.escape, i + 1);
-                    for (uint32_t k = first; k < first + c; ++k) ++seen[bvh.order[k]];
-                } else {
-                    EXPECT_GT(c, leaf);
-                    const uint32_t a = i + 1, b = bvh.nodes[a].escape;  // the two children
-                    ASSERT_LT(b, count);
-                    EXPECT_EQ(bvh.nodes[a].first(), first);
-                    EXPECT_EQ(bvh.nodes[b].first(), first + bvh.counts[a]);
-                    EXPECT_EQ(bvh.counts[a] + bvh.counts[b], c);
-                    if (median) EXPECT_LE(bvh.counts[b] - bvh.counts[a], 1u) << "median split";
-                    EXPECT_EQ(bvh.nodes[b].escape, node.escape);
+                const bake::Bvh bvh = bake::build_bvh(lo, hi, leaf, split);
+                SCOPED_TRACE("n = " + std::to_string(n) + ", leaf_size = " + std::to_string(leaf) +
+                             (median ? ", median" : ", SAH"));
+                ASSERT_EQ(bvh.nodes.size(), bvh.counts.size());
+                ASSERT_EQ(bvh.order.size(), n);
+                if (n == 0) {
+                    EXPECT_TRUE(bvh.nodes.empty());
+                    EXPECT_EQ(bvh.depth, 0u);
+                    continue;
                 }
-            }
-            for (uint32_t p = 0; p < n; ++p) ASSERT_EQ(seen[p], 1) << "primitive " << p << " not in exactly one leaf";
+                std::vector<uint32_t> sorted = bvh.order;
+                std::sort(sorted.begin(), sorted.end());
+                for (uint32_t i = 0; i < n; ++i) ASSERT_EQ(sorted[i], i) << "order is not a permutation";
+                const uint32_t count = uint32_t(bvh.nodes.size());
+                EXPECT_EQ(bvh.nodes[0].escape, count);
+                EXPECT_EQ(bvh.counts[0], n);
+                if (median)
+                    EXPECT_LE(bvh.depth, uint32_t(std::ceil(std::log2(std::max(1.0, double(n) / leaf)))) + 1);
+                else
+                    EXPECT_LE(bvh.depth, 48u + uint32_t(std::ceil(std::log2(std::max(1.0, double(n))))));
 
-            // Stackless traversal that skips random subtrees visits exactly the leaves a
-            // recursive traversal with the same decisions visits.
-            auto skip = [](uint32_t i) { return bake::pcg_hash(i) % 5 == 0; };
-            std::vector<uint32_t> stackless, recursive;
-            for (uint32_t i = 0; i < count;) {
-                const bool leaf_node = bvh.nodes[i].leaf();
-                if (!skip(i) && leaf_node) stackless.push_back(i);
-                i = (skip(i) || leaf_node) ? bvh.nodes[i].escape : i + 1;
+                std::vector<int> seen(n, 0);
+                for (uint32_t i = 0; i < count; ++i) {
+                    const bake::BvhNode& node = bvh.nodes[i];
+                    const uint32_t first = node.first(), c = bvh.counts[i];
+                    ASSERT_LE(first + c, n);
+                    ASSERT_GE(c, 1u);
+                    glm::vec3 ulo = lo[bvh.order[first]], uhi = hi[bvh.order[first]];
+                    for (uint32_t k = first; k < first + c; ++k) {
+                        ulo = glm::min(ulo, lo[bvh.order[k]]);
+                        uhi = glm::max(uhi, hi[bvh.order[k]]);
+                    }
+                    EXPECT_EQ(node.lo, ulo) << "node " << i << " bounds are not the union of its range";
+                    EXPECT_EQ(node.hi, uhi) << "node " << i;
+                    ASSERT_GT(node.escape, i);
+                    ASSERT_LE(node.escape, count);
+                    if (node.leaf()) {
+                        EXPECT_LE(c, leaf);
+                        EXPECT_EQ(node.leaf_count(), c) << "leaf count packed in the range";
+                        EXPECT_EQ(node.escape, i + 1);
+                        for (uint32_t k = first; k < first + c; ++k) ++seen[bvh.order[k]];
+                    } else {
+                        EXPECT_GT(c, leaf);
+                        const uint32_t a = i + 1, b = bvh.nodes[a].escape;  // the two children
+                        ASSERT_LT(b, count);
+                        EXPECT_EQ(bvh.nodes[a].first(), first);
+                        EXPECT_EQ(bvh.nodes[b].first(), first + bvh.counts[a]);
+                        EXPECT_EQ(bvh.counts[a] + bvh.counts[b], c);
+                        if (median) EXPECT_LE(bvh.counts[b] - bvh.counts[a], 1u) << "median split";
+                        EXPECT_EQ(bvh.nodes[b].escape, node.escape);
+                    }
+                }
+                for (uint32_t p = 0; p < n; ++p)
+                    ASSERT_EQ(seen[p], 1) << "primitive " << p << " not in exactly one leaf";
+
+                // Stackless traversal that skips random subtrees visits exactly the leaves a
+                // recursive traversal with the same decisions visits.
+                auto skip = [](uint32_t i) { return bake::pcg_hash(i) % 5 == 0; };
+                std::vector<uint32_t> stackless, recursive;
+                for (uint32_t i = 0; i < count;) {
+                    const bool leaf_node = bvh.nodes[i].leaf();
+                    if (!skip(i) && leaf_node) stackless.push_back(i);
+                    i = (skip(i) || leaf_node) ? bvh.nodes[i].escape : i + 1;
+                }
+                std::function<void(uint32_t)> visit = [&](uint32_t i) {
+                    if (skip(i)) return;
+                    if (bvh.nodes[i].leaf()) return recursive.push_back(i);
+                    visit(i + 1);
+                    visit(bvh.nodes[i + 1].escape);
+                };
+                visit(0);
+                EXPECT_EQ(stackless, recursive);
             }
-            std::function<void(uint32_t)> visit = [&](uint32_t i) {
-                if (skip(i)) return;
-                if (bvh.nodes[i].leaf()) return recursive.push_back(i);
-                visit(i + 1);
-                visit(bvh.nodes[i + 1].escape);
-            };
-            visit(0);
-            EXPECT_EQ(stackless, recursive);
         }
-    }
 }
 
 namespace {
@@ -198,7 +202,8 @@ TEST(Bvh, SahTreeIsCheaperThanMedianTreeOnTheBunny)
     }
     const double median = sah_cost(bake::build_bvh(lo, hi, 4, bake::BvhSplit::Median));
     const double sah = sah_cost(bake::build_bvh(lo, hi, 4, bake::BvhSplit::Sah));
-    std::printf("SAH cost: median split %.1f, binned SAH %.1f (%.1f %% lower)\n", median, sah, 100.0 * (1.0 - sah / median));
+    std::printf("SAH cost: median split %.1f, binned SAH %.1f (%.1f %% lower)\n", median, sah,
+                100.0 * (1.0 - sah / median));
     EXPECT_LT(sah, 0.9 * median);
 }
 
@@ -267,7 +272,8 @@ TEST(ReferenceAo, OpenSurfacesAreUnoccluded)
         EXPECT_EQ(ao, 0.0f);
     const PreparedMesh plane = prepare_mesh(procedural::grid(16, 0.25f));
     for (bool ld : {true, false})
-        for (const auto& ao : reference_ao(plane, AoSettings{.rays = 128, .low_discrepancy = ld, .max_distance_rel = 2.0f}))
+        for (const auto& ao :
+             reference_ao(plane, AoSettings{.rays = 128, .low_discrepancy = ld, .max_distance_rel = 2.0f}))
             EXPECT_EQ(ao, 0.0f);
 }
 
@@ -283,8 +289,9 @@ TEST(ReferenceAo, InsideClosedBoxEveryRayHits)
         EXPECT_EQ(reference_ao(m, s, std::vector<uint32_t>{floor_centre})[0], 1.0f);
     }
     // With a reach shorter than the nearest wall nothing is hit.
-    EXPECT_EQ(reference_ao(m, AoSettings{.rays = 256, .max_distance_rel = 0.25f}, std::vector<uint32_t>{floor_centre})[0],
-              0.0f);
+    EXPECT_EQ(
+        reference_ao(m, AoSettings{.rays = 256, .max_distance_rel = 0.25f}, std::vector<uint32_t>{floor_centre})[0],
+        0.0f);
 }
 
 TEST(ReferenceAo, ParallelPlaneMatchesAnalyticFraction)
@@ -292,13 +299,15 @@ TEST(ReferenceAo, ParallelPlaneMatchesAnalyticFraction)
     // Grid at z = 0 under a parallel plane at z = h. A cosine ray leaving at polar angle θ
     // reaches the plane at distance (h − ε)/cos θ, so A_o = P(cos θ ≥ (h − ε)/L) = 1 − ((h − ε)/L)².
     const float h = 1.0f;
-    const PreparedMesh m = prepare_mesh(merged(procedural::grid(10, 1.0f), translated(procedural::grid(10, 1.0f), {0, 0, h})));
+    const PreparedMesh m =
+        prepare_mesh(merged(procedural::grid(10, 1.0f), translated(procedural::grid(10, 1.0f), {0, 0, h})));
     const uint32_t centre = nearest_vertex(m, {0, 0, 0});
     for (float rel : {0.08f, 0.1f, 0.2f}) {
         const double L = double(rel) * m.diagonal, eps = 1e-4 * double(m.diagonal);
         const double expected = std::max(0.0, 1.0 - std::pow((h - eps) / L, 2.0));
         for (bool ld : {true, false}) {
-            const AoSettings s{.rays = 4096, .low_discrepancy = ld, .seed = 3, .max_distance_rel = rel, .ray_offset_rel = 1e-4f};
+            const AoSettings s{
+                .rays = 4096, .low_discrepancy = ld, .seed = 3, .max_distance_rel = rel, .ray_offset_rel = 1e-4f};
             const float ao = reference_ao(m, s, std::vector<uint32_t>{centre})[0];
             // Low discrepancy: the hit set depends on u1 alone, stratified in 1/N. i.i.d.: 4σ.
             const double tol = ld ? 2.0 / 4096 : 4.0 * std::sqrt(expected * (1 - expected) / 4096) + 1e-9;
@@ -338,8 +347,8 @@ TEST(ReferenceAo, BunnySpeed)
     double mean = 0.0;
     for (float a : ao) mean += a / double(ao.size());
     const double mrays = double(ao.size()) * s.rays / seconds * 1e-6;
-    std::printf("reference_ao bunny: %zu vertices x %u rays in %.2f s = %.2f Mrays/s, mean AO %.4f\n", ao.size(), s.rays,
-                seconds, mrays, mean);
+    std::printf("reference_ao bunny: %zu vertices x %u rays in %.2f s = %.2f Mrays/s, mean AO %.4f\n", ao.size(),
+                s.rays, seconds, mrays, mean);
     RecordProperty("mrays_per_s", std::to_string(mrays));
     EXPECT_GT(mean, 0.02);
     EXPECT_LT(mean, 0.5);
@@ -366,7 +375,8 @@ double disk_adaptive(const ChannelProfile& p, double r, double rho)
 double disk_polar(const ChannelProfile& p, double r, double rho)
 {
     auto g = [&](double psi) {
-        const double c = r * std::cos(psi), root = std::sqrt(std::max(0.0, rho * rho - r * r * std::sin(psi) * std::sin(psi)));
+        const double c = r * std::cos(psi),
+                     root = std::sqrt(std::max(0.0, rho * rho - r * r * std::sin(psi) * std::sin(psi)));
         return (p.cdf(std::max(c + root, 0.0)) - p.cdf(std::max(c - root, 0.0))) / kPi;  // ψ and −ψ
     };
     return bake::integrate(g, 0.0, r <= rho ? kPi : std::asin(rho / r), 1e-12, 1e-300);
@@ -377,7 +387,8 @@ double disk_polar(const ChannelProfile& p, double r, double rho)
 TEST(DiskIntegral, DistanceFormulaIsTheDiskIntegral)
 {
     const double w[2] = {0.4, 0.6}, v[2] = {0.05, 0.6};
-    for (const auto& p : {ChannelProfile::burley(0.3), ChannelProfile::dipole(1.0, 0.1, 1.3), ChannelProfile::gaussians(w, v)})
+    for (const auto& p :
+         {ChannelProfile::burley(0.3), ChannelProfile::dipole(1.0, 0.1, 1.3), ChannelProfile::gaussians(w, v)})
         for (double rho : {0.1, 1.0})
             for (double f : {0.0, 0.3, 0.99, 1.0, 1.01, 1.5, 3.99}) {
                 const double a = disk_adaptive(p, f * rho, rho), b = disk_polar(p, f * rho, rho);
@@ -402,7 +413,8 @@ TEST(DiskIntegral, GaussLegendreAccuracyAndFarFieldSwitch)
             }
             const double area = kPi * rho * rho, exact = disk_adaptive(p, 4 * rho, rho);
             const double jump = bake::vertex_disk_term(p, 4 * rho, area) / exact - 1;
-            std::printf("%-15s rho = %.2f: GL8 worst rel. error %.1e, far field at 4 rho %+.2f %%\n", name, rho, worst, 100 * jump);
+            std::printf("%-15s rho = %.2f: GL8 worst rel. error %.1e, far field at 4 rho %+.2f %%\n", name, rho, worst,
+                        100 * jump);
             // The rule is accurate to 1e-3 for disks up to the profile's length (Burley: any).
             EXPECT_LT(worst, (p.kind == ProfileKind::Burley || rho <= 1.0) ? 1e-3 : 0.05) << name << " ρ = " << rho;
             EXPECT_LT(std::abs(jump), rho <= 0.25 ? 0.02 : 1.0) << name << " ρ = " << rho;
@@ -431,9 +443,11 @@ TEST(ReferenceTm, FlatGridIsOneAndBeatsThePointSum)
     const ChannelProfile& p = mat.profile[0];
     double point = p.cdf(std::sqrt(m.areas[centre] / kPi));
     for (uint32_t j = 0; j < m.vertex_count(); ++j)
-        if (j != centre) point += m.areas[j] * p.R(glm::distance(glm::dvec3(m.positions[j]), glm::dvec3(m.positions[centre])));
-    std::printf("flat grid 201x201, spacing = d: vertex-disk t_m = %.6f (%.3f %%), point sum %.6f (%.3f %%), %.1f Mpairs/s\n",
-                tm, 100 * (tm - 1), point, 100 * (point - 1), m.vertex_count() / seconds * 1e-6);
+        if (j != centre)
+            point += m.areas[j] * p.R(glm::distance(glm::dvec3(m.positions[j]), glm::dvec3(m.positions[centre])));
+    std::printf(
+        "flat grid 201x201, spacing = d: vertex-disk t_m = %.6f (%.3f %%), point sum %.6f (%.3f %%), %.1f Mpairs/s\n",
+        tm, 100 * (tm - 1), point, 100 * (point - 1), m.vertex_count() / seconds * 1e-6);
     EXPECT_NEAR(tm, 1.0, 0.01);
     EXPECT_LT(point, 0.985);
     EXPECT_GT(point, 0.96);
@@ -468,12 +482,14 @@ TEST(ReferenceTm, ScaleInvariantForEveryProfileKind)
     const auto base = reference_tm(m, ao, mixed);
     // Powers of two scale the float mesh exactly: agreement to rounding. Decimal factors
     // also round the positions (≈ 6e-8 relative).
-    for (const auto& [factor, tol] : {std::pair{0x1p-13f, 1e-9}, std::pair{0x1p13f, 1e-9}, std::pair{1e-4f, 2e-6}, std::pair{1e4f, 2e-6}}) {
+    for (const auto& [factor, tol] :
+         {std::pair{0x1p-13f, 1e-9}, std::pair{0x1p13f, 1e-9}, std::pair{1e-4f, 2e-6}, std::pair{1e4f, 2e-6}}) {
         const double f = factor;  // the float factor exactly, for the mesh and the material
         const PreparedMesh ms = prepare_mesh(scaled(grid, factor));
         const auto t = reference_tm(ms, ao, mixed.scaled(f));
         for (size_t i = 0; i < t.size(); ++i)
-            for (int c = 0; c < 3; ++c) ASSERT_NEAR(t[i][c], base[i][c], tol * base[i][c]) << "scale " << f << " vertex " << i;
+            for (int c = 0; c < 3; ++c)
+                ASSERT_NEAR(t[i][c], base[i][c], tol * base[i][c]) << "scale " << f << " vertex " << i;
     }
     // Subsets give the same values; the grey material is computed once and copied.
     const std::vector<uint32_t> subset = {3, 100, 3};
@@ -497,7 +513,8 @@ TEST(ReferenceTm, ThinSlabIsMoreTranslucentThanThickBlock)
     // Half-space: 1. Slab: the bottom face adds about ∫ R over a parallel plane at distance h,
     // 1 − cdf(h) (the vertex-disk rule measures it with in-plane distances, so only roughly).
     const double bottom = 1.0 - mat.profile[0].cdf(thickness);
-    std::printf("top-face centre: slab t_m = %.4f, block t_m = %.4f, 1 + (1 - cdf(h)) = %.4f\n", slab, block, 1 + bottom);
+    std::printf("top-face centre: slab t_m = %.4f, block t_m = %.4f, 1 + (1 - cdf(h)) = %.4f\n", slab, block,
+                1 + bottom);
     EXPECT_NEAR(block, 1.0, 0.02);
     EXPECT_GT(slab, block + 0.5 * bottom);
     EXPECT_LT(slab, block + 1.5 * bottom);

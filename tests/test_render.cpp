@@ -127,11 +127,12 @@ void expect_matches_golden(const RenderedImage& img, const std::string& name)
     const int p99 = pixel_error[pixel_error.size() * 99 / 100];
     std::printf("%s: mean abs error %.3f, 99th percentile %d (8-bit sRGB steps)\n", name.c_str(), mean, p99);
     if (mean > 1.0 || p99 > 12) {
-        const auto actual_path = test::out("render/" + name + "_actual.png"), diff_path = test::out("render/" + name + "_diff.png");
+        const auto actual_path = test::out("render/" + name + "_actual.png"),
+                   diff_path = test::out("render/" + name + "_diff.png");
         save_image(actual_path, int(img.width), int(img.height), img.rgba);
         save_image(diff_path, int(img.width), int(img.height), diff.rgba);
-        ADD_FAILURE() << name << ": differs from " << golden_path << " (mean " << mean << ", p99 " << p99
-                      << "); wrote " << actual_path << " and " << diff_path;
+        ADD_FAILURE() << name << ": differs from " << golden_path << " (mean " << mean << ", p99 " << p99 << "); wrote "
+                      << actual_path << " and " << diff_path;
     }
 }
 
@@ -156,7 +157,8 @@ TEST_F(Render, PointLightFallsOffWithInverseSquare)
     Renderer r(context());
     r.set_mesh(unit_sphere());
     r.set_material(matte());
-    const Light light = Light::point({0, 0, 3}, glm::vec3(4.0f * std::numbers::pi_v<float>));  // 2 units from the surface
+    const Light light =
+        Light::point({0, 0, 3}, glm::vec3(4.0f * std::numbers::pi_v<float>));  // 2 units from the surface
     RenderedImage img = r.render(kFront, {&light, 1}, settings(65, ShadingMode::Lambert));
     EXPECT_NEAR(centre_red(img), 1.0, 5e-3);
 }
@@ -165,7 +167,8 @@ TEST_F(Render, TmWithZeroStrengthIsLambert)
 {
     Renderer r(context());
     std::vector<glm::vec3> tm(unit_sphere().vertex_count());
-    for (size_t i = 0; i < tm.size(); ++i) tm[i] = glm::vec3(0.3f, 1.0f, 2.5f) * (0.5f + 0.5f * unit_sphere().positions[i].y);
+    for (size_t i = 0; i < tm.size(); ++i)
+        tm[i] = glm::vec3(0.3f, 1.0f, 2.5f) * (0.5f + 0.5f * unit_sphere().positions[i].y);
     r.set_mesh(unit_sphere(), tm);
     Material m = material_preset("blue-jewel", 100.0 / 3.46);  // coloured profiles: the 3-fetch path
     m.strength = 0.0f;
@@ -325,7 +328,8 @@ TEST_F(Render, GoldenBunnyInFourModesUnderFigure1Lights)
     r.set_mesh(b.mesh, b.tm);
     r.set_material(b.material);
     const Camera camera = Camera::framing(b.mesh.bbox_min, b.mesh.bbox_max);
-    for (ShadingMode mode : {ShadingMode::Lambert, ShadingMode::Curvature, ShadingMode::Tm, ShadingMode::TmFalseColor}) {
+    for (ShadingMode mode :
+         {ShadingMode::Lambert, ShadingMode::Curvature, ShadingMode::Tm, ShadingMode::TmFalseColor}) {
         RenderSettings s;
         s.width = s.height = 192;
         s.mode = mode;

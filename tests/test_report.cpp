@@ -26,12 +26,15 @@ fs::path write_scene()
     TriangleMesh slab = procedural::box({-1.0f, -1.0f, -0.2f}, {1.0f, 1.0f, 0.0f}, 8);
     TriangleMesh ball = procedural::sphere(0.4f, 14, 28);
     std::ostringstream off;
-    off << "OFF\n" << slab.positions.size() + ball.positions.size() << " " << slab.triangle_count() + ball.triangle_count() << " 0\n";
+    off << "OFF\n"
+        << slab.positions.size() + ball.positions.size() << " " << slab.triangle_count() + ball.triangle_count()
+        << " 0\n";
     for (auto p : slab.positions) off << p.x << " " << p.y << " " << p.z << "\n";
     for (auto p : ball.positions) off << p.x << " " << p.y << " " << p.z + 0.45f << "\n";
     auto faces = [&](const TriangleMesh& m, size_t offset) {
         for (size_t t = 0; t < m.triangle_count(); ++t)
-            off << "3 " << m.indices[3 * t] + offset << " " << m.indices[3 * t + 1] + offset << " " << m.indices[3 * t + 2] + offset << "\n";
+            off << "3 " << m.indices[3 * t] + offset << " " << m.indices[3 * t + 1] + offset << " "
+                << m.indices[3 * t + 2] + offset << "\n";
     };
     faces(slab, 0);
     faces(ball, slab.positions.size());
@@ -52,10 +55,14 @@ std::vector<std::string> fields(const std::string& line)
     std::vector<std::string> v(1);
     bool quoted = false;
     for (size_t i = 0; i < line.size(); ++i) {
-        if (quoted && line[i] == '"' && i + 1 < line.size() && line[i + 1] == '"') v.back() += '"', ++i;
-        else if (line[i] == '"') quoted = !quoted;
-        else if (!quoted && line[i] == ',') v.emplace_back();
-        else v.back() += line[i];
+        if (quoted && line[i] == '"' && i + 1 < line.size() && line[i + 1] == '"')
+            v.back() += '"', ++i;
+        else if (line[i] == '"')
+            quoted = !quoted;
+        else if (!quoted && line[i] == ',')
+            v.emplace_back();
+        else
+            v.back() += line[i];
     }
     return v;
 }
@@ -104,15 +111,16 @@ TEST(Report, TinyRunWritesCsvSummaryAndErrorsFallWithEffort)
     EXPECT_NE(r.output.find("[1/"), std::string::npos) << "progress lines with an index: " << r.output;
     ASSERT_TRUE(fs::exists(dir / "report.csv"));
     ASSERT_TRUE(fs::exists(dir / "summary.md"));
-    for (const auto& e : fs::directory_iterator(dir)) EXPECT_NE(e.path().extension(), ".tmp") << "left over: " << e.path();
+    for (const auto& e : fs::directory_iterator(dir))
+        EXPECT_NE(e.path().extension(), ".tmp") << "left over: " << e.path();
 
     std::string header;
     const auto rows = read_rows(dir / "report.csv", header);
     EXPECT_EQ(header, "mesh,knob,value,method,gpu_ms,wall_ms,err_rms,err_p99,err_max,notes");
     std::map<std::string, int> knobs;
     for (const auto& row : rows) ++knobs[row.knob];
-    for (const char* k : {"ao_rays", "ao_float64", "tm_reference", "tm_exact", "tm_epsilon", "tm_auto", "quality", "image",
-                          "image_lut", "lut_size"})
+    for (const char* k : {"ao_rays", "ao_float64", "tm_reference", "tm_exact", "tm_epsilon", "tm_auto", "quality",
+                          "image", "image_lut", "lut_size"})
         EXPECT_GT(knobs[k], 0) << "no row for " << k;
 
     // AO: RMS falls with the ray count (both samplings); low-discrepancy beats i.i.d.
@@ -125,12 +133,14 @@ TEST(Report, TinyRunWritesCsvSummaryAndErrorsFallWithEffort)
         }
         EXPECT_GT(ao.front().rms, 0.01) << "the scene must be occluded for the AO rows to mean anything";
     }
-    EXPECT_LT(series(rows, "ao_rays", "low-discrepancy (d=0.1)").back().rms, series(rows, "ao_rays", "i.i.d. (d=0.1)").back().rms);
+    EXPECT_LT(series(rows, "ao_rays", "low-discrepancy (d=0.1)").back().rms,
+              series(rows, "ao_rays", "i.i.d. (d=0.1)").back().rms);
 
     // t_m: the error falls (within float32 noise) as ε falls, and stays within the documented bound.
     const auto eps = series(rows, "tm_epsilon", "clustered (burley d=5%)");
     ASSERT_EQ(eps.size(), 3u);
-    for (size_t k = 1; k < eps.size(); ++k) EXPECT_LE(eps[k].max, eps[k - 1].max * 1.2 + 2e-6) << "eps " << eps[k].value;
+    for (size_t k = 1; k < eps.size(); ++k)
+        EXPECT_LE(eps[k].max, eps[k - 1].max * 1.2 + 2e-6) << "eps " << eps[k].value;
     EXPECT_LT(eps.front().max, 0.05);
     const auto exact = series(rows, "tm_exact", "exact (burley d=5%)");
     ASSERT_GE(exact.size(), 1u);  // and a float64-sums row where the device has shaderFloat64
@@ -174,8 +184,9 @@ TEST(Report, TinyRunWritesCsvSummaryAndErrorsFallWithEffort)
     EXPECT_LT(refit_tm[0].max, 2e-2) << "refit and rebuild t_m";
 
     const std::string md = read_text(dir / "summary.md");
-    for (const char* s : {"## Recommended settings", "### draft", "### default", "### high", "| rays | method | GPU | wall | RMS | p99 | max |",
-                          "Translucency LUT size", "120 vertices", "### Deformation: refit, rebuild, amortised re-bakes"})
+    for (const char* s : {"## Recommended settings", "### draft", "### default", "### high",
+                          "| rays | method | GPU | wall | RMS | p99 | max |", "Translucency LUT size", "120 vertices",
+                          "### Deformation: refit, rebuild, amortised re-bakes"})
         EXPECT_NE(md.find(s), std::string::npos) << "summary.md lacks: " << s;
 }
 

@@ -23,11 +23,13 @@ std::string base64(const std::string& bytes)
     std::string out;
     size_t i = 0;
     for (; i + 2 < bytes.size(); i += 3) {
-        const uint32_t v = uint32_t(uint8_t(bytes[i])) << 16 | uint32_t(uint8_t(bytes[i + 1])) << 8 | uint8_t(bytes[i + 2]);
+        const uint32_t v =
+            uint32_t(uint8_t(bytes[i])) << 16 | uint32_t(uint8_t(bytes[i + 1])) << 8 | uint8_t(bytes[i + 2]);
         for (int s = 18; s >= 0; s -= 6) out += k[(v >> s) & 63];
     }
     if (i < bytes.size()) {
-        uint32_t v = uint32_t(uint8_t(bytes[i])) << 16 | (i + 1 < bytes.size() ? uint32_t(uint8_t(bytes[i + 1])) << 8 : 0u);
+        uint32_t v =
+            uint32_t(uint8_t(bytes[i])) << 16 | (i + 1 < bytes.size() ? uint32_t(uint8_t(bytes[i + 1])) << 8 : 0u);
         out += k[(v >> 18) & 63];
         out += k[(v >> 12) & 63];
         out += i + 1 < bytes.size() ? k[(v >> 6) & 63] : '=';
@@ -43,7 +45,8 @@ struct TestObject {
 };
 
 /// A .gltf with one node per object and the given "materials" array (JSON text).
-std::filesystem::path write_gltf(const std::string& name, const std::vector<TestObject>& objects, const std::string& materials)
+std::filesystem::path write_gltf(const std::string& name, const std::vector<TestObject>& objects,
+                                 const std::string& materials)
 {
     std::string buffer;
     std::ostringstream views, accessors, meshes, nodes, roots;
@@ -56,11 +59,13 @@ std::filesystem::path write_gltf(const std::string& name, const std::vector<Test
         buffer.append(reinterpret_cast<const char*>(m.indices.data()), m.indices.size() * 4);
         glm::vec3 lo(1e30f), hi(-1e30f);
         for (auto p : m.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
-        views << sep << R"({"buffer":0,"byteOffset":)" << pos_offset << R"(,"byteLength":)" << m.positions.size() * 12 << "},"
+        views << sep << R"({"buffer":0,"byteOffset":)" << pos_offset << R"(,"byteLength":)" << m.positions.size() * 12
+              << "},"
               << R"({"buffer":0,"byteOffset":)" << idx_offset << R"(,"byteLength":)" << m.indices.size() * 4 << "}";
         accessors << sep << R"({"bufferView":)" << 2 * k << R"(,"componentType":5126,"count":)" << m.positions.size()
-                  << R"(,"type":"VEC3","min":[)" << lo.x << "," << lo.y << "," << lo.z << "],\"max\":[" << hi.x << "," << hi.y << ","
-                  << hi.z << "]}," << R"({"bufferView":)" << 2 * k + 1 << R"(,"componentType":5125,"count":)" << m.indices.size()
+                  << R"(,"type":"VEC3","min":[)" << lo.x << "," << lo.y << "," << lo.z << "],\"max\":[" << hi.x << ","
+                  << hi.y << "," << hi.z << "]},"
+                  << R"({"bufferView":)" << 2 * k + 1 << R"(,"componentType":5125,"count":)" << m.indices.size()
                   << R"(,"type":"SCALAR"})";
         meshes << sep << R"({"primitives":[{"attributes":{"POSITION":)" << 2 * k << R"(},"indices":)" << 2 * k + 1
                << (objects[k].material >= 0 ? ",\"material\":" + std::to_string(objects[k].material) : "") << "}]}";
@@ -69,10 +74,11 @@ std::filesystem::path write_gltf(const std::string& name, const std::vector<Test
         roots << sep << k;
     }
     std::ostringstream doc;
-    doc << R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[)" << roots.str() << "]}],\"nodes\":[" << nodes.str()
-        << "],\"meshes\":[" << meshes.str() << "],\"accessors\":[" << accessors.str() << "],\"bufferViews\":[" << views.str()
-        << "],\"buffers\":[{\"byteLength\":" << buffer.size() << ",\"uri\":\"data:application/octet-stream;base64,"
-        << base64(buffer) << "\"}],\"materials\":" << materials << "}";
+    doc << R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[)" << roots.str() << "]}],\"nodes\":["
+        << nodes.str() << "],\"meshes\":[" << meshes.str() << "],\"accessors\":[" << accessors.str()
+        << "],\"bufferViews\":[" << views.str() << "],\"buffers\":[{\"byteLength\":" << buffer.size()
+        << ",\"uri\":\"data:application/octet-stream;base64," << base64(buffer) << "\"}],\"materials\":" << materials
+        << "}";
     const auto path = test::out("scene/" + name + ".gltf");
     std::ofstream(path) << doc.str();
     return path;
@@ -87,10 +93,12 @@ Scene one_material(const std::string& name, const std::string& material, std::ve
 // Burley's searchlight fit, written out here (docs/scene.md): s(A) = 1.85 − A + 7|A − 0.8|³.
 double burley_s(double a) { return 1.85 - a + 7.0 * std::pow(std::abs(a - 0.8), 3.0); }
 
-bool contains(const std::vector<std::string>& lines, const std::string& a, const std::string& b = "", const std::string& c = "")
+bool contains(const std::vector<std::string>& lines, const std::string& a, const std::string& b = "",
+              const std::string& c = "")
 {
     for (const auto& l : lines)
-        if (l.find(a) != std::string::npos && l.find(b) != std::string::npos && l.find(c) != std::string::npos) return true;
+        if (l.find(a) != std::string::npos && l.find(b) != std::string::npos && l.find(c) != std::string::npos)
+            return true;
     return false;
 }
 
@@ -106,7 +114,7 @@ TEST(SceneMaterials, VolumeAndDiffuseTransmissionBecomeABurleyProfilePerChannel)
         "KHR_materials_diffuse_transmission":{"diffuseTransmissionFactor":0.5,"diffuseTransmissionColorFactor":[1,0.5,0.25]},
         "KHR_materials_volume":{"thicknessFactor":1,"attenuationDistance":0.02,"attenuationColor":[0.5,1,0.25]}},
         "extras":{"jade":{"strength":1.5}}})",
-                                     &warnings);
+                                 &warnings);
     EXPECT_TRUE(warnings.empty()) << warnings.front();
     ASSERT_EQ(s.objects.size(), 1u);
     const Material& m = s.objects[0].material;
@@ -132,22 +140,25 @@ TEST(SceneMaterials, VolumeAndDiffuseTransmissionBecomeABurleyProfilePerChannel)
 TEST(SceneMaterials, WhiteAttenuationIsGreyAndPresetsComeFromExtras)
 {
     std::vector<std::string> warnings;
-    const Scene grey = one_material("grey", R"({"extensions":{"KHR_materials_diffuse_transmission":{"diffuseTransmissionFactor":1},
+    const Scene grey =
+        one_material("grey", R"({"extensions":{"KHR_materials_diffuse_transmission":{"diffuseTransmissionFactor":1},
         "KHR_materials_volume":{"thicknessFactor":1,"attenuationDistance":0.01}}})",
-                                    &warnings);
+                     &warnings);
     EXPECT_TRUE(warnings.empty());
     EXPECT_TRUE(grey.objects[0].material.grey());
     EXPECT_FALSE(grey.objects[0].material.opaque);
     EXPECT_NEAR(grey.objects[0].material.profile[0].d, 0.01 / burley_s(1.0), 1e-12);  // default base colour white
 
-    const Scene marble = one_material("marble", R"({"extras":{"jade":{"preset":"marble","mm_per_unit":250,"strength":2}}})", &warnings);
+    const Scene marble =
+        one_material("marble", R"({"extras":{"jade":{"preset":"marble","mm_per_unit":250,"strength":2}}})", &warnings);
     EXPECT_TRUE(warnings.empty());
     const Material& m = marble.objects[0].material;
     EXPECT_FALSE(m.opaque);
     EXPECT_EQ(m.profile, material_preset("marble", 250).profile);
     EXPECT_FLOAT_EQ(m.strength, 2.0f);
 
-    const Scene plain = one_material("plain", R"({"pbrMetallicRoughness":{"baseColorFactor":[0.2,0.4,0.6,1]}})", &warnings);
+    const Scene plain =
+        one_material("plain", R"({"pbrMetallicRoughness":{"baseColorFactor":[0.2,0.4,0.6,1]}})", &warnings);
     EXPECT_TRUE(plain.objects[0].material.opaque);  // neither extension: Lambert
     EXPECT_NEAR(plain.objects[0].material.albedo.z, 0.6f, 1e-6);
     const Scene forced = one_material("forced", R"({"extensions":{"KHR_materials_diffuse_transmission":{
@@ -164,7 +175,8 @@ TEST(SceneMaterials, BadValuesWarnNamingFileMaterialAndValueAndFallBack)
         "KHR_materials_diffuse_transmission":{"diffuseTransmissionFactor":1},
         "KHR_materials_volume":{"thicknessFactor":1,"attenuationDistance":-0.5}}})",
                                         &w);
-    EXPECT_TRUE(contains(w, "negative.gltf: material 0 'neg'", "attenuationDistance -0.5", "0.01 m used")) << ::testing::PrintToString(w);
+    EXPECT_TRUE(contains(w, "negative.gltf: material 0 'neg'", "attenuationDistance -0.5", "0.01 m used"))
+        << ::testing::PrintToString(w);
     EXPECT_NEAR(negative.objects[0].material.profile[0].d, 0.01 / burley_s(1.0), 1e-12);
 
     w.clear();
@@ -179,7 +191,8 @@ TEST(SceneMaterials, BadValuesWarnNamingFileMaterialAndValueAndFallBack)
     const Scene volume_only = one_material("volume_only", R"({"extensions":{"KHR_materials_volume":{
         "thicknessFactor":1,"attenuationDistance":0.01}}})",
                                            &w);
-    EXPECT_TRUE(contains(w, "volume_only.gltf: material 0", "KHR_materials_volume without diffuse transmission", "opaque"));
+    EXPECT_TRUE(
+        contains(w, "volume_only.gltf: material 0", "KHR_materials_volume without diffuse transmission", "opaque"));
     EXPECT_TRUE(volume_only.objects[0].material.opaque);
 
     w.clear();
@@ -200,7 +213,8 @@ TEST(SceneMaterials, MalformedFilesThrowNamingFileAndElement)
         load_scene(path);
         FAIL() << "no error";
     } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("bad_material.gltf: mesh 0 primitive 0: material 3 does not exist"), std::string::npos)
+        EXPECT_NE(std::string(e.what()).find("bad_material.gltf: mesh 0 primitive 0: material 3 does not exist"),
+                  std::string::npos)
             << e.what();
     }
     const auto truncated = test::out("scene/truncated.gltf");
@@ -213,7 +227,8 @@ TEST(SceneMaterials, MalformedFilesThrowNamingFileAndElement)
         load_scene(not_gltf);
         FAIL() << "no error";
     } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("scene.off: a scene file must be .gltf or .glb"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("scene.off: a scene file must be .gltf or .glb"), std::string::npos)
+            << e.what();
     }
 }
 
@@ -292,10 +307,12 @@ protected:
 
 TEST_F(SceneGpuTest, StaticSceneSecondRunReadsTheCacheAndCreatesNoBakeObjects)
 {
-    Scene scene{"static", {object("grey", procedural::sphere(1.0f, 10, 14), burley_material(glm::dvec3(0.2), glm::vec3(0.8f))),
-                           object("red", procedural::box({1.5f, -1, -1}, {3.5f, 1, 1}, 5), burley_material({0.4, 0.2, 0.1}, glm::vec3(0.8f))),
-                           // over 2048 vertices: the clustered far field (cluster tree buffers)
-                           object("big", procedural::sphere(1.0f, 40, 80), burley_material({0.1, 0.05, 0.03}, glm::vec3(0.8f)))}};
+    Scene scene{"static",
+                {object("grey", procedural::sphere(1.0f, 10, 14), burley_material(glm::dvec3(0.2), glm::vec3(0.8f))),
+                 object("red", procedural::box({1.5f, -1, -1}, {3.5f, 1, 1}, 5),
+                        burley_material({0.4, 0.2, 0.1}, glm::vec3(0.8f))),
+                 // over 2048 vertices: the clustered far field (cluster tree buffers)
+                 object("big", procedural::sphere(1.0f, 40, 80), burley_material({0.1, 0.05, 0.03}, glm::vec3(0.8f)))}};
     BakeCache cache(dir);
     const ObjectCounts c0 = context().created_objects();
     {
@@ -304,8 +321,8 @@ TEST_F(SceneGpuTest, StaticSceneSecondRunReadsTheCacheAndCreatesNoBakeObjects)
         for (const auto& p : first.passes_run()) EXPECT_EQ(p.kind, PassKind::StaticBake);
         // What the static bakes allocated (all of it freed at the end of the constructor)
         // against the plan's estimate: the counted bytes minus the draws' exactly known ones.
-        const uint64_t baked = context().created_objects().device_buffer_bytes - c0.device_buffer_bytes -
-                               draw_buffer_bytes(first.plan());
+        const uint64_t baked =
+            context().created_objects().device_buffer_bytes - c0.device_buffer_bytes - draw_buffer_bytes(first.plan());
         uint64_t estimate = 0;
         for (const auto& o : first.plan().objects) estimate += o.passes[0].buffer_bytes();
         std::printf("static bakes: %llu bytes allocated, %llu estimated (%.1f %%)\n", (unsigned long long)baked,
@@ -314,7 +331,9 @@ TEST_F(SceneGpuTest, StaticSceneSecondRunReadsTheCacheAndCreatesNoBakeObjects)
     }
     // A scene that never bakes (t_m = 0 given) is the reference for "only the draws".
     const ObjectCounts c1 = context().created_objects();
-    { SceneRenderer never(context(), scene, settings, never_baked()); }
+    {
+        SceneRenderer never(context(), scene, settings, never_baked());
+    }
     const ObjectCounts c2 = context().created_objects();
     SceneRenderer second(context(), scene, settings, cached_bakes(BakeCache(dir)));
     const ObjectCounts c3 = context().created_objects();
@@ -345,7 +364,8 @@ TEST_F(SceneGpuTest, OpaqueObjectAllocatesNoTmBuffers)
     // vertices, indices, frame data, LUT quads, transmission table (device-local), the LUT build's
     // read-back and the 16-bit LUT's upload (host-visible)
     EXPECT_EQ(c1.buffers - c0.buffers, 7u);
-    EXPECT_EQ(c1.device_buffer_bytes - c0.device_buffer_bytes, plan.objects[0].passes[0].buffer_bytes() + plan.shared_buffer_bytes());
+    EXPECT_EQ(c1.device_buffer_bytes - c0.device_buffer_bytes,
+              plan.objects[0].passes[0].buffer_bytes() + plan.shared_buffer_bytes());
     EXPECT_EQ(plan.objects[0].variant.mode, ShadingMode::Lambert);
 }
 
@@ -395,10 +415,12 @@ TEST_F(SceneGpuTest, MixedSceneRunsThePlannedPassesPerFrame)
     uint64_t estimate = 0;
     for (const auto& o : renderer.plan().objects)
         for (const auto& p : o.passes) estimate += p.kind == PassKind::Draw ? 0 : p.buffer_bytes();
-    const double allocated =
-        double(context().created_objects().device_buffer_bytes - c0.device_buffer_bytes - draw_buffer_bytes(renderer.plan()));
-    std::printf("mixed scene without draws: %.0f bytes allocated, %llu estimated\n", allocated, (unsigned long long)estimate);
-    EXPECT_NEAR(double(estimate) / allocated, 1.0, 0.10) << estimate << " bytes estimated, " << allocated << " allocated";
+    const double allocated = double(context().created_objects().device_buffer_bytes - c0.device_buffer_bytes -
+                                    draw_buffer_bytes(renderer.plan()));
+    std::printf("mixed scene without draws: %.0f bytes allocated, %llu estimated\n", allocated,
+                (unsigned long long)estimate);
+    EXPECT_NEAR(double(estimate) / allocated, 1.0, 0.10)
+        << estimate << " bytes estimated, " << allocated << " allocated";
     RenderSettings rs;
     rs.width = rs.height = 64;
     rs.samples = 1;
@@ -436,8 +458,9 @@ TEST_F(SceneGpuTest, LaterObjectsAreDepthTestedAgainstEarlierOnesWithMsaa)
     red.albedo = {0.9f, 0.05f, 0.05f};
     blue.albedo = {0.05f, 0.05f, 0.9f};
     red.specular = blue.specular = 0.0f;
-    Scene scene{"depth", {object("front", procedural::box({-1, -1, 0.5f}, {1, 1, 1}, 1), red),
-                          object("back", procedural::box({-2, -2, -1}, {2, 2, -0.5f}, 1), blue)}};
+    Scene scene{"depth",
+                {object("front", procedural::box({-1, -1, 0.5f}, {1, 1, 1}, 1), red),
+                 object("back", procedural::box({-2, -2, -1}, {2, 2, -0.5f}, 1), blue)}};
     SceneRenderer renderer(context(), scene, settings);
     const Camera camera{{0.0f, 0.0f, 8.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 40.0f};
     const std::vector<Light> lights = {Light::directional({0, 0, 1}, glm::vec3(3.0f))};
@@ -460,15 +483,17 @@ TEST(SceneCli, PlanPrintsPassesVariantsMemoryAndCacheState)
     const std::string scene = test::data("scene_mixed.gltf").string();
     auto r = test::run_cli({"plan", scene, "--cache", cache.string(), "--quality", "draft"});
     ASSERT_EQ(r.exit_code, 0) << r.output;
-    for (const char* line : {"object 0 'floor/0': 98 vertices, 192 triangles, opaque, no t_m", "shader variant: mode lambert",
-                             "shader variant: mode tm, CHANNELS=1", "not cached (bakes once)", "pass static bake (once), freed after",
-                             "pass deform (every frame), kept", "pass dynamic bake (every frame), kept", "kept while drawing"})
+    for (const char* line :
+         {"object 0 'floor/0': 98 vertices, 192 triangles, opaque, no t_m", "shader variant: mode lambert",
+          "shader variant: mode tm, CHANNELS=1", "not cached (bakes once)", "pass static bake (once), freed after",
+          "pass deform (every frame), kept", "pass dynamic bake (every frame), kept", "kept while drawing"})
         EXPECT_NE(r.output.find(line), std::string::npos) << line << "\n" << r.output;
 
     // A render fills the cache (--verbose lists the passes); the next plan sees it, the next
     // render reads it.
     const std::string png = test::out("scene_cli/scene.png").string();
-    r = test::run_cli({"scene", scene, "--cache", cache.string(), "--quality", "draft", "--size", "48", "--out", png, "--verbose"});
+    r = test::run_cli(
+        {"scene", scene, "--cache", cache.string(), "--quality", "draft", "--size", "48", "--out", png, "--verbose"});
     ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("grey_sphere/0            static bake"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("bending_bar/0            dynamic bake"), std::string::npos) << r.output;
@@ -477,7 +502,8 @@ TEST(SceneCli, PlanPrintsPassesVariantsMemoryAndCacheState)
     r = test::run_cli({"plan", scene, "--cache", cache.string(), "--quality", "draft"});
     EXPECT_NE(r.output.find("in the cache (no bake will run)"), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("not cached"), std::string::npos) << r.output;
-    r = test::run_cli({"scene", scene, "--cache", cache.string(), "--quality", "draft", "--size", "48", "--out", png, "--verbose"});
+    r = test::run_cli(
+        {"scene", scene, "--cache", cache.string(), "--quality", "draft", "--size", "48", "--out", png, "--verbose"});
     EXPECT_NE(r.output.find("grey_sphere/0            cache read"), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("static bake"), std::string::npos) << r.output;
 }
@@ -498,15 +524,19 @@ TEST(SceneCli, BadScenesFailWithTheFileNamed)
 TEST(SceneCli, BenchRenderSceneComparesCachedWithNeverBaked)
 {
     const auto cache = test::out("scene_cli/bench_cache/x").parent_path();
-    auto r = test::run_cli({"bench", "render", "--scene", test::data("scene_mixed.gltf").string(), "--cache", cache.string()});
+    auto r = test::run_cli(
+        {"bench", "render", "--scene", test::data("scene_mixed.gltf").string(), "--cache", cache.string()});
     EXPECT_EQ(r.exit_code, 2) << r.output;  // the mixed scene deforms: not a static benchmark
     EXPECT_NE(r.output.find("bending_bar/0' deforms"), std::string::npos) << r.output;
 
-    const auto scene = write_gltf("bench_static", {{procedural::sphere(0.05f, 8, 12), 0, {}}, {procedural::box({-0.1f, -0.06f, -0.1f}, {0.1f, -0.05f, 0.1f}, 1), 1, {}}},
-                                  R"([{"extensions":{"KHR_materials_diffuse_transmission":{"diffuseTransmissionFactor":1}}},{}])");
+    const auto scene =
+        write_gltf("bench_static",
+                   {{procedural::sphere(0.05f, 8, 12), 0, {}},
+                    {procedural::box({-0.1f, -0.06f, -0.1f}, {0.1f, -0.05f, 0.1f}, 1), 1, {}}},
+                   R"([{"extensions":{"KHR_materials_diffuse_transmission":{"diffuseTransmissionFactor":1}}},{}])");
     std::filesystem::remove_all(cache);
-    r = test::run_cli({"bench", "render", "--scene", scene.string(), "--cache", cache.string(), "--repeat", "2", "--size", "32",
-                       "--quality", "draft"});
+    r = test::run_cli({"bench", "render", "--scene", scene.string(), "--cache", cache.string(), "--repeat", "2",
+                       "--size", "32", "--quality", "draft"});
     ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("1 static bakes were missing and ran now"), std::string::npos) << r.output;
     // The shared LUT's builder and the one transmitting object's attenuation table.

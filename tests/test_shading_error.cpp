@@ -66,7 +66,8 @@ glm::dvec3 attenuation(const Transmission& tr, double t)
     glm::dvec3 out;
     for (int c = 0; c < 3; ++c) {
         const double ballistic = std::exp(-double(tr.sigma_t[c]) * t);
-        const double diffused = (1.0 - std::exp(-double(tr.sigma_s_reduced[c]) * t)) * std::exp(-double(tr.sigma_tr[c]) * t);
+        const double diffused =
+            (1.0 - std::exp(-double(tr.sigma_s_reduced[c]) * t)) * std::exp(-double(tr.sigma_tr[c]) * t);
         out[c] = double(tr.weight) * ballistic + double(tr.diffusion_weight) * diffused;
     }
     return out;
@@ -86,7 +87,8 @@ glm::dvec3 reference_pixel(const ShadingInputs& in, size_t p, const Material& m,
     glm::dvec3 t;
     for (int c = 0; c < 3; ++c)
         t[c] = std::min(double(m.strength) * std::clamp(double(in.tm[p][m.grey() ? 0 : c]), 0.0, 3e38) +
-                            double(m.spread_strength) * std::clamp(double(in.normal_spread[p][m.grey() ? 0 : c]), 0.0, 1.0),
+                            double(m.spread_strength) *
+                                std::clamp(double(in.normal_spread[p][m.grey() ? 0 : c]), 0.0, 1.0),
                         LutLayout::kMaxVariance);
     const size_t pixels = size_t(in.width) * in.height;
     glm::dvec3 color(0.0);
@@ -99,7 +101,8 @@ glm::dvec3 reference_pixel(const ShadingInputs& in, size_t p, const Material& m,
         l = glm::normalize(l);
         const double c = glm::dot(n, l), c_diffuse = glm::dot(n_diffuse, l);
         for (int ch = 0; ch < 3; ++ch) {
-            double diffuse = double(m.albedo[ch]) / kPi * lut_reference(std::clamp(c_diffuse, -1.0, 1.0), t[ch]) * e[ch];
+            double diffuse =
+                double(m.albedo[ch]) / kPi * lut_reference(std::clamp(c_diffuse, -1.0, 1.0), t[ch]) * e[ch];
             if (m.boundary_transmittance) diffuse *= boundary(c_diffuse, f0, alpha) * exit;
             color[ch] += diffuse;
         }
@@ -130,7 +133,8 @@ ImageError compare(const RenderedImage& img, const ShadingInputs& in, const Mate
         for (size_t p = first; p < pixels; p += step) {
             if (in.position[p].w == 0.0f || img.rgba[4 * p + 3] == 0.0f) continue;
             const glm::dvec3 ref = reference_pixel(in, p, m, cam, lights);
-            for (int c = 0; c < 3; ++c) errors[3 * p + c] = std::abs(srgb_levels(img.rgba[4 * p + c]) - srgb_levels(ref[c]));
+            for (int c = 0; c < 3; ++c)
+                errors[3 * p + c] = std::abs(srgb_levels(img.rgba[4 * p + c]) - srgb_levels(ref[c]));
         }
     };
     std::vector<std::thread> pool;
@@ -172,7 +176,8 @@ TEST_F(ShadingError, EveryEvaluationPathKeepsTheFinal8BitImageWithinHalfALevel)
 {
     const TmEvaluation paths[] = {TmEvaluation::Lut, TmEvaluation::LutFiltered, TmEvaluation::Alu};
     std::map<TmEvaluation, std::unique_ptr<Renderer>> renderers;
-    for (TmEvaluation e : paths) renderers[e] = std::make_unique<Renderer>(context(), RendererOptions{.tm_evaluation = e});
+    for (TmEvaluation e : paths)
+        renderers[e] = std::make_unique<Renderer>(context(), RendererOptions{.tm_evaluation = e});
     std::map<TmEvaluation, ImageError> worst;
     Baker baker(context());
     size_t scenes = 0;
@@ -209,8 +214,8 @@ TEST_F(ShadingError, EveryEvaluationPathKeepsTheFinal8BitImageWithinHalfALevel)
         }
     }
     for (TmEvaluation e : paths)
-        std::printf("%-6s worst over %zu scenes: p99 %.3f, max %.3f 8-bit levels\n", std::string(tm_evaluation_name(e)).c_str(),
-                    scenes, worst[e].p99, worst[e].max);
+        std::printf("%-6s worst over %zu scenes: p99 %.3f, max %.3f 8-bit levels\n",
+                    std::string(tm_evaluation_name(e)).c_str(), scenes, worst[e].p99, worst[e].max);
 }
 
 // The negative control: a LUT of 65 × 9 texels (max interpolation error ~1e-2) fails the budget.

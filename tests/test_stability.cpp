@@ -49,7 +49,8 @@ TriangleMesh scaled(TriangleMesh m, float factor)
 /// other (AO well inside (0, 1)), the rest is open. 3 × 3 × 2.3 units, ~440 bake vertices.
 TriangleMesh box_under_lid()
 {
-    TriangleMesh m = merged(procedural::box({-1, -1, -1}, {1, 1, 1}, 6), procedural::box({-1.5f, -1.5f, 1.15f}, {1.5f, 1.5f, 1.3f}, 6));
+    TriangleMesh m = merged(procedural::box({-1, -1, -1}, {1, 1, 1}, 6),
+                            procedural::box({-1.5f, -1.5f, 1.15f}, {1.5f, 1.5f, 1.3f}, 6));
     m.name = "box under lid";
     return m;
 }
@@ -67,7 +68,8 @@ TriangleMesh three_fins()
         const glm::vec3 dir(float(std::cos(angle)), float(std::sin(angle)), 0.0f);
         const auto base = uint32_t(m.positions.size());
         for (uint32_t j = 0; j <= n; ++j)
-            for (uint32_t i = 0; i <= n; ++i) m.positions.push_back(dir * (float(i) / n) + glm::vec3(0, 0, float(j) / n));
+            for (uint32_t i = 0; i <= n; ++i)
+                m.positions.push_back(dir * (float(i) / n) + glm::vec3(0, 0, float(j) / n));
         for (uint32_t j = 0; j < n; ++j)
             for (uint32_t i = 0; i < n; ++i) {
                 const uint32_t a = base + j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
@@ -200,8 +202,10 @@ TEST_F(GpuTest, ScaledMeshWithScaledDistanceGivesTheSameResult)
     Baker baker(context());
     const auto reference = baker.bake(unit, burley_material(glm::dvec3(d), glm::vec3(0.8f)), exact_settings(rays));
     ASSERT_TRUE(finite_nonnegative(reference.ao, reference.tm));
-    const auto clustered_reference = baker.bake_tm(unit, reference.ao, burley_material(glm::dvec3(d), glm::vec3(0.8f)),
-                                                   BakeSettings::preset(Quality::Default)).tm;
+    const auto clustered_reference = baker
+                                         .bake_tm(unit, reference.ao, burley_material(glm::dvec3(d), glm::vec3(0.8f)),
+                                                  BakeSettings::preset(Quality::Default))
+                                         .tm;
     double worst_ao_fraction = 0, worst_tm = 0;
     for (double s : {1e-4, 1e-3, 1e-2, 1e-1, 1e1, 1e2, 1e3, 1e4}) {
         const PreparedMesh mesh = prepare_mesh(scaled(base, float(s)));
@@ -223,7 +227,8 @@ TEST_F(GpuTest, ScaledMeshWithScaledDistanceGivesTheSameResult)
         const auto clustered = baker.bake_tm(mesh, reference.ao, m, BakeSettings::preset(Quality::Default)).tm;
         ASSERT_TRUE(finite_nonnegative(reference.ao, exact));
         ASSERT_TRUE(finite_nonnegative(reference.ao, clustered));
-        const double e = max_relative(exact, widened(reference.tm)), c = max_relative(clustered, widened(clustered_reference));
+        const double e = max_relative(exact, widened(reference.tm)),
+                     c = max_relative(clustered, widened(clustered_reference));
         EXPECT_LE(e, 2e-5) << "exact t_m at scale " << s;
         EXPECT_LE(c, 2e-5) << "clustered t_m at scale " << s;
         worst_tm = std::max({worst_tm, e, c});
@@ -273,8 +278,9 @@ TEST_F(GpuTest, ScatteringDistanceFromTinyToHugeStaysFiniteAndReachesItsLimits)
                 }
         }
     }
-    std::printf("max relative error against float64 over d = 1e-6..1e6 x diagonal: exact %.2e, clustered %.2e, grid %.2e\n",
-                worst[0], worst[1], worst[2]);
+    std::printf(
+        "max relative error against float64 over d = 1e-6..1e6 x diagonal: exact %.2e, clustered %.2e, grid %.2e\n",
+        worst[0], worst[1], worst[2]);
 }
 
 // ----------------------------------------------------------------------- t_m extremes --
@@ -364,7 +370,8 @@ TEST_F(StabilityRender, ZeroTinyAndHugeTmRenderFiniteWithTheirLimits)
     using Case = std::pair<float, float>;  // t_m, strength
     const float flt_max = std::numeric_limits<float>::max();
     for (auto [tm, strength] : std::vector<Case>{{0.0f, 1.0f}, {1e-30f, 1.0f}, {1e-30f, 1e-30f}, {flt_max, 0.0f}})
-        EXPECT_LE(differs_from_lambert(render(tm, strength, ShadingMode::Tm)), 1.0) << "t_m " << tm << ", strength " << strength;
+        EXPECT_LE(differs_from_lambert(render(tm, strength, ShadingMode::Tm)), 1.0)
+            << "t_m " << tm << ", strength " << strength;
 
     const double flat = 0.8 / std::numbers::pi / std::numbers::pi;
     for (auto [tm, strength] : std::vector<Case>{{1e30f, 1.0f}, {flt_max, 1.0f}, {flt_max, 1e30f}, {1.0f, flt_max}}) {
@@ -372,13 +379,15 @@ TEST_F(StabilityRender, ZeroTinyAndHugeTmRenderFiniteWithTheirLimits)
         for (size_t p = 0; p < img.rgba.size(); p += 4) {
             if (img.rgba[p + 3] != 1.0f) continue;
             for (int c = 0; c < 3; ++c)
-                ASSERT_NEAR(img.rgba[p + c], flat, 1e-4 * flat) << "pixel " << p / 4 << ", t_m " << tm << ", strength " << strength;
+                ASSERT_NEAR(img.rgba[p + c], flat, 1e-4 * flat)
+                    << "pixel " << p / 4 << ", t_m " << tm << ", strength " << strength;
         }
     }
     // Mixed extremes (0 and FLT_MAX on neighbouring vertices: interpolation may round to +Inf)
     // and false colour over the whole range: finite everywhere (checked inside render_with).
     std::vector<glm::vec3> mixed(sphere.vertex_count());
-    for (size_t i = 0; i < mixed.size(); ++i) mixed[i] = glm::vec3(i % 2 ? flt_max : 0.0f, i % 3 ? 1e-30f : flt_max, 1.0f);
+    for (size_t i = 0; i < mixed.size(); ++i)
+        mixed[i] = glm::vec3(i % 2 ? flt_max : 0.0f, i % 3 ? 1e-30f : flt_max, 1.0f);
     for (ShadingMode mode : {ShadingMode::Tm, ShadingMode::TmFalseColor, ShadingMode::Curvature}) {
         render_with(mixed, 0.0f, mode);
         render_with(mixed, 1e30f, mode);
@@ -424,7 +433,8 @@ TEST_F(GpuTest, OddMeshesBakeFiniteAndMatchTheFloat64Reference)
         const auto r = baker.bake(mesh, m, exact);
         ASSERT_TRUE(finite_nonnegative(r.ao, r.tm));
         const auto ref_ao = reference_ao(mesh, exact.ao);
-        for (size_t i = 0; i < r.ao.size(); ++i) EXPECT_LE(std::abs(r.ao[i] - ref_ao[i]), 2.0f / 32 + 1e-6f) << "vertex " << i;
+        for (size_t i = 0; i < r.ao.size(); ++i)
+            EXPECT_LE(std::abs(r.ao[i] - ref_ao[i]), 2.0f / 32 + 1e-6f) << "vertex " << i;
         const auto ref_tm = reference_tm(mesh, r.ao, m);
         const double exact_error = max_relative(r.tm, ref_tm, 1e-12);
         EXPECT_LE(exact_error, 1e-4);

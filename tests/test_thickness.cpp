@@ -200,8 +200,8 @@ TEST_F(Thickness, ExtremeThicknessAndExtinctionStayFinite)
             renderer.set_material(m);
             const RenderedImage img = renderer.render(cam, lights, rs);
             for (size_t i = 0; i < img.rgba.size(); ++i)
-                ASSERT_TRUE(std::isfinite(img.rgba[i])) << "thickness " << thickness << ", sigma_t " << sigma << " at " << i
-                                                        << " of " << img.rgba.size();
+                ASSERT_TRUE(std::isfinite(img.rgba[i]))
+                    << "thickness " << thickness << ", sigma_t " << sigma << " at " << i << " of " << img.rgba.size();
         }
     EXPECT_THROW(renderer.set_mesh(slab, {}, std::vector<float>(slab.vertex_count(), INFINITY)), Error);
     EXPECT_THROW(renderer.set_mesh(slab, {}, std::vector<float>(slab.vertex_count(), -1.0f)), Error);
@@ -227,7 +227,8 @@ TEST_F(Thickness, BoundaryTransmittanceIsTheFresnelOfBothCrossings)
     m.boundary_transmittance = false;
     renderer.set_material(m);
     const float without = renderer.render(cam, lights, rs).pixel(16, 16)[0];
-    const double f0 = std::pow((m.ior - 1.0) / (m.ior + 1.0), 2.0), grazing = std::max(1.0 - double(m.roughness) * m.roughness, f0);
+    const double f0 = std::pow((m.ior - 1.0) / (m.ior + 1.0), 2.0),
+                 grazing = std::max(1.0 - double(m.roughness) * m.roughness, f0);
     auto t = [&](double mu) { return 1.0 - (f0 + (grazing - f0) * std::pow(1.0 - mu, 5.0)); };
     EXPECT_NEAR(without, m.albedo.r / std::numbers::pi * std::sqrt(0.5), 2e-3 * without);
     EXPECT_NEAR(with / without, t(std::sqrt(0.5)) * t(1.0), 1e-3);

@@ -78,17 +78,20 @@ void bake_asset(const Args& args, const std::filesystem::path& in, const std::fi
         os << "{\"mesh\":" << target.mesh_index << ",\"primitives\":[" << primitive_list(target.primitives)
            << "],\"material\":" << it->second << ",\"gltf_material\":" << record::quoted(target.material_name)
            << ",\"space\":" << record::quoted(target.space) << ",\"vertices\":" << target.mesh.positions.size()
-           << ",\"bake_vertices\":" << prepared.vertex_count() << ",\"thickness\":" << (r.thickness.empty() ? "false" : "true")
-           << ",\"timings_ms\":" << record::timings(r) << "}";
+           << ",\"bake_vertices\":" << prepared.vertex_count()
+           << ",\"thickness\":" << (r.thickness.empty() ? "false" : "true") << ",\"timings_ms\":" << record::timings(r)
+           << "}";
         bakes += std::string(bakes.empty() ? "" : ",") + os.str();
     }
     const double wall = ms_since(t0);
     std::ostringstream extras;
-    extras << "{\"jade\":{\"version\":2," << record::units()
-           << ",\"instance_rule\":\"each mesh baked once, all its triangle primitives together, in the world space of its "
-              "first instance in the default scene (node scale included); a skinned mesh in its bind pose; every instance "
-              "shares the values\",\"settings\":"
-           << settings_json << ",\"materials\":[" << materials << "],\"bakes\":[" << bakes << "],\"wall_ms\":" << wall << "}}";
+    extras
+        << "{\"jade\":{\"version\":2," << record::units()
+        << ",\"instance_rule\":\"each mesh baked once, all its triangle primitives together, in the world space of its "
+           "first instance in the default scene (node scale included); a skinned mesh in its bind pose; every instance "
+           "shares the values\",\"settings\":"
+        << settings_json << ",\"materials\":[" << materials << "],\"bakes\":[" << bakes << "],\"wall_ms\":" << wall
+        << "}}";
     save_baked_asset(out, asset, baked, extras.str());
     std::fprintf(stderr, "jade: %zu bakes, %zu vertices, %s in all\n", baked.size(), vertices, format_ms(wall).c_str());
 }

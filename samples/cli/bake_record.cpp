@@ -29,7 +29,8 @@ std::string profile(const ChannelProfile& p)
     switch (p.kind) {
     case ProfileKind::Burley: os << "{\"kind\":\"burley\",\"d\":" << num(p.d) << "}"; break;
     case ProfileKind::Dipole:
-        os << "{\"kind\":\"dipole\",\"sigma_tr\":" << num(p.sigma_tr) << ",\"z_r\":" << num(p.z_r) << ",\"z_v\":" << num(p.z_v) << "}";
+        os << "{\"kind\":\"dipole\",\"sigma_tr\":" << num(p.sigma_tr) << ",\"z_r\":" << num(p.z_r)
+           << ",\"z_v\":" << num(p.z_v) << "}";
         break;
     case ProfileKind::Gaussians:
         os << "{\"kind\":\"gaussians\",\"weights\":[";
@@ -58,10 +59,11 @@ std::string units()
 std::string material(const Material& m)
 {
     std::ostringstream os;
-    os << "{\"name\":" << quoted(m.name) << ",\"albedo\":[" << num(m.albedo.x) << "," << num(m.albedo.y) << "," << num(m.albedo.z)
-       << "],\"strength\":" << num(m.strength) << ",\"ior\":" << num(m.ior) << ",\"roughness\":" << num(m.roughness)
-       << ",\"transmission\":" << (m.transmission.enabled() ? "true" : "false") << ",\"profiles\":[" << profile(m.profile[0])
-       << "," << profile(m.profile[1]) << "," << profile(m.profile[2]) << "]}";
+    os << "{\"name\":" << quoted(m.name) << ",\"albedo\":[" << num(m.albedo.x) << "," << num(m.albedo.y) << ","
+       << num(m.albedo.z) << "],\"strength\":" << num(m.strength) << ",\"ior\":" << num(m.ior)
+       << ",\"roughness\":" << num(m.roughness) << ",\"transmission\":" << (m.transmission.enabled() ? "true" : "false")
+       << ",\"profiles\":[" << profile(m.profile[0]) << "," << profile(m.profile[1]) << "," << profile(m.profile[2])
+       << "]}";
     return os.str();
 }
 
@@ -71,8 +73,8 @@ std::string settings(const BakeSettings& s, const BakeResult& r)
     os << "{\"ao_rays\":" << s.ao.rays << ",\"ao_low_discrepancy\":" << (s.ao.low_discrepancy ? "true" : "false")
        << ",\"ao_seed\":" << s.ao.seed << ",\"ao_max_distance_rel\":" << num(s.ao.max_distance_rel)
        << ",\"ao_epsilon_rel\":" << num(s.ao.ray_offset_rel) << ",\"tm_method\":\"" << tm_method_name(r.method_used)
-       << "\",\"tm_epsilon\":" << num(s.tm_opening_ratio) << ",\"tm_grid_resolution\":" << num(s.tm_grid_resolution) << ",\"thickness_rays\":" << (r.thickness.empty() ? 0 : s.thickness.rays)
-       << "}";
+       << "\",\"tm_epsilon\":" << num(s.tm_opening_ratio) << ",\"tm_grid_resolution\":" << num(s.tm_grid_resolution)
+       << ",\"thickness_rays\":" << (r.thickness.empty() ? 0 : s.thickness.rays) << "}";
     return os.str();
 }
 
@@ -97,8 +99,8 @@ double diagonal(const TriangleMesh& mesh)
     return glm::length(hi - lo);
 }
 
-BakeResult bake_at_unit_scale(Baker& baker, const TriangleMesh& mesh, const Material& material, const BakeSettings& settings,
-                              PreparedMesh& prepared)
+BakeResult bake_at_unit_scale(Baker& baker, const TriangleMesh& mesh, const Material& material,
+                              const BakeSettings& settings, PreparedMesh& prepared)
 {
     const double d = diagonal(mesh);
     const int k = d > 0.0 && std::isfinite(d) ? -int(std::lround(std::log2(d))) : 0;

@@ -28,8 +28,8 @@ double diagonal(const TriangleMesh& mesh);
 /// Powers of two scale exactly: a mesh of diagonal 0.7 .. 1.4 bakes unchanged. The thickness is
 /// scaled back to mesh units; `prepared` receives the preparation of the scaled mesh (its
 /// render_to_bake map is the mesh's).
-BakeResult bake_at_unit_scale(Baker& baker, const TriangleMesh& mesh, const Material& material, const BakeSettings& settings,
-                              PreparedMesh& prepared);
+BakeResult bake_at_unit_scale(Baker& baker, const TriangleMesh& mesh, const Material& material,
+                              const BakeSettings& settings, PreparedMesh& prepared);
 
 /// Bakes every mesh of the glTF asset `in` (the instance rule of jade::GltfAsset) and writes it
 /// back whole to `out` with _AO, _TM, _THICKNESS and the record in asset.extras.jade.

@@ -14,7 +14,8 @@ namespace {
 
 void print_timings(const BakeResult& r)
 {
-    for (auto& [stage, ms] : r.timings.gpu_stages) std::fprintf(stderr, "  %-18s %s\n", stage.c_str(), format_ms(ms).c_str());
+    for (auto& [stage, ms] : r.timings.gpu_stages)
+        std::fprintf(stderr, "  %-18s %s\n", stage.c_str(), format_ms(ms).c_str());
     std::fprintf(stderr, "  %-18s %s (GPU %s)\n", "total", format_ms(r.timings.wall_ms).c_str(),
                  format_ms(r.timings.gpu_total_ms).c_str());
 }
@@ -56,20 +57,24 @@ bool is_gltf(const std::filesystem::path& path)
 int cmd_bake(int argc, char** argv)
 {
     Args args("bake",
-              all_options({device_options(), material_options(), bake_options(),
+              all_options({device_options(),
+                           material_options(),
+                           bake_options(),
                            {{"out", "FILE", "output .glb or .gltf (required unless --in-place)"},
-                            {"in-place", "", "replace the glTF input itself (atomically: the old or the new file, never half)"}}}),
+                            {"in-place", "",
+                             "replace the glTF input itself (atomically: the old or the new file, never half)"}}}),
               argc, argv, 2);
-    if (print_help(args, "usage: jade bake MESH --out FILE.glb|.gltf [options]\n"
-                         "       jade bake ASSET.gltf|.glb --in-place [options]\n\n"
-                         "Bakes ambient occlusion, the translucency magnitude t_m and (for materials with transmission)\n"
-                         "the thickness on the GPU and writes them as per-vertex attributes _AO (SCALAR), _TM (VEC3,\n"
-                         "linear RGB) and _THICKNESS (SCALAR, mesh units), with the settings in the asset's extras.\n"
-                         "A glTF input is written back whole (scenes, nodes, materials, textures, skins, animations,\n"
-                         "morph targets, cameras, extensions, extras) with the attributes added to each triangle\n"
-                         "primitive; each mesh is baked once, in the world space of its first instance (a skinned\n"
-                         "mesh in its bind pose); see docs/gltf.md. Other meshes (.off, .ply, .obj) become a glTF of\n"
-                         "the mesh alone."))
+    if (print_help(args,
+                   "usage: jade bake MESH --out FILE.glb|.gltf [options]\n"
+                   "       jade bake ASSET.gltf|.glb --in-place [options]\n\n"
+                   "Bakes ambient occlusion, the translucency magnitude t_m and (for materials with transmission)\n"
+                   "the thickness on the GPU and writes them as per-vertex attributes _AO (SCALAR), _TM (VEC3,\n"
+                   "linear RGB) and _THICKNESS (SCALAR, mesh units), with the settings in the asset's extras.\n"
+                   "A glTF input is written back whole (scenes, nodes, materials, textures, skins, animations,\n"
+                   "morph targets, cameras, extensions, extras) with the attributes added to each triangle\n"
+                   "primitive; each mesh is baked once, in the world space of its first instance (a skinned\n"
+                   "mesh in its bind pose); see docs/gltf.md. Other meshes (.off, .ply, .obj) become a glTF of\n"
+                   "the mesh alone."))
         return 0;
     if (args.positional().size() != 1) args.fail("expects exactly one MESH");
     const std::string in = args.positional()[0];
@@ -79,15 +84,18 @@ int cmd_bake(int argc, char** argv)
     if (in_place && !is_gltf(in)) args.fail("--in-place: " + in + " is not a glTF file (.gltf, .glb)");
     std::error_code ec;
     const bool same = out_arg && std::filesystem::exists(*out_arg, ec) && std::filesystem::equivalent(in, *out_arg, ec);
-    if (in_place && out_arg && !same) args.fail("--in-place replaces " + in + "; --out " + *out_arg + " names another file");
+    if (in_place && out_arg && !same)
+        args.fail("--in-place replaces " + in + "; --out " + *out_arg + " names another file");
     if (same && !in_place) args.fail("--out " + *out_arg + " is the input file; give --in-place to replace it");
     // In place, the file a link points to is replaced, not the link.
     const std::filesystem::path out = in_place ? std::filesystem::canonical(in) : std::filesystem::path(*out_arg);
     BakeSettings settings = bake_settings_from_args(args);
     check_output_file(args, in_place ? "in-place" : "out", out, {".glb", ".gltf"});
 
-    if (is_gltf(in)) bake_asset(args, in, out, settings);
-    else bake_mesh(args, in, out, settings);
+    if (is_gltf(in))
+        bake_asset(args, in, out, settings);
+    else
+        bake_mesh(args, in, out, settings);
     std::printf("wrote %s\n", out.string().c_str());
     return 0;
 }

@@ -19,8 +19,8 @@
 namespace jade::cli {
 namespace {
 
-
-double max_rel_error(const std::vector<glm::vec3>& gpu, const std::vector<glm::dvec3>& ref, const std::vector<uint32_t>& at)
+double max_rel_error(const std::vector<glm::vec3>& gpu, const std::vector<glm::dvec3>& ref,
+                     const std::vector<uint32_t>& at)
 {
     double e = 0;
     for (size_t k = 0; k < at.size(); ++k)
@@ -54,7 +54,8 @@ void compare_far_fields(Baker& baker, const PreparedMesh& p, const std::vector<f
         ratio.push_back(tc.back() / tg.back());
     }
     std::printf("\nt_m far field, clustered (theta %g) and grid (resolution %g), %u alternating runs (GPU time of all "
-                "t_m passes, median):\n", double(s.tm_opening_ratio), double(s.tm_grid_resolution), pairs);
+                "t_m passes, median):\n",
+                double(s.tm_opening_ratio), double(s.tm_grid_resolution), pairs);
     std::printf("  clustered  %10s   %7.2f MiB   max rel error %.2e\n", format_ms(median(tc)).c_str(),
                 double(rc.tm_bytes) / 1048576.0, max_rel_error(rc.tm, ref, at));
     std::printf("  grid       %10s   %7.2f MiB   max rel error %.2e\n", format_ms(median(tg)).c_str(),
@@ -88,8 +89,10 @@ int bench_bake(const Args& args)
     std::printf("GPU bake, best of %u (GPU time per stage):\n", reps);
     for (auto& [stage, ms] : best.timings.gpu_stages) {
         std::printf("  %-20s %10s\n", stage.c_str(), format_ms(ms).c_str());
-        if (stage == "ao") ao_ms += ms;
-        else tm_ms += ms;
+        if (stage == "ao")
+            ao_ms += ms;
+        else
+            tm_ms += ms;
     }
     std::printf("  %-20s %10s   (wall %s, CPU setup %s)\n", "total", format_ms(best.timings.gpu_total_ms).c_str(),
                 format_ms(best.timings.wall_ms).c_str(), format_ms(best.timings.setup_ms).c_str());
@@ -99,8 +102,8 @@ int bench_bake(const Args& args)
     exact.method = TmMethod::Exact;
     BakeResult ex = baker.bake_tm(p, best.ao, m, exact);
     double ex_ms = ex.timings.gpu_total_ms;
-    std::printf("\nall-pairs GPU t_m     %10s   %.1f Mpairs/s   (clustered is %.1fx faster)\n", format_ms(ex_ms).c_str(),
-                n * n / (ex_ms * 1e3), ex_ms / tm_ms);
+    std::printf("\nall-pairs GPU t_m     %10s   %.1f Mpairs/s   (clustered is %.1fx faster)\n",
+                format_ms(ex_ms).c_str(), n * n / (ex_ms * 1e3), ex_ms / tm_ms);
 
     // float64 CPU reference: AO on every vertex, t_m on a sample (scaled to all vertices).
     auto t0 = Clock::now();
@@ -152,13 +155,17 @@ int bench_render_scene(const Args& args)
     SceneRenderer cached(*ctx, scene, settings, cached_bakes(cache));
     const ObjectCounts after = ctx->created_objects();
     SceneRenderer unbaked(*ctx, scene, settings, never_baked());
-    std::printf("cached scene set-up created %llu compute pipelines (%zu objects: the one shared LUT's builder and each "
-                "transmitting object's attenuation table, no bake kernel) and %llu buffers (%.2f MiB device-local: the draws' only)\n",
-                (unsigned long long)(after.compute_pipelines - before.compute_pipelines), scene.objects.size(),
-                (unsigned long long)(after.buffers - before.buffers),
-                double(after.device_buffer_bytes - before.device_buffer_bytes) / double(1u << 20));
-    std::printf("scene %s: %zu objects; %ux%u, %ux MSAA, %u iterations of one frame each (rotating order) after 2 warm-up ones, device %s\n", scene.name.c_str(),
-                scene.objects.size(), rs.width, rs.height, rs.samples, repeat, ctx->device_info().name.c_str());
+    std::printf(
+        "cached scene set-up created %llu compute pipelines (%zu objects: the one shared LUT's builder and each "
+        "transmitting object's attenuation table, no bake kernel) and %llu buffers (%.2f MiB device-local: the draws' "
+        "only)\n",
+        (unsigned long long)(after.compute_pipelines - before.compute_pipelines), scene.objects.size(),
+        (unsigned long long)(after.buffers - before.buffers),
+        double(after.device_buffer_bytes - before.device_buffer_bytes) / double(1u << 20));
+    std::printf("scene %s: %zu objects; %ux%u, %ux MSAA, %u iterations of one frame each (rotating order) after 2 "
+                "warm-up ones, device %s\n",
+                scene.name.c_str(), scene.objects.size(), rs.width, rs.height, rs.samples, repeat,
+                ctx->device_info().name.c_str());
     const Camera camera = Camera::framing(cached.bbox_min(), cached.bbox_max(), 1.0f, glm::vec3(0.35f, 0.45f, 1.0f));
     const auto lights = default_lights(camera);
     // For reference only: every material opaque (Lambert, no t_m at all).
@@ -187,8 +194,8 @@ int bench_render_scene(const Args& args)
                     format_ms(quantile(wall[k], 0.0)).c_str());
     std::printf("cached / never baked: GPU %.3fx (median of %u per-iteration ratios; quartiles %.3f-%.3f), wall %.3fx "
                 "(quartiles %.3f-%.3f); target: within 5%%\n",
-                quantile(gpu_ratio, 0.5), repeat, quantile(gpu_ratio, 0.25), quantile(gpu_ratio, 0.75), quantile(wall_ratio, 0.5),
-                quantile(wall_ratio, 0.25), quantile(wall_ratio, 0.75));
+                quantile(gpu_ratio, 0.5), repeat, quantile(gpu_ratio, 0.25), quantile(gpu_ratio, 0.75),
+                quantile(wall_ratio, 0.5), quantile(wall_ratio, 0.25), quantile(wall_ratio, 0.75));
     std::printf("cached / all opaque (reference, the price of t_m shading): GPU %.3fx (ratio of medians)\n",
                 quantile(gpu[1], 0.5) / quantile(gpu[2], 0.5));
     return 0;
@@ -199,7 +206,9 @@ int bench_render_scene(const Args& args)
 int cmd_bench(int argc, char** argv)
 {
     Args args("bench",
-              all_options({device_options(), material_options(), bake_options(),
+              all_options({device_options(),
+                           material_options(),
+                           bake_options(),
                            {{"repeat", "N", "timed repetitions, best kept (default 3)"},
                             {"sample", "N", "vertices the float64 t_m reference runs on (default 256)"},
                             {"scene", "FILE", "render: a static glTF scene, cached against never baked"},

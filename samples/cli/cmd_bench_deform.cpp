@@ -51,9 +51,10 @@ void bench_mesh(const Args& args, Context& ctx, const std::string& path, const s
     Renderer renderer(ctx);
     renderer.set_material(material);
 
-    std::printf("\n%s: %zu bake vertices, %zu triangles; %s, %u frames of %.3g s; material %s, %u AO rays, theta %.2g\n",
-                mesh.name.c_str(), rest.vertex_count(), rest.triangle_count(), args.get_or("deformer", "twist").c_str(),
-                frames, step, material.name.c_str(), settings.ao.rays, settings.tm_opening_ratio);
+    std::printf(
+        "\n%s: %zu bake vertices, %zu triangles; %s, %u frames of %.3g s; material %s, %u AO rays, theta %.2g\n",
+        mesh.name.c_str(), rest.vertex_count(), rest.triangle_count(), args.get_or("deformer", "twist").c_str(), frames,
+        step, material.name.c_str(), settings.ao.rays, settings.tm_opening_ratio);
     // The clustered and the grid far fields, full re-bakes, alternately (two rounds each).
     BakeSettings clustered = settings, grid = settings;
     clustered.method = TmMethod::Clustered;
@@ -68,8 +69,8 @@ void bench_mesh(const Args& args, Context& ctx, const std::string& path, const s
                 "refit", "AO", "t_m", "draw", "total", "fps", "AO rms", "AO max", "t_m rms", "t_m max");
     auto print = [](const std::string& label, const SweepStats& st) {
         std::printf("%-22s %7.2f %7.2f %7.2f %8.1f %8.1f %7.2f %8.1f %6.2f | %8.4f %8.4f %9.2e %9.2e\n", label.c_str(),
-                    st.deform, st.normals, st.refit, st.ao, st.tm, st.draw, st.total(), 1000.0 / st.total(), st.error.ao_rms,
-                    st.error.ao_max, st.error.tm_rms, st.error.tm_max);
+                    st.deform, st.normals, st.refit, st.ao, st.tm, st.draw, st.total(), 1000.0 / st.total(),
+                    st.error.ao_rms, st.error.ao_max, st.error.tm_rms, st.error.tm_max);
         std::fflush(stdout);
     };
     SweepStats by_clustered, by_grid;
@@ -82,8 +83,9 @@ void bench_mesh(const Args& args, Context& ctx, const std::string& path, const s
     }
     print("full, clustered", by_clustered);
     print("full, grid", by_grid);
-    std::printf("%-22s the grid's frames are %.2fx faster, its re-bakes %.2fx, its t_m stage %.2fx (mean of 2 rounds)\n",
-                "", frame_ratio, bake_ratio, by_clustered.tm / by_grid.tm);
+    std::printf(
+        "%-22s the grid's frames are %.2fx faster, its re-bakes %.2fx, its t_m stage %.2fx (mean of 2 rounds)\n", "",
+        frame_ratio, bake_ratio, by_clustered.tm / by_grid.tm);
     std::printf("for scale, the rest pose's ");
     compare_ao_with_embree(baker, rest, settings.ao, 3);
     // Amortised modes with the method the settings choose (auto: the grid, docs/bake.md).
@@ -98,8 +100,8 @@ void bench_mesh(const Args& args, Context& ctx, const std::string& path, const s
         }
         const SweepStats a = sweep.run({s, s}, &renderer, size);
         print(label, a);
-        std::printf("%-22s %.2fx faster than full; added error AO rms %+.4f, t_m rms %+.2e\n", "", full.total() / a.total(),
-                    a.error.ao_rms - full.error.ao_rms, a.error.tm_rms - full.error.tm_rms);
+        std::printf("%-22s %.2fx faster than full; added error AO rms %+.4f, t_m rms %+.2e\n", "",
+                    full.total() / a.total(), a.error.ao_rms - full.error.ao_rms, a.error.tm_rms - full.error.tm_rms);
     }
 }
 
@@ -108,16 +110,20 @@ void bench_mesh(const Args& args, Context& ctx, const std::string& path, const s
 int cmd_bench_deform(int argc, char** argv)
 {
     Args args("bench deform",
-              all_options({device_options(), material_options(), bake_options(),
-                           {{"deformer", "D", "bend | twist | squash | wave (default twist)"},
-                            {"frames", "N", "frames per mode (default 8; the first of an amortised mode is a full re-bake)"},
-                            {"fps", "F", "animation frames per second: each frame advances 1/F s of a 2 s cycle (default 15)"},
-                            {"slices", "LIST", "amortised modes: AO and t_m slices per mode, e.g. 2,4,8 (default)"},
-                            {"size", "N", "draw size in pixels, N x N (default 512)"}}}),
+              all_options(
+                  {device_options(),
+                   material_options(),
+                   bake_options(),
+                   {{"deformer", "D", "bend | twist | squash | wave (default twist)"},
+                    {"frames", "N", "frames per mode (default 8; the first of an amortised mode is a full re-bake)"},
+                    {"fps", "F", "animation frames per second: each frame advances 1/F s of a 2 s cycle (default 15)"},
+                    {"slices", "LIST", "amortised modes: AO and t_m slices per mode, e.g. 2,4,8 (default)"},
+                    {"size", "N", "draw size in pixels, N x N (default 512)"}}}),
               argc, argv, 3);
-    if (print_help(args, "usage: jade bench deform [MESH...] [options]\n\nFrames per second of deform + full GPU re-bake + "
-                         "draw (default: the bunny and the dragon, 32 AO rays,\ndefault quality), the GPU time per stage, and "
-                         "amortised re-bakes with the error each adds\nagainst a from-scratch bake of every frame."))
+    if (print_help(
+            args, "usage: jade bench deform [MESH...] [options]\n\nFrames per second of deform + full GPU re-bake + "
+                  "draw (default: the bunny and the dragon, 32 AO rays,\ndefault quality), the GPU time per stage, and "
+                  "amortised re-bakes with the error each adds\nagainst a from-scratch bake of every frame."))
         return 0;
     const std::vector<uint32_t> slices = parse_slices(args);
     std::vector<std::string> meshes = args.positional();

@@ -31,21 +31,24 @@ namespace {
 
 std::vector<OptionSpec> deform_options()
 {
-    return {{"deformer", "D", "bend | twist | squash | wave | gltf (default bend; gltf needs a .gltf/.glb MESH with an "
-                              "animation)"},
+    return {{"deformer", "D",
+             "bend | twist | squash | wave | gltf (default bend; gltf needs a .gltf/.glb MESH with an "
+             "animation)"},
             {"frames", "N", "frames over one cycle (default 8)"},
             {"out", "DIR", "output folder for frame_NNN.png and deform.gif (default deform_out)"},
             {"anim", "FILE", "animated image in --out (default deform.gif)"},
             {"axis", "A", "x | y | z: the axis the procedural deformers act along (default y)"},
-            {"amplitude", "X", "bend/twist: angle at the top (rad); squash: stretch (0..1); wave: fraction of the "
-                               "length (defaults 0.8, 1.2, 0.25, 0.04)"},
+            {"amplitude", "X",
+             "bend/twist: angle at the top (rad); squash: stretch (0..1); wave: fraction of the "
+             "length (defaults 0.8, 1.2, 0.25, 0.04)"},
             {"wavelength", "F", "wave: wavelength as a fraction of the length (default 0.5)"},
             {"period", "S", "seconds per cycle (procedural, default 2; gltf: the animation's duration)"},
             {"animation", "K", "gltf: index of the animation to play (default 0)"},
             {"size", "WxH", "frame size in pixels (default 256x256)"},
             {"lights", "PRESET", "figure1 (back light: thin parts glow, default) | default"},
-            {"amortise", "N", "re-trace 1/N of the AO rays and re-evaluate 1/N of the t_m values per frame (N divides the "
-                              "ray count; default 1: everything every frame)"}};
+            {"amortise", "N",
+             "re-trace 1/N of the AO rays and re-evaluate 1/N of the t_m values per frame (N divides the "
+             "ray count; default 1: everything every frame)"}};
 }
 
 struct StageTimes {
@@ -54,7 +57,8 @@ struct StageTimes {
 
 void print_row(const char* label, const StageTimes& t)
 {
-    std::printf("%-7s %9.2f %9.2f %10.1f %10.1f %9.2f %10.1f\n", label, t.deform, t.normals, t.ao, t.tm, t.draw, t.wall);
+    std::printf("%-7s %9.2f %9.2f %10.1f %10.1f %9.2f %10.1f\n", label, t.deform, t.normals, t.ao, t.tm, t.draw,
+                t.wall);
 }
 
 }  // namespace
@@ -70,9 +74,10 @@ int cmd_deform(int argc, char** argv)
     for (auto& w : words) word_ptrs.push_back(w.data());
     Args args("deform", all_options({device_options(), material_options(), bake_options(), deform_options()}),
               int(word_ptrs.size()), word_ptrs.data(), 2);
-    if (print_help(args, "usage: jade deform [MESH] --deformer bend|twist|squash|wave|gltf [options]\n\nDeforms the mesh "
-                         "on the GPU frame by frame, re-bakes AO and t_m and renders t_m shading;\nwrites DIR/frame_NNN.png, "
-                         "an animated GIF and a per-stage GPU time table (ms).\n(--quality defaults to draft here.)"))
+    if (print_help(args,
+                   "usage: jade deform [MESH] --deformer bend|twist|squash|wave|gltf [options]\n\nDeforms the mesh "
+                   "on the GPU frame by frame, re-bakes AO and t_m and renders t_m shading;\nwrites DIR/frame_NNN.png, "
+                   "an animated GIF and a per-stage GPU time table (ms).\n(--quality defaults to draft here.)"))
         return 0;
     if (args.positional().size() > 1) args.fail("expects at most one MESH");
     const std::string mesh_path = args.positional().empty() ? "bunny" : args.positional()[0];
@@ -93,15 +98,17 @@ int cmd_deform(int argc, char** argv)
     {
         const std::string s = args.get_or("size", "256x256");
         char x = 0, extra = 0;
-        if (std::sscanf(s.c_str(), "%u%c%u%c", &width, &x, &height, &extra) != 3 || x != 'x' || width == 0 || height == 0 ||
-            width > 8192 || height > 8192)
+        if (std::sscanf(s.c_str(), "%u%c%u%c", &width, &x, &height, &extra) != 3 || x != 'x' || width == 0 ||
+            height == 0 || width > 8192 || height > 8192)
             args.fail("--size: expected WxH with 1..8192 pixels each, got '" + s + "'");
     }
     const std::string axis_name = args.get_or("axis", "y");
-    if (axis_name != "x" && axis_name != "y" && axis_name != "z") args.fail("--axis: '" + axis_name + "' is not x, y or z");
+    if (axis_name != "x" && axis_name != "y" && axis_name != "z")
+        args.fail("--axis: '" + axis_name + "' is not x, y or z");
     const uint32_t axis = uint32_t(axis_name[0] - 'x');
     const std::string light_preset = args.get_or("lights", "figure1");
-    if (light_preset != "figure1" && light_preset != "default") args.fail("--lights: '" + light_preset + "' is not figure1 or default");
+    if (light_preset != "figure1" && light_preset != "default")
+        args.fail("--lights: '" + light_preset + "' is not figure1 or default");
 
     // The rest mesh and what moves it.
     std::optional<AnimatedMesh> animated;
@@ -145,7 +152,8 @@ int cmd_deform(int argc, char** argv)
     if (gltf) deformer.set_skin(bind_skin(*animated, rest));
     auto time_of = [&](uint32_t f) { return cycle * double(f) / double(frames); };
     auto deform_frame = [&](uint32_t f) {
-        return gltf ? deformer.deform(evaluate_pose(*animated, animation, time_of(f))) : deformer.deform(procedural, time_of(f));
+        return gltf ? deformer.deform(evaluate_pose(*animated, animation, time_of(f)))
+                    : deformer.deform(procedural, time_of(f));
     };
 
     // One fixed camera for the whole sequence, framing the union of every frame's bounds (the
@@ -181,11 +189,13 @@ int cmd_deform(int argc, char** argv)
     renderer.set_material(material);
     renderer.set_mesh(rest);  // the triangles and curvature; vertices follow on the GPU each frame
     std::printf("jade deform: %s, %zu bake vertices, %s, %u frames over %.3g s, bake %u AO rays, theta %.2g, %ux%u\n",
-                mesh.name.c_str(), rest.vertex_count(), gltf ? ("glTF animation '" + animated->animations[animation].name + "'").c_str()
-                                                             : kind_name.c_str(),
+                mesh.name.c_str(), rest.vertex_count(),
+                gltf ? ("glTF animation '" + animated->animations[animation].name + "'").c_str() : kind_name.c_str(),
                 frames, cycle, bake_settings.ao.rays, bake_settings.tm_opening_ratio, width, height);
-    std::printf("GPU time per stage (ms; bake t_m includes the GPU BVH and cluster-tree refits); wall: the whole frame on the host\n");
-    std::printf("%-7s %9s %9s %10s %10s %9s %10s\n", "frame", "deform", "normals", "bake AO", "bake t_m", "draw", "wall");
+    std::printf("GPU time per stage (ms; bake t_m includes the GPU BVH and cluster-tree refits); wall: the whole frame "
+                "on the host\n");
+    std::printf("%-7s %9s %9s %10s %10s %9s %10s\n", "frame", "deform", "normals", "bake AO", "bake t_m", "draw",
+                "wall");
     std::vector<std::vector<float>> images;
     StageTimes sum;
     for (uint32_t f = 0; f < frames; ++f) {
@@ -193,11 +203,11 @@ int cmd_deform(int argc, char** argv)
         StageTimes st;
         const DeformTimings dt = deform_frame(f);
         st.deform = dt.deform_ms, st.normals = dt.normals_ms;
-        const BakeResult baked =
-            rebake.bake(deformer.positions_buffer(), deformer.normals_buffer(), deformer.areas_buffer(), /*read_back=*/false);
+        const BakeResult baked = rebake.bake(deformer.positions_buffer(), deformer.normals_buffer(),
+                                             deformer.areas_buffer(), /*read_back=*/false);
         for (const auto& [stage, ms] : baked.timings.gpu_stages) (stage == "ao" ? st.ao : st.tm) += ms;
-        renderer.update_vertices(deformer.positions_buffer(), deformer.normals_buffer(), rebake.buffers().tm, rebake.buffers().thickness,
-                                 rebake.buffers().scattering_normal);
+        renderer.update_vertices(deformer.positions_buffer(), deformer.normals_buffer(), rebake.buffers().tm,
+                                 rebake.buffers().thickness, rebake.buffers().scattering_normal);
         RenderedImage image = renderer.render(camera, lights, render_settings);
         st.draw = image.gpu_ms;
         char name[32];
@@ -207,7 +217,8 @@ int cmd_deform(int argc, char** argv)
         st.wall = ms_since(t0);
         print_row(std::to_string(f).c_str(), st);
         std::fflush(stdout);
-        sum.deform += st.deform, sum.normals += st.normals, sum.ao += st.ao, sum.tm += st.tm, sum.draw += st.draw, sum.wall += st.wall;
+        sum.deform += st.deform, sum.normals += st.normals, sum.ao += st.ao, sum.tm += st.tm, sum.draw += st.draw,
+            sum.wall += st.wall;
     }
     const double n = double(frames);
     print_row("average", {sum.deform / n, sum.normals / n, sum.ao / n, sum.tm / n, sum.draw / n, sum.wall / n});

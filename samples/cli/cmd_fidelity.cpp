@@ -26,7 +26,10 @@ namespace {
 using json = nlohmann::json;
 
 glm::vec3 vec3_of(const json& j) { return glm::vec3(j.at(0).get<float>(), j.at(1).get<float>(), j.at(2).get<float>()); }
-glm::dvec3 dvec3_of(const json& j) { return glm::dvec3(j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()); }
+glm::dvec3 dvec3_of(const json& j)
+{
+    return glm::dvec3(j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>());
+}
 
 json read_json(const std::filesystem::path& path)
 {
@@ -43,9 +46,9 @@ json read_json(const std::filesystem::path& path)
 struct Reference {
     std::string name, set, mesh, light;
     json record;
-    LoadedImage image;                  // linear (from the EXR)
-    flip::Image srgb;                   // the 8-bit PNG, for FLIP
-    std::vector<uint8_t> mask, thin;    // object and thin-region masks, 0/1 per pixel
+    LoadedImage image;                // linear (from the EXR)
+    flip::Image srgb;                 // the 8-bit PNG, for FLIP
+    std::vector<uint8_t> mask, thin;  // object and thin-region masks, 0/1 per pixel
 };
 
 std::vector<uint8_t> read_mask(const std::filesystem::path& path, int width, int height)
@@ -62,7 +65,8 @@ Reference load_reference(const std::filesystem::path& dir, const std::filesystem
     Reference r;
     r.record = read_json(record_path);
     try {
-        r.name = r.record.at("scene"), r.set = r.record.at("set"), r.mesh = r.record.at("mesh"), r.light = r.record.at("light_name");
+        r.name = r.record.at("scene"), r.set = r.record.at("set"), r.mesh = r.record.at("mesh"),
+        r.light = r.record.at("light_name");
         const json& files = r.record.at("files");
         r.image = load_image(dir / files.at("exr").get<std::string>());
         const LoadedImage png = load_image(dir / files.at("png").get<std::string>());
@@ -148,9 +152,10 @@ std::string fidelity_markdown(const json& rows, const std::string& device)
         };
         const bool back = r["light"] == "back";
         std::snprintf(line, sizeof line, "| %s | %s | %.3f | %.3f | %.3f | **%.3f** | %.0f / %.0f | %s | %s |\n",
-                      r["scene"].get<std::string>().c_str(), r["set"].get<std::string>().c_str(), f("lambert"), f("curvature"),
-                      f("tm"), f("default"), r["lambert"]["gpu_ms"].get<double>(), r["default"]["gpu_ms"].get<double>(),
-                      back ? rgb(r["thin_reference"]).c_str() : "", back ? rgb(r["default"]["thin"]).c_str() : "");
+                      r["scene"].get<std::string>().c_str(), r["set"].get<std::string>().c_str(), f("lambert"),
+                      f("curvature"), f("tm"), f("default"), r["lambert"]["gpu_ms"].get<double>(),
+                      r["default"]["gpu_ms"].get<double>(), back ? rgb(r["thin_reference"]).c_str() : "",
+                      back ? rgb(r["default"]["thin"]).c_str() : "");
         md << line;
         auto& m = mean[r["light"].get<std::string>()];
         m[0] += f("lambert"), m[1] += f("curvature"), m[2] += f("tm"), m[3] += f("default"), m[4] += 1;
@@ -158,8 +163,8 @@ std::string fidelity_markdown(const json& rows, const std::string& device)
     md << "\nMean masked LDR FLIP per light (lower is closer to the path tracer):\n\n"
           "| light | lambert | curvature | tm (poster) | **default** |\n|---|---|---|---|---|\n";
     for (const auto& [light, m] : mean) {
-        std::snprintf(line, sizeof line, "| %s | %.3f | %.3f | %.3f | **%.3f** |\n", light.c_str(), m[0] / m[4], m[1] / m[4],
-                      m[2] / m[4], m[3] / m[4]);
+        std::snprintf(line, sizeof line, "| %s | %.3f | %.3f | %.3f | **%.3f** |\n", light.c_str(), m[0] / m[4],
+                      m[1] / m[4], m[2] / m[4], m[3] / m[4]);
         md << line;
     }
     md << "\nDevice: " << device << " (256x256, 4x MSAA, GPU time of one frame per mode).\n";
@@ -170,26 +175,29 @@ std::string fidelity_markdown(const json& rows, const std::string& device)
 
 int cmd_fidelity(int argc, char** argv)
 {
-    Args args("fidelity",
-              [] {
-                  auto o = device_options();
-                  for (auto& b : bake_options()) o.push_back(b);
-                  o.push_back({"references", "DIR", "the committed references (default tools/groundtruth/references)"});
-                  o.push_back({"root", "DIR", "where the records' mesh paths start (default: three folders above DIR)"});
-                  o.push_back({"set", "S", "train | validation | all (default all)"});
-                  o.push_back({"scene", "TEXT", "only scenes whose name contains TEXT"});
-                  o.push_back({"fit", "FILE", "JSON of MediumFit values instead of the built-in defaults"});
-                  o.push_back({"json", "FILE", "write every number as JSON"});
-                  o.push_back({"markdown", "FILE", "write the tables as Markdown (docs/fidelity.md's)"});
-                  o.push_back({"images", "DIR", "also save each scene's image per mode as SCENE__MODE.png"});
-                  o.push_back({"components", "DIR", "also write each scene's separate terms as EXR (for fit.py)"});
-                  o.push_back({"strengths", "LIST", "with --components: strengths of the diffuse terms (default 0.25,0.5,0.8,1.2,2)"});
-                  o.push_back({"lobes", "LIST", "with --components: lobe exponents of the transmission terms (default 1,2,4,8)"});
-                  return o;
-              }(),
-              argc, argv, 2);
+    Args args(
+        "fidelity",
+        [] {
+        auto o = device_options();
+        for (auto& b : bake_options()) o.push_back(b);
+        o.push_back({"references", "DIR", "the committed references (default tools/groundtruth/references)"});
+        o.push_back({"root", "DIR", "where the records' mesh paths start (default: three folders above DIR)"});
+        o.push_back({"set", "S", "train | validation | all (default all)"});
+        o.push_back({"scene", "TEXT", "only scenes whose name contains TEXT"});
+        o.push_back({"fit", "FILE", "JSON of MediumFit values instead of the built-in defaults"});
+        o.push_back({"json", "FILE", "write every number as JSON"});
+        o.push_back({"markdown", "FILE", "write the tables as Markdown (docs/fidelity.md's)"});
+        o.push_back({"images", "DIR", "also save each scene's image per mode as SCENE__MODE.png"});
+        o.push_back({"components", "DIR", "also write each scene's separate terms as EXR (for fit.py)"});
+        o.push_back(
+            {"strengths", "LIST", "with --components: strengths of the diffuse terms (default 0.25,0.5,0.8,1.2,2)"});
+        o.push_back({"lobes", "LIST", "with --components: lobe exponents of the transmission terms (default 1,2,4,8)"});
+        return o;
+        }(),
+        argc, argv, 2);
     if (args.flag("help")) {
-        std::printf("jade fidelity [options]\n\nRenders every committed path-traced reference scene with lambert, curvature, tm\n"
+        std::printf("jade fidelity [options]\n\nRenders every committed path-traced reference scene with lambert, "
+                    "curvature, tm\n"
                     "(the poster's model) and the default (tm with transmission), all with the albedo derived\n"
                     "from the scene's medium, and prints LDR FLIP against the reference, whole and inside\n"
                     "the object, the thin region's mean linear radiance, and the GPU time per mode.\n\n%s",
@@ -197,9 +205,11 @@ int cmd_fidelity(int argc, char** argv)
         return 0;
     }
     const std::filesystem::path dir = args.get_or("references", "tools/groundtruth/references");
-    const std::filesystem::path root = args.get_or("root", (std::filesystem::absolute(dir) / ".." / ".." / "..").string());
+    const std::filesystem::path root =
+        args.get_or("root", (std::filesystem::absolute(dir) / ".." / ".." / "..").string());
     const std::string set = args.get_or("set", "all"), filter = args.get_or("scene", "");
-    if (set != "train" && set != "validation" && set != "all") args.fail("--set: '" + set + "' is not train, validation or all");
+    if (set != "train" && set != "validation" && set != "all")
+        args.fail("--set: '" + set + "' is not train, validation or all");
     const MediumFit fit = fit_from_args(args);
     BakeSettings bake_settings = bake_settings_from_args(args);
     const auto components = args.get("components"), images = args.get("images");
@@ -217,8 +227,9 @@ int cmd_fidelity(int argc, char** argv)
     if (!std::filesystem::is_directory(dir)) throw Error("--references " + dir.string() + ": no such folder");
     for (const auto& e : std::filesystem::directory_iterator(dir)) {
         const auto name = e.path().filename().string();
-        if (e.path().extension() == ".json" && name.find("_masks") == std::string::npos && name.find("silhouette") == std::string::npos &&
-            name.find("noise") == std::string::npos && name.find("summary") == std::string::npos)
+        if (e.path().extension() == ".json" && name.find("_masks") == std::string::npos &&
+            name.find("silhouette") == std::string::npos && name.find("noise") == std::string::npos &&
+            name.find("summary") == std::string::npos)
             records.push_back(e.path());
     }
     std::sort(records.begin(), records.end());
@@ -233,7 +244,8 @@ int cmd_fidelity(int argc, char** argv)
     for (const auto& path : records) {
         const json peek = read_json(path);
         if (!peek.contains("scene") || !peek.contains("set")) continue;
-        if ((set != "all" && peek["set"] != set) || peek["scene"].get<std::string>().find(filter) == std::string::npos) continue;
+        if ((set != "all" && peek["set"] != set) || peek["scene"].get<std::string>().find(filter) == std::string::npos)
+            continue;
         Reference ref = load_reference(dir, path);
         const json& rec = ref.record;
         const std::string key = rec.at("mesh").get<std::string>() + "/" + rec.at("medium_name").get<std::string>();
@@ -257,12 +269,15 @@ int cmd_fidelity(int argc, char** argv)
         camera.target = vec3_of(rec.at("camera").at("target"));
         camera.up = vec3_of(rec.at("camera").at("up"));
         camera.fov_y_degrees = rec.at("camera").at("fov_y_degrees").get<float>();
-        const std::vector<Light> lights = {
-            Light::directional(vec3_of(rec.at("light").at("towards_light")), vec3_of(rec.at("light").at("irradiance")))};
+        const std::vector<Light> lights = {Light::directional(vec3_of(rec.at("light").at("towards_light")),
+                                                              vec3_of(rec.at("light").at("irradiance")))};
         RenderSettings rs;
         rs.width = uint32_t(ref.image.width), rs.height = uint32_t(ref.image.height);
         rs.float32 = true;
-        json row = {{"scene", ref.name}, {"set", ref.set}, {"mesh", ref.mesh}, {"light", ref.light},
+        json row = {{"scene", ref.name},
+                    {"set", ref.set},
+                    {"mesh", ref.mesh},
+                    {"light", ref.light},
                     {"medium", rec.at("medium_name")}};
         const glm::dvec3 ref_thin = region_mean(ref.image.rgba, ref.thin);
         row["thin_reference"] = {ref_thin.x, ref_thin.y, ref_thin.z};
@@ -279,17 +294,19 @@ int cmd_fidelity(int argc, char** argv)
             renderer.set_material(as_drawn);
             RenderedImage img = renderer.render(camera, lights, rs);
             const flip::Image test = flip::from_linear(img.width, img.height, img.rgba.data(), 4);
-            const double whole = flip::ldr_flip(ref.srgb, test), masked = flip::ldr_flip(ref.srgb, test, flip::pixels_per_degree(), &ref.mask);
+            const double whole = flip::ldr_flip(ref.srgb, test),
+                         masked = flip::ldr_flip(ref.srgb, test, flip::pixels_per_degree(), &ref.mask);
             const glm::dvec3 thin = region_mean(img.rgba, ref.thin);
-            row[mode.name] = {{"flip", whole}, {"flip_masked", masked}, {"gpu_ms", img.gpu_ms}, {"thin", {thin.x, thin.y, thin.z}}};
+            row[mode.name] = {
+                {"flip", whole}, {"flip_masked", masked}, {"gpu_ms", img.gpu_ms}, {"thin", {thin.x, thin.y, thin.z}}};
             if (std::string(mode.name) == "default") thin_default = thin;
             if (images)
                 save_image(std::filesystem::path(*images) / (ref.name + "__" + mode.name + ".png"), int(img.width),
                            int(img.height), img.rgba);
             std::printf(" %8.4f", masked);
         }
-        std::printf("   %.3f %.3f %.3f | %.3f %.3f %.3f\n", ref_thin.x, ref_thin.y, ref_thin.z, thin_default.x, thin_default.y,
-                    thin_default.z);
+        std::printf("   %.3f %.3f %.3f | %.3f %.3f %.3f\n", ref_thin.x, ref_thin.y, ref_thin.z, thin_default.x,
+                    thin_default.y, thin_default.z);
         std::fflush(stdout);
         out.push_back(row);
         if (!components) continue;
@@ -301,8 +318,8 @@ int cmd_fidelity(int argc, char** argv)
             renderer.set_material(m);
             rs.transmission = transmission;
             RenderedImage img = renderer.render(camera, lights, rs);
-            save_image(std::filesystem::path(*components) / (ref.name + "__" + term + ".exr"), int(img.width), int(img.height),
-                       img.rgba);
+            save_image(std::filesystem::path(*components) / (ref.name + "__" + term + ".exr"), int(img.width),
+                       int(img.height), img.rgba);
         };
         MediumFit unit = fit;
         unit.albedo_scale = 1.0, unit.transmission_weight = 1.0, unit.diffusion_weight = 1.0;
@@ -331,9 +348,14 @@ int cmd_fidelity(int argc, char** argv)
     if (out.empty()) throw Error("--references " + dir.string() + ": no reference scene matched");
     if (auto path = args.get("markdown")) write_file_atomically(*path, fidelity_markdown(out, ctx->device_info().name));
     if (auto path = args.get("json")) {
-        const json doc = {{"fit", {{"albedo_scale", fit.albedo_scale}, {"strength", fit.strength}, {"spread_strength", fit.spread_strength},
-                                   {"transmission_weight", fit.transmission_weight}, {"diffusion_weight", fit.diffusion_weight},
-                                   {"lobe", fit.lobe}, {"normal_mix", fit.normal_mix}}},
+        const json doc = {{"fit",
+                           {{"albedo_scale", fit.albedo_scale},
+                            {"strength", fit.strength},
+                            {"spread_strength", fit.spread_strength},
+                            {"transmission_weight", fit.transmission_weight},
+                            {"diffusion_weight", fit.diffusion_weight},
+                            {"lobe", fit.lobe},
+                            {"normal_mix", fit.normal_mix}}},
                           {"scenes", out}};
         write_file_atomically(*path, doc.dump(1));
     }

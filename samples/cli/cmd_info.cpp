@@ -51,8 +51,10 @@ static void print_bake_record(const std::string& path)
     std::printf("baked by jade     record version %s; AO %s rays (seed %s, max distance %s of the diagonal), t_m %s "
                 "(theta %s), thickness %s rays\n",
                 str(j.value("version", nlohmann::json())).c_str(), str(s.value("ao_rays", nlohmann::json())).c_str(),
-                str(s.value("ao_seed", nlohmann::json())).c_str(), str(s.value("ao_max_distance_rel", nlohmann::json())).c_str(),
-                str(s.value("tm_method", nlohmann::json())).c_str(), str(s.value("tm_epsilon", nlohmann::json())).c_str(),
+                str(s.value("ao_seed", nlohmann::json())).c_str(),
+                str(s.value("ao_max_distance_rel", nlohmann::json())).c_str(),
+                str(s.value("tm_method", nlohmann::json())).c_str(),
+                str(s.value("tm_epsilon", nlohmann::json())).c_str(),
                 str(s.value("thickness_rays", nlohmann::json(0))).c_str());
     if (j.contains("instance_rule")) std::printf("instance rule     %s\n", str(j["instance_rule"]).c_str());
     std::vector<nlohmann::json> materials;
@@ -61,18 +63,22 @@ static void print_bake_record(const std::string& path)
     for (size_t i = 0; i < materials.size(); ++i) {
         const auto& m = materials[i];
         std::string profiles;
-        for (const auto& p : m.value("profiles", nlohmann::json::array())) profiles += std::string(profiles.empty() ? "" : ", ") + p.dump();
+        for (const auto& p : m.value("profiles", nlohmann::json::array()))
+            profiles += std::string(profiles.empty() ? "" : ", ") + p.dump();
         std::printf("material %-8zu %s: strength %s, %s\n", i, str(m.value("name", nlohmann::json())).c_str(),
                     str(m.value("strength", nlohmann::json())).c_str(), profiles.c_str());
     }
     for (const auto& b : j.value("bakes", nlohmann::json::array())) {
         std::string prims;
-        for (const auto& p : b.value("primitives", nlohmann::json::array())) prims += std::string(prims.empty() ? "" : ",") + p.dump();
-        std::printf("bake              mesh %s primitives %s: %s vertices, material %s (%s), %s%s, %s ms\n",
-                    str(b.value("mesh", nlohmann::json())).c_str(), prims.c_str(), str(b.value("vertices", nlohmann::json())).c_str(),
-                    str(b.value("material", nlohmann::json())).c_str(), str(b.value("gltf_material", nlohmann::json())).c_str(),
-                    str(b.value("space", nlohmann::json())).c_str(), b.value("thickness", false) ? ", with thickness" : "",
-                    str(b.value("timings_ms", nlohmann::json::object()).value("wall", nlohmann::json())).c_str());
+        for (const auto& p : b.value("primitives", nlohmann::json::array()))
+            prims += std::string(prims.empty() ? "" : ",") + p.dump();
+        std::printf(
+            "bake              mesh %s primitives %s: %s vertices, material %s (%s), %s%s, %s ms\n",
+            str(b.value("mesh", nlohmann::json())).c_str(), prims.c_str(),
+            str(b.value("vertices", nlohmann::json())).c_str(), str(b.value("material", nlohmann::json())).c_str(),
+            str(b.value("gltf_material", nlohmann::json())).c_str(), str(b.value("space", nlohmann::json())).c_str(),
+            b.value("thickness", false) ? ", with thickness" : "",
+            str(b.value("timings_ms", nlohmann::json::object()).value("wall", nlohmann::json())).c_str());
     }
 }
 
@@ -89,7 +95,8 @@ static void print_mesh(const std::string& path)
     std::printf("input             %zu vertices, %zu triangles\n", p.input_vertices, p.input_triangles);
     std::printf("prepared          %zu vertices, %zu triangles\n", p.vertex_count(), p.triangle_count());
     std::printf("welded            %zu vertices\n", p.welded_vertices);
-    std::printf("dropped           %zu degenerate triangles, %zu unused vertices\n", p.dropped_triangles, p.unused_vertices);
+    std::printf("dropped           %zu degenerate triangles, %zu unused vertices\n", p.dropped_triangles,
+                p.unused_vertices);
     std::printf("bounding box      (%g, %g, %g) .. (%g, %g, %g) mesh units\n", p.bbox_min.x, p.bbox_min.y, p.bbox_min.z,
                 p.bbox_max.x, p.bbox_max.y, p.bbox_max.z);
     std::printf("diagonal          %g mesh units\n", p.diagonal);
@@ -108,15 +115,17 @@ static void print_mesh(const std::string& path)
         std::printf("baked thickness   %.4g .. %.4g mesh units\n", *lo, *hi);
     }
     print_bake_record(path);
-    std::printf("timings           load %s, prepare %s\n", format_ms(ms(t0, t1)).c_str(), format_ms(ms(t1, t2)).c_str());
+    std::printf("timings           load %s, prepare %s\n", format_ms(ms(t0, t1)).c_str(),
+                format_ms(ms(t1, t2)).c_str());
 }
 
 int cmd_info(int argc, char** argv)
 {
     Args args("info", all_options({device_options(), {{"materials", "", "list the material presets"}}}), argc, argv, 2);
-    if (print_help(args, "usage: jade info [MESH]\n\nWithout MESH: the Vulkan device Jade would use. With MESH: counts "
-                         "after\npreparation (welding, degenerate triangles), bounds and timings; for a file written by jade "
-                         "bake,\nthe ranges of the baked attributes and what was baked with which settings."))
+    if (print_help(args,
+                   "usage: jade info [MESH]\n\nWithout MESH: the Vulkan device Jade would use. With MESH: counts "
+                   "after\npreparation (welding, degenerate triangles), bounds and timings; for a file written by jade "
+                   "bake,\nthe ranges of the baked attributes and what was baked with which settings."))
         return 0;
     if (args.positional().size() > 1) args.fail("takes at most one mesh");
     if (args.flag("materials")) {

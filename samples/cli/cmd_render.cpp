@@ -22,7 +22,8 @@ namespace {
 
 OptionSpec eval_option()
 {
-    return {"eval", "PATH", "how tm evaluates the translucency: auto (by the device) | alu | lut | lut16 (docs/shading.md)"};
+    return {"eval", "PATH",
+            "how tm evaluates the translucency: auto (by the device) | alu | lut | lut16 (docs/shading.md)"};
 }
 
 std::vector<OptionSpec> render_options()
@@ -35,9 +36,11 @@ std::vector<OptionSpec> render_options()
             {"up", "X,Y,Z", "camera up (default 0,1,0)"},
             {"fov", "DEG", "vertical field of view in degrees (default 30)"},
             {"frame", "", "move the eye so the mesh fills the view, seen from --eye's direction (default +z)"},
-            {"light", "SPEC", "dir:X,Y,Z:R,G,B (towards the light, irradiance) or point:X,Y,Z:R,G,B "
-                              "(position, intensity); repeatable; replaces --lights"},
-            {"lights", "PRESET", "default (key upper front-left + fill) | figure1 (back light: ears glow) | back (key + back light)"},
+            {"light", "SPEC",
+             "dir:X,Y,Z:R,G,B (towards the light, irradiance) or point:X,Y,Z:R,G,B "
+             "(position, intensity); repeatable; replaces --lights"},
+            {"lights", "PRESET",
+             "default (key upper front-left + fill) | figure1 (back light: ears glow) | back (key + back light)"},
             {"tonemap", "", "tone map with the ACES fit (default: linear HDR, clipped by the PNG)"},
             {"tonemap-curve", "C", "aces | reinhard (with --tonemap)"},
             {"exposure", "X", "scale the linear colour before tone mapping (default 1)"},
@@ -61,7 +64,8 @@ std::pair<uint32_t, uint32_t> parse_size(const Args& args, const std::string& fa
     std::string s = args.get_or("size", fallback);
     unsigned w = 0, h = 0;
     char x = 0, extra = 0;
-    if (std::sscanf(s.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || x != 'x' || w == 0 || h == 0 || w > 16384 || h > 16384)
+    if (std::sscanf(s.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || x != 'x' || w == 0 || h == 0 || w > 16384 ||
+        h > 16384)
         args.fail("--size: expected WxH with 1..16384 pixels each, got '" + s + "'");
     return {w, h};
 }
@@ -129,15 +133,17 @@ struct Scene {
     TriangleMesh mesh;
     PreparedMesh prepared;
     Material material;
-    std::vector<glm::vec3> tm;  ///< per bake vertex when baked here, else empty
+    std::vector<glm::vec3> tm;     ///< per bake vertex when baked here, else empty
     std::vector<float> thickness;  ///< per bake vertex when baked here with transmission, else empty
     std::vector<glm::vec3> scattering_normal, normal_spread;  ///< per bake vertex when baked here, else empty
 };
 
 void set_scene(Renderer& renderer, const Scene& s)
 {
-    if (!s.mesh.baked_tm.empty()) renderer.set_mesh(s.mesh, s.mesh.baked_tm, s.mesh.baked_thickness);  // per render vertex
-    else renderer.set_mesh(s.prepared, s.tm, s.thickness, s.scattering_normal, s.normal_spread);
+    if (!s.mesh.baked_tm.empty())
+        renderer.set_mesh(s.mesh, s.mesh.baked_tm, s.mesh.baked_thickness);  // per render vertex
+    else
+        renderer.set_mesh(s.prepared, s.tm, s.thickness, s.scattering_normal, s.normal_spread);
     renderer.set_material(s.material);
 }
 
@@ -148,7 +154,8 @@ Scene load_scene(const Args& args, Context& ctx, const std::string& path, bool n
     s.prepared = prepare_mesh(s.mesh);
     s.material = material_from_args(args, s.prepared);
     if (!s.mesh.baked_tm.empty()) {
-        std::fprintf(stderr, "jade: t_m read from %s\n", s.mesh.name.c_str());    } else if (need_tm && !s.material.opaque) {
+        std::fprintf(stderr, "jade: t_m read from %s\n", s.mesh.name.c_str());
+    } else if (need_tm && !s.material.opaque) {
         BakeSettings settings = bake_settings_from_args(args);
         std::fprintf(stderr, "jade: baking t_m of %s (%zu vertices, material %s) ...\n", s.mesh.name.c_str(),
                      s.prepared.vertex_count(), s.material.name.c_str());
@@ -174,10 +181,12 @@ void blit(RenderedImage& figure, const RenderedImage& panel, uint32_t x0, uint32
 
 int cmd_render(int argc, char** argv)
 {
-    Args args("render", all_options({device_options(), material_options(), bake_options(), render_options()}), argc, argv, 2);
-    if (print_help(args, "usage: jade render MESH|BAKED.glb [options]\n\nRenders the mesh with translucency-magnitude "
-                         "shading (Kubo et al. 2015). A file written by\n`jade bake` (with _TM) renders at once; any other "
-                         "mesh is baked first (with --material)."))
+    Args args("render", all_options({device_options(), material_options(), bake_options(), render_options()}), argc,
+              argv, 2);
+    if (print_help(args,
+                   "usage: jade render MESH|BAKED.glb [options]\n\nRenders the mesh with translucency-magnitude "
+                   "shading (Kubo et al. 2015). A file written by\n`jade bake` (with _TM) renders at once; any other "
+                   "mesh is baked first (with --material)."))
         return 0;
     if (args.positional().size() > 1) args.fail("expects one MESH");
     RenderSettings settings;
@@ -215,15 +224,19 @@ int cmd_render(int argc, char** argv)
 
 int cmd_figure1(int argc, char** argv)
 {
-    const auto specs = all_options({device_options(), material_options(), bake_options(),
+    const auto specs = all_options({device_options(),
+                                    material_options(),
+                                    bake_options(),
                                     {{"out", "FILE", "output image (default figure1.png)"},
                                      {"size", "WxH", "size of each of the four panels (default 512x512)"},
                                      {"mesh", "MESH", "mesh or baked .glb (default: the Stanford bunny)"},
-                                     {"tonemap", "", "tone map the shaded panels with the ACES fit"}, eval_option()}});
+                                     {"tonemap", "", "tone map the shaded panels with the ACES fit"},
+                                     eval_option()}});
     Args first("figure1", specs, argc, argv, 2);
-    if (print_help(first, "usage: jade figure1 [options]\n\nThe poster's Figure 1: the bunny made of blue jewel under a "
-                          "back light, (a) Lambert,\n(b) curvature-based, (c) translucency magnitude (ours), (d) t_m in false "
-                          "colour.\n(--material defaults to blue-jewel here.)"))
+    if (print_help(first,
+                   "usage: jade figure1 [options]\n\nThe poster's Figure 1: the bunny made of blue jewel under a "
+                   "back light, (a) Lambert,\n(b) curvature-based, (c) translucency magnitude (ours), (d) t_m in false "
+                   "colour.\n(--material defaults to blue-jewel here.)"))
         return 0;
     if (!first.positional().empty()) first.fail("takes no positional arguments (use --mesh)");
     // The poster's material unless --material is given: parse again with it appended.
@@ -249,7 +262,8 @@ int cmd_figure1(int argc, char** argv)
     figure.width = 4 * w, figure.height = h + label_h;
     figure.rgba.assign(size_t(figure.width) * figure.height * 4, 0.0f);
     for (size_t i = 3; i < figure.rgba.size(); i += 4) figure.rgba[i] = 1.0f;
-    const ShadingMode modes[] = {ShadingMode::Lambert, ShadingMode::Curvature, ShadingMode::Tm, ShadingMode::TmFalseColor};
+    const ShadingMode modes[] = {ShadingMode::Lambert, ShadingMode::Curvature, ShadingMode::Tm,
+                                 ShadingMode::TmFalseColor};
     const char* labels[] = {"(a) Lambert", "(b) Curvature-based", "(c) Our method", "(d) Trans. Magnitude"};
     for (int k = 0; k < 4; ++k) {
         RenderSettings s;
@@ -259,7 +273,8 @@ int cmd_figure1(int argc, char** argv)
         blit(figure, panel, uint32_t(k) * w, 0);
         const int x = int(k * w) + (int(w) - text_width(labels[k], scale)) / 2;
         draw_text(figure, x, int(h) + 3 * scale, labels[k], glm::vec3(1.0f), scale);
-        std::printf("(%c) %-16s GPU %s\n", 'a' + k, std::string(shading_mode_name(modes[k])).c_str(), format_ms(panel.gpu_ms).c_str());
+        std::printf("(%c) %-16s GPU %s\n", 'a' + k, std::string(shading_mode_name(modes[k])).c_str(),
+                    format_ms(panel.gpu_ms).c_str());
     }
     save_image(out, int(figure.width), int(figure.height), figure.rgba);
     std::printf("%s: %ux%u, material %s\n", out.c_str(), figure.width, figure.height, scene.material.name.c_str());
@@ -279,17 +294,23 @@ double process_cpu_ms()
 
 int cmd_bench_render(int argc, char** argv)
 {
-    Args args("bench render", all_options({device_options(), material_options(), bake_options(),
-                                           {{"repeat", "N", "frame pairs (lambert, tm) per size, alternating (default 30)"},
-                                            {"samples", "N", "MSAA samples 1, 2, 4, 8 (default 4, as jade render)"},
-                                            {"lights", "PRESET", "default (front key + fill) | figure1 (back light, front key, "
-                                                                 "fill) | back (front key + back light): with a back light tm "
-                                                                 "draws the transmission term too"},
-                                            {"sizes", "N,N", "square image sizes (default 512,1024)"}, eval_option()}}),
+    Args args("bench render",
+              all_options({device_options(),
+                           material_options(),
+                           bake_options(),
+                           {{"repeat", "N", "frame pairs (lambert, tm) per size, alternating (default 30)"},
+                            {"samples", "N", "MSAA samples 1, 2, 4, 8 (default 4, as jade render)"},
+                            {"lights", "PRESET",
+                             "default (front key + fill) | figure1 (back light, front key, "
+                             "fill) | back (front key + back light): with a back light tm "
+                             "draws the transmission term too"},
+                            {"sizes", "N,N", "square image sizes (default 512,1024)"},
+                            eval_option()}}),
               argc, argv, 3);
-    if (print_help(args, "usage: jade bench render [MESH] [options]\n\nFrame time of tm against lambert shading at 512x512 "
-                         "and 1024x1024, the same scene,\nmeasured alternately in one run (GPU timestamps, wall time, and the "
-                         "CPU time of the\nprocess, which is lavapipe's work when the machine is shared)."))
+    if (print_help(
+            args, "usage: jade bench render [MESH] [options]\n\nFrame time of tm against lambert shading at 512x512 "
+                  "and 1024x1024, the same scene,\nmeasured alternately in one run (GPU timestamps, wall time, and the "
+                  "CPU time of the\nprocess, which is lavapipe's work when the machine is shared)."))
         return 0;
     const uint32_t repeat = args.count("repeat", 30, 1, 10000);
     const uint32_t samples = args.count("samples", 4, 1, 8);
@@ -299,7 +320,8 @@ int cmd_bench_render(int argc, char** argv)
         for (std::string word; std::getline(list, word, ',');) {
             char* end = nullptr;
             const long n = std::strtol(word.c_str(), &end, 10);
-            if (word.empty() || *end != '\0' || n < 1 || n > 16384) args.fail("--sizes: '" + word + "' is not a size in 1..16384");
+            if (word.empty() || *end != '\0' || n < 1 || n > 16384)
+                args.fail("--sizes: '" + word + "' is not a size in 1..16384");
             sizes.push_back(uint32_t(n));
         }
     }
@@ -310,11 +332,12 @@ int cmd_bench_render(int argc, char** argv)
     Renderer renderer(*ctx, renderer_options(args));
     set_scene(renderer, scene);
     const bool thickness = !scene.thickness.empty() || !scene.mesh.baked_thickness.empty();
-    std::printf("mesh %s: %zu vertices, %zu triangles; material %s (%s; transmission %s); tm evaluation %s; device %s\n",
-                scene.mesh.name.c_str(), scene.prepared.vertex_count(), scene.prepared.triangle_count(),
-                scene.material.name.c_str(), scene.material.grey() ? "grey: 1 channel" : "RGB: 3 channels",
-                !scene.material.transmission.enabled() || !thickness ? "off" : "on where a light is behind",
-                std::string(tm_evaluation_name(renderer.tm_evaluation())).c_str(), ctx->device_info().name.c_str());
+    std::printf(
+        "mesh %s: %zu vertices, %zu triangles; material %s (%s; transmission %s); tm evaluation %s; device %s\n",
+        scene.mesh.name.c_str(), scene.prepared.vertex_count(), scene.prepared.triangle_count(),
+        scene.material.name.c_str(), scene.material.grey() ? "grey: 1 channel" : "RGB: 3 channels",
+        !scene.material.transmission.enabled() || !thickness ? "off" : "on where a light is behind",
+        std::string(tm_evaluation_name(renderer.tm_evaluation())).c_str(), ctx->device_info().name.c_str());
     std::printf("same camera, %zu lights (%s), %ux MSAA, RGBA16F target, specular on in both modes; %u frame pairs "
                 "per size after 2 warm-up pairs\n",
                 lights.size(), args.get_or("lights", "default").c_str(), samples, repeat);
@@ -333,7 +356,8 @@ int cmd_bench_render(int argc, char** argv)
         s.samples = samples;
         std::vector<double> gpu[2], wall[2], cpu[2], gpu_ratio, wall_ratio, cpu_ratio;
         for (int warm = 0; warm < 2; ++warm)  // pipelines, targets, caches
-            for (ShadingMode m : {ShadingMode::Lambert, ShadingMode::Tm}) s.mode = m, renderer.render(camera, lights, s);
+            for (ShadingMode m : {ShadingMode::Lambert, ShadingMode::Tm})
+                s.mode = m, renderer.render(camera, lights, s);
         for (uint32_t i = 0; i < repeat; ++i) {
             for (int n = 0; n < 2; ++n) {
                 const int k = (i % 2 == 0) ? n : 1 - n;
@@ -355,8 +379,8 @@ int cmd_bench_render(int argc, char** argv)
         std::printf("%4ux%-5u tm / lambert: GPU %.3fx (median of %u pairs; quartiles %.3f-%.3f; ratio of mins %.3fx), "
                     "wall %.3fx (quartiles %.3f-%.3f)\n",
                     size, size, quantile(gpu_ratio, 0.5), repeat, quantile(gpu_ratio, 0.25), quantile(gpu_ratio, 0.75),
-                    quantile(gpu[1], 0.0) / quantile(gpu[0], 0.0), quantile(wall_ratio, 0.5), quantile(wall_ratio, 0.25),
-                    quantile(wall_ratio, 0.75));
+                    quantile(gpu[1], 0.0) / quantile(gpu[0], 0.0), quantile(wall_ratio, 0.5),
+                    quantile(wall_ratio, 0.25), quantile(wall_ratio, 0.75));
         std::printf("%4ux%-5u tm / lambert: CPU time of this process (lavapipe's threads) %.3fx (quartiles %.3f-%.3f; "
                     "lambert %s, tm %s median)\n",
                     size, size, quantile(cpu_ratio, 0.5), quantile(cpu_ratio, 0.25), quantile(cpu_ratio, 0.75),

@@ -44,7 +44,8 @@ Plan make_plan(const std::string& name, uint32_t tm_sample, std::vector<float> e
     // ε is the far field's opening ratio (shaders/tm_cluster.comp): below ~0.25 the clustered
     // pass costs more than the all-pairs one. The presets' own values are always included.
     p.tm_epsilons = epsilons.empty() ? std::vector<float>{1.6f, 1.2f, 0.8f, 0.6f, 0.4f, 0.25f} : epsilons;
-    for (Quality q : {Quality::Draft, Quality::Default, Quality::High}) p.tm_epsilons.push_back(BakeSettings::preset(q).tm_opening_ratio);
+    for (Quality q : {Quality::Draft, Quality::Default, Quality::High})
+        p.tm_epsilons.push_back(BakeSettings::preset(q).tm_opening_ratio);
     std::sort(p.tm_epsilons.begin(), p.tm_epsilons.end(), std::greater<>());
     p.tm_epsilons.erase(std::unique(p.tm_epsilons.begin(), p.tm_epsilons.end()), p.tm_epsilons.end());
     p.tm_grey_d = {0.01, 0.05, 0.2};
@@ -98,15 +99,17 @@ std::string shell_quote(const std::string& s)
 void run_plots(const fs::path& dir)
 {
     const fs::path script = find_plot_script();
-    const std::string manual = "python3 " + shell_quote(script.empty() ? "samples/report/plot_report.py" : script.string()) +
-                               " " + shell_quote(dir.string());
+    const std::string manual = "python3 " +
+                               shell_quote(script.empty() ? "samples/report/plot_report.py" : script.string()) + " " +
+                               shell_quote(dir.string());
     if (script.empty() || std::system("command -v python3 > /dev/null 2>&1") != 0) {
         std::fprintf(stderr, "plots: %s; draw them with: %s\n",
                      script.empty() ? "samples/report/plot_report.py not found" : "python3 not found", manual.c_str());
         return;
     }
     std::fprintf(stderr, "plots: %s\n", manual.c_str());
-    if (std::system(manual.c_str()) != 0) std::fprintf(stderr, "plots: the script failed; run it again with: %s\n", manual.c_str());
+    if (std::system(manual.c_str()) != 0)
+        std::fprintf(stderr, "plots: the script failed; run it again with: %s\n", manual.c_str());
 }
 
 /// "a,b,c" → numbers in (0, 100]; empty when the option is not given.
@@ -130,7 +133,9 @@ std::vector<float> epsilon_list(const Args& args)
 std::string describe(const Row& r)
 {
     if (r.knob.empty()) return r.notes;
-    std::string s = std::isnan(r.err.max) ? r.notes : "rms " + num(r.err.rms) + ", p99 " + num(r.err.p99) + ", max " + num(r.err.max);
+    std::string s = std::isnan(r.err.max)
+                        ? r.notes
+                        : "rms " + num(r.err.rms) + ", p99 " + num(r.err.p99) + ", max " + num(r.err.max);
     if (!std::isnan(r.gpu_ms)) s += " | GPU " + format_ms(r.gpu_ms);
     if (!std::isnan(r.wall_ms)) s += " | wall " + format_ms(r.wall_ms);
     return s;
@@ -140,16 +145,18 @@ std::string describe(const Row& r)
 
 int cmd_report(int argc, char** argv)
 {
-    Args args("report",
-              all_options({device_options(),
-                           {{"out", "DIR", "output folder (created): report.csv, summary.md, *.png"},
-                            {"quick", "", "skip 1024 rays and i.i.d. rays at max distances other than 0.1"},
-                            {"tiny", "", "a few configurations with a 1024-ray AO reference (tests, small meshes)"},
-                            {"sample", "N", "vertices the float64 t_m reference runs on (default 300)"},
-                            {"epsilons", "LIST", "clustered t_m epsilons, e.g. 1.2,0.8,0.4 (default 1.6..0.25 and the presets')"},
-                            {"no-plot", "", "do not run samples/report/plot_report.py"},
-                            {"summary-only", "", "measure nothing: rewrite summary.md and the plots from DIR/report.csv"}}}),
-              argc, argv, 2);
+    Args args(
+        "report",
+        all_options(
+            {device_options(),
+             {{"out", "DIR", "output folder (created): report.csv, summary.md, *.png"},
+              {"quick", "", "skip 1024 rays and i.i.d. rays at max distances other than 0.1"},
+              {"tiny", "", "a few configurations with a 1024-ray AO reference (tests, small meshes)"},
+              {"sample", "N", "vertices the float64 t_m reference runs on (default 300)"},
+              {"epsilons", "LIST", "clustered t_m epsilons, e.g. 1.2,0.8,0.4 (default 1.6..0.25 and the presets')"},
+              {"no-plot", "", "do not run samples/report/plot_report.py"},
+              {"summary-only", "", "measure nothing: rewrite summary.md and the plots from DIR/report.csv"}}}),
+        argc, argv, 2);
     if (print_help(args, "usage: jade report [MESH...] --out DIR [--quick | --tiny]\n\n"
                          "Measures each approximation's error against its GPU and wall time. MESH defaults to the\n"
                          "bunny and assets/ChineseDragon-10kv.off (when present). Progress goes to stderr."))
@@ -157,7 +164,9 @@ int cmd_report(int argc, char** argv)
     const auto out = args.get("out");
     if (!out || out->empty()) args.fail("--out DIR is required (the folder for report.csv, summary.md and the plots)");
     if (args.flag("quick") && args.flag("tiny")) args.fail("--quick and --tiny exclude each other");
-    const Plan plan = make_plan(args.flag("tiny") ? "tiny" : args.flag("quick") ? "quick" : "full",
+    const Plan plan = make_plan(args.flag("tiny")    ? "tiny"
+                                : args.flag("quick") ? "quick"
+                                                     : "full",
                                 args.count("sample", 300, 1, 1u << 24), epsilon_list(args));
     const fs::path dir = *out;
     check_output_folder("out", dir);
@@ -165,7 +174,8 @@ int cmd_report(int argc, char** argv)
 
     if (args.flag("summary-only")) {
         auto ctx = make_context(args);
-        write_file_atomically(dir / "summary.md", summary_markdown(read_csv(dir / "report.csv"), plan, ctx->device_info().name));
+        write_file_atomically(dir / "summary.md",
+                              summary_markdown(read_csv(dir / "report.csv"), plan, ctx->device_info().name));
         if (!args.flag("no-plot")) run_plots(dir);
         return 0;
     }
@@ -183,7 +193,8 @@ int cmd_report(int argc, char** argv)
         add_bake_steps(session, states[m], steps);
         add_image_steps(session, states[m], steps);
         add_deform_steps(session, states[m], steps);
-        for (size_t k = first; k < steps.size(); ++k) steps[k].what = fs::path(sources[m]).stem().string() + ": " + steps[k].what;
+        for (size_t k = first; k < steps.size(); ++k)
+            steps[k].what = fs::path(sources[m]).stem().string() + ": " + steps[k].what;
     }
     add_lut_steps(session, steps);
 
@@ -202,8 +213,8 @@ int cmd_report(int argc, char** argv)
     steps.clear();
     write_file_atomically(dir / "summary.md", summary_markdown(rows, plan, ctx->device_info().name));
     std::fprintf(stderr, "jade report: %zu configurations in %s: %s, %s\n", rows.size(),
-                 format_ms(ms_since(t0)).c_str(),
-                 (dir / "report.csv").string().c_str(), (dir / "summary.md").string().c_str());
+                 format_ms(ms_since(t0)).c_str(), (dir / "report.csv").string().c_str(),
+                 (dir / "summary.md").string().c_str());
     if (!args.flag("no-plot")) run_plots(dir);
     // How close the shading modes come to the committed path-traced references (when this runs
     // from the repository, where they are).

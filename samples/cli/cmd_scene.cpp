@@ -27,7 +27,8 @@ SceneSettings scene_settings_from_args(const Args& args)
     } catch (const Error& e) {
         args.fail(std::string("--mode: ") + e.what());
     }
-    if (s.mode != ShadingMode::Tm && s.mode != ShadingMode::TmFalseColor) args.fail("--mode: a scene is drawn with tm or tm-false-color");
+    if (s.mode != ShadingMode::Tm && s.mode != ShadingMode::TmFalseColor)
+        args.fail("--mode: a scene is drawn with tm or tm-false-color");
     return s;
 }
 
@@ -54,16 +55,18 @@ Camera scene_camera(glm::vec3 lo, glm::vec3 hi, float aspect)
 int cmd_plan(int argc, char** argv)
 {
     Args args("plan", all_options({scene_options(), bake_options()}), argc, argv, 2);
-    if (print_help(args, "usage: jade plan SCENE.gltf [--cache DIR] [options]\n\nThe passes each object of the scene "
-                         "needs, their shader variants, buffers and\nestimated GPU memory, and whether the cache holds each "
-                         "static bake. No GPU is used."))
+    if (print_help(args,
+                   "usage: jade plan SCENE.gltf [--cache DIR] [options]\n\nThe passes each object of the scene "
+                   "needs, their shader variants, buffers and\nestimated GPU memory, and whether the cache holds each "
+                   "static bake. No GPU is used."))
         return 0;
     const Scene scene = load_scene_arg(args);
     const SceneSettings settings = scene_settings_from_args(args);
     const auto cache = cache_from_args(args);
     const ScenePlan plan = plan_scene(scene, settings, cache ? cached_bakes(*cache) : StaticBakeSource{});
     std::printf("scene %s%s\n%s", scene.name.c_str(),
-                cache ? (", cache " + cache->folder().string()).c_str() : " (no --cache: static objects bake every run)",
+                cache ? (", cache " + cache->folder().string()).c_str()
+                      : " (no --cache: static objects bake every run)",
                 plan.describe().c_str());
     return 0;
 }
@@ -71,14 +74,17 @@ int cmd_plan(int argc, char** argv)
 int cmd_scene(int argc, char** argv)
 {
     Args args("scene",
-              all_options({scene_options(), device_options(), bake_options(),
+              all_options({scene_options(),
+                           device_options(),
+                           bake_options(),
                            {{"out", "FILE", "output .png or .exr (default scene.png)"},
                             {"size", "N", "square image size in pixels (default 512)"},
                             {"time", "T", "seconds: the deformers' time (default 0.5)"},
                             {"samples", "N", "MSAA samples 1, 2, 4, 8 (default 4)"}}}),
               argc, argv, 2);
-    if (print_help(args, "usage: jade scene SCENE.gltf [--cache DIR] [--out F.png] [--verbose] [options]\n\nRenders a glTF "
-                         "scene running only the planned passes (see jade plan); --verbose\nlists the passes that ran."))
+    if (print_help(args,
+                   "usage: jade scene SCENE.gltf [--cache DIR] [--out F.png] [--verbose] [options]\n\nRenders a glTF "
+                   "scene running only the planned passes (see jade plan); --verbose\nlists the passes that ran."))
         return 0;
     const std::filesystem::path out = args.get_or("out", "scene.png");
     check_output_file(args, "out", out, {".png", ".exr"});
@@ -102,12 +108,15 @@ int cmd_scene(int argc, char** argv)
             std::printf("  %-24s %-13s %10s  %s\n", p.object.c_str(), std::string(pass_kind_name(p.kind)).c_str(),
                         p.wall_ms > 0 ? format_ms(p.wall_ms).c_str() : "", p.note.c_str());
         const ObjectCounts c = ctx->created_objects();
-        std::printf("GPU objects created: %llu compute pipelines, %llu graphics pipelines, %llu buffers (%.2f MiB device-local), "
+        std::printf("GPU objects created: %llu compute pipelines, %llu graphics pipelines, %llu buffers (%.2f MiB "
+                    "device-local), "
                     "%llu images\n",
                     (unsigned long long)c.compute_pipelines, (unsigned long long)c.graphics_pipelines,
-                    (unsigned long long)c.buffers, double(c.device_buffer_bytes) / double(1u << 20), (unsigned long long)c.images);
+                    (unsigned long long)c.buffers, double(c.device_buffer_bytes) / double(1u << 20),
+                    (unsigned long long)c.images);
     }
-    std::printf("wrote %s (%ux%u, draw %s GPU)\n", out.string().c_str(), img.width, img.height, format_ms(img.gpu_ms).c_str());
+    std::printf("wrote %s (%ux%u, draw %s GPU)\n", out.string().c_str(), img.width, img.height,
+                format_ms(img.gpu_ms).c_str());
     return 0;
 }
 

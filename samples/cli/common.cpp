@@ -30,8 +30,9 @@ std::vector<OptionSpec> material_options()
             {"mm-per-unit", "X", "millimetres per mesh unit (default: the object is 100 mm across)"},
             {"d", "F", "Burley profile: mean scattering distance d as a fraction of the diagonal"},
             {"strength", "S", "Gaussian variance per unit t_m (rad^2; default: the material's)"},
-            {"medium", "SR,SG,SB:AR,AG,AB[:G]", "a physical medium instead of --material: scattering and absorption "
-                                               "coefficients per mesh unit (linear RGB) and the HG mean cosine g"},
+            {"medium", "SR,SG,SB:AR,AG,AB[:G]",
+             "a physical medium instead of --material: scattering and absorption "
+             "coefficients per mesh unit (linear RGB) and the HG mean cosine g"},
             {"ior", "N", "with --medium: the boundary's relative index of refraction (default 1.5)"},
             {"roughness", "R", "with --medium: the boundary's GGX roughness, alpha = R^2 as in glTF (default 0.6)"},
             {"no-transmission", "", "leave out the light through thin parts (the poster's model alone)"}};
@@ -88,7 +89,8 @@ Medium medium_from_args(const Args& args)
     auto number = [&](const std::string& text, const char* what) {
         char* end = nullptr;
         const double v = std::strtod(text.c_str(), &end);
-        if (text.empty() || *end || !std::isfinite(v)) fail(std::string(what) + " '" + text + "' is not a finite number");
+        if (text.empty() || *end || !std::isfinite(v))
+            fail(std::string(what) + " '" + text + "' is not a finite number");
         return v;
     };
     auto rgb = [&](const std::string& text, const char* what) {
@@ -109,7 +111,10 @@ Medium medium_from_args(const Args& args)
     return m;
 }
 
-Material material_from_args(const Args& args, const PreparedMesh& mesh) { return material_from_args(args, double(mesh.diagonal)); }
+Material material_from_args(const Args& args, const PreparedMesh& mesh)
+{
+    return material_from_args(args, double(mesh.diagonal));
+}
 
 Material material_from_args(const Args& args, double diagonal)
 {
@@ -120,8 +125,10 @@ Material material_from_args(const Args& args, double diagonal)
     if (!args.get("medium") && (args.get("ior") || args.get("roughness")))
         args.fail("--ior and --roughness describe a --medium's boundary; give --medium too");
     try {
-        if (args.get("medium")) m = Material::from_medium(medium_from_args(args), {}, "medium");
-        else m = material_preset(args.get_or("material", "jade"), mm_per_unit);
+        if (args.get("medium"))
+            m = Material::from_medium(medium_from_args(args), {}, "medium");
+        else
+            m = material_preset(args.get_or("material", "jade"), mm_per_unit);
     } catch (const Error& e) {
         // An unknown --material or a bad medium is a command-line mistake: exit code 2, naming the flag.
         args.fail(std::string(args.get("medium") ? "--medium: " : "--material: ") + e.what());
@@ -188,8 +195,10 @@ TriangleMesh load_mesh_arg(const std::string& path)
     if (!path.empty() && path != "bunny") return load_mesh(path);
     const std::filesystem::path bunny = find_asset("bunny00.off");
     if (!bunny.empty()) return load_mesh(bunny);
-    std::fprintf(stderr, "jade: bunny00.off not found in $JADE_ASSETS, ./assets or %s (run third_party/fetch_assets.sh); "
-                 "using a procedural sphere\n", JADE_CLI_SOURCE_ASSETS);
+    std::fprintf(stderr,
+                 "jade: bunny00.off not found in $JADE_ASSETS, ./assets or %s (run third_party/fetch_assets.sh); "
+                 "using a procedural sphere\n",
+                 JADE_CLI_SOURCE_ASSETS);
     return procedural::sphere(1.0f, 64, 128);
 }
 
@@ -237,8 +246,10 @@ void check_output_file(const Args& args, const std::string& flag, const std::fil
     std::error_code ec;
     if (fs::is_directory(path, ec)) throw Error("--" + flag + " " + path.string() + ": is a folder, not a file");
     const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
-    if (!fs::exists(folder, ec)) throw Error("--" + flag + " " + path.string() + ": folder '" + folder.string() + "' does not exist");
-    if (!fs::is_directory(folder, ec)) throw Error("--" + flag + " " + path.string() + ": '" + folder.string() + "' is not a folder");
+    if (!fs::exists(folder, ec))
+        throw Error("--" + flag + " " + path.string() + ": folder '" + folder.string() + "' does not exist");
+    if (!fs::is_directory(folder, ec))
+        throw Error("--" + flag + " " + path.string() + ": '" + folder.string() + "' is not a folder");
     probe_writable(flag, path, folder);
 }
 
@@ -263,9 +274,12 @@ double quantile(std::vector<double> v, double q)
 std::string format_ms(double ms)
 {
     char buf[32];
-    if (ms < 1) std::snprintf(buf, sizeof buf, "%.3f ms", ms);
-    else if (ms < 1000) std::snprintf(buf, sizeof buf, "%.1f ms", ms);
-    else std::snprintf(buf, sizeof buf, "%.2f s", ms / 1000);
+    if (ms < 1)
+        std::snprintf(buf, sizeof buf, "%.3f ms", ms);
+    else if (ms < 1000)
+        std::snprintf(buf, sizeof buf, "%.1f ms", ms);
+    else
+        std::snprintf(buf, sizeof buf, "%.2f s", ms / 1000);
     return buf;
 }
 

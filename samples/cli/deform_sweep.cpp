@@ -51,7 +51,8 @@ SweepStats DeformSweep::run(const Amortisation& amortisation, Renderer* renderer
     SweepStats st;
     for (uint32_t f = 0; f < reference_.size(); ++f) {
         const DeformTimings dt = deformer_.deform(params_, step_ * f);
-        const BakeResult r = rebake_.bake(deformer_.positions_buffer(), deformer_.normals_buffer(), deformer_.areas_buffer());
+        const BakeResult r =
+            rebake_.bake(deformer_.positions_buffer(), deformer_.normals_buffer(), deformer_.areas_buffer());
         double draw_ms = 0;
         if (renderer) {
             renderer->set_mesh(deformed_mesh(rest_, deformer_.read()), r);
@@ -60,9 +61,12 @@ SweepStats DeformSweep::run(const Amortisation& amortisation, Renderer* renderer
         if (f == 0 && amortised) continue;  // measure the steady state
         st.deform += dt.deform_ms, st.normals += dt.normals_ms, st.draw += draw_ms;
         for (const auto& [stage, ms] : r.timings.gpu_stages) {
-            if (stage == "BVH refit") st.refit += ms;
-            else if (stage == "ao") st.ao += ms;
-            else st.tm += ms;
+            if (stage == "BVH refit")
+                st.refit += ms;
+            else if (stage == "ao")
+                st.ao += ms;
+            else
+                st.tm += ms;
         }
         const FrameError e = compare(r, reference_[f]);
         st.error.ao_rms += e.ao_rms, st.error.tm_rms += e.tm_rms;

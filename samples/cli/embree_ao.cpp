@@ -26,7 +26,6 @@ namespace {
 
 #ifdef JADE_CLI_HAVE_EMBREE
 
-
 // One owner per Embree handle.
 struct DeviceDeleter {
     void operator()(RTCDevice d) const { rtcReleaseDevice(d); }
@@ -38,7 +37,8 @@ struct SceneDeleter {
 void check(RTCDevice device, const char* what)
 {
     const RTCError e = rtcGetDeviceError(device);
-    if (e != RTC_ERROR_NONE) throw Error(std::string("Embree: ") + what + " failed (RTCError " + std::to_string(int(e)) + ")");
+    if (e != RTC_ERROR_NONE)
+        throw Error(std::string("Embree: ") + what + " failed (RTCError " + std::to_string(int(e)) + ")");
 }
 
 /// A mesh's triangles in an Embree scene (high-quality build), ready to trace AO rays.
@@ -56,8 +56,8 @@ public:
         rtcSetSceneBuildQuality(scene_.get(), RTC_BUILD_QUALITY_HIGH);  // a static bake: the best tree
         RTCGeometry geometry = rtcNewGeometry(device_.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
         // rtcSetNewGeometryBuffer pads the vertex buffer for Embree's 16-byte loads.
-        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                                     3 * sizeof(float), mesh.vertex_count()));
+        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+            geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.vertex_count()));
         auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
             geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.triangle_count()));
         check(device_.get(), "rtcSetNewGeometryBuffer");
@@ -77,7 +77,7 @@ public:
     {
         const size_t n = mesh_.vertex_count();
         const uint32_t rays = settings.rays;
-        const float eps = settings.ray_offset_rel * mesh_.diagonal;         // mesh units
+        const float eps = settings.ray_offset_rel * mesh_.diagonal;      // mesh units
         const float t_max = settings.max_distance_rel * mesh_.diagonal;  // mesh units
         std::vector<glm::vec3> directions(n * rays);
         for (size_t v = 0; v < n; ++v)
@@ -159,14 +159,18 @@ void compare_ao_with_embree(Baker& baker, const PreparedMesh& mesh, const AoSett
     const double rays = double(mesh.vertex_count()) * settings.rays;
     std::printf("AO vs Embree %s on the same %u rays/vertex, %zu alternating runs (Embree: %u threads, queries only, "
                 "BVH build %s not counted):\n",
-                embree.version.c_str(), settings.rays, ratio.size(), embree.threads, format_ms(embree.build_ms).c_str());
-    std::printf("  GPU AO pass          %10s median (min %s)   %.2f Mrays/s\n", format_ms(quantile(gpu_ms, 0.5)).c_str(),
-                format_ms(quantile(gpu_ms, 0.0)).c_str(), rays / (quantile(gpu_ms, 0.5) * 1e3));
-    std::printf("  Embree CPU           %10s median (min %s)   %.2f Mrays/s\n", format_ms(quantile(cpu_ms, 0.5)).c_str(),
-                format_ms(quantile(cpu_ms, 0.0)).c_str(), rays / (quantile(cpu_ms, 0.5) * 1e3));
+                embree.version.c_str(), settings.rays, ratio.size(), embree.threads,
+                format_ms(embree.build_ms).c_str());
+    std::printf("  GPU AO pass          %10s median (min %s)   %.2f Mrays/s\n",
+                format_ms(quantile(gpu_ms, 0.5)).c_str(), format_ms(quantile(gpu_ms, 0.0)).c_str(),
+                rays / (quantile(gpu_ms, 0.5) * 1e3));
+    std::printf("  Embree CPU           %10s median (min %s)   %.2f Mrays/s\n",
+                format_ms(quantile(cpu_ms, 0.5)).c_str(), format_ms(quantile(cpu_ms, 0.0)).c_str(),
+                rays / (quantile(cpu_ms, 0.5) * 1e3));
     std::printf("  GPU / Embree time    %10.2fx median of the per-run ratios (quartiles %.2f-%.2f); %.2f%% of vertices "
                 "identical\n",
-                quantile(ratio, 0.5), quantile(ratio, 0.25), quantile(ratio, 0.75), 100.0 * double(same) / double(gpu_ao.size()));
+                quantile(ratio, 0.5), quantile(ratio, 0.25), quantile(ratio, 0.75),
+                100.0 * double(same) / double(gpu_ao.size()));
 }
 
 #endif

@@ -61,8 +61,9 @@ int exec_viewer(int argc, char** argv)
     for (int i = 2; i < argc; ++i) args.push_back(argv[i]);
     args.push_back(nullptr);
     execv(viewer.c_str(), args.data());
-    std::fprintf(stderr, "jade view: cannot run %s: %s\n(the viewer is built when GLFW and Dear ImGui are found, or with "
-                         "-DJADE_WITH_GLFW=ON; Debian packages libglfw3-dev libimgui-dev)\n",
+    std::fprintf(stderr,
+                 "jade view: cannot run %s: %s\n(the viewer is built when GLFW and Dear ImGui are found, or with "
+                 "-DJADE_WITH_GLFW=ON; Debian packages libglfw3-dev libimgui-dev)\n",
                  viewer.c_str(), std::strerror(errno));
     return 1;
 }
@@ -81,7 +82,8 @@ int main(int argc, char** argv)
         if (command == "bake") return jade::cli::cmd_bake(argc, argv);
         if (command == "bench" && argc > 2 && !std::strcmp(argv[2], "render") && !has_scene_flag(argc, argv))
             return jade::cli::cmd_bench_render(argc, argv);
-        if (command == "bench" && argc > 2 && !std::strcmp(argv[2], "deform")) return jade::cli::cmd_bench_deform(argc, argv);
+        if (command == "bench" && argc > 2 && !std::strcmp(argv[2], "deform"))
+            return jade::cli::cmd_bench_deform(argc, argv);
         if (command == "bench") return jade::cli::cmd_bench(argc, argv);
         if (command == "render") return jade::cli::cmd_render(argc, argv);
         if (command == "figure1") return jade::cli::cmd_figure1(argc, argv);

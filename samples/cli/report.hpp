@@ -39,20 +39,20 @@ struct Row {
 
 /// What a run sweeps: full (the default), --quick or --tiny (for tests).
 struct Plan {
-    std::string name;                      ///< "full", "quick", "tiny"
-    std::vector<uint32_t> ao_rays;         ///< rays per vertex of the sweep
-    uint32_t ao_reference_rays = 4096;     ///< low-discrepancy reference of every AO row
-    std::vector<float> ao_distances;       ///< AO max distance, fraction of the diagonal
-    float ao_default_distance = 0.1f;      ///< the distance t_m, the presets and images use
-    bool iid_every_distance = true;        ///< false: the i.i.d. sweep only at the default distance
-    uint32_t ao_agreement_rays = 64;       ///< GPU vs reference_ao (float64) comparison
-    std::vector<float> tm_epsilons;        ///< clustered far-field θ (BakeSettings::tm_opening_ratio), descending
-    bool tm_jade = true;                   ///< the "jade" preset (RGB) besides the grey Burleys
-    std::vector<double> tm_grey_d;         ///< grey Burley d, fractions of the diagonal
-    uint32_t tm_sample = 300;              ///< vertices the float64 t_m reference runs on
-    std::vector<uint32_t> lut_sizes;       ///< LUT N: (N + 1) × N texels
-    uint32_t image_size = 512;             ///< final-image rows: width = height
-    uint32_t deform_frames = 6;            ///< frames of the twist the deformation rows play
+    std::string name;                   ///< "full", "quick", "tiny"
+    std::vector<uint32_t> ao_rays;      ///< rays per vertex of the sweep
+    uint32_t ao_reference_rays = 4096;  ///< low-discrepancy reference of every AO row
+    std::vector<float> ao_distances;    ///< AO max distance, fraction of the diagonal
+    float ao_default_distance = 0.1f;   ///< the distance t_m, the presets and images use
+    bool iid_every_distance = true;     ///< false: the i.i.d. sweep only at the default distance
+    uint32_t ao_agreement_rays = 64;    ///< GPU vs reference_ao (float64) comparison
+    std::vector<float> tm_epsilons;     ///< clustered far-field θ (BakeSettings::tm_opening_ratio), descending
+    bool tm_jade = true;                ///< the "jade" preset (RGB) besides the grey Burleys
+    std::vector<double> tm_grey_d;      ///< grey Burley d, fractions of the diagonal
+    uint32_t tm_sample = 300;           ///< vertices the float64 t_m reference runs on
+    std::vector<uint32_t> lut_sizes;    ///< LUT N: (N + 1) × N texels
+    uint32_t image_size = 512;          ///< final-image rows: width = height
+    uint32_t deform_frames = 6;         ///< frames of the twist the deformation rows play
     std::vector<uint32_t> deform_slices{2, 4, 8};  ///< amortised modes (AO and t_m slices)
 };
 
@@ -61,18 +61,18 @@ Plan make_plan(const std::string& name, uint32_t tm_sample, std::vector<float> e
 
 /// One material of the t_m sweep and what the steps found for it.
 struct MaterialCase {
-    std::string label;                     ///< "jade", "burley d=5%"
+    std::string label;  ///< "jade", "burley d=5%"
     Material material;
-    std::vector<glm::dvec3> reference;     ///< reference_tm on MeshState::sample (reference AO)
-    std::vector<glm::vec3> exact;          ///< the GPU all-pairs t_m on every vertex
+    std::vector<glm::dvec3> reference;  ///< reference_tm on MeshState::sample (reference AO)
+    std::vector<glm::vec3> exact;       ///< the GPU all-pairs t_m on every vertex
 };
 
 /// Everything the steps of one mesh share.
 struct MeshState {
-    std::string label;                     ///< file stem, e.g. "bunny00"
-    std::string source;                    ///< what load_mesh_arg gets
+    std::string label;   ///< file stem, e.g. "bunny00"
+    std::string source;  ///< what load_mesh_arg gets
     PreparedMesh mesh;
-    std::vector<uint32_t> sample;          ///< vertices of the float64 t_m reference
+    std::vector<uint32_t> sample;                      ///< vertices of the float64 t_m reference
     std::map<float, std::vector<float>> ao_reference;  ///< per max distance: 4096-ray GPU AO
     std::vector<MaterialCase> materials;
     std::map<std::string, BakeResult> quality;  ///< end-to-end preset bakes of materials[0], by name

@@ -24,7 +24,6 @@
 namespace jade::cli::report {
 namespace {
 
-
 const LutLayout kReferenceLut{4097, 1025};
 
 std::string layout_name(const LutLayout& l) { return strf("%ux%u", l.width, l.height); }
@@ -53,9 +52,12 @@ std::vector<LutQuery> lut_queries()
     std::vector<LutQuery> out;
     for (int k = 0; k < 100000; ++k) {
         double c = 2.0 * unit(rng) - 1.0, t;
-        if (k % 3 == 0) t = 40.0 * unit(rng);
-        else if (k % 3 == 1) t = LutLayout::kMaxVariance * std::pow(v_max * unit(rng), 4.0);
-        else c *= 0.02, t = 2.5e-3 * unit(rng);
+        if (k % 3 == 0)
+            t = 40.0 * unit(rng);
+        else if (k % 3 == 1)
+            t = LutLayout::kMaxVariance * std::pow(v_max * unit(rng), 4.0);
+        else
+            c *= 0.02, t = 2.5e-3 * unit(rng);
         out.push_back({c, t, lut_reference(c, t)});
     }
     return out;
@@ -147,7 +149,8 @@ std::vector<double> image_errors(const RenderedImage& image, const RenderedImage
     for (size_t p = 0; p + 3 < reference.rgba.size(); p += 4) {
         if (reference.rgba[p + 3] <= 0.5f) continue;
         double worst = 0;
-        for (int c = 0; c < 3; ++c) worst = std::max(worst, 255.0 * std::abs(srgb(image.rgba[p + c]) - srgb(reference.rgba[p + c])));
+        for (int c = 0; c < 3; ++c)
+            worst = std::max(worst, 255.0 * std::abs(srgb(image.rgba[p + c]) - srgb(reference.rgba[p + c])));
         e.push_back(worst);
     }
     return e;
@@ -198,7 +201,8 @@ void add_lut_steps(Session& s, std::vector<Step>& steps)
 {
     auto state = std::make_shared<LutState>();
     for (const LutLayout& layout : lut_layouts(s.plan)) {
-        steps.push_back({"LUT " + layout_name(layout), [&s, state, layout] {
+        steps.push_back({"LUT " + layout_name(layout),
+                         [&s, state, layout] {
             if (state->queries.empty()) state->queries = lut_queries();
             auto t0 = Clock::now();
             auto renderer = make_renderer(s.context, layout);
@@ -206,13 +210,16 @@ void add_lut_steps(Session& s, std::vector<Step>& steps)
             const double ms = ms_since(t0);
             std::vector<double> e;
             e.reserve(state->queries.size());
-            for (const LutQuery& q : state->queries) e.push_back(std::abs(sample_lut(lut, layout, q.cos_theta, q.t) - q.reference));
-            Row r{"(any)", "lut_size", layout_name(layout), "linear filtering (f)", kNaN, ms, error_stats(std::move(e)), ""};
-            r.notes = strf("absolute, vs lut_reference at %zu points; %.0f KB; wall_ms: build and read back%s",
-                           state->queries.size(), 4.0 * layout.width * layout.height / 1024.0,
-                           layout.width == LutLayout{}.width && layout.height == LutLayout{}.height ? "; the default size" : "");
+            for (const LutQuery& q : state->queries)
+                e.push_back(std::abs(sample_lut(lut, layout, q.cos_theta, q.t) - q.reference));
+            Row r{"(any)", "lut_size", layout_name(layout),       "linear filtering (f)",
+                  kNaN,    ms,         error_stats(std::move(e)), ""};
+            r.notes = strf(
+                "absolute, vs lut_reference at %zu points; %.0f KB; wall_ms: build and read back%s",
+                state->queries.size(), 4.0 * layout.width * layout.height / 1024.0,
+                layout.width == LutLayout{}.width && layout.height == LutLayout{}.height ? "; the default size" : "");
             return r;
-        }});
+                         }});
     }
 }
 
@@ -220,39 +227,56 @@ void add_image_steps(Session& s, MeshState& st, std::vector<Step>& steps)
 {
     auto state = std::make_shared<ImageState>();
     steps.push_back({"image reference (all-pairs t_m, LUT " + layout_name(kReferenceLut) + ")", [&s, &st, state] {
-        auto renderer = make_renderer(s.context, kReferenceLut);
-        state->reference = render_with(*renderer, st, st.materials.front().exact, s.plan);
-        state->renderer = make_renderer(s.context, LutLayout{});
-        Row r;
-        r.notes = strf("%ux%u, GPU %s", state->reference.width, state->reference.height, format_ms(state->reference.gpu_ms).c_str());
-        return r;
-    }});
+                         auto renderer = make_renderer(s.context, kReferenceLut);
+                         state->reference = render_with(*renderer, st, st.materials.front().exact, s.plan);
+                         state->renderer = make_renderer(s.context, LutLayout{});
+                         Row r;
+                         r.notes = strf("%ux%u, GPU %s", state->reference.width, state->reference.height,
+                                        format_ms(state->reference.gpu_ms).c_str());
+                         return r;
+                     }});
     for (const char* q : {"draft", "default", "high"}) {
         steps.push_back({std::string("image, preset ") + q, [&s, &st, state, q] {
-            const BakeResult& bake = st.quality.at(q);
-            RenderedImage img = render_with(*state->renderer, st, bake.tm, s.plan);
-            Row r{st.label, "image", q, "t_m shading (" + st.materials.front().label + ")", bake.timings.gpu_total_ms,
-                  bake.timings.wall_ms, error_stats(image_errors(img, state->reference)), ""};
-            r.notes = strf("8-bit sRGB levels per covered pixel, %ux%u, default LUT; gpu_ms/wall_ms: the bake (draw: %s GPU); ",
-                           img.width, img.height, format_ms(img.gpu_ms).c_str()) + quality_note(img, state->reference);
-            return r;
-        }});
+                             const BakeResult& bake = st.quality.at(q);
+                             RenderedImage img = render_with(*state->renderer, st, bake.tm, s.plan);
+                             Row r{st.label,
+                                   "image",
+                                   q,
+                                   "t_m shading (" + st.materials.front().label + ")",
+                                   bake.timings.gpu_total_ms,
+                                   bake.timings.wall_ms,
+                                   error_stats(image_errors(img, state->reference)),
+                                   ""};
+                             r.notes = strf("8-bit sRGB levels per covered pixel, %ux%u, default LUT; gpu_ms/wall_ms: "
+                                            "the bake (draw: %s GPU); ",
+                                            img.width, img.height, format_ms(img.gpu_ms).c_str()) +
+                                       quality_note(img, state->reference);
+                             return r;
+                         }});
     }
     const auto layouts = lut_layouts(s.plan);
     for (size_t k = 0; k < layouts.size(); ++k) {
         const LutLayout layout = layouts[k];
         const bool last = k + 1 == layouts.size();
         steps.push_back({"image, LUT " + layout_name(layout), [&s, &st, state, layout, last] {
-            auto t0 = Clock::now();
-            auto renderer = make_renderer(s.context, layout);
-            RenderedImage img = render_with(*renderer, st, st.materials.front().exact, s.plan);
-            Row r{st.label, "image_lut", layout_name(layout), "t_m shading (" + st.materials.front().label + ")", img.gpu_ms,
-                  ms_since(t0), error_stats(image_errors(img, state->reference)), ""};
-            r.notes = strf("8-bit sRGB levels per covered pixel, %ux%u, all-pairs t_m; gpu_ms: the draw; wall_ms: LUT build + draw; ",
-                           img.width, img.height) + quality_note(img, state->reference);
-            if (last) *state = {};  // release the renderers before the context goes
-            return r;
-        }});
+                             auto t0 = Clock::now();
+                             auto renderer = make_renderer(s.context, layout);
+                             RenderedImage img = render_with(*renderer, st, st.materials.front().exact, s.plan);
+                             Row r{st.label,
+                                   "image_lut",
+                                   layout_name(layout),
+                                   "t_m shading (" + st.materials.front().label + ")",
+                                   img.gpu_ms,
+                                   ms_since(t0),
+                                   error_stats(image_errors(img, state->reference)),
+                                   ""};
+                             r.notes = strf("8-bit sRGB levels per covered pixel, %ux%u, all-pairs t_m; gpu_ms: the "
+                                            "draw; wall_ms: LUT build + draw; ",
+                                            img.width, img.height) +
+                                       quality_note(img, state->reference);
+                             if (last) *state = {};  // release the renderers before the context goes
+                             return r;
+                         }});
     }
 }
 

@@ -84,21 +84,28 @@ std::vector<Row> read_csv(const std::filesystem::path& path)
     bool quoted = false;
     for (size_t i = 0; i < text.size(); ++i) {
         const char c = text[i];
-        if (quoted && c == '"' && i + 1 < text.size() && text[i + 1] == '"') records.back().back() += c, ++i;
-        else if (c == '"') quoted = !quoted;
-        else if (!quoted && c == ',') records.back().emplace_back();
-        else if (!quoted && c == '\n') records.emplace_back(1);
-        else records.back().back() += c;
+        if (quoted && c == '"' && i + 1 < text.size() && text[i + 1] == '"')
+            records.back().back() += c, ++i;
+        else if (c == '"')
+            quoted = !quoted;
+        else if (!quoted && c == ',')
+            records.back().emplace_back();
+        else if (!quoted && c == '\n')
+            records.emplace_back(1);
+        else
+            records.back().back() += c;
     }
     const std::string header = "mesh,knob,value,method,gpu_ms,wall_ms,err_rms,err_p99,err_max,notes";
-    if (text.compare(0, header.size(), header) != 0) throw Error(path.string() + ": not a jade report CSV (header differs)");
+    if (text.compare(0, header.size(), header) != 0)
+        throw Error(path.string() + ": not a jade report CSV (header differs)");
     auto number = [&](const std::string& s) { return s.empty() ? kNaN : std::strtod(s.c_str(), nullptr); };
     std::vector<Row> rows;
     for (size_t k = 1; k < records.size(); ++k) {
         const auto& f = records[k];
         if (f.size() == 1 && f[0].empty()) continue;  // the last line's end
         if (f.size() != 10) throw Error(path.string() + ": line " + std::to_string(k + 1) + ": expected 10 fields");
-        rows.push_back({f[0], f[1], f[2], f[3], number(f[4]), number(f[5]), {number(f[6]), number(f[7]), number(f[8])}, f[9]});
+        rows.push_back(
+            {f[0], f[1], f[2], f[3], number(f[4]), number(f[5]), {number(f[6]), number(f[7]), number(f[8])}, f[9]});
     }
     return rows;
 }
@@ -129,7 +136,8 @@ std::optional<Axes> pareto_axes(const Row& r)
 {
     const std::string c = split_method(r.method).second;
     if (r.knob == "ao_rays") return Axes{r.mesh + "|ao|" + c, r.gpu_ms, r.err.rms};
-    if (r.knob == "tm_exact" || r.knob == "tm_epsilon" || r.knob == "tm_grid_resolution" || r.knob == "tm_auto") return Axes{r.mesh + "|tm|" + c, r.gpu_ms, r.err.max};
+    if (r.knob == "tm_exact" || r.knob == "tm_epsilon" || r.knob == "tm_grid_resolution" || r.knob == "tm_auto")
+        return Axes{r.mesh + "|tm|" + c, r.gpu_ms, r.err.max};
     if (r.knob == "quality") return Axes{r.mesh + "|quality", r.gpu_ms, r.err.max};
     if (r.knob == "lut_size" || r.knob == "image_lut") return Axes{r.mesh + "|" + r.knob, texels(r.value), r.err.max};
     if (r.knob == "deform_ao" || r.knob == "deform_tm") return Axes{r.mesh + "|" + r.knob, r.gpu_ms, r.err.rms};
@@ -178,8 +186,7 @@ std::string bold_if(bool b, const std::string& s) { return b && !s.empty() ? "**
 std::string pct(double x) { return std::isnan(x) ? "–" : strf("%.3g %%", 100 * x); }
 
 /// Distinct values of `key` over the rows, in first-seen order.
-template <class F>
-std::vector<std::string> distinct(const std::vector<Row>& rows, F key)
+template <class F> std::vector<std::string> distinct(const std::vector<Row>& rows, F key)
 {
     std::vector<std::string> out;
     for (const Row& r : rows)
@@ -196,8 +203,13 @@ std::string rows_table(const std::vector<Row>& rows, const std::vector<bool>& fr
     for (size_t i : pick) {
         const Row& r = rows[i];
         auto e = [&](double x) { return bold_if(front[i], percent ? pct(x) : num(x)); };
-        std::vector<std::string> cells{bold_if(front[i], r.value), split_method(r.method).first, ms(r.gpu_ms), ms(r.wall_ms),
-                                       e(r.err.rms), e(r.err.p99), e(r.err.max)};
+        std::vector<std::string> cells{bold_if(front[i], r.value),
+                                       split_method(r.method).first,
+                                       ms(r.gpu_ms),
+                                       ms(r.wall_ms),
+                                       e(r.err.rms),
+                                       e(r.err.p99),
+                                       e(r.err.max)};
         if (with_notes) cells.push_back(r.notes);
         t.body.push_back(cells);
     }
@@ -224,8 +236,9 @@ struct Target {
     Quality level;
     double ao_rms, tm_max;  ///< AO RMS (absolute), t_m max relative error
 };
-constexpr Target kTargets[] = {
-    {"draft", Quality::Draft, 0.05, 0.05}, {"default", Quality::Default, 0.02, 0.01}, {"high", Quality::High, 0.01, 0.001}};
+constexpr Target kTargets[] = {{"draft", Quality::Draft, 0.05, 0.05},
+                               {"default", Quality::Default, 0.02, 0.01},
+                               {"high", Quality::High, 0.01, 0.001}};
 
 /// The cheapest configuration (GPU time summed over meshes and cases) among the rows `pick`
 /// whose error (`err`, the worst over meshes and cases) meets `bound`. A configuration is the
@@ -252,9 +265,11 @@ std::string recommended(const std::vector<Row>& rows, const Plan& plan)
 {
     const auto meshes = distinct(rows, [](const Row& r) { return r.knob == "ao_rays" ? r.mesh : std::string(); });
     const std::string ao_case = strf("d=%g", double(plan.ao_default_distance));
-    const auto ao_rows = select(rows, [&](const Row& r) { return r.knob == "ao_rays" && split_method(r.method).second == ao_case; });
+    const auto ao_rows =
+        select(rows, [&](const Row& r) { return r.knob == "ao_rays" && split_method(r.method).second == ao_case; });
     const auto eps_rows = select(rows, [](const Row& r) { return r.knob == "tm_epsilon"; });
-    const auto first_material = distinct(rows, [](const Row& r) { return is_tm(r) ? split_method(r.method).second : std::string(); });
+    const auto first_material =
+        distinct(rows, [](const Row& r) { return is_tm(r) ? split_method(r.method).second : std::string(); });
     std::string out;
     for (const Target& target : kTargets) {
         out += strf("### %s\n\nTargets: AO RMS ≤ %g (absolute), t_m max ≤ %g %% (relative, every material).\n\n",
@@ -263,7 +278,8 @@ std::string recommended(const std::vector<Row>& rows, const Plan& plan)
         for (const auto& m : meshes) t.head.insert(t.head.end(), {m + ": error", m + ": GPU"});
         // One line: per mesh, the errors of the matching row with the largest max (the worst
         // material) and the GPU time of the first material's row.
-        auto add = [&](std::string part, std::string setting, const std::function<bool(const Row&)>& match, bool percent) {
+        auto add =
+            [&](std::string part, std::string setting, const std::function<bool(const Row&)>& match, bool percent) {
             std::vector<std::string> cells{part, setting};
             for (const auto& m : meshes) {
                 const Row* worst = nullptr;
@@ -271,29 +287,37 @@ std::string recommended(const std::vector<Row>& rows, const Plan& plan)
                 for (const Row& r : rows)
                     if (r.mesh == m && match(r)) {
                         if (!worst || r.err.max > worst->err.max) worst = &r;
-                        if (first_material.empty() || split_method(r.method).second == first_material[0] || r.knob == "ao_rays")
+                        if (first_material.empty() || split_method(r.method).second == first_material[0] ||
+                            r.knob == "ao_rays")
                             gpu = r.gpu_ms;
                     }
                 auto f = [&](double x) { return percent ? pct(x) : num(x); };
                 cells.push_back(!worst ? "not measured"
-                                       : "RMS " + f(worst->err.rms) + ", p99 " + f(worst->err.p99) + ", max " + f(worst->err.max));
+                                       : "RMS " + f(worst->err.rms) + ", p99 " + f(worst->err.p99) + ", max " +
+                                             f(worst->err.max));
                 cells.push_back(ms(gpu));
             }
             t.body.push_back(cells);
         };
         auto [rays, sampling] = cheapest(rows, ao_rows, &ErrorStats::rms, target.ao_rms, true);
-        if (rays.empty()) t.body.push_back({"AO", "no measured ray count meets the target"});
+        if (rays.empty())
+            t.body.push_back({"AO", "no measured ray count meets the target"});
         else
-            add("AO", rays + " rays, " + sampling + " (" + ao_case + ")", [&](const Row& r) {
+            add(
+                "AO", rays + " rays, " + sampling + " (" + ao_case + ")",
+                [&](const Row& r) {
                 return r.knob == "ao_rays" && r.value == rays && r.method == sampling + " (" + ao_case + ")";
-            }, false);
+                },
+                false);
         const std::string eps = cheapest(rows, eps_rows, &ErrorStats::max, target.tm_max, false).first;
         if (eps.empty())
-            add("t_m (worst material)", "exact (all pairs): no measured ε meets the target",
+            add(
+                "t_m (worst material)", "exact (all pairs): no measured ε meets the target",
                 [](const Row& r) { return r.knob == "tm_exact"; }, true);
         else
-            add("t_m (worst material)", "clustered, ε = " + eps, [&](const Row& r) { return r.knob == "tm_epsilon" && r.value == eps; },
-                true);
+            add(
+                "t_m (worst material)", "clustered, ε = " + eps,
+                [&](const Row& r) { return r.knob == "tm_epsilon" && r.value == eps; }, true);
         // The preset as measured (its row's notes), else as compiled in.
         const BakeSettings preset = BakeSettings::preset(target.level);
         std::string today = strf("%u rays, ε = %g", preset.ao.rays, double(preset.tm_opening_ratio));
@@ -305,9 +329,11 @@ std::string recommended(const std::vector<Row>& rows, const Plan& plan)
                 break;
             }
         }
-        add("today's preset end to end: t_m vs float64", today, [&](const Row& r) { return r.knob == "quality" && r.value == target.quality; },
-            true);
-        add("today's preset: final image (8-bit levels)", today,
+        add(
+            "today's preset end to end: t_m vs float64", today,
+            [&](const Row& r) { return r.knob == "quality" && r.value == target.quality; }, true);
+        add(
+            "today's preset: final image (8-bit levels)", today,
             [&](const Row& r) { return r.knob == "image" && r.value == target.quality; }, false);
         out += t.markdown();
     }
@@ -329,8 +355,10 @@ std::string summary_markdown(const std::vector<Row>& rows, const Plan& plan, con
        << "-ray **low-discrepancy GPU AO** of the same max distance (not the float64 reference, which "
           "is the same rays in double precision: see \"AO: GPU against float64\").\n"
        << "* **t_m**: relative per-vertex error (worst colour channel) against `reference_tm` (float64) on a "
-          "fixed sample of **" << plan.tm_sample << " vertices** (evenly spread over the vertex order), all from the "
-       << plan.ao_reference_rays << "-ray AO at d = " << plan.ao_default_distance << ", so only the far field and "
+          "fixed sample of **"
+       << plan.tm_sample << " vertices** (evenly spread over the vertex order), all from the " << plan.ao_reference_rays
+       << "-ray AO at d = " << plan.ao_default_distance
+       << ", so only the far field and "
           "float32 are measured. The exact row is the float32 (compensated) against float64 error.\n"
        << "* **Times**: GPU = timestamp queries (`BakeTimings::gpu_stages`, summed), wall = the whole call "
           "(CPU tree and BVH builds, upload, read-back). One run each (AO passes under 300 ms: best of 3); "
@@ -346,41 +374,57 @@ std::string summary_markdown(const std::vector<Row>& rows, const Plan& plan, con
 
     for (const auto& m : meshes) {
         md << "## " << m << "\n\n### AO: rays per vertex, sampling, max distance\n\n";
-        for (const auto& c : distinct(rows, [&](const Row& r) { return r.mesh == m && r.knob == "ao_rays" ? split_method(r.method).second : ""; })) {
+        for (const auto& c : distinct(rows, [&](const Row& r) {
+                 return r.mesh == m && r.knob == "ao_rays" ? split_method(r.method).second : "";
+             })) {
             md << "Max distance " << c.substr(2) << " × diagonal; absolute error:\n\n";
-            md << rows_table(rows, front, select(rows, [&](const Row& r) {
+            md << rows_table(rows, front,
+                             select(
+                                 rows,
+                                 [&](const Row& r) {
                 return r.mesh == m && r.knob == "ao_rays" && split_method(r.method).second == c;
-            }), "rays", false, false);
+                                 }),
+                             "rays", false, false);
         }
         md << "### AO: GPU against float64 (`reference_ao`, same rays)\n\n"
            << rows_table(rows, front, select(rows, [&](const Row& r) { return r.mesh == m && r.knob == "ao_float64"; }),
                          "rays", false, true);
         md << "### t_m: exact, clustered ε, auto presets\n\nRelative error; the float64 reference's own cost is in "
               "the notes of the first row of each material (wall = CPU).\n\n";
-        for (const auto& c : distinct(rows, [&](const Row& r) { return r.mesh == m && is_tm(r) ? split_method(r.method).second : ""; })) {
+        for (const auto& c : distinct(
+                 rows, [&](const Row& r) { return r.mesh == m && is_tm(r) ? split_method(r.method).second : ""; })) {
             md << "**" << c << "**";
             for (const Row& r : rows)
                 if (r.mesh == m && r.knob == "tm_reference" && split_method(r.method).second == c)
                     md << " (float64 reference: " << ms(r.wall_ms) << " on " << r.value << " vertices)";
-            md << "\n\n" << rows_table(rows, front, select(rows, [&](const Row& r) {
-                return r.mesh == m && is_tm(r) && split_method(r.method).second == c;
-            }), "value", true, true);
+            md << "\n\n"
+               << rows_table(
+                      rows, front,
+                      select(
+                          rows,
+                          [&](const Row& r) { return r.mesh == m && is_tm(r) && split_method(r.method).second == c; }),
+                      "value", true, true);
         }
         md << "### Presets end to end (own AO + t_m)\n\n"
-           << rows_table(rows, front, select(rows, [&](const Row& r) { return r.mesh == m && r.knob == "quality"; }), "preset", true, true);
+           << rows_table(rows, front, select(rows, [&](const Row& r) { return r.mesh == m && r.knob == "quality"; }),
+                         "preset", true, true);
         md << "### Final image (t_m shading, 8-bit sRGB levels per covered pixel)\n\n"
-           << rows_table(rows, front, select(rows, [&](const Row& r) { return r.mesh == m && (r.knob == "image" || r.knob == "image_lut"); }),
-                         "preset / LUT", false, true);
+           << rows_table(
+                  rows, front,
+                  select(rows,
+                         [&](const Row& r) { return r.mesh == m && (r.knob == "image" || r.knob == "image_lut"); }),
+                  "preset / LUT", false, true);
         md << "### Deformation: refit, rebuild, amortised re-bakes\n\nA twist played at 15 frames per second; every "
               "frame against a from-scratch bake of the same deformed mesh (rebuild: new BVH and cluster tree). GPU = "
               "bake per frame (refits, AO, t_m); RMS = mean over frames of the per-frame RMS; max over all frames. "
               "Amortised 1/N re-traces 1/N of the AO rays and re-evaluates 1/N of the vertices' t_m per frame "
-              "(`jade::Amortisation`); its first frame (a full re-bake) is left out. Plot: deform.png.\n\nAO, absolute error:\n\n"
-           << rows_table(rows, front, select(rows, [&](const Row& r) { return r.mesh == m && r.knob == "deform_ao"; }), "mode",
-                         false, true)
+              "(`jade::Amortisation`); its first frame (a full re-bake) is left out. Plot: deform.png.\n\nAO, absolute "
+              "error:\n\n"
+           << rows_table(rows, front, select(rows, [&](const Row& r) { return r.mesh == m && r.knob == "deform_ao"; }),
+                         "mode", false, true)
            << "t_m, relative error:\n\n"
-           << rows_table(rows, front, select(rows, [&](const Row& r) { return r.mesh == m && r.knob == "deform_tm"; }), "mode",
-                         true, true);
+           << rows_table(rows, front, select(rows, [&](const Row& r) { return r.mesh == m && r.knob == "deform_tm"; }),
+                         "mode", true, true);
     }
     md << "## Translucency LUT size\n\n(N + 1) × N texels against `lut_reference` (float64), absolute error of f; "
           "wall = GPU build + read-back. The last row is the renderer's default size.\n\n"

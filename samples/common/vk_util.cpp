@@ -75,7 +75,8 @@ HostBuffer make_host_buffer(VkPhysicalDevice physical, VkDevice device, VkDevice
     b.buffer = own(device, buffer, vkDestroyBuffer);
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(device, buffer, &req);
-    b.memory = allocate(physical, device, req, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    b.memory =
+        allocate(physical, device, req, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
     check(vkBindBufferMemory(device, buffer, b.memory.get(), 0), "vkBindBufferMemory");
     return b;
 }

@@ -17,13 +17,13 @@ namespace samples {
 /// Throws std::runtime_error naming the call when a Vulkan call failed.
 inline void check(VkResult r, const char* what)
 {
-    if (r != VK_SUCCESS) throw std::runtime_error(std::string(what) + " failed (VkResult " + std::to_string(int(r)) + ")");
+    if (r != VK_SUCCESS)
+        throw std::runtime_error(std::string(what) + " failed (VkResult " + std::to_string(int(r)) + ")");
 }
 
 /// The one owner of a Vulkan handle: destroys it with the function given at construction.
 /// Move-only; reset() destroys early.
-template <class T>
-class Owned {
+template <class T> class Owned {
 public:
     Owned() = default;
     Owned(T handle, std::function<void(T)> destroy) : handle_(handle), destroy_(std::move(destroy)) {}
@@ -54,8 +54,7 @@ private:
 };
 
 /// Device-level destroy functions bound to a device: Owned<VkX> makers.
-template <class T>
-Owned<T> own(VkDevice device, T handle, void (*destroy)(VkDevice, T, const VkAllocationCallbacks*))
+template <class T> Owned<T> own(VkDevice device, T handle, void (*destroy)(VkDevice, T, const VkAllocationCallbacks*))
 {
     return Owned<T>(handle, [device, destroy](T h) { destroy(device, h, nullptr); });
 }

@@ -28,8 +28,9 @@ constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 
 inline uint32_t validation_messages = 0;
 
-inline VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlagBitsEXT, VkDebugUtilsMessageTypeFlagsEXT,
-                                          const VkDebugUtilsMessengerCallbackDataEXT* data, void*)
+inline VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlagBitsEXT,
+                                                 VkDebugUtilsMessageTypeFlagsEXT,
+                                                 const VkDebugUtilsMessengerCallbackDataEXT* data, void*)
 {
     ++validation_messages;
     std::fprintf(stderr, "host: validation: %s\n", data->pMessage ? data->pMessage : "");
@@ -80,10 +81,12 @@ struct Host {
     void create_frame()
     {
         color = make_image(physical, device, kColorFormat, {kWidth, kHeight}, VK_SAMPLE_COUNT_1_BIT,
-                           VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+                           VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                           VK_IMAGE_ASPECT_COLOR_BIT);
         depth = make_image(physical, device, kDepthFormat, {kWidth, kHeight}, VK_SAMPLE_COUNT_1_BIT,
                            VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
-        readback = make_host_buffer(physical, device, VkDeviceSize(kWidth) * kHeight * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT);  // RGBA16F
+        readback = make_host_buffer(physical, device, VkDeviceSize(kWidth) * kHeight * 8,
+                                    VK_BUFFER_USAGE_TRANSFER_DST_BIT);  // RGBA16F
     }
 
     void create_ground_pipeline()
@@ -158,7 +161,8 @@ struct Host {
         ci.pDynamicState = &dynamic;
         ci.layout = layout;
         VkPipeline graphics = VK_NULL_HANDLE;
-        check(vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &ci, nullptr, &graphics), "vkCreateGraphicsPipelines");
+        check(vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &ci, nullptr, &graphics),
+              "vkCreateGraphicsPipelines");
         pipeline = own(device.get(), graphics, vkDestroyPipeline);
     }
 };

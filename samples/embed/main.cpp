@@ -36,10 +36,11 @@ namespace {
 void record_frame(VkCommandBuffer cmd, const Host& host, jade::Renderer& renderer, const jade::Camera& camera)
 {
     // 1. The host's pass: clear to a sky colour and draw the ground.
-    image_barrier(cmd, host.color.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_NONE, 0, VK_IMAGE_LAYOUT_UNDEFINED,
-                  VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
-                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-    image_barrier(cmd, host.depth.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_PIPELINE_STAGE_2_NONE, 0, VK_IMAGE_LAYOUT_UNDEFINED,
+    image_barrier(cmd, host.color.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_NONE, 0,
+                  VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                  VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    image_barrier(cmd, host.depth.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_PIPELINE_STAGE_2_NONE, 0,
+                  VK_IMAGE_LAYOUT_UNDEFINED,
                   VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
                   VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
     VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
@@ -67,7 +68,10 @@ void record_frame(VkCommandBuffer cmd, const Host& host, jade::Renderer& rendere
     vkCmdSetViewport(cmd, 0, 1, &vp);
     vkCmdSetScissor(cmd, 0, 1, &scissor);
     const glm::mat4 clip_from_world = camera.view_projection(float(kWidth) / float(kHeight));
-    struct { glm::mat4 clip_from_world; float half_size, height; } push{clip_from_world, 4.0f, kGroundHeight};
+    struct {
+        glm::mat4 clip_from_world;
+        float half_size, height;
+    } push{clip_from_world, 4.0f, kGroundHeight};
     vkCmdPushConstants(cmd, host.layout, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(push), &push);
     vkCmdDraw(cmd, 6, 1, 0, 0);
     vkCmdEndRendering(cmd);
@@ -166,10 +170,13 @@ int main(int argc, char** argv)
     bool validation = false;
     if (const char* v = std::getenv("JADE_VALIDATION"); v && *v && std::strcmp(v, "0") != 0) validation = true;
     for (int i = 1; i < argc; ++i) {
-        if (std::strcmp(argv[i], "--validation") == 0) validation = true;
-        else if (!output && argv[i][0] != '-') output = argv[i];
+        if (std::strcmp(argv[i], "--validation") == 0)
+            validation = true;
+        else if (!output && argv[i][0] != '-')
+            output = argv[i];
         else {
-            std::fprintf(stderr, "jade_embed: unknown argument '%s'\nusage: jade_embed OUTPUT.png [--validation]\n", argv[i]);
+            std::fprintf(stderr, "jade_embed: unknown argument '%s'\nusage: jade_embed OUTPUT.png [--validation]\n",
+                         argv[i]);
             return 1;
         }
     }

@@ -99,10 +99,12 @@ void record_frame(FrameSync& sync, Scene& scene, const ViewState& state, const R
 
     // Jade's attachments: previous contents are not needed (cleared by the draw).
     const VkPipelineStageFlags2 color_out = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
-    const VkPipelineStageFlags2 tests = VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
+    const VkPipelineStageFlags2 tests =
+        VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
     const VkImage source = images.presented_source();
     image_barrier(cmd, images.color.image, VK_IMAGE_ASPECT_COLOR_BIT, color_out | VK_PIPELINE_STAGE_2_BLIT_BIT, 0,
-                  VK_IMAGE_LAYOUT_UNDEFINED, color_out, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+                  VK_IMAGE_LAYOUT_UNDEFINED, color_out, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
     if (images.resolve.image)
         image_barrier(cmd, images.resolve.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT, 0,
                       VK_IMAGE_LAYOUT_UNDEFINED, color_out, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
@@ -130,10 +132,11 @@ void record_frame(FrameSync& sync, Scene& scene, const ViewState& state, const R
     VkImageBlit region{};
     region.srcSubresource = region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     const VkExtent2D e = swapchain.extent();
-    region.srcOffsets[1] = {int32_t(std::min(e.width, images.extent.width)), int32_t(std::min(e.height, images.extent.height)), 1};
+    region.srcOffsets[1] = {int32_t(std::min(e.width, images.extent.width)),
+                            int32_t(std::min(e.height, images.extent.height)), 1};
     region.dstOffsets[1] = region.srcOffsets[1];
-    vkCmdBlitImage(cmd, source, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, present, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region,
-                   VK_FILTER_NEAREST);
+    vkCmdBlitImage(cmd, source, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, present, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                   &region, VK_FILTER_NEAREST);
     // Where the swapchain image is now, and which writes to it the next barrier waits for.
     VkImageLayout layout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
     VkPipelineStageFlags2 stage = VK_PIPELINE_STAGE_2_BLIT_BIT;
@@ -166,7 +169,8 @@ void record_frame(FrameSync& sync, Scene& scene, const ViewState& state, const R
     check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
 }
 
-void save_screenshot(const std::string& path, const VulkanHost& host, const HostBuffer& readback, const Swapchain& swapchain)
+void save_screenshot(const std::string& path, const VulkanHost& host, const HostBuffer& readback,
+                     const Swapchain& swapchain)
 {
     const VkExtent2D e = swapchain.extent();
     void* mapped = nullptr;
@@ -184,7 +188,6 @@ void save_screenshot(const std::string& path, const VulkanHost& host, const Host
     vkUnmapMemory(host.device(), readback.memory);
     jade::save_image(path, int(e.width), int(e.height), rgba);
 }
-
 
 // The viewer's objects live in this function; run() counts validation messages after they
 // were all destroyed (the layer reports leaks at vkDestroyDevice).
@@ -206,14 +209,15 @@ void run_window(const Options& options)
     std::unique_ptr<HostBuffer> readback;
     IdleOnExit idle{host.device()};
 
-    std::deque<double> frame_ms;                // the last 30 frames, for the panel
+    std::deque<double> frame_ms;                            // the last 30 frames, for the panel
     std::vector<double> all_frame_ms, draw_ms, present_ms;  // every frame, for the summary
     double last = now_ms(), gpu_draw = 0, gpu_present = 0;
     double mouse_x = 0, mouse_y = 0;
     glfwGetCursorPos(window.handle(), &mouse_x, &mouse_y);
     for (uint32_t frame = 0; !window.should_close() && (options.frames == 0 || frame < options.frames);) {
         glfwPollEvents();
-        if (glfwGetKey(window.handle(), GLFW_KEY_ESCAPE) == GLFW_PRESS) glfwSetWindowShouldClose(window.handle(), GLFW_TRUE);
+        if (glfwGetKey(window.handle(), GLFW_KEY_ESCAPE) == GLFW_PRESS)
+            glfwSetWindowShouldClose(window.handle(), GLFW_TRUE);
         const double t = now_ms(), dt = t - last;
         last = t;
         // Orbit with the left mouse button, zoom with the wheel, unless the panel has the mouse.
@@ -224,7 +228,8 @@ void run_window(const Options& options)
             state.yaw = float(std::remainder(state.yaw - 0.3 * (x - mouse_x), 360.0));
             state.pitch = std::clamp(state.pitch + 0.3f * float(y - mouse_y), -89.0f, 89.0f);
         }
-        if (!panel_mouse && g_wheel != 0.0) state.zoom = std::clamp(state.zoom * float(std::pow(0.9, g_wheel)), 0.2f, 5.0f);
+        if (!panel_mouse && g_wheel != 0.0)
+            state.zoom = std::clamp(state.zoom * float(std::pow(0.9, g_wheel)), 0.2f, 5.0f);
         g_wheel = 0.0;
         mouse_x = x;
         mouse_y = y;
@@ -232,7 +237,8 @@ void run_window(const Options& options)
 
         if (ui) {
             PanelInfo info{host.device_name(), scene.mesh_name(), scene.vertex_count(), 0.0, scene.times().stages};
-            if (!frame_ms.empty()) info.frame_ms = std::accumulate(frame_ms.begin(), frame_ms.end(), 0.0) / double(frame_ms.size());
+            if (!frame_ms.empty())
+                info.frame_ms = std::accumulate(frame_ms.begin(), frame_ms.end(), 0.0) / double(frame_ms.size());
             info.stages.emplace_back("jade draw (GPU)", gpu_draw);
             info.stages.emplace_back("blit + panel (GPU)", gpu_present);
             ui->build(state, info);
@@ -241,14 +247,16 @@ void run_window(const Options& options)
 
         const VkExtent2D size = window.framebuffer_size();
         if (size.width == 0 || size.height == 0) continue;  // minimised
-        if (window.take_resized() || size.width != swapchain->extent().width || size.height != swapchain->extent().height) {
+        if (window.take_resized() || size.width != swapchain->extent().width ||
+            size.height != swapchain->extent().height) {
             vkDeviceWaitIdle(host.device());
             swapchain = std::make_unique<Swapchain>(host, size, options.vsync, swapchain.get());
             images = std::make_unique<RenderImages>(host, swapchain->extent(), VkSampleCountFlagBits(options.samples));
             if (ui) ui->on_swapchain(*swapchain);
         }
         uint32_t index = 0;
-        const VkResult acquired = vkAcquireNextImageKHR(host.device(), swapchain->handle(), UINT64_MAX, sync.acquired, VK_NULL_HANDLE, &index);
+        const VkResult acquired = vkAcquireNextImageKHR(host.device(), swapchain->handle(), UINT64_MAX, sync.acquired,
+                                                        VK_NULL_HANDLE, &index);
         if (acquired == VK_ERROR_OUT_OF_DATE_KHR) {
             window.take_resized();
             vkDeviceWaitIdle(host.device());
@@ -262,9 +270,10 @@ void run_window(const Options& options)
         const bool last_frame = options.frames != 0 && frame + 1 == options.frames;
         const bool screenshot = last_frame && !options.screenshot.empty();
         if (screenshot)
-            readback = std::make_unique<HostBuffer>(make_host_buffer(host.physical(), host.device(),
-                                                                     VkDeviceSize(swapchain->extent().width) * swapchain->extent().height * 4,
-                                                                     VK_BUFFER_USAGE_TRANSFER_DST_BIT));
+            readback = std::make_unique<HostBuffer>(
+                make_host_buffer(host.physical(), host.device(),
+                                 VkDeviceSize(swapchain->extent().width) * swapchain->extent().height * 4,
+                                 VK_BUFFER_USAGE_TRANSFER_DST_BIT));
         record_frame(sync, scene, state, *images, *swapchain, index, ui.get(), screenshot ? readback.get() : nullptr);
         const VkPipelineStageFlags wait_stage = VK_PIPELINE_STAGE_TRANSFER_BIT;
         const VkSemaphore finished = swapchain->render_finished(index);
@@ -286,7 +295,8 @@ void run_window(const Options& options)
         pi.pSwapchains = &sc;
         pi.pImageIndices = &index;
         const VkResult presented = vkQueuePresentKHR(host.queue(), &pi);
-        if (presented != VK_SUBOPTIMAL_KHR && presented != VK_ERROR_OUT_OF_DATE_KHR) check(presented, "vkQueuePresentKHR");
+        if (presented != VK_SUBOPTIMAL_KHR && presented != VK_ERROR_OUT_OF_DATE_KHR)
+            check(presented, "vkQueuePresentKHR");
         // One frame in flight: Jade's calls of the next update (bakes, set_mesh) need the queue.
         const VkFence done = sync.done;
         check(vkWaitForFences(host.device(), 1, &done, VK_TRUE, UINT64_MAX), "vkWaitForFences");
@@ -318,11 +328,14 @@ void run_window(const Options& options)
     const size_t skip = all_frame_ms.size() > 1 ? 1 : 0;
     if (all_frame_ms.size() > skip) {
         const double n = double(all_frame_ms.size() - skip);
-        auto mean = [&](const std::vector<double>& v) { return std::accumulate(v.begin() + long(skip), v.end(), 0.0) / n; };
-        std::printf("jade-view: %zu frames at %ux%u, mean frame %.1f ms: Jade draw %.1f ms, blit + panel %.1f ms (GPU); "
-                    "first frame %.1f ms\n",
-                    all_frame_ms.size(), swapchain->extent().width, swapchain->extent().height, mean(all_frame_ms),
-                    mean(draw_ms), mean(present_ms), all_frame_ms.front());
+        auto mean = [&](const std::vector<double>& v) {
+            return std::accumulate(v.begin() + long(skip), v.end(), 0.0) / n;
+        };
+        std::printf(
+            "jade-view: %zu frames at %ux%u, mean frame %.1f ms: Jade draw %.1f ms, blit + panel %.1f ms (GPU); "
+            "first frame %.1f ms\n",
+            all_frame_ms.size(), swapchain->extent().width, swapchain->extent().height, mean(all_frame_ms),
+            mean(draw_ms), mean(present_ms), all_frame_ms.front());
     }
     for (const auto& [name, ms] : scene.times().stages) std::printf("jade-view:   %-28s %9.2f ms\n", name.c_str(), ms);
 }
@@ -333,7 +346,9 @@ int run(const Options& options)
 {
     run_window(options);
     const uint64_t messages = VulkanHost::validation_messages();
-    if (messages) std::fprintf(stderr, "jade-view: the validation layer reported %llu message(s)\n", (unsigned long long)messages);
+    if (messages)
+        std::fprintf(stderr, "jade-view: the validation layer reported %llu message(s)\n",
+                     (unsigned long long)messages);
     return messages ? 2 : 0;
 }
 

@@ -20,25 +20,24 @@
 
 namespace {
 
-const char* kUsage =
-    "usage: jade-view [MESH] [options]      (also: jade view [MESH] [options])\n"
-    "  MESH                 mesh file (.off .ply .obj .gltf .glb), 'bunny' (default) or 'sphere'\n"
-    "  --size WxH           window size in pixels (default 800x600)\n"
-    "  --frames N           render N frames, then exit (default: until the window is closed)\n"
-    "  --screenshot FILE    write the last presented frame (.png sRGB 8 bit, .exr) - needs --frames\n"
-    "  --no-ui              hide the ImGui panel\n"
-    "  --mode M             lambert | curvature | tm | tm-false-color (default tm)\n"
-    "  --material NAME      a preset of jade::material_preset_names() (default jade)\n"
-    "  --strength X         shading strength, rad^2 per unit t_m (default: the preset's)\n"
-    "  --quality Q          bake quality draft | default | high (default default)\n"
-    "  --deform KIND        none | bend | twist | squash | wave (default none)\n"
-    "  --time T             deformation time in seconds (with --no-animate: fixed)\n"
-    "  --no-animate         do not advance the deformation time\n"
-    "  --lights L           default | figure1 (default default)\n"
-    "  --samples N          MSAA samples 1, 2, 4, 8 (default 4)\n"
-    "  --no-vsync           present without waiting for vertical blank when possible\n"
-    "  --validation         Khronos validation layer (also JADE_VALIDATION=1); any message: exit 2\n"
-    "Controls: drag with the left mouse button to orbit, wheel to zoom, the panel for the rest.\n";
+const char* kUsage = "usage: jade-view [MESH] [options]      (also: jade view [MESH] [options])\n"
+                     "  MESH                 mesh file (.off .ply .obj .gltf .glb), 'bunny' (default) or 'sphere'\n"
+                     "  --size WxH           window size in pixels (default 800x600)\n"
+                     "  --frames N           render N frames, then exit (default: until the window is closed)\n"
+                     "  --screenshot FILE    write the last presented frame (.png sRGB 8 bit, .exr) - needs --frames\n"
+                     "  --no-ui              hide the ImGui panel\n"
+                     "  --mode M             lambert | curvature | tm | tm-false-color (default tm)\n"
+                     "  --material NAME      a preset of jade::material_preset_names() (default jade)\n"
+                     "  --strength X         shading strength, rad^2 per unit t_m (default: the preset's)\n"
+                     "  --quality Q          bake quality draft | default | high (default default)\n"
+                     "  --deform KIND        none | bend | twist | squash | wave (default none)\n"
+                     "  --time T             deformation time in seconds (with --no-animate: fixed)\n"
+                     "  --no-animate         do not advance the deformation time\n"
+                     "  --lights L           default | figure1 (default default)\n"
+                     "  --samples N          MSAA samples 1, 2, 4, 8 (default 4)\n"
+                     "  --no-vsync           present without waiting for vertical blank when possible\n"
+                     "  --validation         Khronos validation layer (also JADE_VALIDATION=1); any message: exit 2\n"
+                     "Controls: drag with the left mouse button to orbit, wheel to zoom, the panel for the rest.\n";
 
 struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
@@ -49,12 +48,12 @@ double number(const std::string& flag, const char* text, double lo, double hi)
     char* end = nullptr;
     const double v = std::strtod(text, &end);
     if (!*text || *end || !(v >= lo && v <= hi))
-        throw UsageError(flag + ": expected a number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got '" + text + "'");
+        throw UsageError(flag + ": expected a number in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                         "], got '" + text + "'");
     return v;
 }
 
-template <class List>
-int index_of(const std::string& flag, const std::string& value, const List& names)
+template <class List> int index_of(const std::string& flag, const std::string& value, const List& names)
 {
     const auto it = std::find(names.begin(), names.end(), value);
     if (it == names.end()) {
@@ -80,38 +79,55 @@ samples::viewer::Options parse(int argc, char** argv)
             const std::string s = value();
             unsigned w = 0, h = 0;
             char x = 0, extra = 0;
-            if (std::sscanf(s.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || x != 'x' || w == 0 || h == 0 || w > 16384 || h > 16384)
+            if (std::sscanf(s.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || x != 'x' || w == 0 || h == 0 ||
+                w > 16384 || h > 16384)
                 throw UsageError("--size: expected WxH with 1..16384 pixels each, got '" + s + "'");
             o.width = w;
             o.height = h;
-        } else if (a == "--frames") o.frames = uint32_t(number(a, value(), 1, 1e9));
-        else if (a == "--screenshot") o.screenshot = value();
-        else if (a == "--no-ui") o.ui = false;
-        else if (a == "--mode") o.state.mode = jade::ShadingMode(index_of(a, value(), std::vector<std::string>{"lambert", "curvature", "tm", "tm-false-color"}));
-        else if (a == "--material") o.state.material = index_of(a, value(), jade::material_preset_names());
+        } else if (a == "--frames")
+            o.frames = uint32_t(number(a, value(), 1, 1e9));
+        else if (a == "--screenshot")
+            o.screenshot = value();
+        else if (a == "--no-ui")
+            o.ui = false;
+        else if (a == "--mode")
+            o.state.mode = jade::ShadingMode(
+                index_of(a, value(), std::vector<std::string>{"lambert", "curvature", "tm", "tm-false-color"}));
+        else if (a == "--material")
+            o.state.material = index_of(a, value(), jade::material_preset_names());
         else if (a == "--strength") {
             o.state.strength = float(number(a, value(), 0, 1e6));
             strength_given = true;
-        } else if (a == "--quality") o.state.quality = jade::Quality(index_of(a, value(), std::vector<std::string>{"draft", "default", "high"}));
-        else if (a == "--deform") o.state.deformation = index_of(a, value(), samples::viewer::deformation_names());
-        else if (a == "--time") o.state.time = number(a, value(), 0, 1e6);
-        else if (a == "--no-animate") o.state.animate = false;
-        else if (a == "--lights") o.state.figure1_lights = index_of(a, value(), std::vector<std::string>{"default", "figure1"}) == 1;
+        } else if (a == "--quality")
+            o.state.quality = jade::Quality(index_of(a, value(), std::vector<std::string>{"draft", "default", "high"}));
+        else if (a == "--deform")
+            o.state.deformation = index_of(a, value(), samples::viewer::deformation_names());
+        else if (a == "--time")
+            o.state.time = number(a, value(), 0, 1e6);
+        else if (a == "--no-animate")
+            o.state.animate = false;
+        else if (a == "--lights")
+            o.state.figure1_lights = index_of(a, value(), std::vector<std::string>{"default", "figure1"}) == 1;
         else if (a == "--samples") {
             o.samples = uint32_t(number(a, value(), 1, 8));
             if (o.samples & (o.samples - 1)) throw UsageError("--samples: expected 1, 2, 4 or 8");
-        } else if (a == "--no-vsync") o.vsync = false;
-        else if (a == "--validation") o.validation = true;
+        } else if (a == "--no-vsync")
+            o.vsync = false;
+        else if (a == "--validation")
+            o.validation = true;
         else if (!a.empty() && a[0] != '-' && !mesh_given) {
             o.mesh = a;
             mesh_given = true;
-        } else throw UsageError("unknown argument '" + a + "'");
+        } else
+            throw UsageError("unknown argument '" + a + "'");
     }
-    if (!o.screenshot.empty() && o.frames == 0) throw UsageError("--screenshot needs --frames N (the frame it captures is the last)");
+    if (!o.screenshot.empty() && o.frames == 0)
+        throw UsageError("--screenshot needs --frames N (the frame it captures is the last)");
     if (o.state.material < 0) o.state.material = 0;
     if (!strength_given) {
         // The preset's own strength (what `jade render` uses without --strength).
-        o.state.strength = jade::material_preset(jade::material_preset_names().at(size_t(o.state.material)), 1.0).strength;
+        o.state.strength =
+            jade::material_preset(jade::material_preset_names().at(size_t(o.state.material)), 1.0).strength;
     }
     return o;
 }

@@ -37,7 +37,8 @@ const std::vector<std::string>& deformation_names()
 {
     static const std::vector<std::string> names = [] {
         std::vector<std::string> n{"none"};
-        for (auto k : {jade::DeformerKind::Bend, jade::DeformerKind::Twist, jade::DeformerKind::Squash, jade::DeformerKind::Wave})
+        for (auto k : {jade::DeformerKind::Bend, jade::DeformerKind::Twist, jade::DeformerKind::Squash,
+                       jade::DeformerKind::Wave})
             n.emplace_back(jade::deformer_name(k));
         return n;
     }();
@@ -86,7 +87,8 @@ void Scene::update(const ViewState& state)
             if (!deformer_) deformer_ = std::make_unique<jade::MeshDeformer>(context_, rest_);
             deformer_params_ = jade::ProceduralDeformer::fit(jade::DeformerKind(state.deformation - 1), rest_, 1);
             if (!material_.opaque) {  // an opaque material has no t_m to re-bake
-                rebake_ = std::make_unique<jade::DynamicBake>(baker_, rest_, material_, jade::BakeSettings::preset(state.quality));
+                rebake_ = std::make_unique<jade::DynamicBake>(baker_, rest_, material_,
+                                                              jade::BakeSettings::preset(state.quality));
                 renderer_.set_mesh(rest_);  // triangles and curvature; the vertices follow on the GPU
             }
             times_.stages.emplace_back("re-bake setup (CPU)", now_ms() - t0);
@@ -164,7 +166,8 @@ jade::Camera Scene::camera(const ViewState& state, float aspect) const
 
 std::vector<jade::Light> Scene::lights(const ViewState& state, const jade::Camera& camera) const
 {
-    std::vector<jade::Light> lights = state.figure1_lights ? jade::figure1_lights(camera) : jade::default_lights(camera);
+    std::vector<jade::Light> lights =
+        state.figure1_lights ? jade::figure1_lights(camera) : jade::default_lights(camera);
     if (state.light_yaw == 0.0f && state.light_pitch == 0.0f) return lights;
     // Rotate the rig about the camera's up (yaw) and right (pitch) axes.
     const glm::vec3 forward = glm::normalize(camera.target - camera.eye);
@@ -173,8 +176,10 @@ std::vector<jade::Light> Scene::lights(const ViewState& state, const jade::Camer
     const glm::mat4 rotation = glm::rotate(glm::mat4(1.0f), glm::radians(state.light_pitch), right) *
                                glm::rotate(glm::mat4(1.0f), glm::radians(state.light_yaw), up);
     for (jade::Light& l : lights) {
-        if (l.type == jade::Light::Type::Directional) l.vector = glm::vec3(rotation * glm::vec4(l.vector, 0.0f));
-        else l.vector = camera.target + glm::vec3(rotation * glm::vec4(l.vector - camera.target, 0.0f));
+        if (l.type == jade::Light::Type::Directional)
+            l.vector = glm::vec3(rotation * glm::vec4(l.vector, 0.0f));
+        else
+            l.vector = camera.target + glm::vec3(rotation * glm::vec4(l.vector - camera.target, 0.0f));
     }
     return lights;
 }

@@ -23,17 +23,17 @@ namespace samples::viewer {
 
 /// Everything the panel (or the command line) sets. Angles in degrees.
 struct ViewState {
-    float yaw = 0.0f, pitch = 0.0f;  ///< orbit: the eye's direction from the target (0, 0: +z)
-    float zoom = 1.0f;               ///< eye distance / the framing distance
+    float yaw = 0.0f, pitch = 0.0f;              ///< orbit: the eye's direction from the target (0, 0: +z)
+    float zoom = 1.0f;                           ///< eye distance / the framing distance
     float light_yaw = 0.0f, light_pitch = 0.0f;  ///< rotates the light rig about the camera's up and right axes
-    bool figure1_lights = false;     ///< jade::figure1_lights (back light) instead of jade::default_lights
-    int material = 0;                ///< index into jade::material_preset_names()
-    float strength = 1.0f;           ///< Material::strength (rad² per unit t_m)
+    bool figure1_lights = false;                 ///< jade::figure1_lights (back light) instead of jade::default_lights
+    int material = 0;                            ///< index into jade::material_preset_names()
+    float strength = 1.0f;                       ///< Material::strength (rad² per unit t_m)
     jade::ShadingMode mode = jade::ShadingMode::Tm;
     jade::Quality quality = jade::Quality::Default;
-    int deformation = 0;             ///< 0: none, else 1 + jade::DeformerKind
-    bool animate = true;             ///< advance the deformation's time with the wall clock
-    double time = 0.0;               ///< deformation time, seconds
+    int deformation = 0;  ///< 0: none, else 1 + jade::DeformerKind
+    bool animate = true;  ///< advance the deformation's time with the wall clock
+    double time = 0.0;    ///< deformation time, seconds
 };
 
 /// "none", "bend", "twist", "squash", "wave" (index = ViewState::deformation).

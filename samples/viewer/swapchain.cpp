@@ -22,7 +22,8 @@ VkSurfaceFormatKHR choose_format(VkPhysicalDevice physical, VkSurfaceKHR surface
                 vkGetPhysicalDeviceFormatProperties(physical, f.format, &props);
                 if (props.optimalTilingFeatures & VK_FORMAT_FEATURE_BLIT_DST_BIT) return f;
             }
-    throw std::runtime_error("the window surface offers no B8G8R8A8_SRGB or R8G8B8A8_SRGB format that can be a blit destination");
+    throw std::runtime_error(
+        "the window surface offers no B8G8R8A8_SRGB or R8G8B8A8_SRGB format that can be a blit destination");
 }
 
 VkPresentModeKHR choose_present_mode(VkPhysicalDevice physical, VkSurfaceKHR surface, bool vsync)
@@ -43,11 +44,13 @@ Swapchain::Swapchain(const VulkanHost& host, VkExtent2D extent, bool vsync, Swap
 {
     const VkDevice device = host.device();
     VkSurfaceCapabilitiesKHR caps;
-    check(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(host.physical(), host.surface(), &caps), "vkGetPhysicalDeviceSurfaceCapabilitiesKHR");
+    check(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(host.physical(), host.surface(), &caps),
+          "vkGetPhysicalDeviceSurfaceCapabilitiesKHR");
     const VkImageUsageFlags usage =
         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     if ((caps.supportedUsageFlags & usage) != usage)
-        throw std::runtime_error("the window surface's images cannot be blit destinations and copy sources (needed to present and to take screenshots)");
+        throw std::runtime_error("the window surface's images cannot be blit destinations and copy sources (needed to "
+                                 "present and to take screenshots)");
     if (caps.currentExtent.width != 0xffffffffu) extent = caps.currentExtent;
     extent.width = std::clamp(extent.width, caps.minImageExtent.width, caps.maxImageExtent.width);
     extent.height = std::clamp(extent.height, caps.minImageExtent.height, caps.maxImageExtent.height);
@@ -97,10 +100,12 @@ RenderImages::RenderImages(const VulkanHost& host, VkExtent2D extent_, VkSampleC
     const VkDevice device = host.device();
     const bool msaa = samples != VK_SAMPLE_COUNT_1_BIT;
     color = make_image(pd, device, kColorFormat, extent, samples,
-                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | (msaa ? 0 : VK_IMAGE_USAGE_TRANSFER_SRC_BIT), VK_IMAGE_ASPECT_COLOR_BIT);
+                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | (msaa ? 0 : VK_IMAGE_USAGE_TRANSFER_SRC_BIT),
+                       VK_IMAGE_ASPECT_COLOR_BIT);
     if (msaa)
         resolve = make_image(pd, device, kColorFormat, extent, VK_SAMPLE_COUNT_1_BIT,
-                             VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+                             VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                             VK_IMAGE_ASPECT_COLOR_BIT);
     depth = make_image(pd, device, kDepthFormat, extent, samples, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
                        VK_IMAGE_ASPECT_DEPTH_BIT);
 }

@@ -53,7 +53,10 @@ struct RenderImages {
     VkExtent2D extent;
     VkSampleCountFlagBits samples;
     Image color, resolve, depth;  // resolve is empty when samples = 1 (Jade draws into color)
-    VkImage presented_source() const { return samples == VK_SAMPLE_COUNT_1_BIT ? color.image.get() : resolve.image.get(); }
+    VkImage presented_source() const
+    {
+        return samples == VK_SAMPLE_COUNT_1_BIT ? color.image.get() : resolve.image.get();
+    }
 };
 
 }  // namespace samples::viewer

@@ -30,8 +30,8 @@ bool combo(const char* label, int* index, const std::vector<std::string>& items)
     return ImGui::Combo(
         label, index,
         [](void* data, int i, const char** out) {
-            *out = (*static_cast<const std::vector<std::string>*>(data))[size_t(i)].c_str();
-            return true;
+        *out = (*static_cast<const std::vector<std::string>*>(data))[size_t(i)].c_str();
+        return true;
         },
         const_cast<std::vector<std::string>*>(&items), int(items.size()));
 }
@@ -127,7 +127,8 @@ Ui::Ui(const VulkanHost& host, GLFWwindow* window, const Swapchain& swapchain) :
     vulkan_backend_ = true;
 
     // Font upload: a one-off command buffer on the host's queue.
-    submit_and_wait(device_, host.queue(), host.queue_family(), [](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
+    submit_and_wait(device_, host.queue(), host.queue_family(),
+                    [](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
     ImGui_ImplVulkan_DestroyFontUploadObjects();
 }
 
@@ -167,7 +168,8 @@ bool Ui::build(ViewState& s, const PanelInfo& info)
     ImGui::NewFrame();
     ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f), ImGuiCond_Always);
     ImGui::SetNextWindowSize(ImVec2(kPanelWidth, 0.0f), ImGuiCond_Always);
-    ImGui::Begin("jade", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_AlwaysAutoResize);
+    ImGui::Begin("jade", nullptr,
+                 ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_AlwaysAutoResize);
     ImGui::PushItemWidth(kItemWidth);
     bool changed = false;
     ImGui::TextUnformatted(info.device.c_str());

@@ -23,7 +23,7 @@ class VulkanHost;
 struct PanelInfo {
     std::string device, mesh;
     size_t vertices = 0;
-    double frame_ms = 0;  ///< wall time per frame, averaged
+    double frame_ms = 0;                                 ///< wall time per frame, averaged
     std::vector<std::pair<std::string, double>> stages;  ///< ms
 };
 

@@ -16,7 +16,8 @@ namespace samples::viewer {
 
 Window::Window(uint32_t width, uint32_t height, const std::string& title)
 {
-    glfwSetErrorCallback([](int code, const char* message) { std::fprintf(stderr, "jade-view: GLFW error %d: %s\n", code, message); });
+    glfwSetErrorCallback(
+        [](int code, const char* message) { std::fprintf(stderr, "jade-view: GLFW error %d: %s\n", code, message); });
     if (!glfwInit())
         throw std::runtime_error("cannot initialise GLFW: no display? (set DISPLAY, or run under xvfb-run)");
     if (!glfwVulkanSupported()) {
@@ -95,7 +96,8 @@ VulkanHost::VulkanHost(const Window& window, bool validation)
     create_instance(validation);
     VkSurfaceKHR surface = VK_NULL_HANDLE;
     check(glfwCreateWindowSurface(instance(), window.handle(), nullptr, &surface), "glfwCreateWindowSurface");
-    surface_ = Owned<VkSurfaceKHR>(surface, [inst = instance()](VkSurfaceKHR s) { vkDestroySurfaceKHR(inst, s, nullptr); });
+    surface_ =
+        Owned<VkSurfaceKHR>(surface, [inst = instance()](VkSurfaceKHR s) { vkDestroySurfaceKHR(inst, s, nullptr); });
     pick_physical_device();
     create_device();
 }
@@ -151,7 +153,8 @@ void VulkanHost::pick_physical_device()
         for (uint32_t i = 0; i < nf; ++i) {
             VkBool32 present = VK_FALSE;
             vkGetPhysicalDeviceSurfaceSupportKHR(pd, i, surface_, &present);
-            if ((families[i].queueFlags & needed) != needed || !present || families[i].timestampValidBits == 0) continue;
+            if ((families[i].queueFlags & needed) != needed || !present || families[i].timestampValidBits == 0)
+                continue;
             if (type_rank(p.deviceType) < best_rank) {
                 best_rank = type_rank(p.deviceType);
                 physical_ = pd;
@@ -160,11 +163,13 @@ void VulkanHost::pick_physical_device()
             }
             break;
         }
-        if (physical_ != pd) rejected += "\n  " + name + ": no queue family that draws, computes and presents to the window";
+        if (physical_ != pd)
+            rejected += "\n  " + name + ": no queue family that draws, computes and presents to the window";
     }
     if (!physical_)
         throw std::runtime_error("no Vulkan 1.3 device can present to the window" +
-                                 (wanted && *wanted ? " (JADE_DEVICE=" + std::string(wanted) + ")" : std::string()) + rejected);
+                                 (wanted && *wanted ? " (JADE_DEVICE=" + std::string(wanted) + ")" : std::string()) +
+                                 rejected);
 }
 
 void VulkanHost::create_device()

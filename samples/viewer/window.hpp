@@ -57,7 +57,10 @@ public:
     VkQueue queue() const { return queue_; }
     uint32_t queue_family() const { return family_; }
     const std::string& device_name() const { return device_name_; }
-    bool validation() const { return instance_.validation; }  ///< the layer is on (--validation, JADE_VALIDATION, JADE_SYNC_VALIDATION)
+    bool validation() const
+    {
+        return instance_.validation;
+    }  ///< the layer is on (--validation, JADE_VALIDATION, JADE_SYNC_VALIDATION)
     /// What jade::Context(const AdoptedVulkan&) needs to adopt this device.
     jade::AdoptedVulkan adopted_vulkan() const;
     /// Warnings and errors the validation layer reported so far (also printed to stderr).

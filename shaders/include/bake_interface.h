@@ -38,8 +38,8 @@ struct AoPush {
     float ray_offset;    // ray origin offset along the normal, mesh units
     float max_distance;  // mesh units
     uint item_count;
-    uint slices;         // divides rays
-    uint slice;          // the slice traced by this dispatch
+    uint slices;  // divides rays
+    uint slice;   // the slice traced by this dispatch
 };
 
 // ao_resolve.comp: A_o from the hit counts of every slice.
@@ -111,7 +111,7 @@ struct GridAxisPush {
     uvec3 in_dims;
     uvec3 out_dims;  // differs from in_dims along `axis` only
     uint axis;
-    int shift;       // 0 blur, −2 restrict
+    int shift;  // 0 blur, −2 restrict
     uint in_offset;
     uint out_offset;
     float inv_scale;

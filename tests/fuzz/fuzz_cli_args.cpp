@@ -86,7 +86,9 @@ void run_bake(int argc, char** argv)
 {
     using namespace jade::cli;
     const auto parsed = parse("bake",
-                              all_options({device_options(), material_options(), bake_options(),
+                              all_options({device_options(),
+                                           material_options(),
+                                           bake_options(),
                                            {{"out", "FILE", "output .glb or .gltf (required)"}}}),
                               argc, argv);
     if (!parsed) return;
@@ -100,7 +102,8 @@ void run_bake(int argc, char** argv)
 void run_info(int argc, char** argv)
 {
     using namespace jade::cli;
-    const auto args = parse("info", all_options({device_options(), {{"materials", "", "list the material presets"}}}), argc, argv);
+    const auto args =
+        parse("info", all_options({device_options(), {{"materials", "", "list the material presets"}}}), argc, argv);
     if (args && args->positional().size() > 1) args->fail("takes at most one mesh");
 }
 
@@ -125,11 +128,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     argv.push_back(nullptr);
     const int argc = int(storage.size());
     try {
-        if (command == "info") run_info(argc, argv.data());
-        else run_bake(argc, argv.data());
+        if (command == "info")
+            run_info(argc, argv.data());
+        else
+            run_bake(argc, argv.data());
     } catch (const jade::cli::UsageError& e) {
         const std::string message = e.what();
-        if (message.rfind("jade " + command + ": ", 0) != 0) finding("usage message does not name the command", message);
+        if (message.rfind("jade " + command + ": ", 0) != 0)
+            finding("usage message does not name the command", message);
     } catch (const jade::Error& e) {
         finding("a command-line mistake raised jade::Error (exit code 1) instead of UsageError (2)", e.what());
     }

@@ -81,7 +81,8 @@ void check_loaded(const jade::TriangleMesh& m)
     if (!m.baked_ao.empty() && m.baked_ao.size() != m.positions.size()) finding("loaded mesh", "_AO count");
     if (!m.baked_tm.empty() && m.baked_tm.size() != m.positions.size()) finding("loaded mesh", "_TM count");
     for (const auto& p : m.positions)
-        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) finding("loaded mesh", "non-finite position");
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+            finding("loaded mesh", "non-finite position");
 }
 
 void check_prepared(const jade::TriangleMesh& m, const jade::PreparedMesh& p)
@@ -97,7 +98,8 @@ void check_prepared(const jade::TriangleMesh& m, const jade::PreparedMesh& p)
     if (p.input_vertices != n + p.welded_vertices + p.unused_vertices) finding("prepared mesh", "vertex bookkeeping");
     if (p.input_triangles != p.triangle_count() + p.dropped_triangles) finding("prepared mesh", "triangle bookkeeping");
     for (const auto& v : p.normals)
-        if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) finding("prepared mesh", "non-finite normal");
+        if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+            finding("prepared mesh", "non-finite normal");
 }
 
 }  // namespace

@@ -32,13 +32,20 @@ std::vector<unsigned char> unbase64(const std::filesystem::path& path, const std
     int n = 0;
     for (char c : text) {
         int v;
-        if (c >= 'A' && c <= 'Z') v = c - 'A';
-        else if (c >= 'a' && c <= 'z') v = c - 'a' + 26;
-        else if (c >= '0' && c <= '9') v = c - '0' + 52;
-        else if (c == '+') v = 62;
-        else if (c == '/') v = 63;
-        else if (c == '=') break;
-        else fail(path, "bad base64 character");
+        if (c >= 'A' && c <= 'Z')
+            v = c - 'A';
+        else if (c >= 'a' && c <= 'z')
+            v = c - 'a' + 26;
+        else if (c >= '0' && c <= '9')
+            v = c - '0' + 52;
+        else if (c == '+')
+            v = 62;
+        else if (c == '/')
+            v = 63;
+        else if (c == '=')
+            break;
+        else
+            fail(path, "bad base64 character");
         bits = (bits << 6) | uint32_t(v);
         if ((n += 6) >= 8) out.push_back(uint8_t(bits >> (n -= 8)));
     }
@@ -104,8 +111,10 @@ std::vector<std::vector<unsigned char>> GltfFile::elements(int index) const
     if (a.contains("sparse")) {
         const auto& s = a["sparse"];
         const int itype = s["indices"]["componentType"].get<int>();
-        auto [idx, unused1] = view_data(s["indices"]["bufferView"].get<int>(), s["indices"].value("byteOffset", size_t(0)));
-        auto [val, unused2] = view_data(s["values"]["bufferView"].get<int>(), s["values"].value("byteOffset", size_t(0)));
+        auto [idx, unused1] =
+            view_data(s["indices"]["bufferView"].get<int>(), s["indices"].value("byteOffset", size_t(0)));
+        auto [val, unused2] =
+            view_data(s["values"]["bufferView"].get<int>(), s["values"].value("byteOffset", size_t(0)));
         for (size_t k = 0; k < s["count"].get<size_t>(); ++k)
             std::memcpy(out.at(read_index(idx + k * component_size(itype), itype)).data(), val + k * size, size);
     }
@@ -151,7 +160,8 @@ GltfFile read_gltf_file(const std::filesystem::path& path)
         if (at + 8 <= bytes.size()) {
             uint32_t chunk[2];
             std::memcpy(chunk, bytes.data() + at, 8);
-            if (chunk[1] != 0x004E4942u || chunk[0] % 4 || at + 8 + chunk[0] != bytes.size()) fail(path, "bad BIN chunk");
+            if (chunk[1] != 0x004E4942u || chunk[0] % 4 || at + 8 + chunk[0] != bytes.size())
+                fail(path, "bad BIN chunk");
             bin.assign(bytes.begin() + std::ptrdiff_t(at + 8), bytes.end());
         }
     } else {
@@ -168,7 +178,8 @@ GltfFile read_gltf_file(const std::filesystem::path& path)
 std::optional<std::vector<ValidatorReport>> run_gltf_validator(const std::vector<std::filesystem::path>& files,
                                                                std::string* skip)
 {
-    const std::filesystem::path source = JADE_DEFAULT_SOURCE_DIR, folder = std::filesystem::path(JADE_DEFAULT_BINARY_DIR) / "gltf-validator";
+    const std::filesystem::path source = JADE_DEFAULT_SOURCE_DIR,
+                                folder = std::filesystem::path(JADE_DEFAULT_BINARY_DIR) / "gltf-validator";
     auto run = [](const std::string& cmd, std::string& output) {
         FILE* pipe = popen(cmd.c_str(), "r");
         if (!pipe) return -1;
@@ -179,7 +190,9 @@ std::optional<std::vector<ValidatorReport>> run_gltf_validator(const std::vector
         return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     };
     std::string output;
-    const int rc = run("bash '" + (source / "third_party/install_gltf_validator.sh").string() + "' '" + folder.string() + "' 2>&1", output);
+    const int rc =
+        run("bash '" + (source / "third_party/install_gltf_validator.sh").string() + "' '" + folder.string() + "' 2>&1",
+            output);
     if (rc == 77) {
         *skip = output;
         return std::nullopt;
@@ -189,7 +202,8 @@ std::optional<std::vector<ValidatorReport>> run_gltf_validator(const std::vector
         *skip = "installing the glTF Validator failed: " + output;
         return reports;
     }
-    std::string cmd = "GLTF_VALIDATOR='" + folder.string() + "' node '" + (source / "tests/support/validate_gltf.js").string() + "'";
+    std::string cmd =
+        "GLTF_VALIDATOR='" + folder.string() + "' node '" + (source / "tests/support/validate_gltf.js").string() + "'";
     for (const auto& f : files) cmd += " '" + f.string() + "'";
     output.clear();
     if (run(cmd + " 2>&1", output) != 0) {
@@ -202,12 +216,14 @@ std::optional<std::vector<ValidatorReport>> run_gltf_validator(const std::vector
         if (!j.is_object()) continue;
         ValidatorReport r;
         r.file = j.value("file", "");
-        r.errors = j.value("errors", -1), r.warnings = j.value("warnings", -1), r.infos = j.value("infos", -1), r.hints = j.value("hints", -1);
+        r.errors = j.value("errors", -1), r.warnings = j.value("warnings", -1), r.infos = j.value("infos", -1),
+        r.hints = j.value("hints", -1);
         r.issues = j.value("issues", std::vector<std::string>{});
         reports.push_back(std::move(r));
     }
-    if (reports.size() != files.size()) *skip = "the glTF Validator reported on " + std::to_string(reports.size()) + " of " +
-                                                std::to_string(files.size()) + " files: " + output;
+    if (reports.size() != files.size())
+        *skip = "the glTF Validator reported on " + std::to_string(reports.size()) + " of " +
+                std::to_string(files.size()) + " files: " + output;
     return reports;
 }
 

@@ -29,8 +29,7 @@ static std::filesystem::path env_path(const char* var)
 std::filesystem::path asset(const std::string& name)
 {
     auto p = env_path("JADE_ASSETS") / name;
-    if (!std::filesystem::exists(p))
-        ADD_FAILURE() << p << " is missing: run third_party/fetch_assets.sh";
+    if (!std::filesystem::exists(p)) ADD_FAILURE() << p << " is missing: run third_party/fetch_assets.sh";
     return p;
 }
 

@@ -140,7 +140,8 @@ TEST_F(ViewerXvfb, PresentedFrameMatchesHeadlessRender)
 TEST_F(ViewerXvfb, BakedFileIsDrawnWithItsOwnTm)
 {
     const auto baked = test::out("viewer/bunny_marble.glb");
-    const test::CliResult b = test::run_cli({"bake", bunny(), "--out", baked.string(), "--quality", "draft", "--material", "marble"});
+    const test::CliResult b =
+        test::run_cli({"bake", bunny(), "--out", baked.string(), "--quality", "draft", "--material", "marble"});
     ASSERT_EQ(b.exit_code, 0) << b.output;
     const auto shot = test::out("viewer/bunny_marble_no_ui.png");
     view({baked.string(), "--size", "200x150", "--frames", "2", "--no-ui", "--screenshot", shot.string()});
@@ -160,7 +161,8 @@ TEST_F(ViewerXvfb, PanelCoversOnlyItsRectangles)
     Rects panel;
     for (size_t at = r.output.find("panel at "); at != std::string::npos; at = r.output.find("panel at ", at + 1)) {
         Rect p;
-        ASSERT_EQ(std::sscanf(r.output.c_str() + at, "panel at %d,%d size %dx%d", &p.x, &p.y, &p.w, &p.h), 4) << r.output;
+        ASSERT_EQ(std::sscanf(r.output.c_str() + at, "panel at %d,%d size %dx%d", &p.x, &p.y, &p.w, &p.h), 4)
+            << r.output;
         panel.push_back(p);
     }
     ASSERT_EQ(panel.size(), 2u) << r.output;
@@ -182,9 +184,11 @@ TEST_F(ViewerXvfb, PanelCoversOnlyItsRectangles)
 // under the back light at draft quality matches `jade render` with the same flags.
 TEST_F(ViewerXvfb, SettingsMatchTheCliFlags)
 {
-    const std::vector<std::string> flags{"--material", "marble", "--strength", "2", "--lights", "figure1", "--quality", "draft"};
+    const std::vector<std::string> flags{"--material", "marble",  "--strength", "2",
+                                         "--lights",   "figure1", "--quality",  "draft"};
     const auto shot = test::out("viewer/bunny_marble.png");
-    std::vector<std::string> args{bunny(), "--size", "400x300", "--frames", "2", "--no-ui", "--screenshot", shot.string()};
+    std::vector<std::string> args{bunny(), "--size",  "400x300",      "--frames",
+                                  "2",     "--no-ui", "--screenshot", shot.string()};
     args.insert(args.end(), flags.begin(), flags.end());
     view(args);
     const Image8 viewer = read_png(shot), ref = reference(bunny(), "bunny_marble", flags);
@@ -201,10 +205,12 @@ TEST_F(ViewerXvfb, SettingsMatchTheCliFlags)
 TEST_F(ViewerXvfb, DeformationRebakesEveryFrame)
 {
     const auto bent = test::out("viewer/bunny_bend.png"), rest = test::out("viewer/bunny_rest.png");
-    const test::CliResult r = view({bunny(), "--size", "200x150", "--frames", "2", "--no-ui", "--quality", "draft", "--deform",
-                                    "bend", "--time", "0.5", "--no-animate", "--screenshot", bent.string()});
+    const test::CliResult r =
+        view({bunny(), "--size", "200x150", "--frames", "2", "--no-ui", "--quality", "draft", "--deform", "bend",
+              "--time", "0.5", "--no-animate", "--screenshot", bent.string()});
     EXPECT_NE(r.output.find("re-bake"), std::string::npos) << r.output;  // the stage table of the per-frame re-bake
-    view({bunny(), "--size", "200x150", "--frames", "2", "--no-ui", "--quality", "draft", "--screenshot", rest.string()});
+    view({bunny(), "--size", "200x150", "--frames", "2", "--no-ui", "--quality", "draft", "--screenshot",
+          rest.string()});
     const Image8 a = read_png(bent), b = read_png(rest);
     ASSERT_EQ(a.width, 200);
     ASSERT_EQ(b.width, 200);
@@ -218,8 +224,8 @@ TEST_F(ViewerXvfb, SynchronizationValidationIsClean)
 {
     const auto shot = test::out("viewer/sync.png");
     setenv("JADE_SYNC_VALIDATION", "1", 1);
-    const test::CliResult r = view({"sphere", "--size", "320x240", "--frames", "3", "--quality", "draft", "--deform", "twist",
-                                    "--screenshot", shot.string()});
+    const test::CliResult r = view({"sphere", "--size", "320x240", "--frames", "3", "--quality", "draft", "--deform",
+                                    "twist", "--screenshot", shot.string()});
     unsetenv("JADE_SYNC_VALIDATION");
     EXPECT_NE(r.output.find("synchronization validation on"), std::string::npos) << r.output;
     EXPECT_EQ(read_png(shot).width, 320);

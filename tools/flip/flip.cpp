@@ -38,7 +38,9 @@ constexpr float kA1cz = 34.1f, kB1cz = 0.04f, kA2cz = 13.5f, kB2cz = 0.025f;
 constexpr float kWhite[3] = {0.950428545f, 1.0f, 1.088900371f};
 constexpr float kInvWhite[3] = {1.052156925f, 1.0f, 0.918357670f};
 
-struct C3 { float x, y, z; };
+struct C3 {
+    float x, y, z;
+};
 
 float srgb_to_linear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
 float linear_to_srgb(float c) { return c <= 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f; }
@@ -103,7 +105,10 @@ float max_colour_distance()
 float gauss_ab(float x2, float a, float b) { return a * std::sqrt(kPi / b) * std::exp(-(kPi * kPi) * x2 / b); }
 // The 1D factor whose outer product with itself is the 2D Gaussian above, so that each of the
 // two Cz Gaussians is applied separably and the results added (the reference's scheme).
-float gauss_ab_sqrt(float x2, float a, float b) { return std::sqrt(a * std::sqrt(kPi / b)) * std::exp(-(kPi * kPi) * x2 / b); }
+float gauss_ab_sqrt(float x2, float a, float b)
+{
+    return std::sqrt(a * std::sqrt(kPi / b)) * std::exp(-(kPi * kPi) * x2 / b);
+}
 
 // Spatial-filter radius in pixels: 3 standard deviations of the widest Gaussian. The
 // Gaussian exp(-pi^2 x^2 / b) has sigma = sqrt(b / (2 pi^2)) degrees; times ppd gives pixels.
@@ -118,10 +123,12 @@ inline int clampi(int v, int hi) { return v < 0 ? 0 : (v > hi ? hi : v); }
 
 void check_image(const Image& im, const char* what)
 {
-    if (im.width == 0 || im.height == 0) throw std::invalid_argument(std::string("ldr_flip: ") + what + " image is empty");
+    if (im.width == 0 || im.height == 0)
+        throw std::invalid_argument(std::string("ldr_flip: ") + what + " image is empty");
     if (im.rgb.size() != size_t(im.width) * im.height * 3)
-        throw std::invalid_argument(std::string("ldr_flip: ") + what + " image has " + std::to_string(im.rgb.size()) +
-                                    " floats, expected width*height*3 = " + std::to_string(size_t(im.width) * im.height * 3));
+        throw std::invalid_argument(
+            std::string("ldr_flip: ") + what + " image has " + std::to_string(im.rgb.size()) +
+            " floats, expected width*height*3 = " + std::to_string(size_t(im.width) * im.height * 3));
 }
 
 void check_input(uint32_t w, uint32_t h, const void* p, uint32_t channels, const char* fn)
@@ -175,8 +182,8 @@ double ldr_flip(const Image& reference, const Image& test, double ppd_in, const 
     const int w = int(reference.width), h = int(reference.height);
     const size_t n = size_t(w) * h;
     if (mask && mask->size() != n)
-        throw std::invalid_argument("ldr_flip: mask has " + std::to_string(mask->size()) + " bytes, expected width*height = " +
-                                    std::to_string(n));
+        throw std::invalid_argument("ldr_flip: mask has " + std::to_string(mask->size()) +
+                                    " bytes, expected width*height = " + std::to_string(n));
     const float ppd = float(ppd_in);
 
     // 1. sRGB (clamped to [0,1]) -> linear -> XYZ -> YCxCz, both images.
@@ -213,7 +220,9 @@ double ldr_flip(const Image& reference, const Image& test, double ppd_in, const 
     const float cmax = max_colour_distance(), pccmax = kPc * cmax;
     std::vector<float> colour(n);
     {
-        struct F4 { float y, cx, cz1, cz2; };
+        struct F4 {
+            float y, cx, cz1, cz2;
+        };
         std::vector<F4> tmp[2] = {std::vector<F4>(n), std::vector<F4>(n)};
         for (int k = 0; k < 2; ++k)
             for (int y = 0; y < h; ++y)
@@ -281,7 +290,8 @@ double ldr_flip(const Image& reference, const Image& test, double ppd_in, const 
                 for (int x = 0; x < w; ++x) {
                     C3 a{0, 0, 0};
                     for (int i = -rf; i <= rf; ++i) {
-                        const float l = ycc[k][size_t(y) * w + clampi(x + i, w - 1)].x * (1.0f / 116.0f) + 16.0f / 116.0f;
+                        const float l =
+                            ycc[k][size_t(y) * w + clampi(x + i, w - 1)].x * (1.0f / 116.0f) + 16.0f / 116.0f;
                         a.x += dg[i + rf] * l, a.y += ddg[i + rf] * l, a.z += g[i + rf] * l;
                     }
                     tmp[k][size_t(y) * w + x] = a;
@@ -300,7 +310,8 @@ double ldr_flip(const Image& reference, const Image& test, double ppd_in, const 
                     edge[k] = std::sqrt(dx * dx + dy * dy);
                     point[k] = std::sqrt(ddx * ddx + ddy * ddy);
                 }
-                const float fd = std::pow(inv_sqrt2 * std::max(std::fabs(edge[0] - edge[1]), std::fabs(point[0] - point[1])), kQf);
+                const float fd =
+                    std::pow(inv_sqrt2 * std::max(std::fabs(edge[0] - edge[1]), std::fabs(point[0] - point[1])), kQf);
                 // 6. Final error (paper): colour error raised to 1 - feature error, so feature
                 // differences amplify the colour error (for values in (0,1)).
                 const size_t idx = size_t(y) * w + x;

@@ -37,8 +37,7 @@ Image from_linear(uint32_t w, uint32_t h, const float* rgba, uint32_t channels);
 /// monitor_width_m metres wide showing monitor_pixels pixels across, computed like the
 /// reference (distance * pixels / width * pi / 180, in float): the default viewing
 /// condition (0.7 m, 0.7 m, 3840 px) gives 67.0206...
-double pixels_per_degree(double distance_m = 0.7, double monitor_width_m = 0.7,
-                         double monitor_pixels = 3840);
+double pixels_per_degree(double distance_m = 0.7, double monitor_width_m = 0.7, double monitor_pixels = 3840);
 
 /// Mean LDR-FLIP error of `test` against `reference` (both sRGB-encoded, same size) at `ppd`
 /// pixels per degree. With `mask` (width * height bytes, row-major like the image), the mean

@@ -40,11 +40,11 @@
 namespace jade {
 
 struct AoSettings {
-    uint32_t rays = 64;              ///< rays per vertex (any count ≥ 1)
-    bool low_discrepancy = true;     ///< Hammersley + per-vertex Cranley–Patterson rotation; false: i.i.d.
-    uint32_t seed = 1;               ///< results are deterministic for a fixed seed
-    float max_distance_rel = 0.1f;   ///< max hit distance, × the mesh diagonal
-    float ray_offset_rel = 1e-4f;    ///< ε: ray origin offset along the normal, × the diagonal
+    uint32_t rays = 64;             ///< rays per vertex (any count ≥ 1)
+    bool low_discrepancy = true;    ///< Hammersley + per-vertex Cranley–Patterson rotation; false: i.i.d.
+    uint32_t seed = 1;              ///< results are deterministic for a fixed seed
+    float max_distance_rel = 0.1f;  ///< max hit distance, × the mesh diagonal
+    float ray_offset_rel = 1e-4f;   ///< ε: ray origin offset along the normal, × the diagonal
 };
 
 /// The per-vertex thickness t̄(x): the mean distance, mesh units, from x (offset against the
@@ -56,10 +56,10 @@ struct AoSettings {
 /// measured from x itself (the offset's ε/cos θ is added back) and summed in fixed point
 /// (2^-22 × max_distance), so the result is deterministic.
 struct ThicknessSettings {
-    uint32_t rays = 32;              ///< rays per vertex, 0..1023; 0: no thickness pass
-    float cone_degrees = 60.0f;      ///< half-angle of the cone about −n, (0, 90]
-    float max_distance_rel = 1.0f;   ///< cap on a ray's distance, × the mesh diagonal
-    float ray_offset_rel = 1e-4f;    ///< ε: ray origin offset against the normal, × the diagonal
+    uint32_t rays = 32;             ///< rays per vertex, 0..1023; 0: no thickness pass
+    float cone_degrees = 60.0f;     ///< half-angle of the cone about −n, (0, 90]
+    float max_distance_rel = 1.0f;  ///< cap on a ray's distance, × the mesh diagonal
+    float ray_offset_rel = 1e-4f;   ///< ε: ray origin offset against the normal, × the diagonal
     uint32_t seed = 2;
     bool enabled() const { return rays > 0; }
 };
@@ -123,9 +123,9 @@ struct BakeTimings {
 
 /// What a bake produced, one value per bake vertex of the PreparedMesh it was given.
 struct BakeResult {
-    std::vector<float> ao;           ///< per bake vertex, [0,1]
-    std::vector<glm::vec3> tm;       ///< per bake vertex, linear RGB, unitless
-    std::vector<float> thickness;    ///< per bake vertex, mesh units; empty without the pass
+    std::vector<float> ao;         ///< per bake vertex, [0,1]
+    std::vector<glm::vec3> tm;     ///< per bake vertex, linear RGB, unitless
+    std::vector<float> thickness;  ///< per bake vertex, mesh units; empty without the pass
     /// Per bake vertex, unit length: the direction of Σ_c N_c, N_c = ∫ R_c(|x − s|)(1 − A_o(s))·n(s) dS,
     /// the mean normal of the surface the scattered light enters through, weighted as t_m is
     /// (the channels' profiles summed). The translucent diffuse term is lit along it
@@ -141,7 +141,7 @@ struct BakeResult {
     std::vector<glm::vec3> normal_spread;
     BakeTimings timings;
     TmMethod method_used = TmMethod::Exact;
-    uint64_t tm_bytes = 0;           ///< device memory of the t_m passes: near lists, far field, sums
+    uint64_t tm_bytes = 0;  ///< device memory of the t_m passes: near lists, far field, sums
 };
 
 /// Runs the AO and t_m passes on the GPU. Keeps its compute pipelines between bakes; create
@@ -165,6 +165,7 @@ public:
     std::vector<float> bake_ao(const PreparedMesh& mesh, const AoSettings& settings, BakeTimings* timings = nullptr);
 
     struct Impl;
+
 private:
     friend class DynamicBake;
     std::unique_ptr<Impl> impl_;
@@ -230,7 +231,8 @@ public:
 
     /// Convenience: uploads the inputs, records, submits, waits and reads back. Throws
     /// jade::Error on sizes that do not match the rest pose or non-finite input.
-    BakeResult bake(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals, std::span<const float> areas);
+    BakeResult bake(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
+                    std::span<const float> areas);
     /// Convenience for inputs already on the GPU (e.g. a MeshDeformer's buffers, after its
     /// deform() returned): records record(cmd, positions, normals, areas) with GPU timestamps
     /// per stage, submits, waits, and reads ao and tm back when `read_back` (else they are empty).

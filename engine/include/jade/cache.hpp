@@ -33,7 +33,8 @@ class Context;
 
 /// Bump when the bake's results change for the same inputs (shaders, discretisation): old
 /// entries then no longer match any key and are re-baked.
-inline constexpr uint32_t kBakeCacheVersion = 3;  // 2: the thickness follows t_m when the bake has one; 3: then the scattering normals and normal spreads
+inline constexpr uint32_t kBakeCacheVersion =
+    3;  // 2: the thickness follows t_m when the bake has one; 3: then the scattering normals and normal spreads
 
 /// The cache key of a bake (see the header comment).
 uint64_t bake_key(const PreparedMesh& mesh, const Material& material, const BakeSettings& settings);

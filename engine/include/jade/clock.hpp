@@ -9,6 +9,9 @@ namespace jade {
 using Clock = std::chrono::steady_clock;
 
 /// Wall-clock milliseconds from t0 to now.
-inline double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+inline double ms_since(Clock::time_point t0)
+{
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
 
 }  // namespace jade

@@ -20,7 +20,9 @@
 
 namespace jade {
 
-namespace gpu { class Context; }
+namespace gpu {
+class Context;
+}
 
 struct ContextOptions {
     /// Pick the device whose name contains this (case-insensitive). Empty: the environment
@@ -79,8 +81,8 @@ struct AdoptedVulkan {
     uint32_t api_version = 0;  ///< the apiVersion the host's instance was created with
     PFN_vkGetInstanceProcAddr get_instance_proc_addr = nullptr;  ///< null: the loader's
     PFN_vkGetDeviceProcAddr get_device_proc_addr = nullptr;      ///< null: the loader's
-    const void* enabled_features = nullptr;  ///< VkDeviceCreateInfo::pNext chain the host used
-    std::vector<std::string> enabled_extensions;  ///< device extensions the host enabled
+    const void* enabled_features = nullptr;                      ///< VkDeviceCreateInfo::pNext chain the host used
+    std::vector<std::string> enabled_extensions;                 ///< device extensions the host enabled
 };
 
 /// A host's device made the way AdoptedVulkan needs it, for hosts that create their own device
@@ -123,15 +125,16 @@ struct ObjectCounts {
 
 /// What `jade info` prints and what code may want to know about the device.
 struct DeviceInfo {
-    std::string name, driver, type;       ///< device and driver names; type: "discrete", "integrated", "virtual", "cpu", "other"
-    uint32_t api_version = 0;             ///< VK_MAKE_API_VERSION encoded
+    std::string name, driver,
+        type;                  ///< device and driver names; type: "discrete", "integrated", "virtual", "cpu", "other"
+    uint32_t api_version = 0;  ///< VK_MAKE_API_VERSION encoded
     uint64_t max_storage_buffer_range = 0;        ///< bytes
     uint32_t max_workgroup_count[3] = {0, 0, 0};  ///< compute dispatch limits
     uint32_t max_workgroup_invocations = 0;
-    uint32_t subgroup_size = 0;                   ///< default subgroup size (8 on lavapipe)
-    bool float64 = false;                 ///< shaderFloat64
-    double timestamp_period_ns = 0;       ///< nanoseconds per timestamp tick
-    uint64_t device_local_heap_bytes = 0; ///< size of the largest device-local heap
+    uint32_t subgroup_size = 0;              ///< default subgroup size (8 on lavapipe)
+    bool float64 = false;                    ///< shaderFloat64
+    double timestamp_period_ns = 0;          ///< nanoseconds per timestamp tick
+    uint64_t device_local_heap_bytes = 0;    ///< size of the largest device-local heap
     std::string api_version_string() const;  ///< "1.3.238"
 };
 

@@ -58,12 +58,12 @@ DeformerKind parse_deformer(std::string_view name);
 ///           t/period)) (amplitude, wavelength in mesh units).
 struct ProceduralDeformer {
     DeformerKind kind = DeformerKind::Bend;
-    uint32_t axis = 1;               ///< 0 = x, 1 = y, 2 = z
-    glm::vec3 origin{0.0f};          ///< a point of the axis line at the base, mesh units
-    float length = 1.0f;             ///< extent along the axis, mesh units (> 0)
-    float amplitude = 0.5f;          ///< see above: rad (bend, twist), unitless (squash), mesh units (wave)
-    float wavelength = 1.0f;         ///< wave only, mesh units (> 0)
-    float period = 2.0f;             ///< seconds per cycle (> 0)
+    uint32_t axis = 1;        ///< 0 = x, 1 = y, 2 = z
+    glm::vec3 origin{0.0f};   ///< a point of the axis line at the base, mesh units
+    float length = 1.0f;      ///< extent along the axis, mesh units (> 0)
+    float amplitude = 0.5f;   ///< see above: rad (bend, twist), unitless (squash), mesh units (wave)
+    float wavelength = 1.0f;  ///< wave only, mesh units (> 0)
+    float period = 2.0f;      ///< seconds per cycle (> 0)
 
     /// A deformer fitted to a mesh's bounds: origin at the centre of the base of the box along
     /// `axis`, length = the box's extent; amplitudes that look good: bend 0.8 rad, twist 1.2 rad,
@@ -86,7 +86,7 @@ struct AnimationChannel {
     AnimationPath path = AnimationPath::Translation;
     Interpolation interpolation = Interpolation::Linear;
     uint32_t width = 3;
-    std::vector<float> times;        ///< seconds, strictly increasing
+    std::vector<float> times;  ///< seconds, strictly increasing
     std::vector<float> values;
 
     /// The channel at time t (clamped to the first and last key): LINEAR interpolates
@@ -121,11 +121,11 @@ struct AnimatedMesh {
     std::vector<std::vector<glm::vec3>> morph_deltas;  ///< [target][render vertex], mesh units
     std::vector<float> default_weights;                ///< one per morph target
     bool skinned = false;
-    std::vector<int> joints;                           ///< skin joints (node indices)
-    std::vector<glm::mat4> inverse_bind;               ///< one per joint
-    std::vector<glm::uvec4> joint_indices;             ///< per render vertex, into `joints`
-    std::vector<glm::vec4> joint_weights;              ///< per render vertex
-    std::vector<AnimatedNode> nodes;                   ///< the whole node hierarchy, in file order
+    std::vector<int> joints;                ///< skin joints (node indices)
+    std::vector<glm::mat4> inverse_bind;    ///< one per joint
+    std::vector<glm::uvec4> joint_indices;  ///< per render vertex, into `joints`
+    std::vector<glm::vec4> joint_weights;   ///< per render vertex
+    std::vector<AnimatedNode> nodes;        ///< the whole node hierarchy, in file order
     std::vector<Animation> animations;
 };
 
@@ -200,6 +200,7 @@ public:
     size_t vertex_count() const;
 
     struct Impl;
+
 private:
     std::unique_ptr<Impl> impl_;
 };

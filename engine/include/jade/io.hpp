@@ -37,8 +37,8 @@ AnimatedMesh load_animated_gltf(const std::filesystem::path& path);
 /// 8 bit) at `fps` frames per second (0 < fps ≤ 100; GIF stores a delay in 1/100 s) as a looping
 /// .gif (OpenImageIO's GIF writer, one subimage per frame; its WebP writer cannot animate).
 /// Atomic like save_image.
-void save_animation(const std::filesystem::path& path, int width, int height, const std::vector<std::vector<float>>& frames,
-                    double fps);
+void save_animation(const std::filesystem::path& path, int width, int height,
+                    const std::vector<std::vector<float>>& frames, double fps);
 
 /// Writes `bytes` to `path` atomically, as every file writer here does: a temporary file
 /// "<path>.tmp-<pid>" in the same folder is written, synced to disk (fsync), renamed to `path`
@@ -49,10 +49,10 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view b
 
 /// What `jade bake` stores next to the mesh.
 struct BakedAttributes {
-    std::vector<float> ao;            ///< per render vertex, [0,1]
-    std::vector<glm::vec3> tm;        ///< per render vertex, linear RGB, unitless
-    std::vector<float> thickness;     ///< per render vertex, mesh units (empty: not written)
-    std::string extras_json;          ///< a JSON object stored as the asset's `extras`
+    std::vector<float> ao;         ///< per render vertex, [0,1]
+    std::vector<glm::vec3> tm;     ///< per render vertex, linear RGB, unitless
+    std::vector<float> thickness;  ///< per render vertex, mesh units (empty: not written)
+    std::string extras_json;       ///< a JSON object stored as the asset's `extras`
 };
 
 /// Writes `mesh` as binary glTF (.glb) or glTF with embedded buffer (.gltf) with the extra
@@ -82,11 +82,11 @@ public:
         /// "FILE: mesh 3 'wheel'" for messages.
         TriangleMesh mesh;
         int mesh_index = -1;
-        std::vector<int> primitives;      ///< the primitives of the mesh that take this bake's values
+        std::vector<int> primitives;  ///< the primitives of the mesh that take this bake's values
         /// Jade's material for them when their glTF material is translucent; empty: the caller's.
         std::optional<Material> material;
-        std::string material_name;        ///< "material 2 'steel'" or "no material"
-        std::string space;                ///< "world space of node 4 'wheel' (first of 2 instances)", ...
+        std::string material_name;  ///< "material 2 'steel'" or "no material"
+        std::string space;          ///< "world space of node 4 'wheel' (first of 2 instances)", ...
     };
 
     /// Reads the file (errors as load_mesh, naming the file and the element). External buffers
@@ -98,7 +98,7 @@ public:
     GltfAsset& operator=(GltfAsset&&) noexcept;
     ~GltfAsset();
 
-    const std::string& name() const;                   ///< the file name, for messages
+    const std::string& name() const;  ///< the file name, for messages
     const std::vector<BakeTarget>& targets() const;
     /// The `asset.extras` JSON object of the file (empty when it has none), where `jade bake`
     /// keeps what it baked with.
@@ -125,8 +125,8 @@ private:
 /// (an extras.jade.preset) get it and KHR_materials_volume with the preset's medium. Every value
 /// written is finite: a non-finite baked value is an error naming the file, mesh, primitive and
 /// vertex. Atomic (write_file_atomically): `path` may be the asset's own file.
-void save_baked_asset(const std::filesystem::path& path, const GltfAsset& asset, const std::vector<BakedAttributes>& baked,
-                      const std::string& asset_extras_json);
+void save_baked_asset(const std::filesystem::path& path, const GltfAsset& asset,
+                      const std::vector<BakedAttributes>& baked, const std::string& asset_extras_json);
 
 /// Writes a linear-RGB float image: .png (sRGB-encoded, 8 bit), .exr (linear half/float).
 /// `rgba` holds width*height*4 floats, rows top to bottom. Atomic like save_baked_gltf.

@@ -35,11 +35,11 @@ struct ChannelProfile {
     static constexpr int kMaxGaussians = 6;
 
     ProfileKind kind = ProfileKind::Burley;
-    double d = 1.0;                        ///< Burley shape, mesh units
-    double sigma_tr = 0, z_r = 0, z_v = 0; ///< Dipole, in 1/mesh units and mesh units
-    double dipole_total = 1;               ///< Dipole: unnormalised total reflectance R_d (for docs)
-    uint32_t gaussian_count = 0;           ///< Gaussians: how many of weight/variance are used
-    std::array<double, kMaxGaussians> weight{}, variance{}; ///< Gaussians: Σ weight = 1; variance in units²
+    double d = 1.0;                                          ///< Burley shape, mesh units
+    double sigma_tr = 0, z_r = 0, z_v = 0;                   ///< Dipole, in 1/mesh units and mesh units
+    double dipole_total = 1;                                 ///< Dipole: unnormalised total reflectance R_d (for docs)
+    uint32_t gaussian_count = 0;                             ///< Gaussians: how many of weight/variance are used
+    std::array<double, kMaxGaussians> weight{}, variance{};  ///< Gaussians: Σ weight = 1; variance in units²
 
     /// Burley with shape d > 0 (mesh units); throws jade::Error for d ≤ 0 or not finite.
     static ChannelProfile burley(double d);
@@ -52,10 +52,10 @@ struct ChannelProfile {
     /// s = 1.85 − A + 7|A − 0.8|³ (searchlight configuration).
     static ChannelProfile burley_from_albedo(double albedo, double mean_free_path);
 
-    double R(double r) const;       ///< profile value, 1/units²
-    double cdf(double r) const;     ///< 2π∫_0^r R(ρ)ρ dρ ∈ [0,1], exact closed form
-    double radius_for_tail(double tail) const; ///< smallest r with 1 − cdf(r) ≤ tail
-    ChannelProfile scaled(double factor) const; ///< the same profile for a mesh scaled by factor
+    double R(double r) const;                    ///< profile value, 1/units²
+    double cdf(double r) const;                  ///< 2π∫_0^r R(ρ)ρ dρ ∈ [0,1], exact closed form
+    double radius_for_tail(double tail) const;   ///< smallest r with 1 − cdf(r) ≤ tail
+    ChannelProfile scaled(double factor) const;  ///< the same profile for a mesh scaled by factor
     bool operator==(const ChannelProfile&) const = default;
 };
 
@@ -102,13 +102,13 @@ Medium medium_from_appearance(glm::dvec3 albedo, glm::dvec3 mean_free_path, doub
 /// Both are spread into a forward lobe (normalised over the hemisphere about −L) by the rough
 /// boundary and forward scattering. weight = diffusion_weight = 0 turns the term off.
 struct Transmission {
-    glm::vec3 sigma_t{0.0f};         ///< extinction σ_s + σ_a, 1/mesh unit
-    glm::vec3 sigma_s_reduced{0.0f}; ///< σ_s' = σ_s(1 − g), 1/mesh unit
-    glm::vec3 sigma_tr{0.0f};        ///< √(3σ_a(σ_a + σ_s')), 1/mesh unit
-    float weight = 0.0f;             ///< ballistic part, including the boundary's transmittance
-    float diffusion_weight = 0.0f;   ///< diffused part, including the boundary's transmittance
-    float lobe = 2.0f;               ///< exponent n of the forward lobe, ≥ 0
-    float normal_mix = 0.3f;         ///< how much the term follows max(−N·L, 0), [0, 1]
+    glm::vec3 sigma_t{0.0f};          ///< extinction σ_s + σ_a, 1/mesh unit
+    glm::vec3 sigma_s_reduced{0.0f};  ///< σ_s' = σ_s(1 − g), 1/mesh unit
+    glm::vec3 sigma_tr{0.0f};         ///< √(3σ_a(σ_a + σ_s')), 1/mesh unit
+    float weight = 0.0f;              ///< ballistic part, including the boundary's transmittance
+    float diffusion_weight = 0.0f;    ///< diffused part, including the boundary's transmittance
+    float lobe = 2.0f;                ///< exponent n of the forward lobe, ≥ 0
+    float normal_mix = 0.3f;          ///< how much the term follows max(−N·L, 0), [0, 1]
     bool enabled() const { return weight > 0.0f || diffusion_weight > 0.0f; }
 };
 
@@ -144,11 +144,11 @@ struct Material {
     /// BakeResult::normal_spread (≈ ⟨θ²⟩/2 of the normals there, per channel). 0 is the
     /// poster's model; from_medium sets it from the fit.
     float spread_strength = 0.0f;
-    float ior = 1.5f;                       ///< for the specular Fresnel term
-    float roughness = 0.25f;                ///< GGX roughness (perceptual, squared in the shader)
-    float specular = 1.0f;                  ///< specular weight (0 turns the lobe off)
-    bool opaque = false;                    ///< true: no bake, Lambert shading
-    Transmission transmission;              ///< light through thin parts (off unless set)
+    float ior = 1.5f;           ///< for the specular Fresnel term
+    float roughness = 0.25f;    ///< GGX roughness (perceptual, squared in the shader)
+    float specular = 1.0f;      ///< specular weight (0 turns the lobe off)
+    bool opaque = false;        ///< true: no bake, Lambert shading
+    Transmission transmission;  ///< light through thin parts (off unless set)
     /// Tm shading: the diffuse light enters and leaves through the dielectric boundary, so it is
     /// multiplied by T(N·L)·T(N·V), T = 1 − Schlick's Fresnel (F0 from ior, grazing value
     /// max(1 − α, F0), α = roughness²): the F_t factors of Jensen et al. 2001's BSSRDF. Dims the
@@ -173,7 +173,7 @@ struct Material {
 
     /// True when the three channels have the same profile: one channel is baked and fetched.
     bool grey() const { return profile[0] == profile[1] && profile[1] == profile[2]; }
-    Material scaled(double factor) const;   ///< profiles for a mesh scaled by factor
+    Material scaled(double factor) const;  ///< profiles for a mesh scaled by factor
 };
 
 /// Preset names: "jade", "blue-jewel", "marble", "skimmilk", "wholemilk", "cream", "ketchup",

@@ -17,10 +17,10 @@ namespace jade {
 /// A triangle mesh as loaded or generated: "render vertices", possibly split at UV or normal
 /// seams. Indices are triangle lists (3 per triangle).
 struct TriangleMesh {
-    std::string name;                 ///< file name or generator name, used in messages
-    std::vector<glm::vec3> positions; ///< mesh units
-    std::vector<glm::vec3> normals;   ///< optional (empty or one per position)
-    std::vector<uint32_t> indices;    ///< 3 per triangle, each < positions.size()
+    std::string name;                  ///< file name or generator name, used in messages
+    std::vector<glm::vec3> positions;  ///< mesh units
+    std::vector<glm::vec3> normals;    ///< optional (empty or one per position)
+    std::vector<uint32_t> indices;     ///< 3 per triangle, each < positions.size()
 
     /// Baked attributes, present when the mesh was read from a file written by `jade bake`
     /// (glTF attributes `_AO`, `_TM`, `_THICKNESS`), else empty. One per render vertex.
@@ -35,10 +35,10 @@ struct TriangleMesh {
 /// into one "bake vertex", degenerate triangles are dropped, and vertices no triangle uses are
 /// left out.
 struct PreparedMesh {
-    std::vector<glm::vec3> positions; ///< bake vertices, mesh units
-    std::vector<glm::vec3> normals;   ///< area-weighted vertex normals, unit length
-    std::vector<float> areas;         ///< a third of the area of each adjacent triangle (units²)
-    std::vector<uint32_t> indices;    ///< 3 per kept triangle, into the bake vertices
+    std::vector<glm::vec3> positions;  ///< bake vertices, mesh units
+    std::vector<glm::vec3> normals;    ///< area-weighted vertex normals, unit length
+    std::vector<float> areas;          ///< a third of the area of each adjacent triangle (units²)
+    std::vector<uint32_t> indices;     ///< 3 per kept triangle, into the bake vertices
 
     /// For each render vertex of the input TriangleMesh, its bake vertex, or kUnused when no
     /// kept triangle references it.
@@ -46,15 +46,15 @@ struct PreparedMesh {
     static constexpr uint32_t kUnused = 0xffffffffu;
 
     glm::vec3 bbox_min{0.0f}, bbox_max{0.0f};
-    float diagonal = 0.0f;            ///< |bbox_max - bbox_min|, mesh units
+    float diagonal = 0.0f;  ///< |bbox_max - bbox_min|, mesh units
 
     // What preparation did, for `jade info` and tests. They add up:
     // input_vertices = vertex_count() + welded_vertices + unused_vertices and
     // input_triangles = triangle_count() + dropped_triangles.
     size_t input_vertices = 0, input_triangles = 0;
-    size_t welded_vertices = 0;       ///< render vertices merged into another one
-    size_t dropped_triangles = 0;     ///< zero-area or repeated-index triangles
-    size_t unused_vertices = 0;       ///< render vertices no kept triangle references
+    size_t welded_vertices = 0;    ///< render vertices merged into another one
+    size_t dropped_triangles = 0;  ///< zero-area or repeated-index triangles
+    size_t unused_vertices = 0;    ///< render vertices no kept triangle references
 
     size_t vertex_count() const { return positions.size(); }
     size_t triangle_count() const { return indices.size() / 3; }

@@ -32,8 +32,8 @@ std::vector<float> reference_ao(const PreparedMesh& mesh, const AoSettings& sett
 
 /// float64 CPU reference of t_m: brute force over all vertex pairs with the vertex-disk rule,
 /// on all hardware threads. `ao` has one value per bake vertex. `vertices` as in reference_ao.
-std::vector<glm::dvec3> reference_tm(const PreparedMesh& mesh, std::span<const float> ao,
-                                     const Material& material, std::span<const uint32_t> vertices = {});
+std::vector<glm::dvec3> reference_tm(const PreparedMesh& mesh, std::span<const float> ao, const Material& material,
+                                     std::span<const uint32_t> vertices = {});
 
 /// float64 CPU reference of BakeResult::scattering_normal and normal_spread, over the same
 /// pairs and rule as reference_tm; one value per listed vertex.

@@ -37,7 +37,6 @@ namespace jade {
 
 struct BakeResult;  // jade/bake.hpp
 
-
 class Context;
 
 /// What the fragment shader computes (see the header comment).
@@ -69,7 +68,7 @@ struct Camera {
     glm::vec3 eye{0.0f, 0.0f, 5.0f};
     glm::vec3 target{0.0f};
     glm::vec3 up{0.0f, 1.0f, 0.0f};
-    float fov_y_degrees = 30.0f;  ///< vertical field of view, (0, 180)
+    float fov_y_degrees = 30.0f;                ///< vertical field of view, (0, 180)
     float near_plane = 0.0f, far_plane = 0.0f;  ///< mesh units; 0, 0: fitted to the mesh
 
     /// The clip-from-world matrix the renderer uses with explicit planes: perspectiveRH_ZO
@@ -92,7 +91,10 @@ struct Light {
     glm::vec3 color{1.0f};               ///< Directional: irradiance E; Point: intensity I (E = I/d²)
 
     /// Shorthands: a directional light towards `towards_light` with irradiance E, a point light.
-    static Light directional(glm::vec3 towards_light, glm::vec3 irradiance) { return {Type::Directional, towards_light, irradiance}; }
+    static Light directional(glm::vec3 towards_light, glm::vec3 irradiance)
+    {
+        return {Type::Directional, towards_light, irradiance};
+    }
     static Light point(glm::vec3 position, glm::vec3 intensity) { return {Type::Point, position, intensity}; }
 };
 
@@ -122,16 +124,16 @@ struct RenderedImage {
 struct RenderSettings {
     uint32_t width = 512, height = 512;
     ShadingMode mode = ShadingMode::Tm;
-    uint32_t samples = 4;             ///< MSAA samples: 1, 2, 4 or 8 (as the device supports)
-    bool float32 = false;             ///< render in RGBA32F instead of RGBA16F
-    glm::vec3 background{0.0f};       ///< linear RGB
-    bool transparent_background = false; ///< alpha 0 where no surface is drawn (else alpha is 1)
-    ToneMap tone_map = ToneMap::None; ///< applied on the host after read-back (render() only)
-    float exposure = 1.0f;            ///< multiplies the linear colour before tone mapping
+    uint32_t samples = 4;                 ///< MSAA samples: 1, 2, 4 or 8 (as the device supports)
+    bool float32 = false;                 ///< render in RGBA32F instead of RGBA16F
+    glm::vec3 background{0.0f};           ///< linear RGB
+    bool transparent_background = false;  ///< alpha 0 where no surface is drawn (else alpha is 1)
+    ToneMap tone_map = ToneMap::None;     ///< applied on the host after read-back (render() only)
+    float exposure = 1.0f;                ///< multiplies the linear colour before tone mapping
     /// TmFalseColor: the colour map spans mean(t_m) ∈ [false_color_min, false_color_max]; when
     /// max ≤ min (the default 0, 0) it spans the mesh's range. render() draws a colour bar.
     float false_color_min = 0.0f, false_color_max = 0.0f;
-    bool legend = true;               ///< TmFalseColor: draw the colour bar (render() only)
+    bool legend = true;  ///< TmFalseColor: draw the colour bar (render() only)
     /// Tm: add the material's Transmission term (light through thin parts) when the material
     /// has one, the mesh has a thickness, and a light is behind the object as the camera sees
     /// it; otherwise the pipeline without it is drawn (no cost). false: the poster's model alone.
@@ -160,10 +162,10 @@ struct LutLayout {
 /// Every path keeps the final 8-bit sRGB image within 0.5 of a level (99th percentile) and 1
 /// level (max) of a float64 evaluation of the same shading (tests/test_shading_error.cpp).
 enum class TmEvaluation : uint32_t {
-    Auto = 0,      ///< by the device: Alu on a CPU device (lavapipe), LutFiltered on any other
-    Lut = 1,       ///< the LUT as RGBA32F quads in a texel buffer, bilinear in the shader, 1 fetch a read
+    Auto = 0,         ///< by the device: Alu on a CPU device (lavapipe), LutFiltered on any other
+    Lut = 1,          ///< the LUT as RGBA32F quads in a texel buffer, bilinear in the shader, 1 fetch a read
     LutFiltered = 2,  ///< the LUT in R16_UNORM, one hardware-filtered sample a read (texture units)
-    Alu = 3,       ///< no memory read: Fourier series in cos θ and a closed form for small t
+    Alu = 3,          ///< no memory read: Fourier series in cos θ and a closed form for small t
 };
 /// "auto", "lut", "lut16", "alu".
 std::string_view tm_evaluation_name(TmEvaluation evaluation);
@@ -172,8 +174,8 @@ TmEvaluation parse_tm_evaluation(std::string_view name);
 
 /// Fixed at Renderer construction: LUT sizes (GPU memory: width × height × 4 bytes each).
 struct RendererOptions {
-    LutLayout lut;                                      ///< translucency LUT size (odd width, ≥ 3 × 2)
-    TmEvaluation tm_evaluation = TmEvaluation::Auto;    ///< Renderer::tm_evaluation() says what Auto chose
+    LutLayout lut;                                    ///< translucency LUT size (odd width, ≥ 3 × 2)
+    TmEvaluation tm_evaluation = TmEvaluation::Auto;  ///< Renderer::tm_evaluation() says what Auto chose
     uint32_t curvature_lut_width = 129, curvature_lut_height = 64;
     /// Mean curvature smoothing: iterations of 1-ring averaging after the cotangent Laplacian.
     uint32_t curvature_smoothing = 2;
@@ -207,13 +209,13 @@ struct RenderTarget {
 /// Per pixel, rows top to bottom; `path` is light-major (light k's pixel p at k·w·h + p).
 struct ShadingInputs {
     uint32_t width = 0, height = 0;
-    std::vector<glm::vec4> position;  ///< xyz: mesh units; w: 1 where the mesh covers the pixel, 0 elsewhere
-    std::vector<glm::vec4> normal;    ///< xyz: interpolated vertex normal (not unit); w: thickness
-    std::vector<glm::vec4> tm;        ///< rgb: interpolated t_m; w: curvature
+    std::vector<glm::vec4> position;           ///< xyz: mesh units; w: 1 where the mesh covers the pixel, 0 elsewhere
+    std::vector<glm::vec4> normal;             ///< xyz: interpolated vertex normal (not unit); w: thickness
+    std::vector<glm::vec4> tm;                 ///< rgb: interpolated t_m; w: curvature
     std::vector<glm::vec4> scattering_normal;  ///< xyz: interpolated scattering normal (not unit); w: 0
     std::vector<glm::vec4> normal_spread;      ///< rgb: interpolated normal spread; w: 0
-    std::vector<float> path;          ///< the path t (mesh units) of each transmitting light's attenuation
-    std::vector<uint8_t> transmits;   ///< per light: 1 when the draw adds its transmission
+    std::vector<float> path;                   ///< the path t (mesh units) of each transmitting light's attenuation
+    std::vector<uint8_t> transmits;            ///< per light: 1 when the draw adds its transmission
 };
 
 /// What the renderer keeps per vertex (position, normal, t_m, curvature, thickness, scattering
@@ -315,6 +317,7 @@ public:
     double curvature_scale() const;
 
     struct Impl;
+
 private:
     std::unique_ptr<Impl> impl_;
 };

@@ -38,8 +38,8 @@ namespace jade {
 
 /// One object of a scene: a mesh in world space with one material.
 struct SceneObject {
-    std::string name;                            ///< for messages, plans and --verbose
-    TriangleMesh mesh;                           ///< world space, mesh units
+    std::string name;   ///< for messages, plans and --verbose
+    TriangleMesh mesh;  ///< world space, mesh units
     Material material;
     std::optional<ProceduralDeformer> deformer;  ///< set: the mesh deforms (per-frame passes)
     bool deforming() const { return deformer.has_value(); }
@@ -52,11 +52,11 @@ struct Scene {
 
 /// What a pass does.
 enum class PassKind : uint32_t {
-    CacheRead = 0,   ///< static t_m read from the bake cache: no GPU work
-    StaticBake = 1,  ///< AO + t_m once, before the first frame (Baker::bake); buffers freed after
-    Deform = 2,      ///< per frame: MeshDeformer (positions, normals, areas on the GPU)
-    DynamicBake = 3, ///< per frame: DynamicBake (refit of both trees, AO, t_m)
-    Draw = 4,        ///< per frame: Renderer (the object's shader variant)
+    CacheRead = 0,    ///< static t_m read from the bake cache: no GPU work
+    StaticBake = 1,   ///< AO + t_m once, before the first frame (Baker::bake); buffers freed after
+    Deform = 2,       ///< per frame: MeshDeformer (positions, normals, areas on the GPU)
+    DynamicBake = 3,  ///< per frame: DynamicBake (refit of both trees, AO, t_m)
+    Draw = 4,         ///< per frame: Renderer (the object's shader variant)
 };
 /// "cache read", "static bake", "deform", "dynamic bake", "draw".
 std::string_view pass_kind_name(PassKind kind);
@@ -87,10 +87,10 @@ struct ObjectPlan {
     std::string name;
     size_t bake_vertices = 0, triangles = 0;  ///< after prepare_mesh
     bool opaque = false, deforming = false;
-    uint32_t channels = 3;       ///< t_m channels baked: 1 grey, 3 RGB, 0 opaque
+    uint32_t channels = 3;  ///< t_m channels baked: 1 grey, 3 RGB, 0 opaque
     ShaderVariant variant;
-    uint64_t bake_key = 0;       ///< static translucent objects: the cache key (jade/cache.hpp)
-    bool cached = false;         ///< the bake source already holds this bake (CacheRead)
+    uint64_t bake_key = 0;  ///< static translucent objects: the cache key (jade/cache.hpp)
+    bool cached = false;    ///< the bake source already holds this bake (CacheRead)
     std::vector<PassPlan> passes;
     uint64_t resident_bytes() const;   ///< buffers held while drawing
     uint64_t transient_bytes() const;  ///< peak of the once-only passes, freed before drawing
@@ -168,7 +168,8 @@ struct PassRecord {
 /// constructor and destroyed at its end.
 class SceneRenderer : NonCopyable {
 public:
-    SceneRenderer(Context& context, const Scene& scene, const SceneSettings& settings, const StaticBakeSource& source = {});
+    SceneRenderer(Context& context, const Scene& scene, const SceneSettings& settings,
+                  const StaticBakeSource& source = {});
     ~SceneRenderer();
 
     const ScenePlan& plan() const;

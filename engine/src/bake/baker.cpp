@@ -24,9 +24,15 @@ BakeSettings BakeSettings::preset(Quality q)
 {
     BakeSettings s;
     switch (q) {
-    case Quality::Draft: s.ao.rays = 16, s.thickness.rays = 16, s.tm_opening_ratio = 1.6f, s.tm_grid_resolution = 1.5f; break;
-    case Quality::Default: s.ao.rays = 64, s.thickness.rays = 32, s.tm_opening_ratio = 1.2f, s.tm_grid_resolution = 2.0f; break;
-    case Quality::High: s.ao.rays = 256, s.thickness.rays = 64, s.tm_opening_ratio = 0.4f, s.tm_grid_resolution = 3.0f; break;
+    case Quality::Draft:
+        s.ao.rays = 16, s.thickness.rays = 16, s.tm_opening_ratio = 1.6f, s.tm_grid_resolution = 1.5f;
+        break;
+    case Quality::Default:
+        s.ao.rays = 64, s.thickness.rays = 32, s.tm_opening_ratio = 1.2f, s.tm_grid_resolution = 2.0f;
+        break;
+    case Quality::High:
+        s.ao.rays = 256, s.thickness.rays = 64, s.tm_opening_ratio = 0.4f, s.tm_grid_resolution = 3.0f;
+        break;
     }
     return s;
 }
@@ -65,7 +71,6 @@ TmMethod parse_tm_method(std::string_view name)
         if (name == tm_method_name(m)) return m;
     throw Error("unknown t_m method '" + std::string(name) + "' (auto, exact, clustered or grid)");
 }
-
 
 namespace {
 
@@ -109,7 +114,8 @@ BakeResult Baker::bake_tm(const PreparedMesh& mesh, std::span<const float> ao, c
                           const BakeSettings& settings)
 {
     if (ao.size() != mesh.vertex_count())
-        throw Error("bake_tm: " + std::to_string(ao.size()) + " AO values for " + std::to_string(mesh.vertex_count()) + " vertices");
+        throw Error("bake_tm: " + std::to_string(ao.size()) + " AO values for " + std::to_string(mesh.vertex_count()) +
+                    " vertices");
     auto t0 = Clock::now();
     Impl::MeshState m;
     impl_->upload_mesh(m, mesh);

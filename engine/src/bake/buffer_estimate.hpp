@@ -14,7 +14,7 @@ namespace jade::bake {
 /// DynamicBake keeps; the thickness buffers only with `thickness` (a material with a
 /// transmission term) and settings.thickness enabled. What depends on the geometry (tree sizes,
 /// near-list lengths) is estimated: buffer_estimate.cpp says how.
-std::vector<BufferEstimate> estimate_buffers(const PreparedMesh& mesh, const Material& material, const BakeSettings& settings,
-                                             bool dynamic, bool thickness);
+std::vector<BufferEstimate> estimate_buffers(const PreparedMesh& mesh, const Material& material,
+                                             const BakeSettings& settings, bool dynamic, bool thickness);
 
 }  // namespace jade::bake

@@ -181,7 +181,8 @@ Bvh build_bvh(std::span<const glm::vec3> lo, std::span<const glm::vec3> hi, uint
 {
     assert(lo.size() == hi.size() && leaf_size >= 1 && leaf_size <= kMaxLeafSize);
     if (lo.size() >= kMaxPrimitives)
-        throw Error("BVH: " + std::to_string(lo.size()) + " primitives exceed the limit of " + std::to_string(kMaxPrimitives));
+        throw Error("BVH: " + std::to_string(lo.size()) + " primitives exceed the limit of " +
+                    std::to_string(kMaxPrimitives));
     Builder b{lo, hi, {}, std::max(leaf_size, 1u), split, {}};
     const uint32_t n = uint32_t(lo.size());
     b.centroid.resize(n);

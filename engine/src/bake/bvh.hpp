@@ -16,15 +16,15 @@
 namespace jade::bake {
 
 constexpr uint32_t kLeafBit = 0x80000000u;
-constexpr uint32_t kMaxLeafSize = 16;            ///< leaf counts are stored in 4 bits
-constexpr uint32_t kMaxPrimitives = 1u << 27;    ///< first primitives are stored in 27 bits
+constexpr uint32_t kMaxLeafSize = 16;          ///< leaf counts are stored in 4 bits
+constexpr uint32_t kMaxPrimitives = 1u << 27;  ///< first primitives are stored in 27 bits
 
 /// GPU layout: two RGBA32UI texels (32 bytes), read by shaders/include/bvh.glsl.
 struct BvhNode {
-    glm::vec3 lo;       ///< bounds, mesh units
-    uint32_t escape;    ///< next node in pre-order after this subtree
+    glm::vec3 lo;     ///< bounds, mesh units
+    uint32_t escape;  ///< next node in pre-order after this subtree
     glm::vec3 hi;
-    uint32_t range;     ///< first primitive | (count − 1) << 27 (leaves only) | leaf << 31
+    uint32_t range;  ///< first primitive | (count − 1) << 27 (leaves only) | leaf << 31
 
     bool leaf() const { return (range & kLeafBit) != 0; }
     uint32_t first() const { return range & (kMaxPrimitives - 1); }
@@ -38,8 +38,8 @@ static_assert(sizeof(BvhNode) == 32);
 
 struct Bvh {
     std::vector<BvhNode> nodes;
-    std::vector<uint32_t> counts;     ///< primitives in each node's range (for refit)
-    std::vector<uint32_t> order;      ///< order[k] = original index of the k-th primitive
+    std::vector<uint32_t> counts;  ///< primitives in each node's range (for refit)
+    std::vector<uint32_t> order;   ///< order[k] = original index of the k-th primitive
     uint32_t depth = 0;
 };
 

@@ -67,7 +67,10 @@ inline double disk_integral(const ChannelProfile& p, double r, double rho)
 /// (ρ ≈ 0.56 r) are not affected.
 inline constexpr double kDiskCap = JADE_DISK_CAP;
 
-inline double rest_distance(double r, double rho, double capped) { return std::sqrt(r * r + 0.5 * (rho * rho + capped * capped)); }
+inline double rest_distance(double r, double rho, double capped)
+{
+    return std::sqrt(r * r + 0.5 * (rho * rho + capped * capped));
+}
 
 inline double vertex_disk_term(const ChannelProfile& p, double r, double area)
 {
@@ -76,14 +79,14 @@ inline double vertex_disk_term(const ChannelProfile& p, double r, double area)
         const double rho = std::sqrt(area / std::numbers::pi);
         const double capped = std::min(rho, kDiskCap * r);
         const double rest = area - std::numbers::pi * capped * capped;
-        return (capped > 0.0 ? disk_integral(p, r, capped) : 0.0) + (rest > 0.0 ? rest * p.R(rest_distance(r, rho, capped)) : 0.0);
+        return (capped > 0.0 ? disk_integral(p, r, capped) : 0.0) +
+               (rest > 0.0 ? rest * p.R(rest_distance(r, rho, capped)) : 0.0);
     }
     return area * p.R(r);
 }
 
 template <class F>
-double integrate(F&& f, double a, double b, double rel_tol = 1e-13, double abs_tol = 0.0,
-                 int max_intervals = 4000)
+double integrate(F&& f, double a, double b, double rel_tol = 1e-13, double abs_tol = 0.0, int max_intervals = 4000)
 {
     static constexpr double xk[8] = {0.991455371120812639206854697526329, 0.949107912342758524526189684047851,
                                      0.864864423359769072789712788640926, 0.741531185599394439863864773280788,

@@ -13,8 +13,8 @@ struct DynamicBake::State {
     BakeSettings settings;
     Baker::Impl::MeshState mesh;
     Amortisation amortisation;
-    uint64_t frame = 0;       // record() calls since the last full re-bake
-    bool stale = true;        // the next record() re-bakes everything
+    uint64_t frame = 0;  // record() calls since the last full re-bake
+    bool stale = true;   // the next record() re-bakes everything
     State(Baker::Impl& i, const BakeSettings& s) : impl(i), ctx(i.ctx), settings(s) {}
 
     // Tree slots [begin, end) of t_m slice `k`: boundaries on multiples of 64 (a work group),
@@ -59,8 +59,14 @@ DynamicBake::~DynamicBake()
 DynamicBake::Buffers DynamicBake::buffers() const
 {
     const auto& m = state_->mesh;
-    return {m.positions.handle(), m.normals.handle(), m.areas.handle(), m.ao.handle(), m.tm.handle(), m.vertex_count,
-            m.thickness ? m.thickness.handle() : VK_NULL_HANDLE, m.normal_sum.handle()};
+    return {m.positions.handle(),
+            m.normals.handle(),
+            m.areas.handle(),
+            m.ao.handle(),
+            m.tm.handle(),
+            m.vertex_count,
+            m.thickness ? m.thickness.handle() : VK_NULL_HANDLE,
+            m.normal_sum.handle()};
 }
 
 void DynamicBake::record(VkCommandBuffer cmd) { state_->record(cmd, nullptr); }
@@ -93,13 +99,17 @@ void DynamicBake::State::record(VkCommandBuffer cmd, gpu::GpuTimer* timer)
     const uint64_t this_frame = frame;
     stale = false;
     frame = full ? 1 : this_frame + 1;
-    if (full) impl.record_ao(cmd, m, settings.ao);
-    else impl.record_ao(cmd, m, settings.ao, uint32_t(this_frame % m.ao_slices), 1);
+    if (full)
+        impl.record_ao(cmd, m, settings.ao);
+    else
+        impl.record_ao(cmd, m, settings.ao, uint32_t(this_frame % m.ao_slices), 1);
     gpu::compute_barrier(cmd);
     if (timer) timer->mark(cmd, "ao");
     if (settings.thickness.enabled()) {
-        if (full) impl.record_thickness(cmd, m, settings.thickness);
-        else impl.record_thickness(cmd, m, settings.thickness, uint32_t(this_frame % m.ao_slices), 1);
+        if (full)
+            impl.record_thickness(cmd, m, settings.thickness);
+        else
+            impl.record_thickness(cmd, m, settings.thickness, uint32_t(this_frame % m.ao_slices), 1);
         gpu::compute_barrier(cmd);
         if (timer) timer->mark(cmd, "thickness");
     }
@@ -112,8 +122,8 @@ void DynamicBake::set_amortisation(const Amortisation& a)
 {
     const uint32_t rays = state_->settings.ao.rays;
     if (a.ao_slices == 0 || rays % a.ao_slices != 0)
-        throw Error("DynamicBake: Amortisation::ao_slices (" + std::to_string(a.ao_slices) + ") must be ≥ 1 and divide the " +
-                    std::to_string(rays) + " AO rays per vertex");
+        throw Error("DynamicBake: Amortisation::ao_slices (" + std::to_string(a.ao_slices) +
+                    ") must be ≥ 1 and divide the " + std::to_string(rays) + " AO rays per vertex");
     if (a.tm_slices == 0) throw Error("DynamicBake: Amortisation::tm_slices must be ≥ 1");
     const uint32_t thickness_rays = state_->settings.thickness.rays;
     if (thickness_rays > 0 && thickness_rays % a.ao_slices != 0)
@@ -123,12 +133,13 @@ void DynamicBake::set_amortisation(const Amortisation& a)
     if (a.ao_slices != m.ao_slices) {
         // Recorded frames may still use the old per-slice sums.
         state_->impl.ctx.release_after_gpu(std::move(m.hits), std::move(m.thickness_sums));
-        m.hits = gpu::Buffer(state_->impl.ctx, VkDeviceSize(m.vertex_count) * a.ao_slices * sizeof(uint32_t), kStorageUsage,
-                             "ao hit counts (per ray slice)");
+        m.hits = gpu::Buffer(state_->impl.ctx, VkDeviceSize(m.vertex_count) * a.ao_slices * sizeof(uint32_t),
+                             kStorageUsage, "ao hit counts (per ray slice)");
         m.ao_slices = a.ao_slices;
         if (thickness_rays > 0)
-            m.thickness_sums = gpu::Buffer(state_->impl.ctx, VkDeviceSize(m.vertex_count) * a.ao_slices * sizeof(uint32_t),
-                                           kStorageUsage, "thickness sums (per ray slice)");
+            m.thickness_sums =
+                gpu::Buffer(state_->impl.ctx, VkDeviceSize(m.vertex_count) * a.ao_slices * sizeof(uint32_t),
+                            kStorageUsage, "thickness sums (per ray slice)");
     }
     state_->amortisation = a;
     state_->stale = true;
@@ -141,13 +152,14 @@ BakeResult DynamicBake::bake(std::span<const glm::vec3> positions, std::span<con
 {
     auto& m = state_->mesh;
     if (positions.size() != m.vertex_count || normals.size() != m.vertex_count || areas.size() != m.vertex_count)
-        throw Error("DynamicBake::bake: " + std::to_string(positions.size()) + " positions, " + std::to_string(normals.size()) +
-                    " normals and " + std::to_string(areas.size()) + " areas for a mesh of " + std::to_string(m.vertex_count) +
-                    " vertices");
+        throw Error("DynamicBake::bake: " + std::to_string(positions.size()) + " positions, " +
+                    std::to_string(normals.size()) + " normals and " + std::to_string(areas.size()) +
+                    " areas for a mesh of " + std::to_string(m.vertex_count) + " vertices");
     for (size_t i = 0; i < positions.size(); ++i)
         if (!std::isfinite(positions[i].x) || !std::isfinite(positions[i].y) || !std::isfinite(positions[i].z) ||
             !std::isfinite(areas[i]) || areas[i] < 0)
-            throw Error("DynamicBake::bake: vertex " + std::to_string(i) + " has a non-finite position or a negative area");
+            throw Error("DynamicBake::bake: vertex " + std::to_string(i) +
+                        " has a non-finite position or a negative area");
     auto t0 = Clock::now();
     m.positions.upload(positions.data(), positions.size_bytes());
     m.normals.upload(normals.data(), normals.size_bytes());

@@ -167,7 +167,8 @@ SmoothFit fit_smooth_part(const Material& material, int channels, double r_cut, 
 uint64_t GridPlan::near_entries(size_t vertices, double margin) const
 {
     // Sources within margin·r_cut on a surface of that spacing, plus the disk pairs (~18).
-    return uint64_t(double(vertices) * (std::numbers::pi * std::pow(margin * r_cut / spacing, 2) + 18.0 * margin * margin));
+    return uint64_t(double(vertices) *
+                    (std::numbers::pi * std::pow(margin * r_cut / spacing, 2) + 18.0 * margin * margin));
 }
 
 uint64_t GridPlan::bytes() const
@@ -176,17 +177,19 @@ uint64_t GridPlan::bytes() const
     // fixed-point splats of the two finest grids, every grid's cells, two buffers for the
     // separable passes of the largest.
     uint64_t splat = 0;
-    for (size_t g = 0; g < std::min<size_t>(levels.size(), kSplatLevels); ++g) splat += uint64_t(levels[g].dims.x) * levels[g].dims.y * levels[g].dims.z;
+    for (size_t g = 0; g < std::min<size_t>(levels.size(), kSplatLevels); ++g)
+        splat += uint64_t(levels[g].dims.x) * levels[g].dims.y * levels[g].dims.z;
     const uint64_t cell = 4 * kGridFields;
-    return cell * (splat + cells + 2 * max_level_cells) + levels.size() * sizeof(GpuGridLevel) + table.size() * sizeof(glm::vec3);
+    return cell * (splat + cells + 2 * max_level_cells) + levels.size() * sizeof(GpuGridLevel) +
+           table.size() * sizeof(glm::vec3);
 }
 
 namespace {
 
 // The grids of `fit` over the mesh's bounds, or the cube of side `cube_side` about their centre
 // (> 0); cells counted before anything is allocated.
-std::vector<GpuGridLevel> make_levels(const PreparedMesh& mesh, const SmoothFit& fit, double resolution, double cube_side,
-                                      uint64_t& cells, uint64_t& max_cells)
+std::vector<GpuGridLevel> make_levels(const PreparedMesh& mesh, const SmoothFit& fit, double resolution,
+                                      double cube_side, uint64_t& cells, uint64_t& max_cells)
 {
     glm::dvec3 lo(mesh.positions[0]), hi(mesh.positions[0]);
     for (size_t i = 0; i < mesh.vertex_count(); ++i) {
@@ -290,7 +293,8 @@ GridPlan plan_grid(const PreparedMesh& mesh, const Material& material, int chann
     for (float a : mesh.areas) max_disk = std::max(max_disk, kNearFactor * std::sqrt(a / std::numbers::pi_v<float>));
     const double max_near_reach = near_margin * max_disk;
     if (!(resolution >= 1.5 && resolution <= 4.0))
-        throw Error("t_m grid: resolution (cells per Gaussian σ) must be in [1.5, 4], got " + std::to_string(resolution));
+        throw Error("t_m grid: resolution (cells per Gaussian σ) must be in [1.5, 4], got " +
+                    std::to_string(resolution));
     // The mean vertex spacing. A list's length goes as r_cut²/A_i: on a mesh much denser in
     // places the lists there are long (docs/bake.md); a spacing from the densest parts would
     // make the grids of the whole bounds finer instead.
@@ -322,7 +326,8 @@ GridPlan plan_grid(const PreparedMesh& mesh, const Material& material, int chann
     for (uint32_t k = 0; k < kGridTableSize; ++k) {
         const double r = plan.table_range * k / (kGridTableSize - 1);
         glm::dvec3 S(plan.fit.S(0, r), plan.fit.S(1, r), plan.fit.S(2, r)), Rr;
-        for (int c = 0; c < 3; ++c) Rr[c] = material.profile[channels == 1 ? 0 : c].R(std::max(r, 1e-300 * plan.table_range)) * r;
+        for (int c = 0; c < 3; ++c)
+            Rr[c] = material.profile[channels == 1 ? 0 : c].R(std::max(r, 1e-300 * plan.table_range)) * r;
         plan.table[k] = glm::vec3(S);
         plan.table[kGridTableSize + k] = glm::vec3(Rr - S * r);  // (R − S)·r: finite at 0
     }

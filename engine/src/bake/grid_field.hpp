@@ -34,9 +34,10 @@
 namespace jade::bake {
 
 constexpr uint32_t kGridMaxHalfWidth = JADE_GRID_MAX_HALF_WIDTH;  // bake_interface.h, shared with grid.glsl
-constexpr uint32_t kGridTableSize = 1024;     // samples of S(r) for the near pass, over [0, table_range]
-constexpr uint64_t kGridMaxCells = 1ull << 23; // all grids together (16 B a cell: one binding); past it r_cut grows (see plan_grid)
-constexpr double kGridMaxCoarsening = 1.5;      // ... by at most this factor (the near lists by its square)
+constexpr uint32_t kGridTableSize = 1024;  // samples of S(r) for the near pass, over [0, table_range]
+constexpr uint64_t kGridMaxCells =
+    1ull << 23;  // all grids together (16 B a cell: one binding); past it r_cut grows (see plan_grid)
+constexpr double kGridMaxCoarsening = 1.5;  // ... by at most this factor (the near lists by its square)
 // Grids the sources are splatted into; grid g ≥ 2 is restricted from grid g − 2 (twice finer).
 constexpr uint32_t kSplatLevels = 2;
 // Fields splatted and blurred per grid: (1 − A_o)·area, and times n.x, n.y, n.z for the
@@ -46,22 +47,22 @@ constexpr double kDeformingCube = 1.1;  // a deforming mesh's grids: cubes of th
 
 /// One Gaussian's grid, as the grid shaders read it (scalar layout, shaders/include/grid.glsl).
 struct GpuGridLevel {
-    glm::vec3 origin;     // world position of cell (0, 0, 0)'s centre
-    float inv_h;          // 1 / spacing
-    glm::uvec3 dims;      // cells per axis
-    uint32_t offset;      // first cell in the shared cell buffers
-    glm::vec3 weight;     // per channel: a_g·√(2π)·(σ/h)·(A/h²) / splat_scale, A the total area
-    uint32_t half_width;  // blur taps on each side of the centre
-    float splat_scale;    // fixed-point units per unit of (1 − A_o)·area
+    glm::vec3 origin;                   // world position of cell (0, 0, 0)'s centre
+    float inv_h;                        // 1 / spacing
+    glm::uvec3 dims;                    // cells per axis
+    uint32_t offset;                    // first cell in the shared cell buffers
+    glm::vec3 weight;                   // per channel: a_g·√(2π)·(σ/h)·(A/h²) / splat_scale, A the total area
+    uint32_t half_width;                // blur taps on each side of the centre
+    float splat_scale;                  // fixed-point units per unit of (1 − A_o)·area
     float blur[kGridMaxHalfWidth + 1];  // blur[|k|], the 1-D kernel, Σ over k in [−hw, hw] = 1
 };
 static_assert(sizeof(GpuGridLevel) == 120, "must match GridLevel in shaders/include/grid.glsl");
 
 /// The smooth part S of a material's profiles: Gaussians shared by the channels.
 struct SmoothFit {
-    std::vector<double> sigma;          // mesh units, ascending
-    std::vector<glm::dvec3> weight;     // a_g per channel (≥ 0)
-    glm::dvec3 residual{0};             // ∫_{r_cut}^{r_max} |R − S| 2πr dr per channel
+    std::vector<double> sigma;       // mesh units, ascending
+    std::vector<glm::dvec3> weight;  // a_g per channel (≥ 0)
+    glm::dvec3 residual{0};          // ∫_{r_cut}^{r_max} |R − S| 2πr dr per channel
     double S(int channel, double r) const;
 };
 
@@ -71,20 +72,20 @@ SmoothFit fit_smooth_part(const Material& material, int channels, double r_cut, 
 
 /// Everything the grid passes need for one mesh.
 struct GridPlan {
-    double r_cut = 0;          // mesh units: the near pass's exact radius
-    double table_range = 0;    // S is tabulated over [0, table_range] (≥ every near-list reach)
+    double r_cut = 0;        // mesh units: the near pass's exact radius
+    double table_range = 0;  // S is tabulated over [0, table_range] (≥ every near-list reach)
     SmoothFit fit;
-    std::vector<GpuGridLevel> levels;       // one per Gaussian with a non-zero weight
+    std::vector<GpuGridLevel> levels;  // one per Gaussian with a non-zero weight
     // Per channel at r_k = k·table_range/(kGridTableSize − 1): S(r_k), then (R − S)(r_k)·r_k
     // (the near pass's point pairs, with no exponential per pair).
     std::vector<glm::vec3> table;
-    double cube_side = 0;      // > 0: a deforming mesh's grids (plan_grid)
+    double cube_side = 0;  // > 0: a deforming mesh's grids (plan_grid)
     uint64_t cells = 0, max_level_cells = 0;
-    bool coarsened = false;                 // r_cut grew past its rule to fit kGridMaxCells
-    bool feasible = true;                   // false: it would have to grow past kGridMaxCoarsening
-    uint64_t cells_needed = 0;              // the grids at r_cut's rule
-    double spacing = 0;                     // the mesh's mean vertex spacing
-    uint64_t bytes() const;                 // device memory of the grid passes
+    bool coarsened = false;     // r_cut grew past its rule to fit kGridMaxCells
+    bool feasible = true;       // false: it would have to grow past kGridMaxCoarsening
+    uint64_t cells_needed = 0;  // the grids at r_cut's rule
+    double spacing = 0;         // the mesh's mean vertex spacing
+    uint64_t bytes() const;     // device memory of the grid passes
     uint64_t near_entries(size_t vertices, double margin) const;  // the near lists' length, estimated
 };
 

@@ -35,7 +35,8 @@ constexpr double kMinPath = 1e-12, kMaxPath = 1e12;
 
 Medium Medium::scaled(double factor) const
 {
-    if (!(std::isfinite(factor) && factor > 0.0)) throw Error("Medium::scaled: factor = " + fmt(factor) + " must be finite and > 0");
+    if (!(std::isfinite(factor) && factor > 0.0))
+        throw Error("Medium::scaled: factor = " + fmt(factor) + " must be finite and > 0");
     Medium m = *this;
     m.sigma_s *= factor;
     m.sigma_a *= factor;
@@ -61,10 +62,11 @@ Medium medium_from_appearance(glm::dvec3 albedo, glm::dvec3 mean_free_path, doub
     m.ior = ior, m.roughness = roughness;
     for (int c = 0; c < 3; ++c) {
         if (!(albedo[c] >= 0.0 && albedo[c] <= 1.0))
-            throw Error("medium_from_appearance: albedo[" + std::to_string(c) + "] = " + fmt(albedo[c]) + " must be in [0, 1]");
+            throw Error("medium_from_appearance: albedo[" + std::to_string(c) + "] = " + fmt(albedo[c]) +
+                        " must be in [0, 1]");
         if (!(mean_free_path[c] > 0.0 && std::isfinite(mean_free_path[c])))
-            throw Error("medium_from_appearance: mean free path[" + std::to_string(c) + "] = " + fmt(mean_free_path[c]) +
-                        " must be finite and > 0");
+            throw Error("medium_from_appearance: mean free path[" + std::to_string(c) +
+                        "] = " + fmt(mean_free_path[c]) + " must be finite and > 0");
         const double target = fit.albedo_scale > 0.0 ? std::min(albedo[c] / fit.albedo_scale, 1.0) : 0.0;
         double lo = 0.0, hi = 1.0;  // diffuse_reflectance rises monotonically in α'
         for (int k = 0; k < 60; ++k) {

@@ -17,12 +17,15 @@ template <class Visit>
 void walk_near_pairs(const PreparedMesh& mesh, const Bvh& tree, float margin, float min_reach, size_t begin, size_t end,
                      size_t stride, Visit&& visit)
 {
-    auto disk_reach = [&](uint32_t j) { return margin * kNearFactor * std::sqrt(mesh.areas[j] / std::numbers::pi_v<float>); };
+    auto disk_reach = [&](uint32_t j) {
+        return margin * kNearFactor * std::sqrt(mesh.areas[j] / std::numbers::pi_v<float>);
+    };
     auto reach = [&](uint32_t j) { return std::max(disk_reach(j), margin * min_reach); };
     std::vector<float> node_reach(tree.nodes.size(), 0.0f);
     for (size_t k = 0; k < tree.nodes.size(); ++k) {
         uint32_t first = tree.nodes[k].first();
-        for (uint32_t s = first; s < first + tree.counts[k]; ++s) node_reach[k] = std::max(node_reach[k], reach(tree.order[s]));
+        for (uint32_t s = first; s < first + tree.counts[k]; ++s)
+            node_reach[k] = std::max(node_reach[k], reach(tree.order[s]));
     }
     for (size_t i = begin; i < end; i += stride) {
         const glm::vec3 x = mesh.positions[i];
@@ -65,9 +68,8 @@ NearLists build_near_lists(const PreparedMesh& mesh, const Bvh& tree, float marg
     // Per-target rows, found in parallel, then concatenated.
     std::vector<std::vector<uint32_t>> rows(n), points(n);
     auto work = [&](size_t begin, size_t end) {
-        walk_near_pairs(mesh, tree, margin, min_reach, begin, end, 1, [&](size_t i, uint32_t j, bool disk) {
-            (disk ? rows : points)[i].push_back(j);
-        });
+        walk_near_pairs(mesh, tree, margin, min_reach, begin, end, 1,
+                        [&](size_t i, uint32_t j, bool disk) { (disk ? rows : points)[i].push_back(j); });
     };
     unsigned threads = std::max(1u, std::thread::hardware_concurrency());
     std::vector<std::thread> pool;
@@ -98,7 +100,8 @@ NearLists reorder_rows(const NearLists& lists, std::span<const uint32_t> order)
     for (size_t k = 0; k < order.size(); ++k) {
         const uint32_t v = order[k];
         out.disk_counts[k] = lists.disk_counts[v];
-        out.indices.insert(out.indices.end(), lists.indices.begin() + lists.offsets[v], lists.indices.begin() + lists.offsets[v + 1]);
+        out.indices.insert(out.indices.end(), lists.indices.begin() + lists.offsets[v],
+                           lists.indices.begin() + lists.offsets[v + 1]);
         out.offsets[k + 1] = uint32_t(out.indices.size());
     }
     return out;

@@ -130,8 +130,8 @@ ChannelProfile ChannelProfile::dipole(double sigma_s_prime, double sigma_a, doub
     check_param(where, "sigma_s_prime", sigma_s_prime);
     check_param(where, "sigma_a", sigma_a, /*allow_zero=*/true);
     check_param(where, "eta", eta);
-    const double sigma_t = sigma_s_prime + sigma_a;                 // σ_t', 1/units
-    const double alpha = sigma_s_prime / sigma_t;                   // α'
+    const double sigma_t = sigma_s_prime + sigma_a;  // σ_t', 1/units
+    const double alpha = sigma_s_prime / sigma_t;    // α'
     const double f_dr = -1.440 / (eta * eta) + 0.710 / eta + 0.668 + 0.0636 * eta;
     if (!(f_dr < 1.0)) throw Error(std::string(where) + ": eta = " + fmt(eta) + " gives F_dr >= 1");
     const double a = (1.0 + f_dr) / (1.0 - f_dr);
@@ -355,7 +355,8 @@ Material material_preset(std::string_view name, double mm_per_unit)
         medium.ior = kJensenEta, medium.roughness = 0.25;
         m = Material::from_medium(medium.scaled(mm_per_unit), {}, std::string(name));
         for (int c = 0; c < 3; ++c)
-            m.profile[c] = ChannelProfile::dipole(e.sigma_s_prime[c] * mm_per_unit, e.sigma_a[c] * mm_per_unit, kJensenEta);
+            m.profile[c] =
+                ChannelProfile::dipole(e.sigma_s_prime[c] * mm_per_unit, e.sigma_a[c] * mm_per_unit, kJensenEta);
         return m;
     }
     if (name == "skin") {

@@ -6,7 +6,10 @@ namespace jade::bake {
 
 namespace {
 
-glm::uvec4 texel(glm::vec3 v, uint32_t w) { return {std::bit_cast<uint32_t>(v.x), std::bit_cast<uint32_t>(v.y), std::bit_cast<uint32_t>(v.z), w}; }
+glm::uvec4 texel(glm::vec3 v, uint32_t w)
+{
+    return {std::bit_cast<uint32_t>(v.x), std::bit_cast<uint32_t>(v.y), std::bit_cast<uint32_t>(v.z), w};
+}
 
 }  // namespace
 

@@ -25,8 +25,7 @@ namespace jade {
 namespace {
 
 /// Calls body(k) for k in [0, n) on all hardware threads, in chunks of `chunk`.
-template <class Body>
-void parallel_for(size_t n, size_t chunk, const Body& body)
+template <class Body> void parallel_for(size_t n, size_t chunk, const Body& body)
 {
     const size_t chunks = (n + chunk - 1) / chunk;
     const size_t threads = std::min<size_t>(std::max(1u, std::thread::hardware_concurrency()), chunks);
@@ -62,9 +61,11 @@ void check_ao_settings(const AoSettings& s, const char* where)
     const std::string w(where);
     if (s.rays == 0) throw Error(w + ": AoSettings.rays must be >= 1");
     if (!(std::isfinite(s.max_distance_rel) && s.max_distance_rel > 0.0f))
-        throw Error(w + ": AoSettings.max_distance_rel = " + std::to_string(s.max_distance_rel) + " must be finite and > 0");
+        throw Error(w + ": AoSettings.max_distance_rel = " + std::to_string(s.max_distance_rel) +
+                    " must be finite and > 0");
     if (!(std::isfinite(s.ray_offset_rel) && s.ray_offset_rel >= 0.0f))
-        throw Error(w + ": AoSettings.ray_offset_rel = " + std::to_string(s.ray_offset_rel) + " must be finite and >= 0");
+        throw Error(w + ": AoSettings.ray_offset_rel = " + std::to_string(s.ray_offset_rel) +
+                    " must be finite and >= 0");
 }
 
 /// The mesh's triangles in BVH order (v0 and two edges, double) and the BVH over them.
@@ -160,18 +161,26 @@ struct TriangleScene {
         }
         return any ? -1.0 : t_max;
     }
-    bool any_hit(const glm::dvec3& o, const glm::dvec3& d, double t_max) const { return walk(o, d, t_max, true) >= 0.0; }
-    double nearest_hit(const glm::dvec3& o, const glm::dvec3& d, double t_max) const { return walk(o, d, t_max, false); }
+    bool any_hit(const glm::dvec3& o, const glm::dvec3& d, double t_max) const
+    {
+        return walk(o, d, t_max, true) >= 0.0;
+    }
+    double nearest_hit(const glm::dvec3& o, const glm::dvec3& d, double t_max) const
+    {
+        return walk(o, d, t_max, false);
+    }
 };
 
 void check_thickness_settings(const ThicknessSettings& s, const char* where)
 {
     const std::string w(where);
     if (s.rays == 0 || s.rays > 1023) throw Error(w + ": ThicknessSettings.rays must be in 1..1023");
-    if (!(s.cone_degrees > 0.0f && s.cone_degrees <= 90.0f)) throw Error(w + ": ThicknessSettings.cone_degrees must be in (0, 90]");
+    if (!(s.cone_degrees > 0.0f && s.cone_degrees <= 90.0f))
+        throw Error(w + ": ThicknessSettings.cone_degrees must be in (0, 90]");
     if (!(std::isfinite(s.max_distance_rel) && s.max_distance_rel > 0.0f))
         throw Error(w + ": ThicknessSettings.max_distance_rel must be finite and > 0");
-    if (!(std::isfinite(s.ray_offset_rel) && s.ray_offset_rel >= 0.0f)) throw Error(w + ": ThicknessSettings.ray_offset_rel must be >= 0");
+    if (!(std::isfinite(s.ray_offset_rel) && s.ray_offset_rel >= 0.0f))
+        throw Error(w + ": ThicknessSettings.ray_offset_rel must be >= 0");
 }
 
 double cos_cone(const ThicknessSettings& s) { return std::cos(double(s.cone_degrees) * std::numbers::pi / 180.0); }
@@ -225,14 +234,15 @@ std::vector<double> reference_thickness(const PreparedMesh& mesh, const Thicknes
     return thickness;
 }
 
-std::vector<float> reference_ao(const PreparedMesh& mesh, const AoSettings& settings, std::span<const uint32_t> vertices)
+std::vector<float> reference_ao(const PreparedMesh& mesh, const AoSettings& settings,
+                                std::span<const uint32_t> vertices)
 {
     check_ao_settings(settings, "reference_ao");
     const std::vector<uint32_t> list = resolve_subset(mesh, vertices, "reference_ao");
     const TriangleScene scene(mesh);
     const double diagonal = double(mesh.diagonal);
-    const double eps = double(settings.ray_offset_rel) * diagonal;          // mesh units
-    const double t_max = double(settings.max_distance_rel) * diagonal;   // mesh units
+    const double eps = double(settings.ray_offset_rel) * diagonal;      // mesh units
+    const double t_max = double(settings.max_distance_rel) * diagonal;  // mesh units
     const uint32_t n = settings.rays;
     std::vector<float> ao(list.size());
     parallel_for(list.size(), 16, [&](size_t idx) {
@@ -264,8 +274,10 @@ ReferenceSums reference_sums(const PreparedMesh& mesh, std::span<const float> ao
 {
     const size_t m = mesh.vertex_count();
     if (ao.size() != m)
-        throw Error(std::string(where) + ": " + std::to_string(ao.size()) + " AO values for " + std::to_string(m) + " bake vertices");
-    if (material.opaque) throw Error(std::string(where) + ": material '" + material.name + "' is opaque and has no t_m");
+        throw Error(std::string(where) + ": " + std::to_string(ao.size()) + " AO values for " + std::to_string(m) +
+                    " bake vertices");
+    if (material.opaque)
+        throw Error(std::string(where) + ": material '" + material.name + "' is opaque and has no t_m");
     const std::vector<uint32_t> list = resolve_subset(mesh, vertices, where);
 
     // Per vertex: position, area A_j (units²), weight 1 − A_o(j). Zero weights are dropped from

@@ -15,7 +15,8 @@ void validate_thickness_settings(const ThicknessSettings& s)
         throw Error("thickness: cone half-angle must be in (0, 90] degrees, got " + std::to_string(s.cone_degrees));
     if (!(s.max_distance_rel > 0) || !std::isfinite(s.max_distance_rel))
         throw Error("thickness: max distance must be a positive fraction of the diagonal");
-    if (!(s.ray_offset_rel >= 0) || !std::isfinite(s.ray_offset_rel)) throw Error("thickness: the ray offset must be ≥ 0");
+    if (!(s.ray_offset_rel >= 0) || !std::isfinite(s.ray_offset_rel))
+        throw Error("thickness: the ray offset must be ≥ 0");
 }
 
 }  // namespace
@@ -29,7 +30,8 @@ void Baker::Impl::prepare_thickness(MeshState& m, const ThicknessSettings& s)
     m.thickness = gpu::Buffer(ctx, VkDeviceSize(m.vertex_count) * sizeof(float), kStorageUsage, "thickness");
 }
 
-void Baker::Impl::record_thickness(VkCommandBuffer cmd, MeshState& m, const ThicknessSettings& s, uint32_t first, uint32_t count)
+void Baker::Impl::record_thickness(VkCommandBuffer cmd, MeshState& m, const ThicknessSettings& s, uint32_t first,
+                                   uint32_t count)
 {
     if (!s.enabled()) return;
     if (count == 0) count = m.ao_slices;
@@ -40,8 +42,8 @@ void Baker::Impl::record_thickness(VkCommandBuffer cmd, MeshState& m, const Thic
     const float cos_cone = float(std::cos(double(s.cone_degrees) * std::numbers::pi / 180.0));
     const uint32_t rays_in_slice = s.rays / m.ao_slices;
     for (uint32_t slice = first; slice < first + count; ++slice) {
-        ThicknessPush push{m.vertex_count, s.rays, s.seed, cos_cone, s.ray_offset_rel * m.diagonal, max_distance,
-                           m.item_count, m.ao_slices, slice};
+        ThicknessPush push{m.vertex_count, s.rays,       s.seed,      cos_cone, s.ray_offset_rel * m.diagonal,
+                           max_distance,   m.item_count, m.ao_slices, slice};
         thickness_kernel().dispatch(cmd, uint64_t(m.vertex_count) * rays_in_slice, push,
                                     {m.positions, m.normals, m.ray_item_texels, m.thickness_sums});
     }

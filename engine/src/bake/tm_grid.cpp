@@ -24,7 +24,8 @@ void Baker::Impl::prepare_grid(MeshState& m, const bake::GridPlan& plan)
     for (size_t k = 0; k < table.size(); ++k) table[k] = glm::vec4(plan.table[k], 0.0f);
     m.smooth_table = gpu::Buffer(ctx, table.size() * 16, kTexelUsage, "t_m smooth-part table");
     m.smooth_table.upload(table.data(), table.size() * 16);
-    m.smooth_table_texels = gpu::TexelView(ctx, m.smooth_table, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "t_m smooth-part table");
+    m.smooth_table_texels =
+        gpu::TexelView(ctx, m.smooth_table, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "t_m smooth-part table");
     if (plan.levels.empty()) return;  // the profile is within r_cut: the near pass is all of t_m
     m.grid_levels = gpu::Buffer::from(ctx, plan.levels, kStorageUsage, "t_m grid levels");
     check_storage_range(plan.cells * kCellBytes, "t_m grid cells");
@@ -33,14 +34,17 @@ void Baker::Impl::prepare_grid(MeshState& m, const bake::GridPlan& plan)
         splat_cells += uint64_t(plan.levels[g].dims.x) * plan.levels[g].dims.y * plan.levels[g].dims.z;
     // The fixed-point splats, then each grid's sources (restricted) and in place its blurred
     // values: the four fields of a cell in one texel (grid_splat.comp).
-    m.grid_splat = gpu::Buffer(ctx, splat_cells * kCellBytes, kTexelUsage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, "t_m grid splats");
-    m.grid_splat_texels = gpu::TexelView(ctx, m.grid_splat, VK_FORMAT_R32G32B32A32_UINT, kCellBytes, "t_m grid splats (texels)");
+    m.grid_splat =
+        gpu::Buffer(ctx, splat_cells * kCellBytes, kTexelUsage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, "t_m grid splats");
+    m.grid_splat_texels =
+        gpu::TexelView(ctx, m.grid_splat, VK_FORMAT_R32G32B32A32_UINT, kCellBytes, "t_m grid splats (texels)");
     m.grid_cells = gpu::Buffer(ctx, plan.cells * kCellBytes, kTexelUsage, "t_m grid cells");
-    m.grid_cell_texels = gpu::TexelView(ctx, m.grid_cells, VK_FORMAT_R32G32B32A32_SFLOAT, kCellBytes, "t_m grid cells (texels)");
+    m.grid_cell_texels =
+        gpu::TexelView(ctx, m.grid_cells, VK_FORMAT_R32G32B32A32_SFLOAT, kCellBytes, "t_m grid cells (texels)");
     for (int i = 0; i < 2; ++i) {
         m.grid_scratch[i] = gpu::Buffer(ctx, plan.max_level_cells * kCellBytes, kTexelUsage, "t_m grid pass scratch");
-        m.grid_scratch_texels[i] =
-            gpu::TexelView(ctx, m.grid_scratch[i], VK_FORMAT_R32G32B32A32_SFLOAT, kCellBytes, "t_m grid pass scratch (texels)");
+        m.grid_scratch_texels[i] = gpu::TexelView(ctx, m.grid_scratch[i], VK_FORMAT_R32G32B32A32_SFLOAT, kCellBytes,
+                                                  "t_m grid pass scratch (texels)");
     }
 }
 
@@ -63,27 +67,37 @@ void Baker::Impl::record_grid(VkCommandBuffer cmd, MeshState& m, gpu::GpuTimer* 
     auto mark = [&](const char* stage) {
         if (timer) timer->mark(cmd, stage);
     };
-    const auto& splat = kernel(grid_splat, {"grid_splat", shaders::grid_splat_comp(), storage_bindings(7),
-                                            sizeof(GridSplatPush), 64, {}});
+    const auto& splat = kernel(
+        grid_splat, {"grid_splat", shaders::grid_splat_comp(), storage_bindings(7), sizeof(GridSplatPush), 64, {}});
     auto axis_kernel = [&](uint32_t half_width, uint32_t step, bool fixed) -> const gpu::Kernel& {
-        return kernel(grid_axis[fixed][step - 1][half_width], {"grid_axis", shaders::grid_axis_comp(), {kTexels, kTexels, kStorage},
-                                                               sizeof(bake::GridAxisPush), kAxisGroup, {half_width, step, fixed ? 1u : 0u}});
+        return kernel(grid_axis[fixed][step - 1][half_width], {"grid_axis",
+                                                               shaders::grid_axis_comp(),
+                                                               {kTexels, kTexels, kStorage},
+                                                               sizeof(bake::GridAxisPush),
+                                                               kAxisGroup,
+                                                               {half_width, step, fixed ? 1u : 0u}});
     };
-    const auto& gather = kernel(grid_gather, {"grid_gather", shaders::grid_gather_comp(),
-                                              {kStorage, kStorage, kStorage, kStorage, kTexels, kStorage, kStorage, kStorage, kStorage,
-                                               kStorage},
-                                              sizeof(GridGatherPush), 64, tm_constants(m.variant)});
+    const auto& gather =
+        kernel(grid_gather,
+               {"grid_gather",
+                shaders::grid_gather_comp(),
+                {kStorage, kStorage, kStorage, kStorage, kTexels, kStorage, kStorage, kStorage, kStorage, kStorage},
+                sizeof(GridGatherPush),
+                64,
+                tm_constants(m.variant)});
     const auto& L = m.grid_plan_levels;
     vkCmdFillBuffer(cmd, m.grid_splat.handle(), 0, VK_WHOLE_SIZE, 0);
     if (m.grid_cube_side > 0) {  // the current bounds, for grids that follow the mesh
         vkCmdFillBuffer(cmd, m.grid_bounds.handle(), 0, 12, ~0u);
         vkCmdFillBuffer(cmd, m.grid_bounds.handle(), 12, 12, 0);
         gpu::compute_barrier(cmd);
-        kernel(grid_bounds, {"grid_bounds", shaders::grid_bounds_comp(), storage_bindings(2), sizeof(GatherPush), 64, {}})
+        kernel(grid_bounds,
+               {"grid_bounds", shaders::grid_bounds_comp(), storage_bindings(2), sizeof(GatherPush), 64, {}})
             .dispatch(cmd, m.vertex_count, GatherPush{m.vertex_count}, {m.positions, m.grid_bounds});
     }
     gpu::compute_barrier(cmd);
-    splat.dispatch(cmd, m.vertex_count, GridSplatPush{m.vertex_count, std::min(levels, bake::kSplatLevels), m.grid_cube_side},
+    splat.dispatch(cmd, m.vertex_count,
+                   GridSplatPush{m.vertex_count, std::min(levels, bake::kSplatLevels), m.grid_cube_side},
                    {m.grid_levels, m.positions, m.areas, m.ao, m.grid_splat, m.grid_bounds, m.normals});
     gpu::compute_barrier(cmd);
     mark("t_m grid splat");
@@ -110,20 +124,23 @@ void Baker::Impl::record_grid(VkCommandBuffer cmd, MeshState& m, gpu::GpuTimer* 
             if (axis == 2) target = &m.grid_cells, p.out_offset = to_offset;
             glm::uvec3 runs = out;
             runs[axis] = (out[axis] + kAxisRun - 1) / kAxisRun;
-            axis_kernel(half_width, step, fixed && axis == 0).dispatch_3d(cmd, runs, p, {m.grid_splat_texels, *source, *target});
+            axis_kernel(half_width, step, fixed && axis == 0)
+                .dispatch_3d(cmd, runs, p, {m.grid_splat_texels, *source, *target});
             gpu::compute_barrier(cmd);
             in = out;
         }
     };
     static constexpr float kTwoScale[3] = {6.0f / 8, 4.0f / 8, 1.0f / 8};
-    for (uint32_t g = bake::kSplatLevels; g < levels; ++g) separable(g - 2, dims_of(L[g]), 2, -2, 2, kTwoScale, L[g].offset);
+    for (uint32_t g = bake::kSplatLevels; g < levels; ++g)
+        separable(g - 2, dims_of(L[g]), 2, -2, 2, kTwoScale, L[g].offset);
     mark("t_m grid restrict");
     for (uint32_t g = 0; g < levels; ++g)
         if (L[g].weight != glm::vec3(0)) separable(g, dims_of(L[g]), 1, 0, L[g].half_width, L[g].blur, L[g].offset);
     mark("t_m grid blur");
-    gather.dispatch(cmd, slot_end - slot_begin, GridGatherPush{levels, slot_begin, slot_end - slot_begin, m.grid_cube_side},
-                    {m.profiles, m.grid_levels, m.positions, m.point_order, m.grid_cell_texels, m.partial_sum, m.partial_comp,
-                     m.tm, m.normal_sum, m.grid_bounds});
+    gather.dispatch(cmd, slot_end - slot_begin,
+                    GridGatherPush{levels, slot_begin, slot_end - slot_begin, m.grid_cube_side},
+                    {m.profiles, m.grid_levels, m.positions, m.point_order, m.grid_cell_texels, m.partial_sum,
+                     m.partial_comp, m.tm, m.normal_sum, m.grid_bounds});
     gpu::compute_barrier(cmd);
     mark("t_m grid gather");
 }

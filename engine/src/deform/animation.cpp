@@ -56,7 +56,8 @@ std::vector<float> AnimationChannel::sample(double t) const
     switch (interpolation) {
     case Interpolation::Step: return std::vector<float>(value(k), value(k) + w);
     case Interpolation::Linear:
-        if (rotation) slerp(value(k), value(k + 1), s, out.data());
+        if (rotation)
+            slerp(value(k), value(k + 1), s, out.data());
         else
             for (size_t c = 0; c < w; ++c) out[c] = float((1.0 - s) * value(k)[c] + s * value(k + 1)[c]);
         return out;
@@ -114,7 +115,8 @@ Pose evaluate_pose(const AnimatedMesh& mesh, size_t animation, double t)
             case AnimationPath::Scale: n.scale = glm::vec3(v[0], v[1], v[2]); break;
             case AnimationPath::Weights:
                 if (ch.node == mesh.mesh_node)
-                    for (size_t k = 0; k < std::min(v.size(), pose.morph_weights.size()); ++k) pose.morph_weights[k] = v[k];
+                    for (size_t k = 0; k < std::min(v.size(), pose.morph_weights.size()); ++k)
+                        pose.morph_weights[k] = v[k];
                 break;
             }
         }
@@ -138,8 +140,9 @@ Pose evaluate_pose(const AnimatedMesh& mesh, size_t animation, double t)
         for (size_t j = 0; j < mesh.joints.size(); ++j)
             pose.joint_matrices[j] = world[size_t(mesh.joints[j])] * mesh.inverse_bind[j];
     } else {
-        pose.joint_matrices = {mesh.mesh_node >= 0 && size_t(mesh.mesh_node) < world.size() ? world[size_t(mesh.mesh_node)]
-                                                                                              : glm::mat4(1.0f)};
+        pose.joint_matrices = {mesh.mesh_node >= 0 && size_t(mesh.mesh_node) < world.size()
+                                   ? world[size_t(mesh.mesh_node)]
+                                   : glm::mat4(1.0f)};
     }
     return pose;
 }
@@ -148,8 +151,8 @@ SkinBinding bind_skin(const AnimatedMesh& mesh, const PreparedMesh& prepared)
 {
     const size_t n = prepared.vertex_count(), renders = prepared.render_to_bake.size();
     if (renders != mesh.mesh.positions.size())
-        throw Error(mesh.mesh.name + ": the prepared mesh has " + std::to_string(renders) + " render vertices, the animated mesh " +
-                    std::to_string(mesh.mesh.positions.size()));
+        throw Error(mesh.mesh.name + ": the prepared mesh has " + std::to_string(renders) +
+                    " render vertices, the animated mesh " + std::to_string(mesh.mesh.positions.size()));
     // The lowest render vertex of each bake vertex: its weld target, whose position it has.
     std::vector<uint32_t> source(n, PreparedMesh::kUnused);
     for (size_t r = renders; r-- > 0;)

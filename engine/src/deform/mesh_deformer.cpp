@@ -25,8 +25,8 @@ namespace jade {
 
 namespace {
 
-constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
-                                        VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+constexpr VkBufferUsageFlags kStorage =
+    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
 constexpr double kTwoPi = 6.283185307179586;
 using gpu::storage_bindings;
 
@@ -48,7 +48,8 @@ struct NormalsPush {
 
 /// A buffer holding `data`, at least gpu::kMinBufferBytes (Vulkan has no empty buffers; the
 /// shaders do not read past the counts they get).
-template <class T> gpu::Buffer make_buffer(gpu::Context& ctx, const std::vector<T>& data, const char* name, bool host_visible = false)
+template <class T>
+gpu::Buffer make_buffer(gpu::Context& ctx, const std::vector<T>& data, const char* name, bool host_visible = false)
 {
     gpu::Buffer b(ctx, data.size() * sizeof(T), kStorage, name, host_visible);
     if (!data.empty()) b.upload(data.data(), data.size() * sizeof(T));
@@ -89,10 +90,21 @@ struct MeshDeformer::Impl {
 
     Impl(gpu::Context& c, const PreparedMesh& mesh)
         : ctx(c), n(uint32_t(mesh.vertex_count())), triangle_count(uint32_t(mesh.triangle_count())),
-          procedural(c, {"deform_procedural", shaders::deform_procedural_comp(), storage_bindings(2), sizeof(ProceduralPush), 64, {}}),
+          procedural(c, {"deform_procedural",
+                         shaders::deform_procedural_comp(),
+                         storage_bindings(2),
+                         sizeof(ProceduralPush),
+                         64,
+                         {}}),
           skin(c, {"deform_skin", shaders::deform_skin_comp(), storage_bindings(7), sizeof(SkinPush), 64, {}}),
-          triangles_kernel(c, {"deform_triangles", shaders::deform_triangles_comp(), storage_bindings(3), sizeof(TrianglesPush), 64, {}}),
-          normals_kernel(c, {"deform_normals", shaders::deform_normals_comp(), storage_bindings(5), sizeof(NormalsPush), 64, {}})
+          triangles_kernel(c, {"deform_triangles",
+                               shaders::deform_triangles_comp(),
+                               storage_bindings(3),
+                               sizeof(TrianglesPush),
+                               64,
+                               {}}),
+          normals_kernel(
+              c, {"deform_normals", shaders::deform_normals_comp(), storage_bindings(5), sizeof(NormalsPush), 64, {}})
     {
         // Each vertex's adjacent triangles, in ascending triangle order (the order prepare.cpp
         // visits them in, which decides ties of the largest triangle).
@@ -105,7 +117,8 @@ struct MeshDeformer::Impl {
         indices = make_buffer(ctx, mesh.indices, "deform: triangles");
         adjacency_offsets = make_buffer(ctx, offsets, "deform: adjacency offsets");
         adjacent_triangles = make_buffer(ctx, list, "deform: adjacent triangles");
-        triangles = gpu::Buffer(ctx, VkDeviceSize(triangle_count) * kTriangleBytes, kStorage, "deform: triangle cross products");
+        triangles = gpu::Buffer(ctx, VkDeviceSize(triangle_count) * kTriangleBytes, kStorage,
+                                "deform: triangle cross products");
         positions = make_buffer(ctx, mesh.positions, "deform: deformed positions");
         normals = make_buffer(ctx, mesh.normals, "deform: deformed normals");
         areas = make_buffer(ctx, mesh.areas, "deform: deformed areas");
@@ -124,7 +137,8 @@ struct MeshDeformer::Impl {
         // vertex, and no atomics).
         triangles_kernel.dispatch(cmd, triangle_count, TrianglesPush{triangle_count}, {positions, indices, triangles});
         gpu::compute_barrier(cmd);
-        normals_kernel.dispatch(cmd, n, NormalsPush{n}, {triangles, adjacency_offsets, adjacent_triangles, normals, areas});
+        normals_kernel.dispatch(cmd, n, NormalsPush{n},
+                                {triangles, adjacency_offsets, adjacent_triangles, normals, areas});
         gpu::compute_barrier(cmd);  // the results are read by the next pass or the host
         if (timer) timer->mark(cmd, "normals");
     }
@@ -167,23 +181,28 @@ struct MeshDeformer::Impl {
     std::function<void(VkCommandBuffer)> skin_pass(const Pose& pose)
     {
         if (!binding_sizes) throw Error("MeshDeformer::deform(Pose): set_skin was not called");
-        if (pose.joint_matrices.size() != binding_sizes->joint_count || pose.morph_weights.size() != binding_sizes->morph_count)
-            throw Error("MeshDeformer::deform(Pose): " + std::to_string(pose.joint_matrices.size()) + " joint matrices and " +
-                        std::to_string(pose.morph_weights.size()) + " morph weights, the skin has " +
-                        std::to_string(binding_sizes->joint_count) + " and " + std::to_string(binding_sizes->morph_count));
+        if (pose.joint_matrices.size() != binding_sizes->joint_count ||
+            pose.morph_weights.size() != binding_sizes->morph_count)
+            throw Error("MeshDeformer::deform(Pose): " + std::to_string(pose.joint_matrices.size()) +
+                        " joint matrices and " + std::to_string(pose.morph_weights.size()) +
+                        " morph weights, the skin has " + std::to_string(binding_sizes->joint_count) + " and " +
+                        std::to_string(binding_sizes->morph_count));
         // Small per-frame data, written before the submission that reads it.
         joint_matrices.upload(pose.joint_matrices.data(), pose.joint_matrices.size() * sizeof(glm::mat4));
-        if (!pose.morph_weights.empty()) morph_weights.upload(pose.morph_weights.data(), pose.morph_weights.size() * sizeof(float));
+        if (!pose.morph_weights.empty())
+            morph_weights.upload(pose.morph_weights.data(), pose.morph_weights.size() * sizeof(float));
         const SkinPush push{n, binding_sizes->morph_count, binding_sizes->joint_count};
         return [this, push](VkCommandBuffer cmd) {
-            skin.dispatch(cmd, n, push, {rest, morph_deltas, morph_weights, joints, weights, joint_matrices, positions});
+            skin.dispatch(cmd, n, push,
+                          {rest, morph_deltas, morph_weights, joints, weights, joint_matrices, positions});
         };
     }
 };
 
 MeshDeformer::MeshDeformer(Context& context, const PreparedMesh& rest)
 {
-    if (rest.vertex_count() == 0 || rest.normals.size() != rest.vertex_count() || rest.areas.size() != rest.vertex_count())
+    if (rest.vertex_count() == 0 || rest.normals.size() != rest.vertex_count() ||
+        rest.areas.size() != rest.vertex_count())
         throw Error("MeshDeformer: the mesh is not prepared (" + std::to_string(rest.vertex_count()) + " vertices, " +
                     std::to_string(rest.normals.size()) + " normals, " + std::to_string(rest.areas.size()) + " areas)");
     impl_ = std::make_unique<Impl>(context.gpu(), rest);
@@ -198,9 +217,10 @@ MeshDeformer::~MeshDeformer()
 void MeshDeformer::set_skin(const SkinBinding& b)
 {
     auto& m = *impl_;
-    if (b.joint_indices.size() != m.n || b.joint_weights.size() != m.n || b.morph_deltas.size() != size_t(b.morph_count) * m.n)
-        throw Error("MeshDeformer::set_skin: the binding is for another mesh (" + std::to_string(b.joint_indices.size()) +
-                    " vertices, this mesh has " + std::to_string(m.n) + ")");
+    if (b.joint_indices.size() != m.n || b.joint_weights.size() != m.n ||
+        b.morph_deltas.size() != size_t(b.morph_count) * m.n)
+        throw Error("MeshDeformer::set_skin: the binding is for another mesh (" +
+                    std::to_string(b.joint_indices.size()) + " vertices, this mesh has " + std::to_string(m.n) + ")");
     if (b.joint_count == 0) throw Error("MeshDeformer::set_skin: no joints");
     for (size_t v = 0; v < m.n; ++v)
         for (int c = 0; c < 4; ++c)
@@ -211,11 +231,15 @@ void MeshDeformer::set_skin(const SkinBinding& b)
     m.joints = make_buffer(m.ctx, b.joint_indices, "deform: joint indices");
     m.weights = make_buffer(m.ctx, b.joint_weights, "deform: joint weights");
     m.morph_weights = make_buffer(m.ctx, std::vector<float>(b.morph_count, 0.0f), "deform: morph weights", true);
-    m.joint_matrices = make_buffer(m.ctx, std::vector<glm::mat4>(b.joint_count, glm::mat4(1.0f)), "deform: joint matrices", true);
+    m.joint_matrices =
+        make_buffer(m.ctx, std::vector<glm::mat4>(b.joint_count, glm::mat4(1.0f)), "deform: joint matrices", true);
     m.binding_sizes = Impl::SkinSizes{b.joint_count, b.morph_count};
 }
 
-DeformTimings MeshDeformer::deform(const ProceduralDeformer& d, double t) { return impl_->run(impl_->procedural_pass(d, t)); }
+DeformTimings MeshDeformer::deform(const ProceduralDeformer& d, double t)
+{
+    return impl_->run(impl_->procedural_pass(d, t));
+}
 
 DeformTimings MeshDeformer::deform(const Pose& pose) { return impl_->run(impl_->skin_pass(pose)); }
 
@@ -224,7 +248,10 @@ void MeshDeformer::record(VkCommandBuffer cmd, const ProceduralDeformer& d, doub
     impl_->record(cmd, impl_->procedural_pass(d, t), nullptr);
 }
 
-void MeshDeformer::record(VkCommandBuffer cmd, const Pose& pose) { impl_->record(cmd, impl_->skin_pass(pose), nullptr); }
+void MeshDeformer::record(VkCommandBuffer cmd, const Pose& pose)
+{
+    impl_->record(cmd, impl_->skin_pass(pose), nullptr);
+}
 
 DeformedVertices MeshDeformer::read() const
 {
@@ -254,7 +281,8 @@ PreparedMesh deformed_mesh(const PreparedMesh& rest, DeformedVertices deformed)
                     std::to_string(rest.vertex_count()));
     glm::vec3 lo = out.positions[0], hi = out.positions[0];
     for (const auto& p : out.positions) {
-        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) throw Error("deformed_mesh: a deformed position is not finite");
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+            throw Error("deformed_mesh: a deformed position is not finite");
         lo = glm::min(lo, p), hi = glm::max(hi, p);
     }
     out.bbox_min = lo, out.bbox_max = hi;

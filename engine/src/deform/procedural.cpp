@@ -48,12 +48,16 @@ void ProceduralDeformer::validate() const
     if (axis > 2) bad("axis " + std::to_string(axis) + " is not 0 (x), 1 (y) or 2 (z)");
     for (int c = 0; c < 3; ++c)
         if (!std::isfinite(origin[c])) bad("origin is not finite");
-    if (!(length > 0.0f) || !std::isfinite(length)) bad("length " + std::to_string(length) + " must be positive and finite");
+    if (!(length > 0.0f) || !std::isfinite(length))
+        bad("length " + std::to_string(length) + " must be positive and finite");
     if (!std::isfinite(amplitude)) bad("amplitude is not finite");
     if (kind == DeformerKind::Squash && !(std::abs(amplitude) < 1.0f))
-        bad("squash amplitude " + std::to_string(amplitude) + " must be in (-1, 1) (the stretch factor 1 ± amplitude stays positive)");
-    if (!(wavelength > 0.0f) || !std::isfinite(wavelength)) bad("wavelength " + std::to_string(wavelength) + " must be positive and finite");
-    if (!(period > 0.0f) || !std::isfinite(period)) bad("period " + std::to_string(period) + " must be positive and finite");
+        bad("squash amplitude " + std::to_string(amplitude) +
+            " must be in (-1, 1) (the stretch factor 1 ± amplitude stays positive)");
+    if (!(wavelength > 0.0f) || !std::isfinite(wavelength))
+        bad("wavelength " + std::to_string(wavelength) + " must be positive and finite");
+    if (!(period > 0.0f) || !std::isfinite(period))
+        bad("period " + std::to_string(period) + " must be positive and finite");
 }
 
 }  // namespace jade

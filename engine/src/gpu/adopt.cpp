@@ -30,7 +30,8 @@ Context::Context(const AdoptedVulkan& host, const ContextOptions& options)
         reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(gdpa(device_, "vkCmdPushDescriptorSetKHR"));
     if (!cmd_push_descriptor_set) throw Error("adopted Vulkan device: vkCmdPushDescriptorSetKHR cannot be loaded");
     // Null when the host's instance has no VK_EXT_debug_utils: objects are then not named.
-    set_object_name_ = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(gipa(instance_, "vkSetDebugUtilsObjectNameEXT"));
+    set_object_name_ =
+        reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(gipa(instance_, "vkSetDebugUtilsObjectNameEXT"));
     try {
         create_submission_objects();
         fill_info();
@@ -125,21 +126,27 @@ void Context::check_adopted(const AdoptedVulkan& host)
     VkPhysicalDeviceProperties props;
     vkGetPhysicalDeviceProperties(host.physical_device, &props);
     if (props.apiVersion < VK_API_VERSION_1_3)
-        missing.push_back("device Vulkan 1.3 (" + std::string(props.deviceName) + " has " + version(props.apiVersion) + ")");
+        missing.push_back("device Vulkan 1.3 (" + std::string(props.deviceName) + " has " + version(props.apiVersion) +
+                          ")");
     uint32_t n = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(host.physical_device, &n, nullptr);
     std::vector<VkQueueFamilyProperties> families(n);
     vkGetPhysicalDeviceQueueFamilyProperties(host.physical_device, &n, families.data());
     if (host.queue_family >= n) {
-        missing.push_back("queue family " + std::to_string(host.queue_family) + " (the device has " + std::to_string(n) + ")");
+        missing.push_back("queue family " + std::to_string(host.queue_family) + " (the device has " +
+                          std::to_string(n) + ")");
     } else {
         const auto& f = families[host.queue_family];
-        if (!(f.queueFlags & VK_QUEUE_GRAPHICS_BIT)) missing.push_back("graphics on queue family " + std::to_string(host.queue_family));
-        if (!(f.queueFlags & VK_QUEUE_COMPUTE_BIT)) missing.push_back("compute on queue family " + std::to_string(host.queue_family));
-        if (f.timestampValidBits == 0) missing.push_back("timestamps on queue family " + std::to_string(host.queue_family));
+        if (!(f.queueFlags & VK_QUEUE_GRAPHICS_BIT))
+            missing.push_back("graphics on queue family " + std::to_string(host.queue_family));
+        if (!(f.queueFlags & VK_QUEUE_COMPUTE_BIT))
+            missing.push_back("compute on queue family " + std::to_string(host.queue_family));
+        if (f.timestampValidBits == 0)
+            missing.push_back("timestamps on queue family " + std::to_string(host.queue_family));
     }
     for (const char* ext : jade::Context::required_device_extensions())
-        if (std::find(host.enabled_extensions.begin(), host.enabled_extensions.end(), ext) == host.enabled_extensions.end())
+        if (std::find(host.enabled_extensions.begin(), host.enabled_extensions.end(), ext) ==
+            host.enabled_extensions.end())
             missing.push_back(std::string("extension ") + ext);
     RequiredFeatures f;
     f.read(host.enabled_features);
@@ -195,8 +202,8 @@ VkDevice HostDeviceSetup::create(VkPhysicalDevice physical, uint32_t queue_famil
     return device;
 }
 
-AdoptedVulkan HostDeviceSetup::adopted(VkInstance instance, VkPhysicalDevice physical, VkDevice device, uint32_t queue_family,
-                                       VkQueue queue) const
+AdoptedVulkan HostDeviceSetup::adopted(VkInstance instance, VkPhysicalDevice physical, VkDevice device,
+                                       uint32_t queue_family, VkQueue queue) const
 {
     AdoptedVulkan a;
     a.instance = instance;

@@ -29,7 +29,8 @@ BufferLimits limits_of(const Context& ctx, bool host_visible)
     l.max_storage_range = ctx.limits().maxStorageBufferRange;
     l.max_allocation = ctx.max_memory_allocation_size();
     // The buffer's memory type must have these flags (allocate_memory); its heap is one of theirs.
-    const VkMemoryPropertyFlags required = host_visible ? kHostFlags : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+    const VkMemoryPropertyFlags required =
+        host_visible ? kHostFlags : VkMemoryPropertyFlags(VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     const auto& mem = ctx.memory_properties();
     for (uint32_t i = 0; i < mem.memoryTypeCount; ++i)
         if ((mem.memoryTypes[i].propertyFlags & required) == required)
@@ -43,7 +44,8 @@ void check_buffer_size(const BufferLimits& limits, VkDeviceSize bytes, VkBufferU
                        const char* name)
 {
     const std::string what = std::string("GPU buffer '") + name + "' of " + mib(bytes);
-    if ((usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) && binding == StorageBinding::Whole && bytes > limits.max_storage_range)
+    if ((usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) && binding == StorageBinding::Whole &&
+        bytes > limits.max_storage_range)
         throw Error(what + " exceeds the device's maxStorageBufferRange of " + mib(limits.max_storage_range) +
                     " (the largest storage buffer a shader can bind)");
     if (limits.max_allocation && bytes > limits.max_allocation)

@@ -26,13 +26,15 @@ public:
     Buffer(Context& ctx, VkDeviceSize bytes, VkBufferUsageFlags usage, const char* name, bool host_visible = false,
            StorageBinding binding = StorageBinding::Whole);
 
-    template <class T> static Buffer from(Context& ctx, std::span<const T> data, VkBufferUsageFlags usage, const char* name)
+    template <class T>
+    static Buffer from(Context& ctx, std::span<const T> data, VkBufferUsageFlags usage, const char* name)
     {
         Buffer b(ctx, data.size_bytes(), usage, name);
         b.upload(data.data(), data.size_bytes());
         return b;
     }
-    template <class T> static Buffer from(Context& ctx, const std::vector<T>& data, VkBufferUsageFlags usage, const char* name)
+    template <class T>
+    static Buffer from(Context& ctx, const std::vector<T>& data, VkBufferUsageFlags usage, const char* name)
     {
         return from(ctx, std::span<const T>(data), usage, name);
     }
@@ -55,7 +57,7 @@ private:
     Context* ctx_ = nullptr;
     VkDeviceSize size_ = 0;
     void* mapped_ = nullptr;
-    OwnedMemory memory_;   // declared before buffer_: the buffer is destroyed first
+    OwnedMemory memory_;  // declared before buffer_: the buffer is destroyed first
     OwnedBuffer buffer_;
 };
 

@@ -73,10 +73,9 @@ bool has_device_extension(VkPhysicalDevice pd, const char* name)
 }
 
 constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
-constexpr const char* kNoDevice =
-    "no Vulkan device found. Install a Vulkan driver: on Debian/Ubuntu `apt-get install "
-    "mesa-vulkan-drivers` gives lavapipe, a software device that runs everywhere "
-    "(third_party/install_deps.sh installs it)";
+constexpr const char* kNoDevice = "no Vulkan device found. Install a Vulkan driver: on Debian/Ubuntu `apt-get install "
+                                  "mesa-vulkan-drivers` gives lavapipe, a software device that runs everywhere "
+                                  "(third_party/install_deps.sh installs it)";
 
 struct Candidate {
     VkPhysicalDevice device;
@@ -88,8 +87,9 @@ struct Candidate {
 // Why a device cannot run Jade, or "" when it can.
 std::string rejection(VkPhysicalDevice pd, const VkPhysicalDeviceProperties& props, uint32_t& family)
 {
-    if (props.apiVersion < VK_API_VERSION_1_3) return "needs Vulkan 1.3, device has " +
-        std::to_string(VK_API_VERSION_MAJOR(props.apiVersion)) + "." + std::to_string(VK_API_VERSION_MINOR(props.apiVersion));
+    if (props.apiVersion < VK_API_VERSION_1_3)
+        return "needs Vulkan 1.3, device has " + std::to_string(VK_API_VERSION_MAJOR(props.apiVersion)) + "." +
+               std::to_string(VK_API_VERSION_MINOR(props.apiVersion));
     uint32_t n = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, nullptr);
     std::vector<VkQueueFamilyProperties> families(n);
@@ -97,7 +97,10 @@ std::string rejection(VkPhysicalDevice pd, const VkPhysicalDeviceProperties& pro
     family = UINT32_MAX;
     for (uint32_t i = 0; i < n; ++i) {
         VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
-        if ((families[i].queueFlags & need) == need && families[i].timestampValidBits > 0) { family = i; break; }
+        if ((families[i].queueFlags & need) == need && families[i].timestampValidBits > 0) {
+            family = i;
+            break;
+        }
     }
     if (family == UINT32_MAX) return "no queue family with graphics, compute and timestamps";
     if (!has_device_extension(pd, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME)) return "no VK_KHR_push_descriptor";
@@ -118,15 +121,26 @@ std::string rejection(VkPhysicalDevice pd, const VkPhysicalDeviceProperties& pro
 const char* result_name(VkResult r)
 {
     switch (r) {
-#define JADE_CASE(x) case x: return #x;
-    JADE_CASE(VK_SUCCESS) JADE_CASE(VK_NOT_READY) JADE_CASE(VK_TIMEOUT) JADE_CASE(VK_INCOMPLETE)
-    JADE_CASE(VK_ERROR_OUT_OF_HOST_MEMORY) JADE_CASE(VK_ERROR_OUT_OF_DEVICE_MEMORY)
-    JADE_CASE(VK_ERROR_INITIALIZATION_FAILED) JADE_CASE(VK_ERROR_DEVICE_LOST)
-    JADE_CASE(VK_ERROR_MEMORY_MAP_FAILED) JADE_CASE(VK_ERROR_LAYER_NOT_PRESENT)
-    JADE_CASE(VK_ERROR_EXTENSION_NOT_PRESENT) JADE_CASE(VK_ERROR_FEATURE_NOT_PRESENT)
-    JADE_CASE(VK_ERROR_INCOMPATIBLE_DRIVER) JADE_CASE(VK_ERROR_TOO_MANY_OBJECTS)
-    JADE_CASE(VK_ERROR_FORMAT_NOT_SUPPORTED) JADE_CASE(VK_ERROR_FRAGMENTED_POOL)
-    JADE_CASE(VK_ERROR_OUT_OF_POOL_MEMORY) JADE_CASE(VK_ERROR_UNKNOWN)
+#define JADE_CASE(x)                                                                                                   \
+    case x: return #x;
+        JADE_CASE(VK_SUCCESS)
+        JADE_CASE(VK_NOT_READY)
+        JADE_CASE(VK_TIMEOUT)
+        JADE_CASE(VK_INCOMPLETE)
+        JADE_CASE(VK_ERROR_OUT_OF_HOST_MEMORY)
+        JADE_CASE(VK_ERROR_OUT_OF_DEVICE_MEMORY)
+        JADE_CASE(VK_ERROR_INITIALIZATION_FAILED)
+        JADE_CASE(VK_ERROR_DEVICE_LOST)
+        JADE_CASE(VK_ERROR_MEMORY_MAP_FAILED)
+        JADE_CASE(VK_ERROR_LAYER_NOT_PRESENT)
+        JADE_CASE(VK_ERROR_EXTENSION_NOT_PRESENT)
+        JADE_CASE(VK_ERROR_FEATURE_NOT_PRESENT)
+        JADE_CASE(VK_ERROR_INCOMPATIBLE_DRIVER)
+        JADE_CASE(VK_ERROR_TOO_MANY_OBJECTS)
+        JADE_CASE(VK_ERROR_FORMAT_NOT_SUPPORTED)
+        JADE_CASE(VK_ERROR_FRAGMENTED_POOL)
+        JADE_CASE(VK_ERROR_OUT_OF_POOL_MEMORY)
+        JADE_CASE(VK_ERROR_UNKNOWN)
 #undef JADE_CASE
     default: return "VkResult(unknown)";
     }
@@ -176,12 +190,15 @@ void Context::destroy()
 
 void Context::log(std::string_view line) const
 {
-    if (log_) log_(line);
-    else std::fprintf(stderr, "%.*s\n", int(line.size()), line.data());
+    if (log_)
+        log_(line);
+    else
+        std::fprintf(stderr, "%.*s\n", int(line.size()), line.data());
 }
 
 VKAPI_ATTR VkBool32 VKAPI_CALL Context::on_debug_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
-    VkDebugUtilsMessageTypeFlagsEXT, const VkDebugUtilsMessengerCallbackDataEXT* data, void* user)
+                                                         VkDebugUtilsMessageTypeFlagsEXT,
+                                                         const VkDebugUtilsMessengerCallbackDataEXT* data, void* user)
 {
     auto* self = static_cast<Context*>(user);
     self->validation_messages_++;
@@ -193,7 +210,8 @@ VKAPI_ATTR VkBool32 VKAPI_CALL Context::on_debug_message(VkDebugUtilsMessageSeve
 void Context::create_instance(const ContextOptions& options)
 {
     const bool sync_validation = options.synchronization_validation || env_flag("JADE_SYNC_VALIDATION");
-    const bool validation = options.validation || env_flag("JADE_VALIDATION") || sync_validation;  // sync needs the layer
+    const bool validation =
+        options.validation || env_flag("JADE_VALIDATION") || sync_validation;  // sync needs the layer
 
     std::vector<const char*> layers, extensions;
     bool debug_utils = has_instance_extension(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
@@ -217,8 +235,10 @@ void Context::create_instance(const ContextOptions& options)
     features.pEnabledValidationFeatures = &sync_feature;
 
     VkDebugUtilsMessengerCreateInfoEXT messenger{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-    messenger.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-    messenger.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+    messenger.messageSeverity =
+        VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    messenger.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                            VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
                             VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
     messenger.pfnUserCallback = &Context::on_debug_message;
     messenger.pUserData = this;
@@ -318,8 +338,8 @@ void Context::create_device()
     ci.ppEnabledExtensionNames = extensions;
     check(vkCreateDevice(physical_, &ci, nullptr, &device_), "vkCreateDevice");
     vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
-    cmd_push_descriptor_set = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
-        vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
+    cmd_push_descriptor_set =
+        reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
     create_submission_objects();
 }
 
@@ -359,7 +379,8 @@ void Context::fill_info()
     info_.timestamp_period_ns = l.timestampPeriod;
     for (uint32_t i = 0; i < memory_.memoryHeapCount; ++i)
         if (memory_.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
-            info_.device_local_heap_bytes = std::max<uint64_t>(info_.device_local_heap_bytes, memory_.memoryHeaps[i].size);
+            info_.device_local_heap_bytes =
+                std::max<uint64_t>(info_.device_local_heap_bytes, memory_.memoryHeaps[i].size);
 }
 
 void Context::submit_and_wait(const std::function<void(VkCommandBuffer)>& record)
@@ -371,7 +392,9 @@ void Context::submit_and_wait(const std::function<void(VkCommandBuffer)>& record
     VkCommandBuffer cmd;
     check(vkAllocateCommandBuffers(device_, &ai, &cmd), "vkAllocateCommandBuffers");
     struct Free {
-        VkDevice d; VkCommandPool p; VkCommandBuffer c;
+        VkDevice d;
+        VkCommandPool p;
+        VkCommandBuffer c;
         ~Free() { vkFreeCommandBuffers(d, p, 1, &c); }
     } free_later{device_, command_pool_, cmd};
 
@@ -380,8 +403,8 @@ void Context::submit_and_wait(const std::function<void(VkCommandBuffer)>& record
     check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
     record(cmd);
     // Make every write of the submission visible to the host (mapped read-back after the fence).
-    memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
-                   VK_ACCESS_2_HOST_READ_BIT);
+    memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
+                   VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
     check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
 
     VkCommandBufferSubmitInfo cb{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
@@ -457,7 +480,9 @@ const DeviceInfo& Context::device_info() const { return gpu_->info(); }
 uint64_t Context::validation_messages() const { return gpu_->validation_messages(); }
 std::vector<std::string> Context::list_devices() { return gpu::Context::list_devices(); }
 Context::Context(const AdoptedVulkan& host, const ContextOptions& options)
-    : gpu_(std::make_unique<gpu::Context>(host, options)) {}
+    : gpu_(std::make_unique<gpu::Context>(host, options))
+{
+}
 bool Context::adopted() const { return gpu_->adopted(); }
 ObjectCounts Context::created_objects() const { return gpu_->created_objects(); }
 gpu::Context& Context::gpu() { return *gpu_; }

@@ -64,7 +64,8 @@ public:
     void count_created(VkObjectType type, bool compute = false, uint64_t device_bytes = 0) const;
     ObjectCounts created_objects() const
     {
-        return {compute_pipelines_.load(), graphics_pipelines_.load(), buffers_.load(), images_.load(), device_buffer_bytes_.load()};
+        return {compute_pipelines_.load(), graphics_pipelines_.load(), buffers_.load(), images_.load(),
+                device_buffer_bytes_.load()};
     }
 
     void log(std::string_view line) const;
@@ -77,7 +78,8 @@ public:
 
 private:
     static VKAPI_ATTR VkBool32 VKAPI_CALL on_debug_message(VkDebugUtilsMessageSeverityFlagBitsEXT,
-        VkDebugUtilsMessageTypeFlagsEXT, const VkDebugUtilsMessengerCallbackDataEXT*, void*);
+                                                           VkDebugUtilsMessageTypeFlagsEXT,
+                                                           const VkDebugUtilsMessengerCallbackDataEXT*, void*);
     void create_instance(const ContextOptions& options);
     void choose_physical_device(const ContextOptions& options);
     void create_device();
@@ -90,7 +92,8 @@ private:
     bool verbose_ = false;
     bool adopted_ = false;  // instance and device are the host's: never destroyed here
     std::atomic<uint64_t> validation_messages_{0};
-    mutable std::atomic<uint64_t> compute_pipelines_{0}, graphics_pipelines_{0}, buffers_{0}, images_{0}, device_buffer_bytes_{0};
+    mutable std::atomic<uint64_t> compute_pipelines_{0}, graphics_pipelines_{0}, buffers_{0}, images_{0},
+        device_buffer_bytes_{0};
 
     VkInstance instance_ = VK_NULL_HANDLE;
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;

@@ -27,7 +27,8 @@ static VkImageAspectFlags aspect_of(VkFormat format)
                                                                            : VK_IMAGE_ASPECT_COLOR_BIT;
 }
 
-void image_barrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, const ImageUse& from, const ImageUse& to)
+void image_barrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, const ImageUse& from,
+                   const ImageUse& to)
 {
     VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
     b.srcStageMask = from.stage;
@@ -84,7 +85,8 @@ Image::Image(Context& ctx, const ImageDesc& desc)
     vi.format = desc.format;
     vi.subresourceRange = {aspect_, 0, 1, 0, 1};
     VkImageView view;
-    check(vkCreateImageView(ctx.device(), &vi, nullptr, &view), (std::string("vkCreateImageView ") + desc.name).c_str());
+    check(vkCreateImageView(ctx.device(), &vi, nullptr, &view),
+          (std::string("vkCreateImageView ") + desc.name).c_str());
     view_ = OwnedImageView(ctx.device(), view);
     ctx.set_name(view, VK_OBJECT_TYPE_IMAGE_VIEW, desc.name);
 }

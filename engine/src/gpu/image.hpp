@@ -28,13 +28,13 @@ inline constexpr ImageUse kSampled{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                                    VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
                                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                                    VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
-inline constexpr ImageUse kColorAttachment{VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                                           VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                                           VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT};
-inline constexpr ImageUse kDepthAttachment{VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                                           VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                                           VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
-                                               VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
+inline constexpr ImageUse kColorAttachment{
+    VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+    VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT};
+inline constexpr ImageUse kDepthAttachment{
+    VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+    VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+    VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
 inline constexpr ImageUse kTransferSrc{VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
                                        VK_ACCESS_2_TRANSFER_READ_BIT};
 inline constexpr ImageUse kTransferDst{VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
@@ -43,7 +43,8 @@ inline constexpr ImageUse kTransferDst{VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_
 
 /// Records one image barrier from `from` to `to` over the whole image (all mips and layers of
 /// `aspect`). Works on any image, including ones Jade does not own.
-void image_barrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, const ImageUse& from, const ImageUse& to);
+void image_barrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, const ImageUse& from,
+                   const ImageUse& to);
 
 struct ImageDesc {
     const char* name = "image";

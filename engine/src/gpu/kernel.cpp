@@ -23,7 +23,8 @@ OwnedShaderModule make_shader_module(const Context& ctx, std::span<const uint32_
     return OwnedShaderModule(ctx.device(), m);
 }
 
-OwnedSetLayout make_push_set_layout(const Context& ctx, std::span<const VkDescriptorType> types, VkShaderStageFlags stages)
+OwnedSetLayout make_push_set_layout(const Context& ctx, std::span<const VkDescriptorType> types,
+                                    VkShaderStageFlags stages)
 {
     std::vector<VkDescriptorSetLayoutBinding> b(types.size());
     for (uint32_t i = 0; i < types.size(); ++i) b[i] = {i, types[i], 1, stages, nullptr};
@@ -36,8 +37,8 @@ OwnedSetLayout make_push_set_layout(const Context& ctx, std::span<const VkDescri
     return OwnedSetLayout(ctx.device(), l);
 }
 
-OwnedPipelineLayout make_pipeline_layout(const Context& ctx, VkDescriptorSetLayout set_layout, VkShaderStageFlags stages,
-                                         uint32_t push_size, const char* name)
+OwnedPipelineLayout make_pipeline_layout(const Context& ctx, VkDescriptorSetLayout set_layout,
+                                         VkShaderStageFlags stages, uint32_t push_size, const char* name)
 {
     if (push_size > ctx.limits().maxPushConstantsSize)
         throw Error(std::string(name) + ": push constants of " + std::to_string(push_size) +
@@ -116,12 +117,15 @@ void push_bindings(const Context& ctx, VkCommandBuffer cmd, VkPipelineBindPoint 
         if (types[i] == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER || types[i] == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER) {
             if (!b.buffer) throw Error(std::string(who) + ": binding " + std::to_string(i) + " needs a buffer");
             if (b.range != VK_WHOLE_SIZE && b.range > ctx.limits().maxStorageBufferRange)
-                throw Error(std::string(who) + ": binding " + std::to_string(i) + " range of " + std::to_string(b.range) +
-                            " bytes exceeds maxStorageBufferRange " + std::to_string(ctx.limits().maxStorageBufferRange));
+                throw Error(std::string(who) + ": binding " + std::to_string(i) + " range of " +
+                            std::to_string(b.range) + " bytes exceeds maxStorageBufferRange " +
+                            std::to_string(ctx.limits().maxStorageBufferRange));
             buffers[i] = {b.buffer, b.offset, b.range};
             w.pBufferInfo = &buffers[i];
-        } else if (types[i] == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER || types[i] == VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER) {
-            if (!b.texel_view) throw Error(std::string(who) + ": binding " + std::to_string(i) + " needs a texel-buffer view");
+        } else if (types[i] == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER ||
+                   types[i] == VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER) {
+            if (!b.texel_view)
+                throw Error(std::string(who) + ": binding " + std::to_string(i) + " needs a texel-buffer view");
             w.pTexelBufferView = &b.texel_view;
         } else {
             if (!b.view) throw Error(std::string(who) + ": binding " + std::to_string(i) + " needs an image");
@@ -140,20 +144,23 @@ void Kernel::bind(VkCommandBuffer cmd, const void* push, std::initializer_list<B
     if (push_size_) vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, push_size_, push);
 }
 
-void Kernel::dispatch_3d(VkCommandBuffer cmd, glm::uvec3 threads, const void* push, std::initializer_list<Binding> bindings) const
+void Kernel::dispatch_3d(VkCommandBuffer cmd, glm::uvec3 threads, const void* push,
+                         std::initializer_list<Binding> bindings) const
 {
     if (threads.x == 0 || threads.y == 0 || threads.z == 0) return;
     const auto& lim = ctx_->limits();
     const uint32_t gx = (threads.x + local_size_ - 1) / local_size_;
     if (gx > lim.maxComputeWorkGroupCount[0] || threads.y > lim.maxComputeWorkGroupCount[1] ||
         threads.z > lim.maxComputeWorkGroupCount[2])
-        throw Error(std::string("kernel ") + name_ + ": a " + std::to_string(threads.x) + "×" + std::to_string(threads.y) + "×" +
-                    std::to_string(threads.z) + " dispatch exceeds the device's work-group limits");
+        throw Error(std::string("kernel ") + name_ + ": a " + std::to_string(threads.x) + "×" +
+                    std::to_string(threads.y) + "×" + std::to_string(threads.z) +
+                    " dispatch exceeds the device's work-group limits");
     bind(cmd, push, bindings);
     vkCmdDispatch(cmd, gx, threads.y, threads.z);
 }
 
-void Kernel::dispatch(VkCommandBuffer cmd, uint64_t threads, const void* push, std::initializer_list<Binding> bindings) const
+void Kernel::dispatch(VkCommandBuffer cmd, uint64_t threads, const void* push,
+                      std::initializer_list<Binding> bindings) const
 {
     if (threads == 0) return;
     bind(cmd, push, bindings);
@@ -164,7 +171,8 @@ void Kernel::dispatch(VkCommandBuffer cmd, uint64_t threads, const void* push, s
     uint64_t gx = std::min(groups, max_x);
     uint64_t gy = (groups + gx - 1) / gx;
     if (gy > lim.maxComputeWorkGroupCount[1])
-        throw Error(std::string("kernel ") + name_ + ": " + std::to_string(threads) + " threads exceed the device's work-group limits");
+        throw Error(std::string("kernel ") + name_ + ": " + std::to_string(threads) +
+                    " threads exceed the device's work-group limits");
     vkCmdDispatch(cmd, uint32_t(gx), uint32_t(gy), 1);
 }
 

@@ -47,7 +47,7 @@ struct Binding {
     VkImageLayout layout = VK_IMAGE_LAYOUT_GENERAL;
     VkSampler sampler = VK_NULL_HANDLE;
 
-    Binding(const Buffer& b);  // NOLINT: implicit on purpose, dispatch(..., {a, b, c})
+    Binding(const Buffer& b);     // NOLINT: implicit on purpose, dispatch(..., {a, b, c})
     Binding(const TexelView& v);  // NOLINT: as above
     Binding(VkBuffer b, VkDeviceSize off = 0, VkDeviceSize r = VK_WHOLE_SIZE) : buffer(b), offset(off), range(r) {}
     static Binding image(VkImageView v, VkImageLayout l, VkSampler s = VK_NULL_HANDLE)
@@ -65,9 +65,11 @@ public:
 
     /// Records one dispatch of `threads` threads. Checks the push size and the number and
     /// ranges of bindings (against maxStorageBufferRange) before recording.
-    void dispatch(VkCommandBuffer cmd, uint64_t threads, const void* push, std::initializer_list<Binding> bindings) const;
+    void dispatch(VkCommandBuffer cmd, uint64_t threads, const void* push,
+                  std::initializer_list<Binding> bindings) const;
     template <class Push>
-    void dispatch(VkCommandBuffer cmd, uint64_t threads, const Push& push, std::initializer_list<Binding> bindings) const
+    void dispatch(VkCommandBuffer cmd, uint64_t threads, const Push& push,
+                  std::initializer_list<Binding> bindings) const
     {
         check_push(sizeof(Push));
         dispatch(cmd, threads, static_cast<const void*>(&push), bindings);
@@ -76,9 +78,11 @@ public:
     /// Records one dispatch of threads.x × threads.y × threads.z threads, groups of local_size
     /// along x: shaders index cells with gl_GlobalInvocationID (x compared with a count they
     /// receive), with no division to turn a linear index into three.
-    void dispatch_3d(VkCommandBuffer cmd, glm::uvec3 threads, const void* push, std::initializer_list<Binding> bindings) const;
+    void dispatch_3d(VkCommandBuffer cmd, glm::uvec3 threads, const void* push,
+                     std::initializer_list<Binding> bindings) const;
     template <class Push>
-    void dispatch_3d(VkCommandBuffer cmd, glm::uvec3 threads, const Push& push, std::initializer_list<Binding> bindings) const
+    void dispatch_3d(VkCommandBuffer cmd, glm::uvec3 threads, const Push& push,
+                     std::initializer_list<Binding> bindings) const
     {
         check_push(sizeof(Push));
         dispatch_3d(cmd, threads, static_cast<const void*>(&push), bindings);
@@ -96,7 +100,7 @@ private:
     const char* name_ = "";
     std::vector<VkDescriptorType> bindings_;
     uint32_t push_size_ = 0, local_size_ = 1;
-    OwnedSetLayout set_layout_;   // destroyed after the layout and pipeline that use it
+    OwnedSetLayout set_layout_;  // destroyed after the layout and pipeline that use it
     OwnedPipelineLayout layout_;
     OwnedPipeline pipeline_;
 };
@@ -106,12 +110,13 @@ void push_bindings(const Context& ctx, VkCommandBuffer cmd, VkPipelineBindPoint 
                    std::span<const VkDescriptorType> types, std::initializer_list<Binding> bindings, const char* who);
 
 /// A push-descriptor set layout for `types` visible to `stages`.
-OwnedSetLayout make_push_set_layout(const Context& ctx, std::span<const VkDescriptorType> types, VkShaderStageFlags stages);
+OwnedSetLayout make_push_set_layout(const Context& ctx, std::span<const VkDescriptorType> types,
+                                    VkShaderStageFlags stages);
 
 /// The pipeline layout every Jade pipeline has: one push-descriptor set and push constants
 /// (`push_size` bytes, checked against the device limit) for `stages`.
-OwnedPipelineLayout make_pipeline_layout(const Context& ctx, VkDescriptorSetLayout set_layout, VkShaderStageFlags stages,
-                                         uint32_t push_size, const char* name);
+OwnedPipelineLayout make_pipeline_layout(const Context& ctx, VkDescriptorSetLayout set_layout,
+                                         VkShaderStageFlags stages, uint32_t push_size, const char* name);
 
 OwnedShaderModule make_shader_module(const Context& ctx, std::span<const uint32_t> spirv, const char* name);
 

@@ -18,7 +18,8 @@ GraphicsPipeline::GraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& des
 
     std::vector<VkSpecializationMapEntry> entries(desc.constants.size());
     for (uint32_t i = 0; i < entries.size(); ++i) entries[i] = {i, i * 4u, 4};
-    VkSpecializationInfo spec{uint32_t(entries.size()), entries.data(), desc.constants.size() * 4, desc.constants.data()};
+    VkSpecializationInfo spec{uint32_t(entries.size()), entries.data(), desc.constants.size() * 4,
+                              desc.constants.data()};
 
     OwnedShaderModule vs = make_shader_module(ctx, desc.vertex_spirv, desc.name);
     OwnedShaderModule fs = make_shader_module(ctx, desc.fragment_spirv, desc.name);

@@ -11,7 +11,8 @@ TexelView::TexelView(Context& ctx, const Buffer& buffer, VkFormat format, uint32
 {
     const VkDeviceSize texels = buffer.size() / texel_bytes;
     if (texels > ctx.limits().maxTexelBufferElements)
-        throw Error(std::string(name) + ": " + std::to_string(texels) + " texels exceed the device's maxTexelBufferElements (" +
+        throw Error(std::string(name) + ": " + std::to_string(texels) +
+                    " texels exceed the device's maxTexelBufferElements (" +
                     std::to_string(ctx.limits().maxTexelBufferElements) + ")");
     VkBufferViewCreateInfo ci{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
     ci.buffer = buffer.handle();

@@ -37,7 +37,8 @@ std::vector<std::pair<std::string, double>> GpuTimer::stages() const
                                 VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
           "vkGetQueryPoolResults");
     const double ms_per_tick = ctx_->limits().timestampPeriod * 1e-6;
-    for (size_t i = 0; i < names_.size(); ++i) out.emplace_back(names_[i], double(ticks[i + 1] - ticks[i]) * ms_per_tick);
+    for (size_t i = 0; i < names_.size(); ++i)
+        out.emplace_back(names_[i], double(ticks[i + 1] - ticks[i]) * ms_per_tick);
     return out;
 }
 

@@ -18,8 +18,8 @@ using OwnedQueryPool = Owned<VkQueryPool, vkDestroyQueryPool>;
 class GpuTimer {
 public:
     GpuTimer(Context& ctx, uint32_t max_stages = 32);
-    void begin(VkCommandBuffer cmd);  ///< resets the pool, writes the first timestamp
-    void mark(VkCommandBuffer cmd, std::string stage); ///< ends `stage` (it began at the last mark)
+    void begin(VkCommandBuffer cmd);                             ///< resets the pool, writes the first timestamp
+    void mark(VkCommandBuffer cmd, std::string stage);           ///< ends `stage` (it began at the last mark)
     std::vector<std::pair<std::string, double>> stages() const;  ///< ms per stage
     double total_ms() const;
 

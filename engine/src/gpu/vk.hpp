@@ -22,8 +22,7 @@ inline void check(VkResult result, const char* what)
 /// Owns one Vulkan object: destroys it with `destroy(device, handle, nullptr)` unless it is
 /// VK_NULL_HANDLE. Movable, not copyable. Members of a class are destroyed in reverse order of
 /// declaration, so declare owners after what they depend on.
-template <class T, void (*Destroy)(VkDevice, T, const VkAllocationCallbacks*)>
-class Owned {
+template <class T, void (*Destroy)(VkDevice, T, const VkAllocationCallbacks*)> class Owned {
 public:
     Owned() = default;
     Owned(VkDevice device, T handle) : device_(device), handle_(handle) {}

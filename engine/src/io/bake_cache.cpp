@@ -138,12 +138,15 @@ std::optional<BakeResult> BakeCache::load(uint64_t key, size_t vertex_count, std
     r.ao.resize(vertex_count);
     r.tm.resize(vertex_count);
     if (h.method_used & kHasThickness) r.thickness.resize(vertex_count);
-    if (h.method_used & kHasScatteringNormal) r.scattering_normal.resize(vertex_count), r.normal_spread.resize(vertex_count);
+    if (h.method_used & kHasScatteringNormal)
+        r.scattering_normal.resize(vertex_count), r.normal_spread.resize(vertex_count);
     if (!in.read(reinterpret_cast<char*>(r.ao.data()), std::streamsize(vertex_count * sizeof(float))) ||
         !in.read(reinterpret_cast<char*>(r.tm.data()), std::streamsize(vertex_count * sizeof(glm::vec3))) ||
         !in.read(reinterpret_cast<char*>(r.thickness.data()), std::streamsize(r.thickness.size() * sizeof(float))) ||
-        !in.read(reinterpret_cast<char*>(r.scattering_normal.data()), std::streamsize(r.scattering_normal.size() * sizeof(glm::vec3))) ||
-        !in.read(reinterpret_cast<char*>(r.normal_spread.data()), std::streamsize(r.normal_spread.size() * sizeof(glm::vec3))))
+        !in.read(reinterpret_cast<char*>(r.scattering_normal.data()),
+                 std::streamsize(r.scattering_normal.size() * sizeof(glm::vec3))) ||
+        !in.read(reinterpret_cast<char*>(r.normal_spread.data()),
+                 std::streamsize(r.normal_spread.size() * sizeof(glm::vec3))))
         return fail("truncated");
     if (in.peek() != std::char_traits<char>::eof()) return fail("trailing bytes");
     if (payload_checksum(r) != h.checksum) return fail("checksum mismatch");
@@ -156,9 +159,11 @@ void BakeCache::store(uint64_t key, const BakeResult& r) const
 {
     const std::filesystem::path path = entry_path(key);
     if (r.ao.size() != r.tm.size() || (!r.thickness.empty() && r.thickness.size() != r.ao.size()) ||
-        (!r.scattering_normal.empty() && (r.scattering_normal.size() != r.ao.size() || r.normal_spread.size() != r.ao.size())))
+        (!r.scattering_normal.empty() &&
+         (r.scattering_normal.size() != r.ao.size() || r.normal_spread.size() != r.ao.size())))
         throw Error(path.string() + ": cannot store a bake with " + std::to_string(r.ao.size()) + " AO, " +
-                    std::to_string(r.tm.size()) + " t_m and " + std::to_string(r.thickness.size()) + " thickness values");
+                    std::to_string(r.tm.size()) + " t_m and " + std::to_string(r.thickness.size()) +
+                    " thickness values");
     Header h{};
     std::memcpy(h.magic, kMagic, sizeof kMagic);
     h.version = kBakeCacheVersion;

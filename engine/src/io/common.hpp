@@ -81,7 +81,8 @@ std::string one_line(const std::string& message);
 /// "<path>.tmp-<pid>" beside it, which is synced to disk (fsync), renamed to `path`, and the
 /// folder synced, so that a crash at any moment leaves the old file or the complete new one.
 /// On any failure the temporary file is removed and the error is rethrown as jade::Error.
-void write_atomically(const std::filesystem::path& path, const std::function<void(const std::filesystem::path&)>& write);
+void write_atomically(const std::filesystem::path& path,
+                      const std::function<void(const std::filesystem::path&)>& write);
 
 /// Lower-case extension with its dot (".glb"), for dispatching on the file type.
 std::string lower_extension(const std::filesystem::path& path);

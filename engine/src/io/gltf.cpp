@@ -30,7 +30,8 @@ glm::dmat4 local_transform(const std::string& name, const tinygltf::Node& node, 
     const std::string subject = "node " + std::to_string(index) + ": ";
     glm::dmat4 m(1.0);
     if (!node.matrix.empty()) {
-        if (node.matrix.size() != 16) fail(name, subject + "matrix has " + std::to_string(node.matrix.size()) + " values, not 16");
+        if (node.matrix.size() != 16)
+            fail(name, subject + "matrix has " + std::to_string(node.matrix.size()) + " values, not 16");
         m = glm::make_mat4(node.matrix.data());  // both column-major
     } else {
         const auto& t = node.translation;
@@ -41,7 +42,9 @@ glm::dmat4 local_transform(const std::string& name, const tinygltf::Node& node, 
         glm::dquat q = r.empty() ? glm::dquat(1.0, 0.0, 0.0, 0.0) : glm::dquat(r[3], r[0], r[1], r[2]);
         if (!(glm::length(q) > 0.0)) fail(name, subject + "rotation quaternion has zero length");
         m = glm::mat4_cast(glm::normalize(q));  // exporters write quaternions rounded to float
-        if (!s.empty()) m = m * glm::dmat4(glm::dvec4(s[0], 0, 0, 0), glm::dvec4(0, s[1], 0, 0), glm::dvec4(0, 0, s[2], 0), glm::dvec4(0, 0, 0, 1));
+        if (!s.empty())
+            m = m * glm::dmat4(glm::dvec4(s[0], 0, 0, 0), glm::dvec4(0, s[1], 0, 0), glm::dvec4(0, 0, s[2], 0),
+                               glm::dvec4(0, 0, 0, 1));
         if (!t.empty()) m[3] = glm::dvec4(t[0], t[1], t[2], 1.0);
     }
     for (int c = 0; c < 4; ++c)
@@ -55,11 +58,12 @@ std::vector<int> scene_roots(const std::string& name, const tinygltf::Model& mod
     if (!model.scenes.empty()) {
         const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
         if (size_t(scene) >= model.scenes.size())
-            fail(name, "default scene " + std::to_string(scene) + " does not exist (" + std::to_string(model.scenes.size()) +
-                           " scenes)");
+            fail(name, "default scene " + std::to_string(scene) + " does not exist (" +
+                           std::to_string(model.scenes.size()) + " scenes)");
         return model.scenes[size_t(scene)].nodes;
     }
-    if (model.defaultScene >= 0) fail(name, "default scene " + std::to_string(model.defaultScene) + " does not exist (no scenes)");
+    if (model.defaultScene >= 0)
+        fail(name, "default scene " + std::to_string(model.defaultScene) + " does not exist (no scenes)");
     std::vector<bool> is_child(model.nodes.size(), false);
     for (const auto& node : model.nodes)
         for (int c : node.children)
@@ -73,7 +77,8 @@ std::vector<int> scene_roots(const std::string& name, const tinygltf::Model& mod
 /// Walks the node trees from `roots` (iteratively: no stack overflow on deep hierarchies) and
 /// lists every mesh instance with its world matrix. glTF nodes have at most one parent; a node
 /// reached twice is reported as a cycle or as a node with two parents.
-std::vector<MeshInstance> mesh_instances(const std::string& name, const tinygltf::Model& model, const std::vector<int>& roots)
+std::vector<MeshInstance> mesh_instances(const std::string& name, const tinygltf::Model& model,
+                                         const std::vector<int>& roots)
 {
     constexpr int kUnvisited = -2, kRoot = -1;
     std::vector<int> parent(model.nodes.size(), kUnvisited);
@@ -87,7 +92,9 @@ std::vector<MeshInstance> mesh_instances(const std::string& name, const tinygltf
     while (!stack.empty()) {
         const Pending p = stack.back();
         stack.pop_back();
-        auto describe = [](int node) { return node == kRoot ? std::string("the scene") : "node " + std::to_string(node); };
+        auto describe = [](int node) {
+            return node == kRoot ? std::string("the scene") : "node " + std::to_string(node);
+        };
         if (p.node < 0 || size_t(p.node) >= model.nodes.size())
             fail(name, describe(p.parent) + " refers to node " + std::to_string(p.node) + ", which does not exist");
         const std::string node_name = "node " + std::to_string(p.node);
@@ -114,7 +121,8 @@ std::vector<MeshInstance> mesh_instances(const std::string& name, const tinygltf
 
 const char* mode_name(int mode)
 {
-    static const char* const kNames[] = {"POINTS", "LINES", "LINE_LOOP", "LINE_STRIP", "TRIANGLES", "TRIANGLE_STRIP", "TRIANGLE_FAN"};
+    static const char* const kNames[] = {"POINTS",    "LINES",          "LINE_LOOP",   "LINE_STRIP",
+                                         "TRIANGLES", "TRIANGLE_STRIP", "TRIANGLE_FAN"};
     return mode >= 0 && mode < 7 ? kNames[mode] : "unknown";
 }
 
@@ -122,7 +130,8 @@ const char* mode_name(int mode)
 /// when every primitive has them (they must be one per vertex or absent).
 class MeshBuilder {
 public:
-    MeshBuilder(const std::string& name, const tinygltf::Model& model) : name_(name), model_(model), accessors_(name, model)
+    MeshBuilder(const std::string& name, const tinygltf::Model& model)
+        : name_(name), model_(model), accessors_(name, model)
     {
         mesh_.name = name;
     }
@@ -133,10 +142,12 @@ public:
     {
         const auto& mesh = model_.meshes[size_t(instance.mesh)];
         for (size_t p = 0; p < mesh.primitives.size(); ++p) {
-            const std::string where = "mesh " + std::to_string(instance.mesh) + " primitive " + std::to_string(p) + ": ";
+            const std::string where =
+                "mesh " + std::to_string(instance.mesh) + " primitive " + std::to_string(p) + ": ";
             if (const int mode = mesh.primitives[p].mode; !is_triangle_mode(mode)) {
                 if (skipped_.empty())
-                    skipped_ = where + "mode " + std::to_string(mode) + " (" + mode_name(mode) + ") is not supported (only triangles)";
+                    skipped_ = where + "mode " + std::to_string(mode) + " (" + mode_name(mode) +
+                               ") is not supported (only triangles)";
                 continue;
             }
             add_primitive(where, mesh.primitives[p], instance.world);
@@ -170,12 +181,16 @@ private:
     void add_primitive(const std::string& where, const tinygltf::Primitive& prim, const glm::dmat4& world)
     {
         const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
-        if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN)
-            fail(name_, where + "mode " + std::to_string(mode) + " (" + mode_name(mode) + ") is not supported (only triangles)");
+        if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+            mode != TINYGLTF_MODE_TRIANGLE_FAN)
+            fail(name_, where + "mode " + std::to_string(mode) + " (" + mode_name(mode) +
+                            ") is not supported (only triangles)");
         const int position = attribute(prim, "POSITION");
         if (position < 0) fail(name_, where + "has no POSITION attribute");
-        const auto positions = accessors_.view(where, position, {"POSITION", TINYGLTF_TYPE_VEC3, {TINYGLTF_COMPONENT_TYPE_FLOAT}});
-        if (!positions.data) fail(name_, where + "accessor " + std::to_string(position) + " (POSITION) has no bufferView");
+        const auto positions =
+            accessors_.view(where, position, {"POSITION", TINYGLTF_TYPE_VEC3, {TINYGLTF_COMPONENT_TYPE_FLOAT}});
+        if (!positions.data)
+            fail(name_, where + "accessor " + std::to_string(position) + " (POSITION) has no bufferView");
         const size_t base = mesh_.positions.size();
         if (positions.count > kMaxVertices - base)
             fail(name_, where + "more vertices in total than 32-bit indices can address");
@@ -188,7 +203,8 @@ private:
                       const glm::dmat4& world)
     {
         const size_t n = positions.count;
-        for (size_t i = 0; i < n; ++i) mesh_.positions.push_back(glm::vec3(world * glm::dvec4(glm::dvec3(positions.vec3(i)), 1.0)));
+        for (size_t i = 0; i < n; ++i)
+            mesh_.positions.push_back(glm::vec3(world * glm::dvec4(glm::dvec3(positions.vec3(i)), 1.0)));
 
         const glm::dmat3 linear(world);
         const bool invertible = glm::determinant(linear) != 0.0;
@@ -223,8 +239,8 @@ private:
         }
         auto view = accessors_.view(where, index, {role, type, {TINYGLTF_COMPONENT_TYPE_FLOAT}});
         if (view.count != vertices)
-            fail(name_, where + "accessor " + std::to_string(index) + " (" + role + ") has " + std::to_string(view.count) +
-                            " elements for " + std::to_string(vertices) + " vertices");
+            fail(name_, where + "accessor " + std::to_string(index) + " (" + role + ") has " +
+                            std::to_string(view.count) + " elements for " + std::to_string(vertices) + " vertices");
         return view;
     }
 
@@ -237,20 +253,24 @@ private:
             for (size_t i = 0; i < vertices; ++i) out[i] = uint32_t(i);
             return out;
         }
-        const auto view = accessors_.view(where, prim.indices, {"indices", TINYGLTF_TYPE_SCALAR,
-            {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT}});
+        const auto view =
+            accessors_.view(where, prim.indices,
+                            {"indices",
+                             TINYGLTF_TYPE_SCALAR,
+                             {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                              TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT}});
         out.resize(view.count);
         for (size_t i = 0; i < view.count; ++i) {
             out[i] = view.index(i);
             if (out[i] >= vertices)
-                fail(name_, where + "accessor " + std::to_string(prim.indices) + " (indices): index " + std::to_string(out[i]) +
-                                " out of range for " + std::to_string(vertices) + " vertices");
+                fail(name_, where + "accessor " + std::to_string(prim.indices) + " (indices): index " +
+                                std::to_string(out[i]) + " out of range for " + std::to_string(vertices) + " vertices");
         }
         return out;
     }
 
-    void add_triangles(const std::string& where, const tinygltf::Primitive& prim, int mode, size_t vertices, size_t base,
-                       bool mirrored)
+    void add_triangles(const std::string& where, const tinygltf::Primitive& prim, int mode, size_t vertices,
+                       size_t base, bool mirrored)
     {
         const auto c = corners(where, prim, vertices);
         std::vector<uint32_t> tris;
@@ -294,7 +314,8 @@ std::vector<MeshInstance> scene_mesh_instances(const std::string& name, const ti
 
 bool is_triangle_mode(int mode)
 {
-    return mode < 0 || mode == TINYGLTF_MODE_TRIANGLES || mode == TINYGLTF_MODE_TRIANGLE_STRIP || mode == TINYGLTF_MODE_TRIANGLE_FAN;
+    return mode < 0 || mode == TINYGLTF_MODE_TRIANGLES || mode == TINYGLTF_MODE_TRIANGLE_STRIP ||
+           mode == TINYGLTF_MODE_TRIANGLE_FAN;
 }
 
 TriangleMesh read_gltf_primitive(const std::string& name, const tinygltf::Model& model, int mesh, size_t primitive,
@@ -305,7 +326,8 @@ TriangleMesh read_gltf_primitive(const std::string& name, const tinygltf::Model&
     return builder.finish();
 }
 
-TriangleMesh read_gltf(const std::filesystem::path& path, const std::string& name, const std::string& bytes, bool binary)
+TriangleMesh read_gltf(const std::filesystem::path& path, const std::string& name, const std::string& bytes,
+                       bool binary)
 {
     if (bytes.empty()) fail(name, "file is empty");
     const auto model = parse_gltf(path, name, bytes, binary);

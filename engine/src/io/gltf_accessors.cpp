@@ -43,8 +43,10 @@ const char* component_name(int component)
 size_t component_size(int component)
 {
     switch (component) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE: case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
-    case TINYGLTF_COMPONENT_TYPE_SHORT: case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
     default: return 4;
     }
 }
@@ -86,14 +88,16 @@ AccessorView AccessorReader::view(const std::string& where, int index, const Acc
         if (v.stride < element)
             fail(file_, subject + "byteStride " + std::to_string(v.stride) + " is smaller than an element (" +
                             std::to_string(element) + " bytes)");
-        check_fits(subject, a.count, a.byteOffset, element, v.stride, range.length, "bufferView " + std::to_string(a.bufferView));
+        check_fits(subject, a.count, a.byteOffset, element, v.stride, range.length,
+                   "bufferView " + std::to_string(a.bufferView));
         v.data = range.data + a.byteOffset;
     }
     if (a.sparse.isSparse) expand_sparse(subject, a, element, v);
     return v;
 }
 
-void AccessorReader::expand_sparse(const std::string& subject, const tinygltf::Accessor& a, size_t element, AccessorView& v) const
+void AccessorReader::expand_sparse(const std::string& subject, const tinygltf::Accessor& a, size_t element,
+                                   AccessorView& v) const
 {
     const std::string sparse = subject + "sparse ";
     // The dense copy is allocated here, so its size is bounded like a file's.
@@ -106,7 +110,8 @@ void AccessorReader::expand_sparse(const std::string& subject, const tinygltf::A
     if (ic != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ic != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
         ic != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
         fail(file_, sparse + "indices component type " + component_name(ic) + " is not an unsigned integer type");
-    if (a.sparse.indices.byteOffset < 0 || a.sparse.values.byteOffset < 0) fail(file_, sparse + "byteOffset is negative");
+    if (a.sparse.indices.byteOffset < 0 || a.sparse.values.byteOffset < 0)
+        fail(file_, sparse + "byteOffset is negative");
     const size_t isize = component_size(ic);
     const auto indices = buffer_view(sparse + "indices: ", a.sparse.indices.bufferView);
     check_fits(sparse + "indices: ", n, size_t(a.sparse.indices.byteOffset), isize, isize, indices.length,
@@ -122,8 +127,8 @@ void AccessorReader::expand_sparse(const std::string& subject, const tinygltf::A
     for (size_t k = 0; k < n; ++k) {
         const uint32_t i = index_view.index(k);
         if (i >= a.count)
-            fail(file_, sparse + "index " + std::to_string(i) + " (entry " + std::to_string(k) + ") is out of range for " +
-                            std::to_string(a.count) + " elements");
+            fail(file_, sparse + "index " + std::to_string(i) + " (entry " + std::to_string(k) +
+                            ") is out of range for " + std::to_string(a.count) + " elements");
         if (k > 0 && i <= index_view.index(k - 1))
             fail(file_, sparse + "indices are not strictly increasing at entry " + std::to_string(k));
         std::memcpy(dense->data() + size_t(i) * element, value + k * element, element);
@@ -142,9 +147,9 @@ AccessorReader::ViewRange AccessorReader::buffer_view(const std::string& subject
         fail(file_, subject + view + ": buffer " + std::to_string(bv.buffer) + " does not exist");
     const auto& data = model_.buffers[size_t(bv.buffer)].data;
     if (bv.byteOffset > data.size() || bv.byteLength > data.size() - bv.byteOffset)
-        fail(file_, subject + view + " (bytes " + std::to_string(bv.byteOffset) + " + " + std::to_string(bv.byteLength) +
-                        ") runs past the end of buffer " + std::to_string(bv.buffer) + " (" +
-                        std::to_string(data.size()) + " bytes)");
+        fail(file_, subject + view + " (bytes " + std::to_string(bv.byteOffset) + " + " +
+                        std::to_string(bv.byteLength) + ") runs past the end of buffer " + std::to_string(bv.buffer) +
+                        " (" + std::to_string(data.size()) + " bytes)");
     return {data.data() + bv.byteOffset, bv.byteLength, bv.byteStride};
 }
 
@@ -153,11 +158,12 @@ void AccessorReader::check_fits(const std::string& subject, size_t count, size_t
 {
     if (count == 0) return;
     // Overflow-safe form of offset + (count - 1) * stride + element <= length.
-    const bool fits = offset <= length && element <= length - offset && count - 1 <= (length - offset - element) / stride;
+    const bool fits =
+        offset <= length && element <= length - offset && count - 1 <= (length - offset - element) / stride;
     if (!fits)
         fail(file_, subject + std::to_string(count) + " elements of " + std::to_string(element) + " bytes (stride " +
-                        std::to_string(stride) + ") from byteOffset " + std::to_string(offset) + " do not fit in " + view +
-                        " (" + std::to_string(length) + " bytes)");
+                        std::to_string(stride) + ") from byteOffset " + std::to_string(offset) + " do not fit in " +
+                        view + " (" + std::to_string(length) + " bytes)");
 }
 
 }  // namespace jade::io

@@ -30,8 +30,10 @@ struct AccessorView {
     /// Element i's bytes (`size` of them: component size × components).
     void bytes(size_t i, void* out, size_t size) const
     {
-        if (data) std::memcpy(out, data + i * stride, size);
-        else std::memset(out, 0, size);
+        if (data)
+            std::memcpy(out, data + i * stride, size);
+        else
+            std::memset(out, 0, size);
     }
 
     glm::vec3 vec3(size_t i) const
@@ -71,8 +73,8 @@ private:
         size_t length, stride;
     };
     ViewRange buffer_view(const std::string& subject, int index) const;
-    void check_fits(const std::string& subject, size_t count, size_t offset, size_t element, size_t stride, size_t length,
-                    const std::string& view) const;
+    void check_fits(const std::string& subject, size_t count, size_t offset, size_t element, size_t stride,
+                    size_t length, const std::string& view) const;
     void expand_sparse(const std::string& subject, const tinygltf::Accessor& a, size_t element, AccessorView& v) const;
 
     const std::string& file_;

@@ -86,8 +86,8 @@ void add_targets(GltfAsset::Impl& a, int mesh_index, const Placement& placement,
     TriangleMesh merged;
     merged.name = a.name + ": " + mesh_name;
     std::vector<GltfAsset::Impl::Span> spans(mesh.primitives.size());
-    std::vector<int> groups;               // group key per primitive: translucent material, or -1
-    std::map<int, std::string> opaque;     // materials of the caller's group, for its description
+    std::vector<int> groups;            // group key per primitive: translucent material, or -1
+    std::map<int, std::string> opaque;  // materials of the caller's group, for its description
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
         const auto& prim = mesh.primitives[p];
         groups.push_back(-2);
@@ -105,15 +105,16 @@ void add_targets(GltfAsset::Impl& a, int mesh_index, const Placement& placement,
         const bool translucent = prim.material >= 0 && a.translucent[size_t(prim.material)];
         groups.back() = translucent ? prim.material : -1;
         if (!translucent)
-            opaque[prim.material] = prim.material < 0 ? "no material"
-                                                      : described("material", prim.material, a.model.materials[size_t(prim.material)].name);
+            opaque[prim.material] =
+                prim.material < 0 ? "no material"
+                                  : described("material", prim.material, a.model.materials[size_t(prim.material)].name);
     }
     if (merged.indices.empty()) {
         if (warnings && !mesh.primitives.empty())
             warnings->push_back(a.name + ": " + mesh_name + " has no triangles; not baked");
         return;
     }
-    validate_mesh(merged);  // finite positions, indices in range; the message names file and mesh
+    validate_mesh(merged);   // finite positions, indices in range; the message names file and mesh
     std::vector<int> order;  // group keys in order of first appearance
     for (int g : groups)
         if (g != -2 && std::find(order.begin(), order.end(), g) == order.end()) order.push_back(g);
@@ -128,7 +129,8 @@ void add_targets(GltfAsset::Impl& a, int mesh_index, const Placement& placement,
             t.material = a.translucent[size_t(key)];
             t.material_name = described("material", key, a.model.materials[size_t(key)].name);
         } else {
-            for (const auto& [index, text] : opaque) t.material_name += std::string(t.material_name.empty() ? "" : ", ") + text;
+            for (const auto& [index, text] : opaque)
+                t.material_name += std::string(t.material_name.empty() ? "" : ", ") + text;
             t.material_name += " (opaque for Jade)";
         }
         std::vector<GltfAsset::Impl::Span> own = spans;

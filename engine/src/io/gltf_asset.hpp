@@ -32,8 +32,8 @@ struct GltfAsset::Impl {
     tinygltf::Model model;
     std::vector<std::vector<unsigned char>> image_bytes;  ///< per image, as tinygltf read it
     std::vector<BakeTarget> targets;
-    std::vector<std::vector<Span>> spans;                 ///< per target, per primitive of its mesh
-    std::vector<std::optional<Material>> translucent;     ///< per glTF material: Jade's, when translucent
+    std::vector<std::vector<Span>> spans;              ///< per target, per primitive of its mesh
+    std::vector<std::optional<Material>> translucent;  ///< per glTF material: Jade's, when translucent
 };
 
 }  // namespace jade

@@ -137,12 +137,14 @@ private:
                 if (!a_.spans[t][p].baked || baked[t].ao.empty()) continue;
                 const json& attributes = prim(t, p)["attributes"];
                 for (const char* name : kAttributes) {
-                    if (!attributes.contains(name) || (name == std::string("_THICKNESS") && baked[t].thickness.empty())) continue;
+                    if (!attributes.contains(name) || (name == std::string("_THICKNESS") && baked[t].thickness.empty()))
+                        continue;
                     const int acc = as_index(attributes[name]);
                     if (acc < 0 || size_t(acc) >= refs_.accessors.size() || refs_.accessors[size_t(acc)] != 1) continue;
                     const json& accessor = doc_["accessors"][size_t(acc)];
                     const int view = as_index(member(accessor, "bufferView"));
-                    if (accessor.contains("sparse") || view < 0 || size_t(view) >= refs_.views.size() || refs_.views[size_t(view)] != 1)
+                    if (accessor.contains("sparse") || view < 0 || size_t(view) >= refs_.views.size() ||
+                        refs_.views[size_t(view)] != 1)
                         continue;
                     recycled_[size_t(view)] = true;
                     reuse_[{t, p, std::string(name)}] = {acc, view};
@@ -179,11 +181,15 @@ private:
     /// A view of `floats` and a FLOAT accessor on it, reusing indices (acc, view) when given.
     int add_floats(const std::vector<float>& floats, size_t count, const char* type, std::pair<int, int> reuse)
     {
-        json view = {{"buffer", 0}, {"byteOffset", append(floats.data(), floats.size() * sizeof(float))},
-                     {"byteLength", floats.size() * sizeof(float)}, {"target", kArrayBuffer}};
+        json view = {{"buffer", 0},
+                     {"byteOffset", append(floats.data(), floats.size() * sizeof(float))},
+                     {"byteLength", floats.size() * sizeof(float)},
+                     {"target", kArrayBuffer}};
         int v = reuse.second;
-        if (v >= 0) doc_["bufferViews"][size_t(v)] = std::move(view);
-        else doc_["bufferViews"].push_back(std::move(view)), v = int(doc_["bufferViews"].size() - 1);
+        if (v >= 0)
+            doc_["bufferViews"][size_t(v)] = std::move(view);
+        else
+            doc_["bufferViews"].push_back(std::move(view)), v = int(doc_["bufferViews"].size() - 1);
         json accessor = {{"bufferView", v}, {"componentType", kFloat}, {"count", count}, {"type", type}};
         if (reuse.first >= 0) {
             doc_["accessors"][size_t(reuse.first)] = std::move(accessor);
@@ -206,7 +212,8 @@ private:
                 auto it = reuse_.find({t, p, std::string(name)});
                 return it == reuse_.end() ? std::pair<int, int>{-1, -1} : it->second;
             };
-            std::vector<float> ao(b.ao.begin() + std::ptrdiff_t(span.first), b.ao.begin() + std::ptrdiff_t(span.first + span.count));
+            std::vector<float> ao(b.ao.begin() + std::ptrdiff_t(span.first),
+                                  b.ao.begin() + std::ptrdiff_t(span.first + span.count));
             attributes["_AO"] = add_floats(ao, span.count, "SCALAR", reuse("_AO"));
             std::vector<float> tm(3 * span.count);
             std::memcpy(tm.data(), &b.tm[span.first].x, tm.size() * sizeof(float));
@@ -226,16 +233,20 @@ private:
     {
         if (index < 0 || size_t(index) >= a_.model.accessors.size()) return;
         json& accessor = doc_["accessors"][size_t(index)];
-        if ((accessor.contains("min") && accessor.contains("max")) || a_.model.accessors[size_t(index)].componentType != kFloat) return;
+        if ((accessor.contains("min") && accessor.contains("max")) ||
+            a_.model.accessors[size_t(index)].componentType != kFloat)
+            return;
         const auto view = reader_.view("", index, {role, type, {kFloat}});
         const size_t width = size_t(tinygltf::GetNumComponentsInType(uint32_t(type)));
-        std::vector<double> lo(width, std::numeric_limits<double>::infinity()), hi(width, -std::numeric_limits<double>::infinity());
+        std::vector<double> lo(width, std::numeric_limits<double>::infinity()),
+            hi(width, -std::numeric_limits<double>::infinity());
         std::vector<float> element(width);
         for (size_t i = 0; i < view.count; ++i) {
             view.bytes(i, element.data(), width * sizeof(float));
             for (size_t c = 0; c < width; ++c) {
                 if (!std::isfinite(element[c]))
-                    fail(a_.name, "accessor " + std::to_string(index) + " (" + role + "): element " + std::to_string(i) + " is not finite");
+                    fail(a_.name, "accessor " + std::to_string(index) + " (" + role + "): element " +
+                                      std::to_string(i) + " is not finite");
                 lo[c] = std::min(lo[c], double(element[c])), hi[c] = std::max(hi[c], double(element[c]));
             }
         }
@@ -248,9 +259,11 @@ private:
     {
         for (const auto& mesh : a_.model.meshes)
             for (const auto& prim : mesh.primitives) {
-                if (auto it = prim.attributes.find("POSITION"); it != prim.attributes.end()) bound(it->second, TINYGLTF_TYPE_VEC3, "POSITION");
+                if (auto it = prim.attributes.find("POSITION"); it != prim.attributes.end())
+                    bound(it->second, TINYGLTF_TYPE_VEC3, "POSITION");
                 for (const auto& target : prim.targets)
-                    if (auto it = target.find("POSITION"); it != target.end()) bound(it->second, TINYGLTF_TYPE_VEC3, "POSITION");
+                    if (auto it = target.find("POSITION"); it != target.end())
+                        bound(it->second, TINYGLTF_TYPE_VEC3, "POSITION");
             }
         for (const auto& animation : a_.model.animations)
             for (const auto& sampler : animation.samplers) bound(sampler.input, TINYGLTF_TYPE_SCALAR, "sampler input");
@@ -264,11 +277,13 @@ private:
             const auto& bytes = a_.image_bytes[i];
             std::string mime = image.value("mimeType", mime_type(bytes));
             if (mime.empty())
-                fail(a_.name, "image " + std::to_string(i) + ": '" + io::printable(image["uri"].get<std::string>(), 64) +
+                fail(a_.name, "image " + std::to_string(i) + ": '" +
+                                  io::printable(image["uri"].get<std::string>(), 64) +
                                   "' is not PNG, JPEG, WebP or KTX2 and has no mimeType; it cannot be embedded");
             image.erase("uri");
             if (glb_) {
-                doc_["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", append(bytes.data(), bytes.size())}, {"byteLength", bytes.size()}});
+                doc_["bufferViews"].push_back(
+                    {{"buffer", 0}, {"byteOffset", append(bytes.data(), bytes.size())}, {"byteLength", bytes.size()}});
                 image["bufferView"] = doc_["bufferViews"].size() - 1;
                 image["mimeType"] = mime;
             } else {
@@ -293,7 +308,8 @@ private:
     {
         for (size_t m = 0; m < a_.translucent.size(); ++m) {
             json& material = doc_["materials"][m];
-            if (!a_.translucent[m] || (material.contains("extensions") && material["extensions"].contains("KHR_materials_diffuse_transmission")))
+            if (!a_.translucent[m] || (material.contains("extensions") &&
+                                       material["extensions"].contains("KHR_materials_diffuse_transmission")))
                 continue;
             const Material& jade = *a_.translucent[m];
             glm::dvec3 mfp;
@@ -307,20 +323,21 @@ private:
                 for (size_t p = 0; p < a_.spans[t].size(); ++p)
                     if (a_.spans[t][p].baked && !baked[t].thickness.empty() &&
                         a_.model.meshes[size_t(a_.targets[t].mesh_index)].primitives[p].material == int(m))
-                        for (size_t v = 0; v < a_.spans[t][p].count; ++v) sum += baked[t].thickness[a_.spans[t][p].first + v], ++n;
+                        for (size_t v = 0; v < a_.spans[t][p].count; ++v)
+                            sum += baked[t].thickness[a_.spans[t][p].first + v], ++n;
             const double thickness = n && sum > 0.0 ? sum / double(n) : distance;
             json color = json::array();
             for (int c = 0; c < 3; ++c) color.push_back(std::exp(1.0 - distance / mfp[c]));
             if (!(std::isfinite(distance) && distance > 0.0 && std::isfinite(thickness)))
-                fail(a_.name, "material " + std::to_string(m) + ": the preset's mean free path " + std::to_string(distance) +
-                                  " cannot be written as KHR_materials_volume");
+                fail(a_.name, "material " + std::to_string(m) + ": the preset's mean free path " +
+                                  std::to_string(distance) + " cannot be written as KHR_materials_volume");
             json& extensions = material["extensions"];
             if (!extensions.is_object()) extensions = json::object();
             extensions["KHR_materials_diffuse_transmission"] = {{"diffuseTransmissionFactor", 1.0}};
             use_extension("KHR_materials_diffuse_transmission");
             if (!extensions.contains("KHR_materials_volume")) {
-                extensions["KHR_materials_volume"] = {{"thicknessFactor", thickness}, {"attenuationDistance", distance},
-                                                      {"attenuationColor", color}};
+                extensions["KHR_materials_volume"] = {
+                    {"thicknessFactor", thickness}, {"attenuationDistance", distance}, {"attenuationColor", color}};
                 use_extension("KHR_materials_volume");
             }
         }
@@ -338,7 +355,8 @@ private:
         if (!add.is_object()) fail(out_, "asset extras_json must be a JSON object");
         json& extras = doc_["asset"]["extras"];
         if (extras.is_null()) extras = json::object();
-        if (!extras.is_object()) fail(a_.name, "asset.extras is not a JSON object; the bake's record cannot be added to it");
+        if (!extras.is_object())
+            fail(a_.name, "asset.extras is not a JSON object; the bake's record cannot be added to it");
         for (auto& [key, value] : add.items()) extras[key] = value;
     }
 
@@ -350,8 +368,10 @@ private:
                 if (key != "uri" && key != "byteLength") buffer[key] = value;  // name, extras, extensions
         buffer["byteLength"] = bin_.size();
         if (!glb_) buffer["uri"] = "data:application/octet-stream;base64," + io::base64(bin_);
-        if (bin_.empty()) doc_.erase("buffers");
-        else doc_["buffers"] = json::array({buffer});
+        if (bin_.empty())
+            doc_.erase("buffers");
+        else
+            doc_["buffers"] = json::array({buffer});
         // Names come from other tools: replace invalid UTF-8 rather than fail on it.
         std::string text = doc_.dump(-1, ' ', false, json::error_handler_t::replace);
         return glb_ ? io::glb_container(out_, std::move(text), bin_) : text;
@@ -372,25 +392,30 @@ private:
 void check_baked(const GltfAsset::Impl& a, const std::string& out, const std::vector<BakedAttributes>& baked)
 {
     if (baked.size() != a.targets.size())
-        fail(out, std::to_string(baked.size()) + " baked attribute sets for " + std::to_string(a.targets.size()) + " bake targets");
+        fail(out, std::to_string(baked.size()) + " baked attribute sets for " + std::to_string(a.targets.size()) +
+                      " bake targets");
     for (size_t t = 0; t < baked.size(); ++t) {
         const auto& b = baked[t];
         const size_t n = a.targets[t].mesh.positions.size();
         const std::string target = a.targets[t].mesh.name.substr(a.name.size() + 2);
         if (b.ao.empty() && b.tm.empty() && b.thickness.empty()) continue;
         if (b.ao.size() != n || b.tm.size() != n || (!b.thickness.empty() && b.thickness.size() != n))
-            fail(out, target + ": " + std::to_string(b.ao.size()) + " _AO, " + std::to_string(b.tm.size()) + " _TM and " +
-                          std::to_string(b.thickness.size()) + " _THICKNESS values for " + std::to_string(n) + " vertices");
+            fail(out, target + ": " + std::to_string(b.ao.size()) + " _AO, " + std::to_string(b.tm.size()) +
+                          " _TM and " + std::to_string(b.thickness.size()) + " _THICKNESS values for " +
+                          std::to_string(n) + " vertices");
         for (size_t p = 0; p < a.spans[t].size(); ++p) {
             const auto& span = a.spans[t][p];
             if (!span.baked) continue;
             for (size_t v = span.first; v < span.first + span.count; ++v) {
                 const char* bad = !std::isfinite(b.ao[v]) ? "_AO"
-                                  : !(std::isfinite(b.tm[v].x) && std::isfinite(b.tm[v].y) && std::isfinite(b.tm[v].z)) ? "_TM"
-                                  : !b.thickness.empty() && !std::isfinite(b.thickness[v]) ? "_THICKNESS" : nullptr;
+                                  : !(std::isfinite(b.tm[v].x) && std::isfinite(b.tm[v].y) && std::isfinite(b.tm[v].z))
+                                      ? "_TM"
+                                  : !b.thickness.empty() && !std::isfinite(b.thickness[v]) ? "_THICKNESS"
+                                                                                           : nullptr;
                 if (bad)
-                    fail(a.name, target + " primitive " + std::to_string(p) + " vertex " + std::to_string(v - span.first) + ": " +
-                                     bad + " is not finite; nothing was written to " + out);
+                    fail(a.name, target + " primitive " + std::to_string(p) + " vertex " +
+                                     std::to_string(v - span.first) + ": " + bad +
+                                     " is not finite; nothing was written to " + out);
             }
         }
     }
@@ -398,12 +423,13 @@ void check_baked(const GltfAsset::Impl& a, const std::string& out, const std::ve
 
 }  // namespace
 
-void save_baked_asset(const std::filesystem::path& path, const GltfAsset& asset, const std::vector<BakedAttributes>& baked,
-                      const std::string& asset_extras_json)
+void save_baked_asset(const std::filesystem::path& path, const GltfAsset& asset,
+                      const std::vector<BakedAttributes>& baked, const std::string& asset_extras_json)
 {
     const auto name = io::display_name(path);
     const auto ext = io::lower_extension(path);
-    if (ext != ".glb" && ext != ".gltf") fail(name, "unsupported glTF extension '" + ext + "' (supported: .glb, .gltf)");
+    if (ext != ".glb" && ext != ".gltf")
+        fail(name, "unsupported glTF extension '" + ext + "' (supported: .glb, .gltf)");
     const auto& a = *asset.impl_;
     const std::string bytes = io::naming_file(name, [&] {
         check_baked(a, name, baked);

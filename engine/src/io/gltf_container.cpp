@@ -25,7 +25,8 @@ std::string base64(const std::vector<unsigned char>& data)
     std::string out;
     out.reserve((data.size() + 2) / 3 * 4);
     for (size_t i = 0; i < data.size(); i += 3) {
-        const uint32_t a = data[i], b = i + 1 < data.size() ? data[i + 1] : 0, c = i + 2 < data.size() ? data[i + 2] : 0;
+        const uint32_t a = data[i], b = i + 1 < data.size() ? data[i + 1] : 0,
+                       c = i + 2 < data.size() ? data[i + 2] : 0;
         const uint32_t triple = (a << 16) | (b << 8) | c;
         out += kDigits[(triple >> 18) & 63];
         out += kDigits[(triple >> 12) & 63];

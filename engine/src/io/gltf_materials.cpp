@@ -32,15 +32,16 @@ Material MaterialMapper::map(int index)
         return m;
     }
     if (size_t(index) >= model_.materials.size())
-        fail(file_, "material " + std::to_string(index) + " does not exist (" + std::to_string(model_.materials.size()) +
-                            " materials)");
+        fail(file_, "material " + std::to_string(index) + " does not exist (" +
+                        std::to_string(model_.materials.size()) + " materials)");
     const tinygltf::Material& g = model_.materials[size_t(index)];
     where_ = "material " + std::to_string(index) + (g.name.empty() ? "" : " '" + g.name + "'");
 
     glm::dvec3 albedo(1.0);
     const auto& base = g.pbrMetallicRoughness.baseColorFactor;
     if (base.size() >= 3)
-        for (int c = 0; c < 3; ++c) albedo[c] = clamped("baseColorFactor[" + std::to_string(c) + "]", base[size_t(c)], 0.0, 1.0, 1.0);
+        for (int c = 0; c < 3; ++c)
+            albedo[c] = clamped("baseColorFactor[" + std::to_string(c) + "]", base[size_t(c)], 0.0, 1.0, 1.0);
 
     // Jade's own parameters.
     std::string preset;
@@ -48,23 +49,30 @@ Material MaterialMapper::map(int index)
     bool force_opaque = false;
     if (g.extras.Has("jade")) {
         const tinygltf::Value& j = g.extras.Get("jade");
-        if (!j.IsObject()) warn("extras.jade is not an object; ignored");
+        if (!j.IsObject())
+            warn("extras.jade is not an object; ignored");
         else
             for (const std::string& key : j.Keys()) {
                 const tinygltf::Value& v = j.Get(key);
                 if (key == "preset") {
-                    if (!v.IsString()) warn("extras.jade.preset is not a string; ignored");
-                    else preset = v.Get<std::string>();
+                    if (!v.IsString())
+                        warn("extras.jade.preset is not a string; ignored");
+                    else
+                        preset = v.Get<std::string>();
                 } else if (key == "mm_per_unit") {
                     mm_per_unit = positive("extras.jade.mm_per_unit", v, 1000.0);
                 } else if (key == "strength") {
                     strength = number("extras.jade.strength", v, 1.0);
-                    if (strength < 0) warn("extras.jade.strength " + num(strength) + " is negative; 1 used"), strength = 1.0;
+                    if (strength < 0)
+                        warn("extras.jade.strength " + num(strength) + " is negative; 1 used"), strength = 1.0;
                 } else if (key == "opaque") {
-                    if (!v.IsBool()) warn("extras.jade.opaque is not true or false; ignored");
-                    else force_opaque = v.Get<bool>();
+                    if (!v.IsBool())
+                        warn("extras.jade.opaque is not true or false; ignored");
+                    else
+                        force_opaque = v.Get<bool>();
                 } else {
-                    warn("extras.jade." + key + " is not a Jade parameter (preset, mm_per_unit, strength, opaque); ignored");
+                    warn("extras.jade." + key +
+                         " is not a Jade parameter (preset, mm_per_unit, strength, opaque); ignored");
                 }
             }
     }
@@ -84,9 +92,11 @@ Material MaterialMapper::map(int index)
     glm::dvec3 transmission_color(1.0);
     const tinygltf::Value* dt = extension(g, "KHR_materials_diffuse_transmission");
     if (dt) {
-        transmission = dt->Has("diffuseTransmissionFactor")
-                           ? clamped("diffuseTransmissionFactor", number("diffuseTransmissionFactor", dt->Get("diffuseTransmissionFactor"), 0.0), 0.0, 1.0, 0.0)
-                           : 0.0;
+        transmission =
+            dt->Has("diffuseTransmissionFactor")
+                ? clamped("diffuseTransmissionFactor",
+                          number("diffuseTransmissionFactor", dt->Get("diffuseTransmissionFactor"), 0.0), 0.0, 1.0, 0.0)
+                : 0.0;
         transmission_color = color("diffuseTransmissionColorFactor", *dt, 1e-3);
     }
 
@@ -94,7 +104,8 @@ Material MaterialMapper::map(int index)
     double ior = 1.5;
     if (const tinygltf::Value* e = extension(g, "KHR_materials_ior"); e && e->Has("ior")) {
         ior = number("KHR_materials_ior.ior", e->Get("ior"), 1.5);
-        if (!(ior > 0.2 && ior < 5.0)) warn("KHR_materials_ior.ior " + num(ior) + " is outside (0.2, 5); 1.5 used"), ior = 1.5;
+        if (!(ior > 0.2 && ior < 5.0))
+            warn("KHR_materials_ior.ior " + num(ior) + " is outside (0.2, 5); 1.5 used"), ior = 1.5;
     }
 
     // KHR_materials_volume.
@@ -102,8 +113,10 @@ Material MaterialMapper::map(int index)
     glm::dvec3 attenuation(1.0);
     const tinygltf::Value* vol = extension(g, "KHR_materials_volume");
     if (vol) {
-        double thickness = vol->Has("thicknessFactor") ? number("thicknessFactor", vol->Get("thicknessFactor"), 0.0) : 0.0;
-        if (thickness < 0) warn("KHR_materials_volume.thicknessFactor " + num(thickness) + " is negative; 0 used"), thickness = 0;
+        double thickness =
+            vol->Has("thicknessFactor") ? number("thicknessFactor", vol->Get("thicknessFactor"), 0.0) : 0.0;
+        if (thickness < 0)
+            warn("KHR_materials_volume.thicknessFactor " + num(thickness) + " is negative; 0 used"), thickness = 0;
         if (!dt || transmission == 0.0) {
             if (preset.empty())
                 warn("KHR_materials_volume without diffuse transmission (KHR_materials_diffuse_transmission with "
@@ -115,9 +128,11 @@ Material MaterialMapper::map(int index)
             if (vol->Has("attenuationDistance")) {
                 const double d = number("attenuationDistance", vol->Get("attenuationDistance"), kDefaultMeanFreePath);
                 if (!(d > 0.0) || !std::isfinite(d))
-                    warn("KHR_materials_volume.attenuationDistance " + num(d) + " is not a positive finite length; "
+                    warn("KHR_materials_volume.attenuationDistance " + num(d) +
+                         " is not a positive finite length; "
                          "0.01 m used");
-                else distance = d;
+                else
+                    distance = d;
             }
             attenuation = color("attenuationColor", *vol, 1e-4);
         }
@@ -128,8 +143,8 @@ Material MaterialMapper::map(int index)
     if (!preset.empty()) {
         m = material_preset(preset, mm_per_unit);
         if (!preset.empty() && transmission == 0.0 && dt)
-            warn("diffuseTransmissionFactor is 0 but extras.jade.preset is '" + preset + "'; the preset is used with strength " +
-                 num(strength));
+            warn("diffuseTransmissionFactor is 0 but extras.jade.preset is '" + preset +
+                 "'; the preset is used with strength " + num(strength));
         if (transmission > 0.0) strength *= transmission;
     } else if (translucent) {
         // The medium whose derived diffuse colour is the base colour, with the mean free path

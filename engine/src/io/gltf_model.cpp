@@ -34,7 +34,8 @@ std::string outside_reason(const std::filesystem::path& folder, const std::strin
     if (uri.front() == '/' || uri.front() == '\\') return "is an absolute path";
     const auto colon = uri.find(':');
     if (colon != std::string::npos && uri.find_first_of("/\\") > colon)
-        return "is not a relative file path (it has a scheme or drive '" + printable(uri.substr(0, colon + 1), 16) + "')";
+        return "is not a relative file path (it has a scheme or drive '" + printable(uri.substr(0, colon + 1), 16) +
+               "')";
     const auto target = (folder / uri).lexically_normal();
     const auto mismatch = std::mismatch(folder.begin(), folder.end(), target.begin(), target.end());
     if (mismatch.first != folder.end()) return "points outside the glTF file's folder";
@@ -86,7 +87,8 @@ std::string percent_decoded(const std::string& uri)
 {
     std::string out;
     for (size_t i = 0; i < uri.size(); ++i) {
-        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(uint8_t(uri[i + 1])) && std::isxdigit(uint8_t(uri[i + 2]))) {
+        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(uint8_t(uri[i + 1])) &&
+            std::isxdigit(uint8_t(uri[i + 2]))) {
             out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
             i += 2;
         } else {
@@ -115,8 +117,8 @@ bool fs_write(std::string* err, const std::string&, const std::vector<unsigned c
 }
 
 /// Images are not geometry: they are never decoded; their bytes are kept when asked for.
-bool keep_image(tinygltf::Image*, const int index, std::string*, std::string*, int, int, const unsigned char* bytes, int size,
-                void* user)
+bool keep_image(tinygltf::Image*, const int index, std::string*, std::string*, int, int, const unsigned char* bytes,
+                int size, void* user)
 {
     if (auto* images = static_cast<std::vector<std::vector<unsigned char>>*>(user); images && index >= 0 && size >= 0) {
         if (images->size() <= size_t(index)) images->resize(size_t(index) + 1);
@@ -137,7 +139,8 @@ uint32_t check_glb(const std::string& name, const std::string& bytes)
 {
     if (bytes.size() < 20) fail(name, "too short for a binary glTF (" + std::to_string(bytes.size()) + " bytes)");
     if (bytes.compare(0, 4, "glTF") != 0) fail(name, "not a binary glTF file (no 'glTF' magic)");
-    if (read_u32(bytes, 4) != 2) fail(name, "GLB version " + std::to_string(read_u32(bytes, 4)) + " is not supported (only 2)");
+    if (read_u32(bytes, 4) != 2)
+        fail(name, "GLB version " + std::to_string(read_u32(bytes, 4)) + " is not supported (only 2)");
     const uint32_t length = read_u32(bytes, 8);
     if (length > bytes.size())
         fail(name, "GLB header declares " + std::to_string(length) + " bytes but the file has " +
@@ -168,14 +171,18 @@ void check_json_depth(const std::string& name, std::string_view json)
     for (size_t i = 0; i < json.size(); ++i) {
         const char c = json[i];
         if (in_string) {
-            if (escaped) escaped = false;
-            else if (c == '\\') escaped = true;
-            else if (c == '"') in_string = false;
+            if (escaped)
+                escaped = false;
+            else if (c == '\\')
+                escaped = true;
+            else if (c == '"')
+                in_string = false;
         } else if (c == '"') {
             in_string = true;
         } else if (c == '[' || c == '{') {
             if (++depth > kMaxDepth)
-                fail(name, "JSON nested more than " + std::to_string(kMaxDepth) + " levels deep (at byte " + std::to_string(i) + ")");
+                fail(name, "JSON nested more than " + std::to_string(kMaxDepth) + " levels deep (at byte " +
+                               std::to_string(i) + ")");
         } else if (c == ']' || c == '}') {
             --depth;
         }

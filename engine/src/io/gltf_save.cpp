@@ -112,7 +112,8 @@ json build_json(const TriangleMesh& mesh, const BakedAttributes& baked, json ext
     if (!mesh.normals.empty()) attributes["NORMAL"] = doc.add_floats(&mesh.normals[0].x, mesh.normals.size(), 3);
     if (!baked.ao.empty()) attributes["_AO"] = doc.add_floats(baked.ao.data(), baked.ao.size(), 1);
     if (!baked.tm.empty()) attributes["_TM"] = doc.add_floats(&baked.tm[0].x, baked.tm.size(), 3);
-    if (!baked.thickness.empty()) attributes["_THICKNESS"] = doc.add_floats(baked.thickness.data(), baked.thickness.size(), 1);
+    if (!baked.thickness.empty())
+        attributes["_THICKNESS"] = doc.add_floats(baked.thickness.data(), baked.thickness.size(), 1);
     const int indices = doc.add_indices(mesh.indices);
 
     json asset = {{"version", "2.0"}, {"generator", "Jade"}};
@@ -154,7 +155,8 @@ void save_baked_gltf(const std::filesystem::path& path, const TriangleMesh& mesh
 {
     const auto name = io::display_name(path);
     const auto ext = io::lower_extension(path);
-    if (ext != ".glb" && ext != ".gltf") io::fail(name, "unsupported glTF extension '" + ext + "' (supported: .glb, .gltf)");
+    if (ext != ".glb" && ext != ".gltf")
+        io::fail(name, "unsupported glTF extension '" + ext + "' (supported: .glb, .gltf)");
     check_input(name, mesh, baked);
     Document doc;
     const json document = build_json(mesh, baked, parse_extras(name, baked.extras_json), doc);

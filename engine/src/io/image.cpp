@@ -25,18 +25,21 @@ float srgb_encode(float linear)
 uint8_t to_byte(float unit) { return static_cast<uint8_t>(std::lround(unit * 255.0f)); }
 
 /// Opens, writes and closes one image with OIIO's writer for `format`, at `tmp`.
-void write_oiio(const std::string& name, const char* format, const std::filesystem::path& tmp, const OIIO::ImageSpec& spec,
-                OIIO::TypeDesc pixel_type, const void* pixels)
+void write_oiio(const std::string& name, const char* format, const std::filesystem::path& tmp,
+                const OIIO::ImageSpec& spec, OIIO::TypeDesc pixel_type, const void* pixels)
 {
     auto out = OIIO::ImageOutput::create(format);
     if (!out) io::fail(name, std::string("OpenImageIO has no ") + format + " writer: " + OIIO::geterror());
     // The format is chosen above, not from the temporary file's extension.
-    if (!out->open(tmp.string(), spec)) io::fail(name, "cannot open " + tmp.string() + " for writing: " + out->geterror());
-    if (!out->write_image(pixel_type, pixels)) io::fail(name, "writing " + tmp.string() + " failed: " + out->geterror());
+    if (!out->open(tmp.string(), spec))
+        io::fail(name, "cannot open " + tmp.string() + " for writing: " + out->geterror());
+    if (!out->write_image(pixel_type, pixels))
+        io::fail(name, "writing " + tmp.string() + " failed: " + out->geterror());
     if (!out->close()) io::fail(name, "closing " + tmp.string() + " failed: " + out->geterror());
 }
 
-void write_png(const std::string& name, const std::filesystem::path& tmp, int width, int height, const std::vector<float>& rgba)
+void write_png(const std::string& name, const std::filesystem::path& tmp, int width, int height,
+               const std::vector<float>& rgba)
 {
     std::vector<uint8_t> bytes(rgba.size());
     for (size_t i = 0; i < rgba.size(); i += 4) {
@@ -50,7 +53,8 @@ void write_png(const std::string& name, const std::filesystem::path& tmp, int wi
     write_oiio(name, "png", tmp, spec, OIIO::TypeDesc::UINT8, bytes.data());
 }
 
-void write_exr(const std::string& name, const std::filesystem::path& tmp, int width, int height, const std::vector<float>& rgba)
+void write_exr(const std::string& name, const std::filesystem::path& tmp, int width, int height,
+               const std::vector<float>& rgba)
 {
     OIIO::ImageSpec spec(width, height, 4, OIIO::TypeDesc::HALF);
     spec.attribute("oiio:ColorSpace", "Linear");
@@ -89,18 +93,20 @@ void write_frames(const std::string& name, const char* format, const std::filesy
     spec.attribute("gif:LoopCount", 0);
     for (size_t f = 0; f < frames.size(); ++f) {
         const auto mode = f == 0 ? OIIO::ImageOutput::Create : OIIO::ImageOutput::AppendSubimage;
-        if (!out->open(tmp.string(), spec, mode)) io::fail(name, "cannot open " + tmp.string() + " for writing: " + out->geterror());
+        if (!out->open(tmp.string(), spec, mode))
+            io::fail(name, "cannot open " + tmp.string() + " for writing: " + out->geterror());
         const auto bytes = to_srgb8(frames[f]);
         if (!out->write_image(OIIO::TypeDesc::UINT8, bytes.data()))
-            io::fail(name, "writing frame " + std::to_string(f) + " of " + tmp.string() + " failed: " + out->geterror());
+            io::fail(name,
+                     "writing frame " + std::to_string(f) + " of " + tmp.string() + " failed: " + out->geterror());
     }
     if (!out->close()) io::fail(name, "closing " + tmp.string() + " failed: " + out->geterror());
 }
 
 }  // namespace
 
-void save_animation(const std::filesystem::path& path, int width, int height, const std::vector<std::vector<float>>& frames,
-                    double fps)
+void save_animation(const std::filesystem::path& path, int width, int height,
+                    const std::vector<std::vector<float>>& frames, double fps)
 {
     const auto name = io::display_name(path);
     const auto ext = io::lower_extension(path);
@@ -112,27 +118,29 @@ void save_animation(const std::filesystem::path& path, int width, int height, co
     const uint64_t expected = uint64_t(width) * uint64_t(height) * 4;
     for (size_t f = 0; f < frames.size(); ++f)
         if (frames[f].size() != expected)
-            io::fail(name, "frame " + std::to_string(f) + " has " + std::to_string(frames[f].size()) + " floats, expected " +
-                               std::to_string(expected));
-    io::write_atomically(path, [&](const std::filesystem::path& tmp) {
-        write_frames(name, "gif", tmp, width, height, frames, fps);
-    });
+            io::fail(name, "frame " + std::to_string(f) + " has " + std::to_string(frames[f].size()) +
+                               " floats, expected " + std::to_string(expected));
+    io::write_atomically(
+        path, [&](const std::filesystem::path& tmp) { write_frames(name, "gif", tmp, width, height, frames, fps); });
 }
 
 void save_image(const std::filesystem::path& path, int width, int height, const std::vector<float>& rgba)
 {
     const auto name = io::display_name(path);
     const auto ext = io::lower_extension(path);
-    if (ext != ".png" && ext != ".exr") io::fail(name, "unsupported image format '" + ext + "' (supported: .png, .exr)");
+    if (ext != ".png" && ext != ".exr")
+        io::fail(name, "unsupported image format '" + ext + "' (supported: .png, .exr)");
     if (width <= 0 || height <= 0)
         io::fail(name, "image size " + std::to_string(width) + "x" + std::to_string(height) + " is empty");
     const uint64_t expected = uint64_t(width) * uint64_t(height) * 4;
     if (rgba.size() != expected)
-        io::fail(name, std::to_string(rgba.size()) + " floats for a " + std::to_string(width) + "x" + std::to_string(height) +
-                           " RGBA image (expected " + std::to_string(expected) + ")");
+        io::fail(name, std::to_string(rgba.size()) + " floats for a " + std::to_string(width) + "x" +
+                           std::to_string(height) + " RGBA image (expected " + std::to_string(expected) + ")");
     io::write_atomically(path, [&](const std::filesystem::path& tmp) {
-        if (ext == ".png") write_png(name, tmp, width, height, rgba);
-        else write_exr(name, tmp, width, height, rgba);
+        if (ext == ".png")
+            write_png(name, tmp, width, height, rgba);
+        else
+            write_exr(name, tmp, width, height, rgba);
     });
 }
 
@@ -150,7 +158,8 @@ LoadedImage load_image(const std::filesystem::path& path)
     img.width = spec.width, img.height = spec.height;
     img.srgb_8bit = spec.format == OIIO::TypeDesc::UINT8;
     std::vector<float> pixels(size_t(img.width) * img.height * channels);
-    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data())) io::fail(name, "cannot read: " + in->geterror());
+    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))
+        io::fail(name, "cannot read: " + in->geterror());
     in->close();
     auto decode = [&](float v) {
         if (!img.srgb_8bit) return std::isfinite(v) ? v : 0.0f;

@@ -52,7 +52,8 @@ void add_shape(const std::string& name, const tinyobj::shape_t& shape, size_t no
         append_fan(polygon, mesh.indices);
         next += n;
     }
-    if (next != corners.size()) fail(name, where + "list does not match its corners (a polygon with more than 255 vertices?)");
+    if (next != corners.size())
+        fail(name, where + "list does not match its corners (a polygon with more than 255 vertices?)");
 }
 
 /// Assigns each position the first `vn` normal a face corner gives it.
@@ -64,7 +65,8 @@ void add_normals(const tinyobj::attrib_t& attrib, const std::vector<tinyobj::sha
         for (const auto& c : shape.mesh.indices) {
             if (set[size_t(c.vertex_index)]) continue;
             const size_t n = size_t(c.normal_index);
-            mesh.normals[size_t(c.vertex_index)] = {attrib.normals[3 * n], attrib.normals[3 * n + 1], attrib.normals[3 * n + 2]};
+            mesh.normals[size_t(c.vertex_index)] = {attrib.normals[3 * n], attrib.normals[3 * n + 1],
+                                                    attrib.normals[3 * n + 2]};
             set[size_t(c.vertex_index)] = true;
         }
     }
@@ -83,7 +85,8 @@ std::string without_skin_weights(const std::string& bytes)
             line_start = true;
         } else if (line_start && c != ' ' && c != '\t') {
             line_start = false;
-            if (c == 'v' && i + 2 < bytes.size() && bytes[i + 1] == 'w' && (bytes[i + 2] == ' ' || bytes[i + 2] == '\t')) {
+            if (c == 'v' && i + 2 < bytes.size() && bytes[i + 1] == 'w' &&
+                (bytes[i + 2] == ' ' || bytes[i + 2] == '\t')) {
                 if (out.empty()) out = bytes;  // copied only when the file has such a line
                 out[i] = '#';
             }

@@ -72,7 +72,8 @@ void read_faces(TextReader& in, const OffHeader& header, TriangleMesh& mesh)
     std::vector<uint32_t> polygon;
     for (uint64_t f = 0; f < header.faces; ++f) {
         const uint64_t corners = in.count({"vertex count of face", f});
-        if (corners < 3) in.fail("face " + std::to_string(f) + " has " + std::to_string(corners) + " vertices (at least 3 needed)");
+        if (corners < 3)
+            in.fail("face " + std::to_string(f) + " has " + std::to_string(corners) + " vertices (at least 3 needed)");
         polygon.clear();
         for (uint64_t k = 0; k < corners; ++k) {
             const uint64_t index = in.count({"vertex index of face", f});

@@ -22,10 +22,22 @@ enum class Type : uint8_t { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, 
 std::optional<Type> parse_type(std::string_view s)
 {
     static constexpr std::array<std::pair<std::string_view, Type>, 16> kNames{{
-        {"char", Type::Int8},     {"int8", Type::Int8},       {"uchar", Type::UInt8},    {"uint8", Type::UInt8},
-        {"short", Type::Int16},   {"int16", Type::Int16},     {"ushort", Type::UInt16},  {"uint16", Type::UInt16},
-        {"int", Type::Int32},     {"int32", Type::Int32},     {"uint", Type::UInt32},    {"uint32", Type::UInt32},
-        {"float", Type::Float32}, {"float32", Type::Float32}, {"double", Type::Float64}, {"float64", Type::Float64},
+        {"char", Type::Int8},
+        {"int8", Type::Int8},
+        {"uchar", Type::UInt8},
+        {"uint8", Type::UInt8},
+        {"short", Type::Int16},
+        {"int16", Type::Int16},
+        {"ushort", Type::UInt16},
+        {"uint16", Type::UInt16},
+        {"int", Type::Int32},
+        {"int32", Type::Int32},
+        {"uint", Type::UInt32},
+        {"uint32", Type::UInt32},
+        {"float", Type::Float32},
+        {"float32", Type::Float32},
+        {"double", Type::Float64},
+        {"float64", Type::Float64},
     }};
     for (const auto& [name, type] : kNames)
         if (name == s) return type;
@@ -35,9 +47,13 @@ std::optional<Type> parse_type(std::string_view s)
 size_t type_size(Type t)
 {
     switch (t) {
-    case Type::Int8: case Type::UInt8: return 1;
-    case Type::Int16: case Type::UInt16: return 2;
-    case Type::Int32: case Type::UInt32: case Type::Float32: return 4;
+    case Type::Int8:
+    case Type::UInt8: return 1;
+    case Type::Int16:
+    case Type::UInt16: return 2;
+    case Type::Int32:
+    case Type::UInt32:
+    case Type::Float32: return 4;
     case Type::Float64: return 8;
     }
     return 0;
@@ -97,7 +113,8 @@ public:
 
     Header parse()
     {
-        if (split_words(next_line()) != std::vector<std::string_view>{"ply"}) fail_line("not a PLY file (no 'ply' magic line)");
+        if (split_words(next_line()) != std::vector<std::string_view>{"ply"})
+            fail_line("not a PLY file (no 'ply' magic line)");
         bool have_format = false;
         for (;;) {
             const auto w = split_words(next_line());
@@ -131,15 +148,23 @@ private:
         return line;
     }
 
-    [[noreturn]] void fail_line(const std::string& what) const { fail(file_, "line " + std::to_string(line_) + ": " + what); }
+    [[noreturn]] void fail_line(const std::string& what) const
+    {
+        fail(file_, "line " + std::to_string(line_) + ": " + what);
+    }
 
     void parse_format(const std::vector<std::string_view>& w)
     {
         if (w.size() != 3) fail_line("expected 'format <ascii|binary_little_endian|binary_big_endian> 1.0'");
-        if (w[1] == "ascii") header_.format = Format::Ascii;
-        else if (w[1] == "binary_little_endian") header_.format = Format::BinaryLittleEndian;
-        else if (w[1] == "binary_big_endian") header_.format = Format::BinaryBigEndian;
-        else fail_line("format '" + printable(w[1]) + "' is not supported (ascii, binary_little_endian, binary_big_endian)");
+        if (w[1] == "ascii")
+            header_.format = Format::Ascii;
+        else if (w[1] == "binary_little_endian")
+            header_.format = Format::BinaryLittleEndian;
+        else if (w[1] == "binary_big_endian")
+            header_.format = Format::BinaryBigEndian;
+        else
+            fail_line("format '" + printable(w[1]) +
+                      "' is not supported (ascii, binary_little_endian, binary_big_endian)");
     }
 
     void parse_element(const std::vector<std::string_view>& w)
@@ -170,7 +195,8 @@ private:
             p.count_type = type_of(w[2]);
             p.type = type_of(w[3]);
             p.name = std::string(w[4]);
-            if (!is_integer(p.count_type)) fail_line("list '" + printable(p.name) + "': the count type must be an integer type");
+            if (!is_integer(p.count_type))
+                fail_line("list '" + printable(p.name) + "': the count type must be an integer type");
         } else if (w.size() == 3) {
             p.type = type_of(w[1]);
             p.name = std::string(w[2]);
@@ -215,7 +241,8 @@ Layout find_layout(const std::string& file, const Header& h)
     if (l.indices < 0) l.indices = find_property(*l.face, "vertex_index", true);
     if (l.indices < 0) fail(file, "element 'face' has no list property 'vertex_indices' (or 'vertex_index')");
     if (!is_integer(l.face->properties[size_t(l.indices)].type))
-        fail(file, "face list '" + printable(l.face->properties[size_t(l.indices)].name) + "' must have an integer item type");
+        fail(file, "face list '" + printable(l.face->properties[size_t(l.indices)].name) +
+                       "' must have an integer item type");
     return l;
 }
 
@@ -290,15 +317,15 @@ public:
 
     [[noreturn]] void fail(const std::string& what) const
     {
-        io::fail(file_, "byte " + std::to_string(offset_ + pos_) + ": " + element_->name + " " + std::to_string(index_) +
-                            ": " + what);
+        io::fail(file_, "byte " + std::to_string(offset_ + pos_) + ": " + element_->name + " " +
+                            std::to_string(index_) + ": " + what);
     }
 
 private:
     [[noreturn]] void eof() const
     {
-        io::fail(file_, "byte " + std::to_string(offset_ + pos_) + ": unexpected end of file in " + element_->name + " " +
-                            std::to_string(index_) + " of " + std::to_string(element_->count));
+        io::fail(file_, "byte " + std::to_string(offset_ + pos_) + ": unexpected end of file in " + element_->name +
+                            " " + std::to_string(index_) + " of " + std::to_string(element_->count));
     }
 
     void skip_bytes(size_t n)
@@ -307,8 +334,7 @@ private:
         pos_ += n;
     }
 
-    template <class T>
-    T read()
+    template <class T> T read()
     {
         if (body_.size() - pos_ < sizeof(T)) eof();
         std::array<char, sizeof(T)> raw;
@@ -331,7 +357,9 @@ private:
 /// Reads values from an ASCII body. Errors name the line.
 class AsciiSource {
 public:
-    AsciiSource(const std::string& file, std::string_view body, size_t first_line) : in_(file, body, first_line, false) {}
+    AsciiSource(const std::string& file, std::string_view body, size_t first_line) : in_(file, body, first_line, false)
+    {
+    }
 
     void begin(const Element& e, uint64_t index) { element_ = &e, index_ = index; }
     double scalar(Type) { return in_.real(what()); }
@@ -358,15 +386,15 @@ private:
 
 // ---------------------------------------------------------------------------------- body --
 
-template <class Source>
-void skip_property(Source& src, const Property& p)
+template <class Source> void skip_property(Source& src, const Property& p)
 {
-    if (p.list) src.skip_list(p.count_type, p.type);
-    else src.skip(p.type);
+    if (p.list)
+        src.skip_list(p.count_type, p.type);
+    else
+        src.skip(p.type);
 }
 
-template <class Source>
-void read_vertices(Source& src, const Layout& l, TriangleMesh& mesh)
+template <class Source> void read_vertices(Source& src, const Layout& l, TriangleMesh& mesh)
 {
     const auto& e = *l.vertex;
     const bool normals = l.nx >= 0 && l.ny >= 0 && l.nz >= 0;
@@ -398,13 +426,13 @@ void read_polygon(Source& src, const Property& p, uint64_t vertex_count, std::ve
     for (int64_t k = 0; k < n; ++k) {
         const int64_t index = src.integer(p.type);
         if (index < 0 || uint64_t(index) >= vertex_count)
-            src.fail("vertex index " + std::to_string(index) + " out of range for " + std::to_string(vertex_count) + " vertices");
+            src.fail("vertex index " + std::to_string(index) + " out of range for " + std::to_string(vertex_count) +
+                     " vertices");
         polygon.push_back(static_cast<uint32_t>(index));
     }
 }
 
-template <class Source>
-void read_faces(Source& src, const Layout& l, TriangleMesh& mesh)
+template <class Source> void read_faces(Source& src, const Layout& l, TriangleMesh& mesh)
 {
     const auto& e = *l.face;
     mesh.indices.reserve(e.count * 3);
@@ -422,8 +450,7 @@ void read_faces(Source& src, const Layout& l, TriangleMesh& mesh)
     }
 }
 
-template <class Source>
-void read_body(Source& src, const Header& h, const Layout& l, TriangleMesh& mesh)
+template <class Source> void read_body(Source& src, const Header& h, const Layout& l, TriangleMesh& mesh)
 {
     for (const auto& e : h.elements) {
         if (&e == l.vertex) {

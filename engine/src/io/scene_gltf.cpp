@@ -46,7 +46,8 @@ std::optional<ProceduralDeformer> node_deformer(const std::string& file, const t
         const tinygltf::Value& a = j.Get("axis");
         if (a.IsNumber() && (a.GetNumberAsDouble() == 0 || a.GetNumberAsDouble() == 1 || a.GetNumberAsDouble() == 2))
             axis = uint32_t(a.GetNumberAsDouble());
-        else warn("extras.jade.axis is not 0, 1 or 2; 1 (y) used");
+        else
+            warn("extras.jade.axis is not 0, 1 or 2; 1 (y) used");
     }
     return ProceduralDeformer::fit(kind, prepare_mesh(mesh), axis);
 }
@@ -70,14 +71,15 @@ Scene load_scene(const std::filesystem::path& path, std::vector<std::string>* wa
         for (io::GltfPrimitive& p : io::read_gltf_primitives(name, model)) {
             io::validate_loaded(p.mesh);
             if (p.material >= int(model.materials.size()))
-                io::fail(name, "mesh " + std::to_string(p.mesh_index) + " primitive " + std::to_string(p.primitive) + ": material " +
-                                   std::to_string(p.material) + " does not exist (" + std::to_string(model.materials.size()) +
-                                   " materials)");
+                io::fail(name, "mesh " + std::to_string(p.mesh_index) + " primitive " + std::to_string(p.primitive) +
+                                   ": material " + std::to_string(p.material) + " does not exist (" +
+                                   std::to_string(model.materials.size()) + " materials)");
             auto& slot = p.material < 0 ? no_material : materials.at(size_t(p.material));
             if (!slot) slot = mapper.map(p.material);  // once per material: warnings once
             const auto& node = model.nodes[size_t(p.node)];
             SceneObject o;
-            o.name = (node.name.empty() ? "node " + std::to_string(p.node) : node.name) + "/" + std::to_string(p.primitive);
+            o.name =
+                (node.name.empty() ? "node " + std::to_string(p.node) : node.name) + "/" + std::to_string(p.primitive);
             o.material = *slot;
             o.deformer = node_deformer(name, node, p.node, p.mesh, warnings);
             o.mesh = std::move(p.mesh);
@@ -96,7 +98,8 @@ StaticBakeSource cached_bakes(const BakeCache& cache)
         const uint64_t key = bake_key(mesh, material, settings);
         return StaticBakeSource::Lookup{key, cache.load(key, mesh.vertex_count()).has_value()};
     };
-    s.bake = [&cache](Context& context, const PreparedMesh& mesh, const Material& material, const BakeSettings& settings) {
+    s.bake =
+        [&cache](Context& context, const PreparedMesh& mesh, const Material& material, const BakeSettings& settings) {
         return bake_with_cache(context, cache, mesh, material, settings);
     };
     return s;

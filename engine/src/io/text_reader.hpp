@@ -51,7 +51,10 @@ public:
         What(std::string_view text_, uint64_t element_) : text(text_), element(element_) {}
         std::string_view text;
         uint64_t element;
-        std::string str() const { return element == kNoElement ? std::string(text) : std::string(text) + " " + std::to_string(element); }
+        std::string str() const
+        {
+            return element == kNoElement ? std::string(text) : std::string(text) + " " + std::to_string(element);
+        }
     };
 
     /// The next token; `what` names the expected value in the end-of-file message.
@@ -122,8 +125,7 @@ private:
         }
     }
 
-    template <class T>
-    T parse_integer(What what)
+    template <class T> T parse_integer(What what)
     {
         auto t = token(what);
         if (t.size() > 1 && t[0] == '+' && t[1] != '-') t.remove_prefix(1);

@@ -39,7 +39,8 @@ std::vector<uint32_t> weld_targets(const std::vector<glm::vec3>& positions)
     std::vector<Key> keys(positions.size());
     for (size_t v = 0; v < positions.size(); ++v) {
         keys[v].vertex = uint32_t(v);
-        for (int c = 0; c < 3; ++c) keys[v].bits[size_t(c)] = std::bit_cast<uint32_t>(positions[v][c] + 0.0f);  // -0 -> +0
+        for (int c = 0; c < 3; ++c)
+            keys[v].bits[size_t(c)] = std::bit_cast<uint32_t>(positions[v][c] + 0.0f);  // -0 -> +0
     }
     // Sorting (rather than hashing) gives a deterministic result with no worst case.
     std::sort(keys.begin(), keys.end(),
@@ -174,7 +175,8 @@ PreparedMesh prepare_mesh(const TriangleMesh& mesh)
     // input_vertices = bake vertices + welded_vertices + unused_vertices.
     out.input_vertices = mesh.positions.size();
     out.input_triangles = mesh.triangle_count();
-    out.unused_vertices = size_t(std::count(out.render_to_bake.begin(), out.render_to_bake.end(), PreparedMesh::kUnused));
+    out.unused_vertices =
+        size_t(std::count(out.render_to_bake.begin(), out.render_to_bake.end(), PreparedMesh::kUnused));
     out.welded_vertices = out.input_vertices - out.unused_vertices - out.vertex_count();
     out.dropped_triangles = out.input_triangles - out.triangle_count();
     return out;

@@ -60,8 +60,9 @@ TriangleMesh sphere(float radius, uint32_t rings, uint32_t segments)
         const double theta = std::numbers::pi * i / rings;
         for (uint32_t j = 0; j < segments; ++j) {
             const double phi = 2.0 * std::numbers::pi * j / segments;
-            mesh.positions.push_back(glm::vec3(glm::dvec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
-                                                          std::cos(theta)) * double(radius)));
+            mesh.positions.push_back(glm::vec3(
+                glm::dvec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)) *
+                double(radius)));
         }
     }
     mesh.positions.push_back({0.0f, 0.0f, -radius});

@@ -23,9 +23,12 @@ namespace {
 std::string bytes_text(uint64_t b)
 {
     char buf[32];
-    if (b >= (1u << 20)) std::snprintf(buf, sizeof buf, "%.2f MiB", double(b) / double(1u << 20));
-    else if (b >= 1024) std::snprintf(buf, sizeof buf, "%.1f KiB", double(b) / 1024.0);
-    else std::snprintf(buf, sizeof buf, "%llu B", (unsigned long long)b);
+    if (b >= (1u << 20))
+        std::snprintf(buf, sizeof buf, "%.2f MiB", double(b) / double(1u << 20));
+    else if (b >= 1024)
+        std::snprintf(buf, sizeof buf, "%.1f KiB", double(b) / 1024.0);
+    else
+        std::snprintf(buf, sizeof buf, "%llu B", (unsigned long long)b);
     return buf;
 }
 
@@ -101,9 +104,14 @@ std::string ScenePlan::describe() const
     std::ostringstream out;
     for (size_t k = 0; k < objects.size(); ++k) {
         const ObjectPlan& o = objects[k];
-        out << "object " << k << " '" << o.name << "': " << o.bake_vertices << " vertices, " << o.triangles << " triangles, "
-            << (o.opaque ? "opaque" : o.deforming ? "deforming" : "static") << ", "
-            << (o.opaque ? std::string("no t_m") : std::to_string(o.channels) + (o.channels == 1 ? " channel (grey)" : " channels"))
+        out << "object " << k << " '" << o.name << "': " << o.bake_vertices << " vertices, " << o.triangles
+            << " triangles, "
+            << (o.opaque      ? "opaque"
+                : o.deforming ? "deforming"
+                              : "static")
+            << ", "
+            << (o.opaque ? std::string("no t_m")
+                         : std::to_string(o.channels) + (o.channels == 1 ? " channel (grey)" : " channels"))
             << "\n  shader variant: mode " << shading_mode_name(o.variant.mode) << ", CHANNELS=" << o.variant.channels;
         if (!o.opaque && !o.deforming) {
             char key[24];
@@ -114,8 +122,10 @@ std::string ScenePlan::describe() const
         out << "\n";
         for (const PassPlan& p : o.passes) {
             out << "  pass " << pass_kind_name(p.kind) << (p.per_frame ? " (every frame)" : " (once)")
-                << (p.resident ? ", kept" : p.buffers.empty() ? "" : ", freed after") << ": " << p.buffers.size() << " buffers, "
-                << bytes_text(p.bytes()) << "\n";
+                << (p.resident          ? ", kept"
+                    : p.buffers.empty() ? ""
+                                        : ", freed after")
+                << ": " << p.buffers.size() << " buffers, " << bytes_text(p.bytes()) << "\n";
             for (const auto& b : p.buffers) out << "      " << b.name << "  " << bytes_text(b.bytes) << "\n";
         }
         out << "  GPU memory: " << bytes_text(o.resident_bytes()) << " kept, " << bytes_text(o.transient_bytes())
@@ -124,18 +134,22 @@ std::string ScenePlan::describe() const
     if (!shared.empty()) {
         uint64_t sum = 0;
         for (const auto& b : shared) sum += b.bytes;
-        out << "shared by every object while drawing: " << shared.size() << " buffers and images, " << bytes_text(sum) << "\n";
+        out << "shared by every object while drawing: " << shared.size() << " buffers and images, " << bytes_text(sum)
+            << "\n";
         for (const auto& b : shared) out << "      " << b.name << "  " << bytes_text(b.bytes) << "\n";
     }
     out << "scene: " << objects.size() << " objects, " << bytes_text(resident_bytes()) << " kept while drawing, "
-        << bytes_text(transient_peak_bytes()) << " peak of once-only passes (estimates: see bake/buffer_estimate.cpp)\n";
+        << bytes_text(transient_peak_bytes())
+        << " peak of once-only passes (estimates: see bake/buffer_estimate.cpp)\n";
     return out.str();
 }
 
 StaticBakeSource never_baked()
 {
     StaticBakeSource s;
-    s.lookup = [](const PreparedMesh&, const Material&, const BakeSettings&) { return StaticBakeSource::Lookup{0, true}; };
+    s.lookup = [](const PreparedMesh&, const Material&, const BakeSettings&) {
+        return StaticBakeSource::Lookup{0, true};
+    };
     s.bake = [](Context&, const PreparedMesh& mesh, const Material&, const BakeSettings&) {
         CachedBake b;
         b.result.tm.assign(mesh.vertex_count(), glm::vec3(0.0f));
@@ -186,7 +200,8 @@ ScenePlan plan_scene(const Scene& scene, const SceneSettings& settings, const St
                     const auto found = source.lookup(prepared, obj.material, settings.bake);
                     o.bake_key = found.key, o.cached = found.holds;
                 }
-                if (o.cached) o.passes.push_back({PassKind::CacheRead, false, false, {}});
+                if (o.cached)
+                    o.passes.push_back({PassKind::CacheRead, false, false, {}});
                 else
                     o.passes.push_back({PassKind::StaticBake, false, false,
                                         bake::estimate_buffers(prepared, obj.material, settings.bake, false,

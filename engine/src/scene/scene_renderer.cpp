@@ -24,7 +24,6 @@
 namespace jade {
 namespace {
 
-
 }  // namespace
 
 struct SceneRenderer::Impl {
@@ -38,8 +37,8 @@ struct SceneRenderer::Impl {
 
     struct Object {
         PreparedMesh rest;
-        mutable std::vector<glm::vec3> tm;  // deforming: read back from the GPU by tm() only
-        std::vector<float> thickness;       // static objects with transmission
+        mutable std::vector<glm::vec3> tm;                        // deforming: read back from the GPU by tm() only
+        std::vector<float> thickness;                             // static objects with transmission
         std::vector<glm::vec3> scattering_normal, normal_spread;  // static translucent objects
         std::unique_ptr<Renderer> renderer;
         // Deforming objects only.
@@ -120,8 +119,9 @@ struct SceneRenderer::Impl {
                 o.mesh_deformer->record(cmd, *o.deformer, t);
                 o.dynamic_bake->record(cmd, o.mesh_deformer->positions_buffer(), o.mesh_deformer->normals_buffer(),
                                        o.mesh_deformer->areas_buffer());
-                o.renderer->record_vertex_update(cmd, o.mesh_deformer->positions_buffer(), o.mesh_deformer->normals_buffer(),
-                                                 o.dynamic_bake->buffers().tm, o.dynamic_bake->buffers().thickness,
+                o.renderer->record_vertex_update(cmd, o.mesh_deformer->positions_buffer(),
+                                                 o.mesh_deformer->normals_buffer(), o.dynamic_bake->buffers().tm,
+                                                 o.dynamic_bake->buffers().thickness,
                                                  o.dynamic_bake->buffers().scattering_normal);
             });
             const double deform_and_bake_ms = ms_since(t0);
@@ -139,24 +139,30 @@ struct SceneRenderer::Impl {
         const VkFormat format = VK_FORMAT_R32G32B32A32_SFLOAT;
         const auto msaa = VkSampleCountFlagBits(s.samples);
         const VkImageUsageFlags attachment = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
-        t.color = gpu::Image(context.gpu(), {"scene colour", s.width, s.height, format,
-                                             attachment | (s.samples == 1 ? VkImageUsageFlags(VK_IMAGE_USAGE_TRANSFER_SRC_BIT) : 0u), msaa});
+        t.color =
+            gpu::Image(context.gpu(),
+                       {"scene colour", s.width, s.height, format,
+                        attachment | (s.samples == 1 ? VkImageUsageFlags(VK_IMAGE_USAGE_TRANSFER_SRC_BIT) : 0u), msaa});
         if (s.samples > 1)
-            t.resolve = gpu::Image(context.gpu(), {"scene resolve", s.width, s.height, format, attachment | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+            t.resolve = gpu::Image(context.gpu(), {"scene resolve", s.width, s.height, format,
+                                                   attachment | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
         t.depth = gpu::Image(context.gpu(), {"scene depth", s.width, s.height, VK_FORMAT_D32_SFLOAT,
                                              VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, msaa});
-        t.readback = gpu::Buffer(context.gpu(), t.color.bytes(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, "scene read-back", true);
+        t.readback =
+            gpu::Buffer(context.gpu(), t.color.bytes(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, "scene read-back", true);
         t.width = s.width, t.height = s.height, t.samples = s.samples;
     }
 
-    RenderedImage render(double time, const Camera& camera, std::span<const Light> lights, const RenderSettings& settings_in)
+    RenderedImage render(double time, const Camera& camera, std::span<const Light> lights,
+                         const RenderSettings& settings_in)
     {
         const auto t0 = Clock::now();
         run_per_frame(time);
         RenderSettings s = settings_in;
         s.float32 = true;  // the targets are RGBA32F: read back without conversion
         if (s.width == 0 || s.height == 0 || s.width > 16384 || s.height > 16384)
-            throw Error("render settings: size " + std::to_string(s.width) + "x" + std::to_string(s.height) + " is outside 1..16384");
+            throw Error("render settings: size " + std::to_string(s.width) + "x" + std::to_string(s.height) +
+                        " is outside 1..16384");
         // One depth range for every object: the scene's bounding sphere (as Renderer fits one mesh).
         Camera cam = camera;
         if (!(cam.near_plane > 0.0f && cam.far_plane > cam.near_plane)) {
@@ -178,17 +184,24 @@ struct SceneRenderer::Impl {
             for (size_t k = 0; k < objects.size(); ++k) {
                 RenderSettings os = s;
                 os.mode = plan.objects[k].variant.mode;
-                const RenderTarget target{t.color.view(), t.resolve ? t.resolve.view() : VK_NULL_HANDLE, t.depth.view(), s.width,
-                                          s.height, k > 0, k + 1 < objects.size()};
+                const RenderTarget target{t.color.view(),
+                                          t.resolve ? t.resolve.view() : VK_NULL_HANDLE,
+                                          t.depth.view(),
+                                          s.width,
+                                          s.height,
+                                          k > 0,
+                                          k + 1 < objects.size()};
                 if (k > 0) {
                     // The previous draw's attachment writes before this draw loads them.
-                    gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                                        VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-                                        VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
-                                            VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                                        VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT |
-                                            VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
-                                            VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+                    gpu::memory_barrier(
+                        cmd,
+                        VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                        VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                        VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
+                            VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                        VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT |
+                            VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
+                            VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
                 }
                 objects[k].renderer->record(cmd, target, cam, lights, os);
             }
@@ -196,8 +209,10 @@ struct SceneRenderer::Impl {
             result.transition(cmd, gpu::use::kTransferSrc);
             result.copy_to_buffer(cmd, t.readback.handle());
         });
-        for (const ObjectPlan& o : plan.objects) passes.push_back({o.name, PassKind::Draw, 0, std::string(shading_mode_name(o.variant.mode)) +
-                                                                                              ", CHANNELS=" + std::to_string(o.variant.channels)});
+        for (const ObjectPlan& o : plan.objects)
+            passes.push_back(
+                {o.name, PassKind::Draw, 0,
+                 std::string(shading_mode_name(o.variant.mode)) + ", CHANNELS=" + std::to_string(o.variant.channels)});
         RenderedImage img;
         img.width = s.width, img.height = s.height;
         img.rgba = t.readback.read<float>(size_t(s.width) * s.height * 4);
@@ -208,7 +223,8 @@ struct SceneRenderer::Impl {
     }
 };
 
-SceneRenderer::SceneRenderer(Context& context, const Scene& scene, const SceneSettings& settings, const StaticBakeSource& source)
+SceneRenderer::SceneRenderer(Context& context, const Scene& scene, const SceneSettings& settings,
+                             const StaticBakeSource& source)
     : impl_(std::make_unique<Impl>(context, scene, settings, source))
 {
 }
@@ -228,8 +244,8 @@ const std::vector<glm::vec3>& SceneRenderer::tm(size_t object) const
                                 VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
             const VkBufferCopy region{0, 0, VkDeviceSize(b.vertex_count) * 12};
             vkCmdCopyBuffer(cmd, b.tm, staging.handle(), 1, &region);
-            gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
-                                VK_ACCESS_2_HOST_READ_BIT);
+            gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
         });
         o.tm = staging.read<glm::vec3>(b.vertex_count);
     }
@@ -238,7 +254,8 @@ const std::vector<glm::vec3>& SceneRenderer::tm(size_t object) const
 glm::vec3 SceneRenderer::bbox_min() const { return impl_->lo; }
 glm::vec3 SceneRenderer::bbox_max() const { return impl_->hi; }
 
-RenderedImage SceneRenderer::render(double t, const Camera& camera, std::span<const Light> lights, const RenderSettings& settings)
+RenderedImage SceneRenderer::render(double t, const Camera& camera, std::span<const Light> lights,
+                                    const RenderSettings& settings)
 {
     return impl_->render(t, camera, lights, settings);
 }

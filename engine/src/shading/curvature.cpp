@@ -14,7 +14,8 @@ std::vector<float> mean_curvature(const PreparedMesh& mesh, uint32_t smoothing)
     const size_t n = mesh.vertex_count(), tris = mesh.triangle_count();
     if (mesh.normals.size() != n || mesh.areas.size() != n)
         throw Error("mean_curvature: the mesh has " + std::to_string(n) + " vertices but " +
-                    std::to_string(mesh.normals.size()) + " normals and " + std::to_string(mesh.areas.size()) + " areas");
+                    std::to_string(mesh.normals.size()) + " normals and " + std::to_string(mesh.areas.size()) +
+                    " areas");
     // Σ_j (cot α_ij + cot β_ij)(x_j − x_i), triangle by triangle: the angle at each corner
     // weighs the opposite edge. Slivers have cotangents in the thousands that are rounding
     // noise, not geometry: clamp them (|cot| ≤ 100 is an angle of 0.57°).
@@ -35,7 +36,8 @@ std::vector<float> mean_curvature(const PreparedMesh& mesh, uint32_t smoothing)
     // Δx = −2H n on a smooth surface; the discrete Δx_i = laplacian_i / (2 A_i).
     std::vector<double> h(n, 0.0);
     for (size_t i = 0; i < n; ++i)
-        if (mesh.areas[i] > 0.0f) h[i] = -glm::dot(laplacian[i], glm::dvec3(mesh.normals[i])) / (4.0 * double(mesh.areas[i]));
+        if (mesh.areas[i] > 0.0f)
+            h[i] = -glm::dot(laplacian[i], glm::dvec3(mesh.normals[i])) / (4.0 * double(mesh.areas[i]));
 
     // Area-weighted average over each vertex's 1-ring (itself included), `smoothing` times.
     std::vector<double> sum(n), weight(n);

@@ -30,8 +30,9 @@ bool LightDepth::may_transmit(glm::vec3 eye, const Light& light, glm::vec3 centr
 }
 
 std::vector<uint32_t> LightDepth::record(VkCommandBuffer cmd, glm::vec3 eye, std::span<const Light> lights,
-                                         VkBuffer vertices, uint32_t vertex_stride, VkBuffer indices, uint32_t index_count,
-                                         glm::vec3 centre, float radius, uint64_t geometry_version)
+                                         VkBuffer vertices, uint32_t vertex_stride, VkBuffer indices,
+                                         uint32_t index_count, glm::vec3 centre, float radius,
+                                         uint64_t geometry_version)
 {
     std::vector<uint32_t> tile(lights.size(), 0);
     std::vector<glm::vec3> towards_light;

@@ -40,8 +40,8 @@ public:
     /// the right depths and nothing is recorded (a still mesh under still lights costs no pass).
     /// Records outside any rendering scope; the atlas is left ready for fragment-shader reads.
     std::vector<uint32_t> record(VkCommandBuffer cmd, glm::vec3 eye, std::span<const Light> lights, VkBuffer vertices,
-                                 uint32_t vertex_stride, VkBuffer indices, uint32_t index_count, glm::vec3 centre, float radius,
-                                 uint64_t geometry_version);
+                                 uint32_t vertex_stride, VkBuffer indices, uint32_t index_count, glm::vec3 centre,
+                                 float radius, uint64_t geometry_version);
 
     /// World → light clip space of tile k (x, y ∈ [−1, 1] over the tile, depth ∈ [0, 1]).
     const glm::mat4& view_projection(uint32_t k) const { return view_proj_[k]; }

@@ -27,9 +27,15 @@ double LutLayout::variance(uint32_t j) const
     return kMaxVariance * (v * v) * (v * v);
 }
 
-double LutLayout::x(double cos_theta) const { return (std::clamp(cos_theta, -1.0, 1.0) + 1.0) * 0.5 * double(width - 1); }
+double LutLayout::x(double cos_theta) const
+{
+    return (std::clamp(cos_theta, -1.0, 1.0) + 1.0) * 0.5 * double(width - 1);
+}
 
-double LutLayout::y(double t) const { return std::sqrt(std::sqrt(std::max(t, 0.0) / kMaxVariance)) * double(height - 1); }
+double LutLayout::y(double t) const
+{
+    return std::sqrt(std::sqrt(std::max(t, 0.0) / kMaxVariance)) * double(height - 1);
+}
 
 }  // namespace jade
 
@@ -47,7 +53,8 @@ void require_format(const gpu::Context& ctx, VkFormat format, VkFormatFeatureFla
     vkGetPhysicalDeviceFormatProperties(ctx.physical_device(), format, &p);
     if ((p.optimalTilingFeatures & features) != features)
         throw Error(std::string(what) + ": device " + ctx.info().name +
-                    " cannot store/sample/linearly filter the texture format it needs (format " + std::to_string(format) + ")");
+                    " cannot store/sample/linearly filter the texture format it needs (format " +
+                    std::to_string(format) + ")");
 }
 
 void require_texel_format(const gpu::Context& ctx, VkFormat format, const char* what)
@@ -55,8 +62,8 @@ void require_texel_format(const gpu::Context& ctx, VkFormat format, const char* 
     VkFormatProperties p;
     vkGetPhysicalDeviceFormatProperties(ctx.physical_device(), format, &p);
     if (!(p.bufferFeatures & VK_FORMAT_FEATURE_UNIFORM_TEXEL_BUFFER_BIT))
-        throw Error(std::string(what) + ": device " + ctx.info().name + " cannot read format " + std::to_string(format) +
-                    " from a uniform texel buffer");
+        throw Error(std::string(what) + ": device " + ctx.info().name + " cannot read format " +
+                    std::to_string(format) + " from a uniform texel buffer");
 }
 
 void check_size(uint32_t width, uint32_t height, const char* what)
@@ -69,7 +76,8 @@ void check_size(uint32_t width, uint32_t height, const char* what)
 // A sampled image of `desc` (usage: sampled, transfer destination) holding `texels`, tightly
 // packed rows, copied in through a host-visible staging buffer named `staging_name`.
 template <class T>
-gpu::Image upload_image(gpu::Context& ctx, const gpu::ImageDesc& desc, const std::vector<T>& texels, const char* staging_name)
+gpu::Image upload_image(gpu::Context& ctx, const gpu::ImageDesc& desc, const std::vector<T>& texels,
+                        const char* staging_name)
 {
     gpu::Buffer staging(ctx, texels.size() * sizeof(T), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, staging_name, true);
     staging.upload(texels.data(), texels.size() * sizeof(T));
@@ -86,7 +94,8 @@ gpu::Image upload_image(gpu::Context& ctx, const gpu::ImageDesc& desc, const std
 
 gpu::OwnedSampler make_lut_sampler(const gpu::Context& ctx)
 {
-    return gpu::make_sampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "LUT sampler (linear, clamp)");
+    return gpu::make_sampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                             "LUT sampler (linear, clamp)");
 }
 
 TranslucencyLut::TranslucencyLut(gpu::Context& ctx, const LutLayout& layout) : layout_(layout)
@@ -95,10 +104,12 @@ TranslucencyLut::TranslucencyLut(gpu::Context& ctx, const LutLayout& layout) : l
     require_format(ctx, VK_FORMAT_R32_SFLOAT,
                    VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT,
                    "translucency LUT");
-    image_ = gpu::Image(ctx, {"translucency LUT", layout.width, layout.height, VK_FORMAT_R32_SFLOAT,
-                              VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+    image_ =
+        gpu::Image(ctx, {"translucency LUT", layout.width, layout.height, VK_FORMAT_R32_SFLOAT,
+                         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
     // The kernel is needed once per LUT: it is not kept.
-    gpu::Kernel build(ctx, {"lut_build", shaders::lut_build_comp(), {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, sizeof(BuildPush), 64, {}});
+    gpu::Kernel build(
+        ctx, {"lut_build", shaders::lut_build_comp(), {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, sizeof(BuildPush), 64, {}});
     BuildPush push{layout.width, layout.height, float(LutLayout::kMaxVariance)};
     ctx.submit_and_wait([&](VkCommandBuffer cmd) {
         image_.transition(cmd, gpu::use::kComputeWrite);
@@ -125,12 +136,14 @@ TranslucencyLut::TranslucencyLut(gpu::Context& ctx, const LutLayout& layout) : l
 
     // The same texels in 16 bits for the sampler (TmEvaluation::LutFiltered): f ∈ [0, 1], so
     // UNORM steps of 1.5e-5, a tenth of what the image budget allows (docs/shading.md).
-    require_format(ctx, VK_FORMAT_R16_UNORM, VK_FORMAT_FEATURE_TRANSFER_DST_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT,
+    require_format(ctx, VK_FORMAT_R16_UNORM,
+                   VK_FORMAT_FEATURE_TRANSFER_DST_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT,
                    "translucency LUT (16 bit)");
     std::vector<uint16_t> unorm(f.size());
     for (size_t i = 0; i < f.size(); ++i) unorm[i] = uint16_t(std::lround(std::clamp(f[i], 0.0f, 1.0f) * 65535.0f));
-    filtered_ = upload_image(ctx, {"translucency LUT (16 bit)", W, H, VK_FORMAT_R16_UNORM,
-                                   VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT},
+    filtered_ = upload_image(ctx,
+                             {"translucency LUT (16 bit)", W, H, VK_FORMAT_R16_UNORM,
+                              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT},
                              unorm, "translucency LUT upload");
 }
 
@@ -169,7 +182,8 @@ std::vector<glm::vec4> CurvatureLut::evaluate(const Material& material, uint32_t
         const double v = double(j) / double(height - 1);
         // κ·d̄ = v/(1 − v): r = 1/κ = d̄(1 − v)/v; row 0 is the plane, the last row a sphere of
         // radius d̄/1000 (κ → ∞ would be r = 0, outside the reference's domain).
-        const double r = j == 0 ? std::numeric_limits<double>::infinity() : std::max(scale * (1.0 - v) / v, scale * 1e-3);
+        const double r =
+            j == 0 ? std::numeric_limits<double>::infinity() : std::max(scale * (1.0 - v) / v, scale * 1e-3);
         for (uint32_t i = 0; i < width; ++i) {
             const double c = -1.0 + 2.0 * double(i) / double(width - 1);
             glm::vec4& t = texels[size_t(j) * width + i];
@@ -202,10 +216,12 @@ CurvatureLut::CurvatureLut(gpu::Context& ctx, const Material& material, uint32_t
     : scale_(length_scale(material))
 {
     require_format(ctx, VK_FORMAT_R32G32B32A32_SFLOAT,
-                   VK_FORMAT_FEATURE_TRANSFER_DST_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT, "curvature LUT");
+                   VK_FORMAT_FEATURE_TRANSFER_DST_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT,
+                   "curvature LUT");
     std::vector<glm::vec4> texels = evaluate(material, width, height);
-    image_ = upload_image(ctx, {"curvature LUT", width, height, VK_FORMAT_R32G32B32A32_SFLOAT,
-                                VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT},
+    image_ = upload_image(ctx,
+                          {"curvature LUT", width, height, VK_FORMAT_R32G32B32A32_SFLOAT,
+                           VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT},
                           texels, "curvature LUT upload");
 }
 

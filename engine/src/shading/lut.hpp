@@ -25,7 +25,9 @@
 #include <memory>
 #include <vector>
 
-namespace jade::gpu { class Context; }
+namespace jade::gpu {
+class Context;
+}
 
 namespace jade::shading {
 

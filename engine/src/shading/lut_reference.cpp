@@ -54,7 +54,9 @@ double detail::lut_reference_direct(double cos_theta, double t)
     // of |z| ≤ 10 where cos(θ + σz) ≥ 0: θ + σz ∈ [2πk − π/2, 2πk + π/2].
     const double theta = std::acos(c), sigma = std::sqrt(t);
     const double inv_sqrt_2pi = 1.0 / std::sqrt(2.0 * kPi);
-    auto integrand = [&](double z) { return std::max(std::cos(theta + sigma * z), 0.0) * inv_sqrt_2pi * std::exp(-0.5 * z * z); };
+    auto integrand = [&](double z) {
+        return std::max(std::cos(theta + sigma * z), 0.0) * inv_sqrt_2pi * std::exp(-0.5 * z * z);
+    };
     const int k_lo = int(std::floor((theta - kWindow * sigma + 0.5 * kPi) / (2.0 * kPi)));
     const int k_hi = int(std::ceil((theta + kWindow * sigma - 0.5 * kPi) / (2.0 * kPi)));
     double f = 0.0;
@@ -76,18 +78,17 @@ double curvature_lut_reference(double cos_theta, double curvature_radius, const 
 {
     const double c = clamp_cos(cos_theta, "curvature_lut_reference");
     const double r = curvature_radius;
-    if (!(r > 0.0))
-        throw Error("curvature_lut_reference: curvature_radius = " + std::to_string(r) + " must be > 0");
+    if (!(r > 0.0)) throw Error("curvature_lut_reference: curvature_radius = " + std::to_string(r) + " must be > 0");
     if (std::isinf(r)) return std::max(c, 0.0);
     const double sin_theta = std::sqrt(std::max(0.0, 1.0 - c * c));
     // E(γ(s), θ): the clamped cosine averaged over the circle of chord s about x.
     auto irradiance = [&](double s) {
-        const double h = std::min(s / (2.0 * r), 1.0);                   // sin(γ/2)
+        const double h = std::min(s / (2.0 * r), 1.0);  // sin(γ/2)
         const double cos_g = 1.0 - 2.0 * h * h;
         const double sin_g = 2.0 * h * std::sqrt(std::max(0.0, 1.0 - h * h));
-        const double a = cos_g * c, b = sin_g * sin_theta;              // a + b cos β, b ≥ 0
+        const double a = cos_g * c, b = sin_g * sin_theta;  // a + b cos β, b ≥ 0
         if (b <= std::abs(a)) return std::max(a, 0.0);
-        const double q = -a / b;                                         // cos β0
+        const double q = -a / b;  // cos β0
         return (a * std::acos(q) + b * std::sqrt(std::max(0.0, 1.0 - q * q))) / kPi;
     };
     // Weight 2πsR(s) on [0, 2r], cut where the profile's tail is below 1e-16. Panels shrink

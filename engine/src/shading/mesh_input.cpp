@@ -14,13 +14,13 @@ namespace {
 // Per render vertex to per bake vertex: render vertices welded into one bake vertex carry the
 // same baked value up to rounding; their mean.
 template <class T>
-std::vector<T> average_per_bake_vertex(const TriangleMesh& mesh, const PreparedMesh& prepared, std::span<const T> values,
-                                       const char* what)
+std::vector<T> average_per_bake_vertex(const TriangleMesh& mesh, const PreparedMesh& prepared,
+                                       std::span<const T> values, const char* what)
 {
     if (values.empty()) return {};
     if (values.size() != mesh.positions.size())
-        throw Error("Renderer::set_mesh: " + mesh.name + ": " + std::to_string(values.size()) + " " + what + " values for " +
-                    std::to_string(mesh.positions.size()) + " render vertices");
+        throw Error("Renderer::set_mesh: " + mesh.name + ": " + std::to_string(values.size()) + " " + what +
+                    " values for " + std::to_string(mesh.positions.size()) + " render vertices");
     std::vector<T> out(prepared.vertex_count(), T(0.0f));
     std::vector<uint32_t> count(prepared.vertex_count(), 0);
     for (size_t i = 0; i < prepared.render_to_bake.size(); ++i)

@@ -95,12 +95,17 @@ const gpu::GraphicsPipeline& MeshPipelines::get(const MeshVariant& v, VkFormat f
                         {4, VK_FORMAT_R32_SFLOAT, offsetof(Vertex, thickness)},
                         {5, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, scattering_normal)},
                         {6, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal_spread)}};
-        d.bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,
+        d.bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,         VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,
                       VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                       VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER};
         d.push_size = sizeof(FramePush);
         // constant_id 0 … 6 of mesh.vert/mesh.frag (shading.glsl, transmission.glsl, translucency.glsl).
-        d.constants = {v.mode, v.channels, v.transmission, uint32_t(v.evaluation), v.terms, v.small_t ? 1u : 0u,
+        d.constants = {v.mode,
+                       v.channels,
+                       v.transmission,
+                       uint32_t(v.evaluation),
+                       v.terms,
+                       v.small_t ? 1u : 0u,
                        std::bit_cast<uint32_t>(kSmallSigma)};
         it->second = gpu::GraphicsPipeline(ctx_, d);
     } catch (...) {

@@ -57,8 +57,8 @@ struct MeshVariant {
     uint32_t channels = 3;      ///< 1: grey material
     uint32_t transmission = 0;  ///< lights drawn with transmission (FrameData::transmitters)
     TmEvaluation evaluation = TmEvaluation::Lut;
-    uint32_t terms = 5;         ///< Alu: Fourier terms
-    bool small_t = true;        ///< Alu: the closed form for √t < kSmallSigma is needed
+    uint32_t terms = 5;   ///< Alu: Fourier terms
+    bool small_t = true;  ///< Alu: the closed form for √t < kSmallSigma is needed
     uint64_t key(VkFormat format, uint32_t samples) const;
 };
 

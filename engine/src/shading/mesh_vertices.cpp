@@ -21,13 +21,14 @@ MeshVertices build_vertices(const PreparedMesh& mesh, std::span<const glm::vec3>
         throw Error("Renderer::set_mesh: " + std::to_string(scattering_normal.size()) + " scattering normals for " +
                     std::to_string(n) + " vertices");
     if (!normal_spread.empty() && normal_spread.size() != n)
-        throw Error("Renderer::set_mesh: " + std::to_string(normal_spread.size()) + " normal spreads for " + std::to_string(n) +
-                    " vertices");
+        throw Error("Renderer::set_mesh: " + std::to_string(normal_spread.size()) + " normal spreads for " +
+                    std::to_string(n) + " vertices");
     if (!tm.empty() && tm.size() != n)
-        throw Error("Renderer::set_mesh: " + std::to_string(tm.size()) + " t_m values for " + std::to_string(n) + " vertices");
-    if (!thickness.empty() && thickness.size() != n)
-        throw Error("Renderer::set_mesh: " + std::to_string(thickness.size()) + " thickness values for " + std::to_string(n) +
+        throw Error("Renderer::set_mesh: " + std::to_string(tm.size()) + " t_m values for " + std::to_string(n) +
                     " vertices");
+    if (!thickness.empty() && thickness.size() != n)
+        throw Error("Renderer::set_mesh: " + std::to_string(thickness.size()) + " thickness values for " +
+                    std::to_string(n) + " vertices");
     MeshVertices out;
     out.vertices.resize(n);
     float tm_min = INFINITY, tm_max = 0.0f;
@@ -44,9 +45,11 @@ MeshVertices build_vertices(const PreparedMesh& mesh, std::span<const glm::vec3>
         glm::vec3 s = scattering_normal.empty() ? mesh.normals[i] : scattering_normal[i];
         const float s_len = glm::length(s);
         if (!(std::isfinite(s_len) && s_len > 0.0f))
-            throw Error("Renderer::set_mesh: scattering normal of vertex " + std::to_string(i) + " is zero or not finite");
+            throw Error("Renderer::set_mesh: scattering normal of vertex " + std::to_string(i) +
+                        " is zero or not finite");
         const glm::vec3 spread = normal_spread.empty() ? glm::vec3(0.0f) : normal_spread[i];
-        if (!(spread.x >= 0.0f && spread.x <= 1.0f && spread.y >= 0.0f && spread.y <= 1.0f && spread.z >= 0.0f && spread.z <= 1.0f))
+        if (!(spread.x >= 0.0f && spread.x <= 1.0f && spread.y >= 0.0f && spread.y <= 1.0f && spread.z >= 0.0f &&
+              spread.z <= 1.0f))
             throw Error("Renderer::set_mesh: normal spread of vertex " + std::to_string(i) + " is not in [0, 1]");
         out.vertices[i] = {mesh.positions[i], mesh.normals[i], t, curvature[i], th, s / s_len, spread};
         const float mean = t.x / 3.0f + t.y / 3.0f + t.z / 3.0f;

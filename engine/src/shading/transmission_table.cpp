@@ -26,7 +26,8 @@ constexpr uint32_t kMaxTexels = 1u << 16;
 TransmissionTable::TransmissionTable(gpu::Context& ctx) : ctx_(ctx)
 {
     buffer_ = gpu::Buffer::from(ctx, std::vector<glm::uvec4>(2, glm::uvec4(0)),
-                                VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "transmission table");
+                                VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                "transmission table");
     view_ = gpu::TexelView(ctx, buffer_, VK_FORMAT_R32G32B32A32_UINT, 16, "transmission table");
 }
 
@@ -38,19 +39,25 @@ TransmissionTable::Layout TransmissionTable::table_layout(const Transmission& tr
     double slowest = INFINITY, fastest = 0.0;
     for (const glm::vec3& r : {tr.sigma_t, tr.sigma_tr, tr.sigma_s_reduced})
         for (int c = 0; c < 3; ++c)
-            if (r[c] > 0.0f) slowest = std::min(slowest, double(std::min(r[c], 3e38f))), fastest = std::max(fastest, double(std::min(r[c], 3e38f)));
+            if (r[c] > 0.0f)
+                slowest = std::min(slowest, double(std::min(r[c], 3e38f))),
+                fastest = std::max(fastest, double(std::min(r[c], 3e38f)));
     if (!std::isfinite(slowest)) slowest = fastest = 1.0;  // no decay at all: A is constant
     const double range = 14.0 / slowest;
     const uint32_t count = uint32_t(std::clamp(std::ceil(range * fastest / 0.03) + 1.0, 2.0, double(kMaxTexels)));
     return {count, range / double(count - 1)};
 }
 
-uint64_t TransmissionTable::bytes(const Transmission& tr) { return tr.enabled() ? uint64_t(table_layout(tr).count) * 16 : 32; }
+uint64_t TransmissionTable::bytes(const Transmission& tr)
+{
+    return tr.enabled() ? uint64_t(table_layout(tr).count) * 16 : 32;
+}
 
 void TransmissionTable::update(const Transmission& tr)
 {
-    if (held_ && held_->sigma_t == tr.sigma_t && held_->sigma_tr == tr.sigma_tr && held_->sigma_s_reduced == tr.sigma_s_reduced &&
-        held_->weight == tr.weight && held_->diffusion_weight == tr.diffusion_weight)
+    if (held_ && held_->sigma_t == tr.sigma_t && held_->sigma_tr == tr.sigma_tr &&
+        held_->sigma_s_reduced == tr.sigma_s_reduced && held_->weight == tr.weight &&
+        held_->diffusion_weight == tr.diffusion_weight)
         return;
     const Layout layout = table_layout(tr);
     const uint32_t count = layout.count;
@@ -60,12 +67,17 @@ void TransmissionTable::update(const Transmission& tr)
     if (buffer_.size() < VkDeviceSize(count) * 16) {
         if (buffer_) ctx_.release_after_gpu(std::move(view_), std::move(buffer_));  // recorded draws may read it
         buffer_ = gpu::Buffer(ctx_, VkDeviceSize(count) * 16,
-                              VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "transmission table");
+                              VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                              "transmission table");
         view_ = gpu::TexelView(ctx_, buffer_, VK_FORMAT_R32G32B32A32_UINT, 16, "transmission table");
     }
     if (!kernel_)
-        kernel_.emplace(ctx_, gpu::KernelDesc{"transmission_table", shaders::transmission_table_comp(),
-                                              {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}, sizeof(TablePush), 64, {}});
+        kernel_.emplace(ctx_, gpu::KernelDesc{"transmission_table",
+                                              shaders::transmission_table_comp(),
+                                              {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                              sizeof(TablePush),
+                                              64,
+                                              {}});
     const TablePush push{glm::vec4(rates[0], tr.weight), glm::vec4(rates[1], tr.diffusion_weight),
                          glm::vec4(rates[2], float(step)), count};
     ctx_.submit_and_wait([&](VkCommandBuffer cmd) {

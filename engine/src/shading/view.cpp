@@ -49,7 +49,8 @@ glm::mat4 Camera::view_projection(float aspect) const
 {
     if (!(near_plane > 0.0f && far_plane > near_plane) || !(aspect > 0.0f))
         throw Error("camera: view_projection needs 0 < near_plane < far_plane and aspect > 0 (near " +
-                    std::to_string(near_plane) + ", far " + std::to_string(far_plane) + ", aspect " + std::to_string(aspect) + ")");
+                    std::to_string(near_plane) + ", far " + std::to_string(far_plane) + ", aspect " +
+                    std::to_string(aspect) + ")");
     glm::mat4 proj = glm::perspectiveRH_ZO(glm::radians(fov_y_degrees), aspect, near_plane, far_plane);
     proj[1][1] *= -1.0f;  // Vulkan's framebuffer y points down: rows come out top to bottom
     return proj * glm::lookAtRH(eye, target, up);

@@ -21,9 +21,10 @@ int main()
     image.width = image.height = 16;
     image.rgba.assign(16 * 16 * 4, 0.0f);
     jade::draw_text(image, 1, 1, "ok", glm::vec3(1.0f));
-    std::printf("core_consumer: %zu vertices, f(60 deg, 0) = %g, %zu AO values, %zu curvatures, plan of %zu objects, %s\n",
-                sphere.vertex_count(), f, occlusion.size(), curvature.size(), plan.objects.size(),
-                jade::quality_name(jade::parse_quality("draft")));
+    std::printf(
+        "core_consumer: %zu vertices, f(60 deg, 0) = %g, %zu AO values, %zu curvatures, plan of %zu objects, %s\n",
+        sphere.vertex_count(), f, occlusion.size(), curvature.size(), plan.objects.size(),
+        jade::quality_name(jade::parse_quality("draft")));
     const bool ok = sphere.vertex_count() > 0 && f > 0.0 && occlusion.size() == sphere.vertex_count() &&
                     curvature.size() == sphere.vertex_count() && plan.objects.size() == 1 && plan.resident_bytes() > 0;
     return ok ? 0 : 1;
