@@ -33,8 +33,10 @@ void Baker::Impl::prepare_ao(MeshState& m, const PreparedMesh& mesh, bool refitt
     std::vector<uint32_t> item_of_node(bvh.nodes.size());
     std::vector<glm::uvec2> work;
     for (uint32_t k = 0; k < items.count(); ++k) {
-        if (items.origin[k] & bake::kItemTriangleBit) work.push_back({k, 0});
-        else item_of_node[items.origin[k]] = k;
+        if (items.origin[k] & bake::kItemTriangleBit)
+            work.push_back({k, 0});
+        else
+            item_of_node[items.origin[k]] = k;
     }
     m.ray_work_offsets = {0, uint32_t(work.size())};
     bake::BvhLevels levels = bake::bvh_levels(bvh);
@@ -70,13 +72,21 @@ void Baker::Impl::record_ao(VkCommandBuffer cmd, MeshState& m, const AoSettings&
     gpu::compute_barrier(cmd);
     const uint32_t rays_in_slice = s.rays / m.ao_slices;
     for (uint32_t slice = first; slice < first + count; ++slice) {
-        AoPush push{m.vertex_count, s.rays, s.seed, s.low_discrepancy ? 1u : 0u, s.ray_offset_rel * m.diagonal,
-                    s.max_distance_rel * m.diagonal, m.item_count, m.ao_slices, slice};
+        AoPush push{m.vertex_count,
+                    s.rays,
+                    s.seed,
+                    s.low_discrepancy ? 1u : 0u,
+                    s.ray_offset_rel * m.diagonal,
+                    s.max_distance_rel * m.diagonal,
+                    m.item_count,
+                    m.ao_slices,
+                    slice};
         ao_kernel().dispatch(cmd, uint64_t(m.vertex_count) * rays_in_slice, push,
                              {m.positions, m.normals, m.ray_item_texels, m.hits});
     }
     gpu::compute_barrier(cmd);
-    ao_resolve_kernel().dispatch(cmd, m.vertex_count, AoResolvePush{m.vertex_count, s.rays, m.ao_slices}, {m.hits, m.ao});
+    ao_resolve_kernel().dispatch(cmd, m.vertex_count, AoResolvePush{m.vertex_count, s.rays, m.ao_slices},
+                                 {m.hits, m.ao});
 }
 
 }  // namespace jade
