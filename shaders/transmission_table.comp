@@ -8,6 +8,7 @@
 
 layout(push_constant, scalar) uniform Push {
     vec4 extinction, diffusion, scatter;  // as transmission_attenuation(); scatter.w: step (mesh units)
+    vec4 source, boundary;                // z_s, z_b (xyz) of transmission_attenuation()
     uint count;
 } pc;
 layout(binding = 0, scalar) writeonly buffer Table { uvec4 texels[]; };
@@ -17,7 +18,9 @@ void main()
     uint i = jade_thread_index();
     if (i >= pc.count) return;
     float step = pc.scatter.w;
-    vec3 a = transmission_attenuation(float(i) * step, pc.extinction, pc.diffusion, pc.scatter.xyz);
-    vec3 b = transmission_attenuation(float(min(i + 1u, pc.count - 1u)) * step, pc.extinction, pc.diffusion, pc.scatter.xyz);
+    vec3 a = transmission_attenuation(float(i) * step, pc.extinction, pc.diffusion, pc.scatter.xyz, pc.source.xyz,
+                                      pc.boundary.xyz);
+    vec3 b = transmission_attenuation(float(min(i + 1u, pc.count - 1u)) * step, pc.extinction, pc.diffusion,
+                                      pc.scatter.xyz, pc.source.xyz, pc.boundary.xyz);
     texels[i] = uvec4(packHalf2x16(a.rg), packHalf2x16(vec2(a.b, b.r)), packHalf2x16(b.gb), 0u);
 }

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 #include <numbers>
 
 using namespace jade;
@@ -77,6 +78,11 @@ TEST(Medium, DerivesEveryParameterFromTheCoefficients)
         EXPECT_EQ(mat.profile[c].kind, ProfileKind::Burley);
         EXPECT_NEAR(mat.profile[c].d, 1.0 / (m.sigma_s[c] + m.sigma_a[c]) / s, 1e-12);
         EXPECT_FLOAT_EQ(mat.transmission.sigma_t[c], float(m.sigma_s[c] + m.sigma_a[c]));
+        // The slab's source depth z_0 + z_b and extrapolation z_b = 2A/(3σ_t'), Egan–Hilgeman F_dr.
+        const double f_dr = -1.440 / 2.25 + 0.710 / 1.5 + 0.668 + 0.0636 * 1.5;
+        const double zb = 2.0 * (1.0 + f_dr) / (1.0 - f_dr) / (3.0 * (m.sigma_s[c] + m.sigma_a[c]));
+        EXPECT_NEAR(mat.transmission.extrapolation[c], zb, 1e-6 * zb);
+        EXPECT_NEAR(mat.transmission.source_depth[c], 1.0 / (m.sigma_s[c] + m.sigma_a[c]) + zb, 1e-6 * zb);
     }
     EXPECT_GT(mat.albedo.b, mat.albedo.r);  // a saturated blue: red and green are absorbed
     EXPECT_FLOAT_EQ(mat.strength, float(fit.strength));
@@ -105,6 +111,55 @@ TEST(Medium, TransmissionLobeIsNormalisedOverTheHemisphere)
     }
 }
 
+// The flux through the far side of a slab [0, t] from a unit planar source at depth z0, for
+// φ'' − σ²φ = −δ(z − z0) with φ = 0 on the extrapolated boundaries −z_b and t + z_b: a float64
+// finite-difference solution (the Thomas algorithm), independent of the closed form.
+double slab_flux_numerical(double t, double sigma, double z0, double zb)
+{
+    const int n = 40000;
+    const double a = -zb, b = t + zb, h = (b - a) / n;
+    std::vector<double> diag(n - 1, -2.0 - sigma * sigma * h * h), rhs(n - 1, 0.0);
+    // The source on the two nodes around z0 (linear split), −1/h per unit of δ.
+    const double x = (z0 - a) / h - 1.0;
+    const int k = int(std::floor(x));
+    const double f = x - k;
+    rhs[k] -= (1.0 - f) * h, rhs[k + 1] -= f * h;
+    for (int i = 1; i < n - 1; ++i) {  // forward sweep, off-diagonals 1
+        const double w = 1.0 / diag[i - 1];
+        diag[i] -= w, rhs[i] -= w * rhs[i - 1];
+    }
+    std::vector<double> phi(n + 1, 0.0);
+    for (int i = n - 2; i >= 0; --i) phi[i + 1] = (rhs[i] - (i + 1 < n - 1 ? phi[i + 2] : 0.0)) / diag[i];
+    // −φ'(t) by a second-order one-sided difference at the node nearest to t.
+    const int j = int(std::lround((t - a) / h));
+    return -(phi[j + 1] - phi[j - 1]) / (2.0 * h);
+}
+
+TEST(Medium, SlabDiffusionTransmittanceSolvesTheDiffusionEquation)
+{
+    for (double sigma : {0.0, 0.3, 2.0, 8.0})
+        for (double t : {0.5, 1.0, 3.0}) {
+            const double z0 = 0.1, zb = 0.2;
+            const double expected = slab_flux_numerical(t, sigma, z0, zb);
+            EXPECT_NEAR(slab_diffusion_transmittance(t, sigma, z0 + zb, zb), expected, 2e-3 * expected + 1e-9)
+                << "σ_tr " << sigma << ", t " << t;
+        }
+    // No absorption: T = z_s/(t + 2z_b) and the reflected rest R = (t + z_b − z0)/(t + 2z_b) sum to 1.
+    EXPECT_NEAR(slab_diffusion_transmittance(2.0, 0.0, 0.3, 0.2), 0.3 / 2.4, 1e-15);
+    // Thick: ∝ e^{−σ_tr t}.
+    const double r =
+        slab_diffusion_transmittance(11.0, 2.0, 0.3, 0.2) / slab_diffusion_transmittance(10.0, 2.0, 0.3, 0.2);
+    EXPECT_NEAR(r, std::exp(-2.0), 1e-9);
+    // Extremes: finite and in [0, 1]; t = ∞ and z_s = 0 give 0.
+    for (double s : {0.0, 1e-6, 1e-3, 1.0, 1e3, 1e6, 3e38, double(INFINITY)})
+        for (double t : {0.0, 1e-6, 0.1, 1.0, 1e6, double(INFINITY)}) {
+            const double v = slab_diffusion_transmittance(t, s, 0.3, 0.2);
+            EXPECT_TRUE(std::isfinite(v) && v >= 0.0 && v <= 1.0) << "σ_tr " << s << ", t " << t << ": " << v;
+        }
+    EXPECT_EQ(slab_diffusion_transmittance(INFINITY, 1.0, 0.3, 0.2), 0.0);
+    EXPECT_EQ(slab_diffusion_transmittance(1.0, 1.0, 0.0, 0.0), 0.0);
+}
+
 TEST(Medium, ExtremeMediaGiveFiniteDocumentedResults)
 {
     auto finite = [](const Material& mat) {
@@ -112,6 +167,8 @@ TEST(Medium, ExtremeMediaGiveFiniteDocumentedResults)
             EXPECT_TRUE(std::isfinite(mat.albedo[c]) && mat.albedo[c] >= 0.0f && mat.albedo[c] <= 1.0f);
             EXPECT_TRUE(std::isfinite(mat.profile[c].d) && mat.profile[c].d > 0.0);
             EXPECT_TRUE(std::isfinite(mat.transmission.sigma_t[c]) && mat.transmission.sigma_t[c] >= 0.0f);
+            EXPECT_TRUE(std::isfinite(mat.transmission.source_depth[c]) && mat.transmission.source_depth[c] >= 0.0f);
+            EXPECT_TRUE(std::isfinite(mat.transmission.extrapolation[c]) && mat.transmission.extrapolation[c] >= 0.0f);
         }
     };
     Medium m;

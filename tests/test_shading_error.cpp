@@ -67,7 +67,8 @@ glm::dvec3 attenuation(const Transmission& tr, double t)
     for (int c = 0; c < 3; ++c) {
         const double ballistic = std::exp(-double(tr.sigma_t[c]) * t);
         const double diffused =
-            (1.0 - std::exp(-double(tr.sigma_s_reduced[c]) * t)) * std::exp(-double(tr.sigma_tr[c]) * t);
+            -std::expm1(-double(tr.sigma_s_reduced[c]) * t) *
+            slab_diffusion_transmittance(t, tr.sigma_tr[c], tr.source_depth[c], tr.extrapolation[c]);
         out[c] = double(tr.weight) * ballistic + double(tr.diffusion_weight) * diffused;
     }
     return out;

@@ -164,15 +164,19 @@ TEST_F(Thickness, BackLitSlabShowsTheBallisticTransmittance)
         const double expected = 0.7 * lobe * std::exp(-double(m.transmission.sigma_t[c]) * t) * 2.0;
         EXPECT_NEAR(centre[c], expected, 0.01 * expected) << "channel " << c;
     }
-    // The diffused part alone: (1 − e^{−σ_s' t}) e^{−σ_tr t}.
+    // The diffused part alone: (1 − e^{−σ_s' t}) T_d(t), T_d the slab's diffusion transmittance.
     m.transmission.weight = 0.0f, m.transmission.diffusion_weight = 0.5f;
     m.transmission.sigma_s_reduced = {10.0f, 5.0f, 2.0f};
     m.transmission.sigma_tr = {1.0f, 3.0f, 9.0f};
+    m.transmission.source_depth = {0.02f, 0.05f, 0.1f};
+    m.transmission.extrapolation = {0.01f, 0.03f, 0.06f};
     renderer.set_material(m);
     const RenderedImage diffused = renderer.render(cam, lights, rs);
     for (int c = 0; c < 3; ++c) {
         const double s = m.transmission.sigma_s_reduced[c], tr = m.transmission.sigma_tr[c];
-        const double expected = 0.5 * lobe * (1.0 - std::exp(-s * t)) * std::exp(-tr * t) * 2.0;
+        const double slab =
+            slab_diffusion_transmittance(t, tr, m.transmission.source_depth[c], m.transmission.extrapolation[c]);
+        const double expected = 0.5 * lobe * (1.0 - std::exp(-s * t)) * slab * 2.0;
         EXPECT_NEAR(diffused.pixel(16, 16)[c], expected, 0.01 * expected) << "diffused, channel " << c;
     }
     // Off when no light is behind the object, and with RenderSettings::transmission = false.

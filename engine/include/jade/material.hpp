@@ -91,26 +91,42 @@ Medium medium_from_appearance(glm::dvec3 albedo, glm::dvec3 mean_free_path, doub
 /// thickness t̄ (jade/bake.hpp ThicknessSettings) and the light's path from where it enters the
 /// object (a depth map along each directional light behind the object, so parts the body shadows
 /// stay dark):
-///   L_t = [weight · e^{−σ_t·t} + diffusion_weight · (1 − e^{−σ_s'·t}) · e^{−σ_tr·t}]
+///   L_t = [weight · e^{−σ_t·t} + diffusion_weight · (1 − e^{−σ_s'·t}) · T_d(t)]
 ///         · lobe(μ) · ((1 − normal_mix) + normal_mix·max(−N·L, 0)) · E
 ///   lobe(μ) = (n + 1)/(2π) · max(μ, 0)^n,  μ = V·(−L),  n = `lobe`
 /// The first part is the ballistic (unscattered) transmittance of the extinction σ_t = σ_s + σ_a:
 /// grey when σ_t is grey, as measured, so thin parts of a grey-σ_t medium glow white-grey
-/// whatever its colour. The second is light that scattered (1 − e^{−σ_s'·t}) and then diffused,
-/// decaying with the diffusion's effective extinction σ_tr = √(3σ_a(σ_a + σ_s')), the part that
-/// makes thin parts of a dense, little-absorbing medium (marble, milk, wax) glow in its colour.
+/// whatever its colour. The second is light that scattered (1 − e^{−σ_s'·t}) and then diffused
+/// through the thickness: T_d is the diffusion approximation's transmittance of a slab
+/// (slab_diffusion_transmittance), falling as 1/t in a medium without absorption and as e^{−σ_tr·t}
+/// in a thick absorbing one, σ_tr = √(3σ_a(σ_a + σ_s')). It is the part that makes thin parts of
+/// a dense, little-absorbing medium (marble, milk, wax) glow in its colour while the thick body,
+/// many transport lengths across, stays dark.
 /// Both are spread into a forward lobe (normalised over the hemisphere about −L) by the rough
 /// boundary and forward scattering. weight = diffusion_weight = 0 turns the term off.
 struct Transmission {
     glm::vec3 sigma_t{0.0f};          ///< extinction σ_s + σ_a, 1/mesh unit
     glm::vec3 sigma_s_reduced{0.0f};  ///< σ_s' = σ_s(1 − g), 1/mesh unit
     glm::vec3 sigma_tr{0.0f};         ///< √(3σ_a(σ_a + σ_s')), 1/mesh unit
+    glm::vec3 source_depth{0.0f};     ///< z_s = z_0 + z_b of slab_diffusion_transmittance, mesh units
+    glm::vec3 extrapolation{0.0f};    ///< z_b of slab_diffusion_transmittance, mesh units
     float weight = 0.0f;              ///< ballistic part, including the boundary's transmittance
     float diffusion_weight = 0.0f;    ///< diffused part, including the boundary's transmittance
     float lobe = 2.0f;                ///< exponent n of the forward lobe, ≥ 0
     float normal_mix = 0.3f;          ///< how much the term follows max(−N·L, 0), [0, 1]
     bool enabled() const { return weight > 0.0f || diffusion_weight > 0.0f; }
 };
+
+/// The diffusion approximation's transmittance T_d through a slab of thickness t (mesh units) lit
+/// on one side: light enters, becomes a planar isotropic source at depth z_0 = 1/σ_t' and
+/// diffuses (diffusion constant D = 1/(3σ_t')) between boundaries extrapolated by
+/// z_b = 2A·D, A = (1 + F_dr)/(1 − F_dr) as in diffuse_reflectance; T_d is the flux leaving the far
+/// side (the 1-D Green's function of the diffusion equation):
+///   T_d(t) = min(1, sinh(σ_tr z_s) cosh(σ_tr z_b) / sinh(σ_tr (t + 2z_b))),  z_s = z_0 + z_b.
+/// Without absorption (σ_tr = 0) it is z_s/(t + 2z_b), the slab's transmittance T with
+/// T + R = 1; thick, it falls as e^{−σ_tr t}. float64, finite for every σ_tr ≥ 0, z_b ≥ 0, z_s ≥ 0
+/// and t ≥ 0 (0 where z_s = 0, and for t = ∞); the home of attenuation.glsl's formula.
+double slab_diffusion_transmittance(double t, double sigma_tr, double source_depth, double extrapolation);
 
 /// The constants of Material::from_medium that the model leaves free, fitted to a volumetric path
 /// tracer (Mitsuba 3) on the training scenes of tools/groundtruth (fit: tools/groundtruth/fit.py,
@@ -120,9 +136,9 @@ struct MediumFit {
     double strength = 0.3;              ///< Material::strength (rad² per unit t_m)
     double spread_strength = 3.0;       ///< Material::spread_strength (rad² per unit normal spread)
     double transmission_weight = 0.65;  ///< Transmission::weight / T_boundary
-    double diffusion_weight = 0.046;    ///< Transmission::diffusion_weight / T_boundary
+    double diffusion_weight = 0.108;    ///< Transmission::diffusion_weight / T_boundary
     double lobe = 16.0;                 ///< Transmission::lobe
-    double normal_mix = 0.25;           ///< Transmission::normal_mix
+    double normal_mix = 0.5;            ///< Transmission::normal_mix
 };
 
 /// The multiple-scattering (diffuse) reflectance of a semi-infinite medium behind a boundary of
@@ -161,7 +177,8 @@ struct Material {
     ///   A = diffuse_reflectance(α', η), s(A) = 1.85 − A + 7|A − 0.8|³ (Christensen & Burley
     ///   2015, searchlight configuration; ℓ is clamped to [1e-12, 1e12] mesh units);
     /// - strength = fit.strength, spread_strength = fit.spread_strength;
-    /// - transmission: σ_t = σ_s + σ_a, σ_s', σ_tr; weight = fit.transmission_weight · T_b and
+    /// - transmission: σ_t = σ_s + σ_a, σ_s', σ_tr; the slab's z_0 = 1/σ_t' and z_b = 2A/(3σ_t')
+    ///   (A as in diffuse_reflectance; both 0 where σ_s' = 0); weight = fit.transmission_weight · T_b and
     ///   diffusion_weight = fit.diffusion_weight · T_b with T_b = (1 − F0)², F0 = ((η − 1)/(η + 1))²
     ///   (entering and leaving); lobe and normal_mix from the fit;
     /// - ior and roughness of the specular lobe from the boundary, and boundary_transmittance on.

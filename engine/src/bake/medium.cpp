@@ -54,6 +54,22 @@ double diffuse_reflectance(double reduced_albedo, double eta)
     return std::clamp(0.5 * reduced_albedo * (1.0 + std::exp(-4.0 / 3.0 * a * root)) * std::exp(-root), 0.0, 1.0);
 }
 
+double slab_diffusion_transmittance(double t, double sigma_tr, double source_depth, double extrapolation)
+{
+    if (!(source_depth > 0.0) || !(t < INFINITY)) return 0.0;
+    t = std::max(t, 0.0);
+    const double s = sigma_tr, width = t + 2.0 * extrapolation;
+    // sinh(s z_s) cosh(s z_b) / sinh(s W) = e^{s(z_0 − t)} · (1 − e^{−2s z_s})(1 + e^{−2s z_b}) /
+    // (2(1 − e^{−2s W})): no exponential overflows; its s → 0 limit is z_s / W.
+    const double ratio = 2.0 * s * width < 1e-12 ? source_depth / width
+                                                 : -std::expm1(-2.0 * s * source_depth) / -std::expm1(-2.0 * s * width);
+    const double exponent = s * (source_depth - extrapolation - t);  // NaN only for s = ∞ at t = z_0
+    const double decay = std::isnan(exponent) ? 0.0 : std::exp(std::min(exponent, 700.0));
+    const double edge = extrapolation > 0.0 ? 0.5 * (1.0 + std::exp(-2.0 * s * extrapolation)) : 1.0;
+    const double r = ratio * decay * edge;
+    return std::isnan(r) ? 0.0 : std::min(1.0, r);
+}
+
 Medium medium_from_appearance(glm::dvec3 albedo, glm::dvec3 mean_free_path, double ior, double roughness,
                               const MediumFit& fit)
 {
@@ -109,6 +125,8 @@ Material Material::from_medium(const Medium& medium, const MediumFit& fit, std::
 
     Material m;
     m.name = std::move(name);
+    const double f_dr = internal_diffuse_fresnel(medium.ior);
+    const double boundary_a = (1.0 + f_dr) / (1.0 - f_dr);
     for (int c = 0; c < 3; ++c) {
         const double s_reduced = medium.sigma_s[c] * (1.0 - medium.g);
         const double t_reduced = s_reduced + medium.sigma_a[c];
@@ -120,6 +138,13 @@ Material Material::from_medium(const Medium& medium, const MediumFit& fit, std::
         m.transmission.sigma_t[c] = float(std::min(medium.sigma_s[c] + medium.sigma_a[c], 3.0e38));
         m.transmission.sigma_s_reduced[c] = float(std::min(s_reduced, 3.0e38));
         m.transmission.sigma_tr[c] = float(std::min(std::sqrt(3.0 * medium.sigma_a[c] * t_reduced), 3.0e38));
+        // The slab's diffusion source and extrapolated boundary (slab_diffusion_transmittance);
+        // 0 where nothing scatters (the diffused part is 0 there anyway).
+        if (s_reduced > 0.0) {
+            const double z0 = 1.0 / t_reduced, zb = 2.0 * boundary_a / (3.0 * t_reduced);
+            m.transmission.source_depth[c] = float(std::min(z0 + zb, 3.0e38));
+            m.transmission.extrapolation[c] = float(std::min(zb, 3.0e38));
+        }
     }
     const double f0 = (medium.ior - 1.0) * (medium.ior - 1.0) / ((medium.ior + 1.0) * (medium.ior + 1.0));
     m.strength = float(fit.strength);

@@ -15,7 +15,7 @@ namespace jade::shading {
 namespace {
 
 struct TablePush {
-    glm::vec4 extinction, diffusion, scatter;
+    glm::vec4 extinction, diffusion, scatter, source, boundary;
     uint32_t count;
 };
 
@@ -57,7 +57,8 @@ void TransmissionTable::update(const Transmission& tr)
 {
     if (held_ && held_->sigma_t == tr.sigma_t && held_->sigma_tr == tr.sigma_tr &&
         held_->sigma_s_reduced == tr.sigma_s_reduced && held_->weight == tr.weight &&
-        held_->diffusion_weight == tr.diffusion_weight)
+        held_->diffusion_weight == tr.diffusion_weight && held_->source_depth == tr.source_depth &&
+        held_->extrapolation == tr.extrapolation)
         return;
     const Layout layout = table_layout(tr);
     const uint32_t count = layout.count;
@@ -78,8 +79,12 @@ void TransmissionTable::update(const Transmission& tr)
                                               sizeof(TablePush),
                                               64,
                                               {}});
-    const TablePush push{glm::vec4(rates[0], tr.weight), glm::vec4(rates[1], tr.diffusion_weight),
-                         glm::vec4(rates[2], float(step)), count};
+    const TablePush push{glm::vec4(rates[0], tr.weight),
+                         glm::vec4(rates[1], tr.diffusion_weight),
+                         glm::vec4(rates[2], float(step)),
+                         glm::vec4(glm::min(tr.source_depth, glm::vec3(3e38f)), 0.0f),
+                         glm::vec4(glm::min(tr.extrapolation, glm::vec3(3e38f)), 0.0f),
+                         count};
     ctx_.submit_and_wait([&](VkCommandBuffer cmd) {
         // After the reads of draws submitted earlier (the table is rewritten in place).
         gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_NONE,
