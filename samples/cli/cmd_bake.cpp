@@ -56,14 +56,12 @@ bool is_gltf(const std::filesystem::path& path)
 
 int cmd_bake(int argc, char** argv)
 {
-    Args args("bake",
-              all_options({device_options(),
-                           material_options(),
-                           bake_options(),
-                           {{"out", "FILE", "output .glb or .gltf (required unless --in-place)"},
-                            {"in-place", "",
-                             "replace the glTF input itself (atomically: the old or the new file, never half)"}}}),
-              argc, argv, 2);
+    // This command's own options (the shared groups: commands.hpp).
+    const std::vector<OptionSpec> own = {{"out", "FILE", "output .glb or .gltf (required unless --in-place)"},
+                                         {"in-place", "",
+                                          "replace the glTF input itself (atomically: the old or the new file, never "
+                                          "half)"}};
+    Args args("bake", all_options({device_options(), material_options(), bake_options(), own}), argc, argv, 2);
     if (print_help(args,
                    "usage: jade bake MESH --out FILE.glb|.gltf [options]\n"
                    "       jade bake ASSET.gltf|.glb --in-place [options]\n\n"

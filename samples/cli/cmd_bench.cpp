@@ -205,18 +205,16 @@ int bench_render_scene(const Args& args)
 
 int cmd_bench(int argc, char** argv)
 {
-    Args args("bench",
-              all_options({device_options(),
-                           material_options(),
-                           bake_options(),
-                           {{"repeat", "N", "timed repetitions, best kept (default 3)"},
-                            {"sample", "N", "vertices the float64 t_m reference runs on (default 256)"},
-                            {"scene", "FILE", "render: a static glTF scene, cached against never baked"},
-                            {"cache", "DIR", "render --scene: the bake cache (default: the system's temp folder)"},
-                            {"mode", "M", "render --scene: tm | tm-false-color (default tm)"},
-                            {"size", "N", "render --scene: square image size (default 512)"},
-                            {"samples", "N", "render --scene: MSAA samples (default 4)"}}}),
-              argc, argv, 2);
+    // This command's own options (the shared groups: commands.hpp).
+    const std::vector<OptionSpec> own = {
+        {"repeat", "N", "timed repetitions, best kept (default 3)"},
+        {"sample", "N", "vertices the float64 t_m reference runs on (default 256)"},
+        {"scene", "FILE", "render: a static glTF scene, cached against never baked"},
+        {"cache", "DIR", "render --scene: the bake cache (default: the system's temp folder)"},
+        {"mode", "M", "render --scene: tm | tm-false-color (default tm)"},
+        {"size", "N", "render --scene: square image size (default 512)"},
+        {"samples", "N", "render --scene: MSAA samples (default 4)"}};
+    Args args("bench", all_options({device_options(), material_options(), bake_options(), own}), argc, argv, 2);
     if (args.flag("help") || args.positional().empty()) {
         print_usage(args, "usage: jade bench bake [MESH] [options]\n"
                           "       jade bench render --scene SCENE.gltf [--cache DIR] [options]");

@@ -109,22 +109,19 @@ void bench_mesh(const Args& args, Context& ctx, const std::string& path, const s
 
 int cmd_bench_deform(int argc, char** argv)
 {
-    Args args("bench deform",
-              all_options(
-                  {device_options(),
-                   material_options(),
-                   bake_options(),
-                   {{"deformer", "D", "bend | twist | squash | wave (default twist)"},
-                    {"frames", "N", "frames per mode (default 8; the first of an amortised mode is a full re-bake)"},
-                    {"fps", "F", "animation frames per second: each frame advances 1/F s of a 2 s cycle (default 15)"},
-                    {"slices", "LIST", "amortised modes: AO and t_m slices per mode, e.g. 2,4,8 (default)"},
-                    {"size", "N", "draw size in pixels, N x N (default 512)"}}}),
-              argc, argv, 3);
-    if (print_help(
-            args, "usage: jade bench deform [MESH...] [options]\n\nFrames per second of deform + full GPU re-bake + "
-                  "draw (default: the bunny and the dragon, 32 AO rays,\ndefault quality), the GPU time per stage, and "
-                  "amortised re-bakes with the error each adds\nagainst a from-scratch bake of every frame."))
-        return 0;
+    // This command's own options (the shared groups: commands.hpp).
+    const std::vector<OptionSpec> own = {
+        {"deformer", "D", "bend | twist | squash | wave (default twist)"},
+        {"frames", "N", "frames per mode (default 8; the first of an amortised mode is a full re-bake)"},
+        {"fps", "F", "animation frames per second: each frame advances 1/F s of a 2 s cycle (default 15)"},
+        {"slices", "LIST", "amortised modes: AO and t_m slices per mode, e.g. 2,4,8 (default)"},
+        {"size", "N", "draw size in pixels, N x N (default 512)"}};
+    const char* const usage =
+        "usage: jade bench deform [MESH...] [options]\n\nFrames per second of deform + full GPU re-bake + "
+        "draw (default: the bunny and the dragon, 32 AO rays,\ndefault quality), the GPU time per stage, and "
+        "amortised re-bakes with the error each adds\nagainst a from-scratch bake of every frame.";
+    Args args("bench deform", all_options({device_options(), material_options(), bake_options(), own}), argc, argv, 3);
+    if (print_help(args, usage)) return 0;
     const std::vector<uint32_t> slices = parse_slices(args);
     std::vector<std::string> meshes = args.positional();
     if (meshes.empty()) {

@@ -72,13 +72,13 @@ int cmd_deform(int argc, char** argv)
     if (!has_quality) words.insert(words.end(), {"--quality", "draft"});
     std::vector<char*> word_ptrs;
     for (auto& w : words) word_ptrs.push_back(w.data());
+    const char* const usage =
+        "usage: jade deform [MESH] --deformer bend|twist|squash|wave|gltf [options]\n\nDeforms the mesh "
+        "on the GPU frame by frame, re-bakes AO and t_m and renders t_m shading;\nwrites DIR/frame_NNN.png, "
+        "an animated GIF and a per-stage GPU time table (ms).\n(--quality defaults to draft here.)";
     Args args("deform", all_options({device_options(), material_options(), bake_options(), deform_options()}),
               int(word_ptrs.size()), word_ptrs.data(), 2);
-    if (print_help(args,
-                   "usage: jade deform [MESH] --deformer bend|twist|squash|wave|gltf [options]\n\nDeforms the mesh "
-                   "on the GPU frame by frame, re-bakes AO and t_m and renders t_m shading;\nwrites DIR/frame_NNN.png, "
-                   "an animated GIF and a per-stage GPU time table (ms).\n(--quality defaults to draft here.)"))
-        return 0;
+    if (print_help(args, usage)) return 0;
     if (args.positional().size() > 1) args.fail("expects at most one MESH");
     const std::string mesh_path = args.positional().empty() ? "bunny" : args.positional()[0];
     const std::string kind_name = args.get_or("deformer", "bend");

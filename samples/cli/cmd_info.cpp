@@ -121,12 +121,12 @@ static void print_mesh(const std::string& path)
 
 int cmd_info(int argc, char** argv)
 {
+    const char* const usage =
+        "usage: jade info [MESH]\n\nWithout MESH: the Vulkan device Jade would use. With MESH: counts "
+        "after\npreparation (welding, degenerate triangles), bounds and timings; for a file written by jade "
+        "bake,\nthe ranges of the baked attributes and what was baked with which settings.";
     Args args("info", all_options({device_options(), {{"materials", "", "list the material presets"}}}), argc, argv, 2);
-    if (print_help(args,
-                   "usage: jade info [MESH]\n\nWithout MESH: the Vulkan device Jade would use. With MESH: counts "
-                   "after\npreparation (welding, degenerate triangles), bounds and timings; for a file written by jade "
-                   "bake,\nthe ranges of the baked attributes and what was baked with which settings."))
-        return 0;
+    if (print_help(args, usage)) return 0;
     if (args.positional().size() > 1) args.fail("takes at most one mesh");
     if (args.flag("materials")) {
         for (const auto& n : material_preset_names()) std::printf("%s\n", n.c_str());

@@ -181,13 +181,13 @@ void blit(RenderedImage& figure, const RenderedImage& panel, uint32_t x0, uint32
 
 int cmd_render(int argc, char** argv)
 {
+    const char* const usage =
+        "usage: jade render MESH|BAKED.glb [options]\n\nRenders the mesh with translucency-magnitude "
+        "shading (Kubo et al. 2015). A file written by\n`jade bake` (with _TM) renders at once; any other "
+        "mesh is baked first (with --material).";
     Args args("render", all_options({device_options(), material_options(), bake_options(), render_options()}), argc,
               argv, 2);
-    if (print_help(args,
-                   "usage: jade render MESH|BAKED.glb [options]\n\nRenders the mesh with translucency-magnitude "
-                   "shading (Kubo et al. 2015). A file written by\n`jade bake` (with _TM) renders at once; any other "
-                   "mesh is baked first (with --material)."))
-        return 0;
+    if (print_help(args, usage)) return 0;
     if (args.positional().size() > 1) args.fail("expects one MESH");
     RenderSettings settings;
     std::tie(settings.width, settings.height) = parse_size(args, "512x512");
@@ -294,24 +294,22 @@ double process_cpu_ms()
 
 int cmd_bench_render(int argc, char** argv)
 {
-    Args args("bench render",
-              all_options({device_options(),
-                           material_options(),
-                           bake_options(),
-                           {{"repeat", "N", "frame pairs (lambert, tm) per size, alternating (default 30)"},
-                            {"samples", "N", "MSAA samples 1, 2, 4, 8 (default 4, as jade render)"},
-                            {"lights", "PRESET",
-                             "default (front key + fill) | figure1 (back light, front key, "
-                             "fill) | back (front key + back light): with a back light tm "
-                             "draws the transmission term too"},
-                            {"sizes", "N,N", "square image sizes (default 512,1024)"},
-                            eval_option()}}),
-              argc, argv, 3);
-    if (print_help(
-            args, "usage: jade bench render [MESH] [options]\n\nFrame time of tm against lambert shading at 512x512 "
-                  "and 1024x1024, the same scene,\nmeasured alternately in one run (GPU timestamps, wall time, and the "
-                  "CPU time of the\nprocess, which is lavapipe's work when the machine is shared)."))
-        return 0;
+    // This command's own options (the shared groups: commands.hpp).
+    const std::vector<OptionSpec> own = {
+        {"repeat", "N", "frame pairs (lambert, tm) per size, alternating (default 30)"},
+        {"samples", "N", "MSAA samples 1, 2, 4, 8 (default 4, as jade render)"},
+        {"lights", "PRESET",
+         "default (front key + fill) | figure1 (back light, front key, "
+         "fill) | back (front key + back light): with a back light tm "
+         "draws the transmission term too"},
+        {"sizes", "N,N", "square image sizes (default 512,1024)"},
+        eval_option()};
+    const char* const usage =
+        "usage: jade bench render [MESH] [options]\n\nFrame time of tm against lambert shading at 512x512 "
+        "and 1024x1024, the same scene,\nmeasured alternately in one run (GPU timestamps, wall time, and the "
+        "CPU time of the\nprocess, which is lavapipe's work when the machine is shared).";
+    Args args("bench render", all_options({device_options(), material_options(), bake_options(), own}), argc, argv, 3);
+    if (print_help(args, usage)) return 0;
     const uint32_t repeat = args.count("repeat", 30, 1, 10000);
     const uint32_t samples = args.count("samples", 4, 1, 8);
     std::vector<uint32_t> sizes;

@@ -145,18 +145,16 @@ std::string describe(const Row& r)
 
 int cmd_report(int argc, char** argv)
 {
-    Args args(
-        "report",
-        all_options(
-            {device_options(),
-             {{"out", "DIR", "output folder (created): report.csv, summary.md, *.png"},
-              {"quick", "", "skip 1024 rays and i.i.d. rays at max distances other than 0.1"},
-              {"tiny", "", "a few configurations with a 1024-ray AO reference (tests, small meshes)"},
-              {"sample", "N", "vertices the float64 t_m reference runs on (default 300)"},
-              {"epsilons", "LIST", "clustered t_m epsilons, e.g. 1.2,0.8,0.4 (default 1.6..0.25 and the presets')"},
-              {"no-plot", "", "do not run samples/report/plot_report.py"},
-              {"summary-only", "", "measure nothing: rewrite summary.md and the plots from DIR/report.csv"}}}),
-        argc, argv, 2);
+    // This command's own options (the shared groups: commands.hpp).
+    const std::vector<OptionSpec> own = {
+        {"out", "DIR", "output folder (created): report.csv, summary.md, *.png"},
+        {"quick", "", "skip 1024 rays and i.i.d. rays at max distances other than 0.1"},
+        {"tiny", "", "a few configurations with a 1024-ray AO reference (tests, small meshes)"},
+        {"sample", "N", "vertices the float64 t_m reference runs on (default 300)"},
+        {"epsilons", "LIST", "clustered t_m epsilons, e.g. 1.2,0.8,0.4 (default 1.6..0.25 and the presets')"},
+        {"no-plot", "", "do not run samples/report/plot_report.py"},
+        {"summary-only", "", "measure nothing: rewrite summary.md and the plots from DIR/report.csv"}};
+    Args args("report", all_options({device_options(), own}), argc, argv, 2);
     if (print_help(args, "usage: jade report [MESH...] --out DIR [--quick | --tiny]\n\n"
                          "Measures each approximation's error against its GPU and wall time. MESH defaults to the\n"
                          "bunny and assets/ChineseDragon-10kv.off (when present). Progress goes to stderr."))

@@ -73,15 +73,12 @@ int cmd_plan(int argc, char** argv)
 
 int cmd_scene(int argc, char** argv)
 {
-    Args args("scene",
-              all_options({scene_options(),
-                           device_options(),
-                           bake_options(),
-                           {{"out", "FILE", "output .png or .exr (default scene.png)"},
-                            {"size", "N", "square image size in pixels (default 512)"},
-                            {"time", "T", "seconds: the deformers' time (default 0.5)"},
-                            {"samples", "N", "MSAA samples 1, 2, 4, 8 (default 4)"}}}),
-              argc, argv, 2);
+    // This command's own options (the shared groups: commands.hpp).
+    const std::vector<OptionSpec> own = {{"out", "FILE", "output .png or .exr (default scene.png)"},
+                                         {"size", "N", "square image size in pixels (default 512)"},
+                                         {"time", "T", "seconds: the deformers' time (default 0.5)"},
+                                         {"samples", "N", "MSAA samples 1, 2, 4, 8 (default 4)"}};
+    Args args("scene", all_options({scene_options(), device_options(), bake_options(), own}), argc, argv, 2);
     if (print_help(args,
                    "usage: jade scene SCENE.gltf [--cache DIR] [--out F.png] [--verbose] [options]\n\nRenders a glTF "
                    "scene running only the planned passes (see jade plan); --verbose\nlists the passes that ran."))

@@ -99,17 +99,13 @@ void DynamicBake::State::record(VkCommandBuffer cmd, gpu::GpuTimer* timer)
     const uint64_t this_frame = frame;
     stale = false;
     frame = full ? 1 : this_frame + 1;
-    if (full)
-        impl.record_ao(cmd, m, settings.ao);
-    else
-        impl.record_ao(cmd, m, settings.ao, uint32_t(this_frame % m.ao_slices), 1);
+    // The ray slices of this frame: all of them (count 0) after a full re-bake, else one in turn.
+    const uint32_t slice = full ? 0 : uint32_t(this_frame % m.ao_slices), slices = full ? 0 : 1;
+    impl.record_ao(cmd, m, settings.ao, slice, slices);
     gpu::compute_barrier(cmd);
     if (timer) timer->mark(cmd, "ao");
     if (settings.thickness.enabled()) {
-        if (full)
-            impl.record_thickness(cmd, m, settings.thickness);
-        else
-            impl.record_thickness(cmd, m, settings.thickness, uint32_t(this_frame % m.ao_slices), 1);
+        impl.record_thickness(cmd, m, settings.thickness, slice, slices);
         gpu::compute_barrier(cmd);
         if (timer) timer->mark(cmd, "thickness");
     }

@@ -208,26 +208,55 @@ glm::vec3 thickness_ray_direction(glm::vec3 normal, uint32_t vertex, uint32_t k,
     return glm::vec3(bake::cone_direction(-glm::normalize(glm::dvec3(normal)), s.u1, s.u2, cos_cone(settings)));
 }
 
+namespace {
+
+// What the ray references start from: the listed vertices (resolve_subset), the triangles, and
+// the ray offset and reach converted to mesh units.
+struct VertexRays {
+    std::vector<uint32_t> list;
+    TriangleScene scene;
+    double eps, t_max;
+};
+
+VertexRays vertex_rays(const PreparedMesh& mesh, std::span<const uint32_t> vertices, float offset_rel, float max_rel,
+                       const char* where)
+{
+    const double diagonal = double(mesh.diagonal);
+    return {resolve_subset(mesh, vertices, where), TriangleScene(mesh), double(offset_rel) * diagonal,
+            double(max_rel) * diagonal};
+}
+
+// Calls f(k, origin, normal, hashes) for the k-th listed vertex, in parallel: the unit normal, the
+// ray origin offset by side · eps along it (+1: above the surface, −1: below it) and the
+// vertex's ray hashes for `seed`.
+template <class F>
+void for_each_ray_origin(const PreparedMesh& mesh, const VertexRays& r, uint32_t seed, double side, F&& f)
+{
+    parallel_for(r.list.size(), 16, [&](size_t k) {
+        const uint32_t v = r.list[k];
+        const glm::dvec3 normal = glm::normalize(glm::dvec3(mesh.normals[v]));
+        f(k, glm::dvec3(mesh.positions[v]) + side * r.eps * normal, normal, bake::vertex_hashes(seed, v));
+    });
+}
+
+}  // namespace
+
 std::vector<double> reference_thickness(const PreparedMesh& mesh, const ThicknessSettings& settings,
                                         std::span<const uint32_t> vertices)
 {
     check_thickness_settings(settings, "reference_thickness");
-    const std::vector<uint32_t> list = resolve_subset(mesh, vertices, "reference_thickness");
-    const TriangleScene scene(mesh);
-    const double diagonal = double(mesh.diagonal);
-    const double eps = double(settings.ray_offset_rel) * diagonal, t_max = double(settings.max_distance_rel) * diagonal;
+    const VertexRays r =
+        vertex_rays(mesh, vertices, settings.ray_offset_rel, settings.max_distance_rel, "reference_thickness");
     const double c = cos_cone(settings);
-    std::vector<double> thickness(list.size());
-    parallel_for(list.size(), 16, [&](size_t idx) {
-        const uint32_t v = list[idx];
-        const glm::dvec3 normal = glm::normalize(glm::dvec3(mesh.normals[v]));
-        const glm::dvec3 origin = glm::dvec3(mesh.positions[v]) - eps * normal;
-        const bake::VertexHashes h = bake::vertex_hashes(settings.seed, v);
+    std::vector<double> thickness(r.list.size());
+    for_each_ray_origin(mesh, r, settings.seed, -1.0,
+                        [&](size_t idx, glm::dvec3 origin, glm::dvec3 normal, const bake::VertexHashes& h) {
         double sum = 0.0;
         for (uint32_t k = 0; k < settings.rays; ++k) {
             const bake::RaySample s = bake::ray_sample(h, k, settings.rays, true);
             const glm::dvec3 d = bake::cone_direction(-normal, s.u1, s.u2, c);
-            sum += std::min(scene.nearest_hit(origin, d, t_max) + eps / std::max(glm::dot(d, -normal), 0.05), t_max);
+            sum += std::min(r.scene.nearest_hit(origin, d, r.t_max) + r.eps / std::max(glm::dot(d, -normal), 0.05),
+                            r.t_max);
         }
         thickness[idx] = sum / double(settings.rays);
     });
@@ -238,22 +267,16 @@ std::vector<float> reference_ao(const PreparedMesh& mesh, const AoSettings& sett
                                 std::span<const uint32_t> vertices)
 {
     check_ao_settings(settings, "reference_ao");
-    const std::vector<uint32_t> list = resolve_subset(mesh, vertices, "reference_ao");
-    const TriangleScene scene(mesh);
-    const double diagonal = double(mesh.diagonal);
-    const double eps = double(settings.ray_offset_rel) * diagonal;      // mesh units
-    const double t_max = double(settings.max_distance_rel) * diagonal;  // mesh units
+    const VertexRays r =
+        vertex_rays(mesh, vertices, settings.ray_offset_rel, settings.max_distance_rel, "reference_ao");
     const uint32_t n = settings.rays;
-    std::vector<float> ao(list.size());
-    parallel_for(list.size(), 16, [&](size_t idx) {
-        const uint32_t v = list[idx];
-        const glm::dvec3 normal = glm::normalize(glm::dvec3(mesh.normals[v]));
-        const glm::dvec3 origin = glm::dvec3(mesh.positions[v]) + eps * normal;
-        const bake::VertexHashes h = bake::vertex_hashes(settings.seed, v);
+    std::vector<float> ao(r.list.size());
+    for_each_ray_origin(mesh, r, settings.seed, 1.0,
+                        [&](size_t idx, glm::dvec3 origin, glm::dvec3 normal, const bake::VertexHashes& h) {
         uint32_t hits = 0;
         for (uint32_t k = 0; k < n; ++k) {
             const bake::RaySample s = bake::ray_sample(h, k, n, settings.low_discrepancy);
-            hits += scene.any_hit(origin, bake::cosine_direction(normal, s.u1, s.u2), t_max) ? 1u : 0u;
+            hits += r.scene.any_hit(origin, bake::cosine_direction(normal, s.u1, s.u2), r.t_max) ? 1u : 0u;
         }
         ao[idx] = float(double(hits) / double(n));
     });
