@@ -34,7 +34,7 @@ Outcome fill_twice(bool sync_validation, bool barrier)
     o.synchronization_validation = sync_validation;
     o.log = [&](std::string_view line) { out.log += std::string(line) + "\n"; };
     jade::Context ctx(o);
-    auto& gpu = ctx.gpu();
+    auto& gpu = gpu_of(ctx);
     jade::gpu::Buffer buffer(gpu, 4096, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "sync canary");
     gpu.submit_and_wait([&](VkCommandBuffer cmd) {
         vkCmdFillBuffer(cmd, buffer.handle(), 0, VK_WHOLE_SIZE, 1u);

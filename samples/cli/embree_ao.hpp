@@ -1,6 +1,6 @@
 // embree_ao.hpp - the AO pass traced by Intel Embree 3 on the CPU, the yardstick of `jade bench
-// bake` and `jade bench deform` (the issue's speed target: the GPU pass "within 2× of Embree's
-// time at equal rays"). Same rays as the GPU pass and reference_ao (jade::ao_ray_direction),
+// bake` and `jade bench deform` (the speed target: the GPU pass within 2× of Embree's time at
+// equal rays). Same rays as the GPU pass and reference_ao (jade::ao_ray_direction),
 // same origin offset and max distance; single-precision occlusion queries (rtcOccluded1) on all
 // hardware threads. Only the benchmarks link Embree (libembree-dev); a build without it says so.
 #pragma once

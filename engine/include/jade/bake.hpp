@@ -164,9 +164,8 @@ public:
     /// AO only, one value in [0, 1] per bake vertex; `timings` (optional) receives GPU/wall times.
     std::vector<float> bake_ao(const PreparedMesh& mesh, const AoSettings& settings, BakeTimings* timings = nullptr);
 
-    struct Impl;
-
 private:
+    struct Impl;
     friend class DynamicBake;
     std::unique_ptr<Impl> impl_;
 };

@@ -168,8 +168,8 @@ public:
     /// Sets the features Jade needs in the host's feature structs (leaves the others alone).
     static void enable_required_features(VkPhysicalDeviceVulkan12Features& f12, VkPhysicalDeviceVulkan13Features& f13);
 
-    gpu::Context& gpu();  ///< internal: the engine's GPU layer (not part of the installed API's contract)
 private:
+    friend gpu::Context& gpu_of(Context& context);  // the engine's GPU layer, for engine sources only
     std::unique_ptr<gpu::Context> gpu_;
 };
 

@@ -199,9 +199,8 @@ public:
     VkBuffer areas_buffer() const;
     size_t vertex_count() const;
 
-    struct Impl;
-
 private:
+    struct Impl;
     std::unique_ptr<Impl> impl_;
 };
 

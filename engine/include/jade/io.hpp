@@ -104,9 +104,9 @@ public:
     /// keeps what it baked with.
     std::string asset_extras_json() const;
 
-    struct Impl;
-
 private:
+    struct Impl;
+    friend struct GltfAssetAccess;  // names Impl for jade_io's own sources (io/gltf_asset.hpp)
     friend void save_baked_asset(const std::filesystem::path&, const GltfAsset&, const std::vector<BakedAttributes>&,
                                  const std::string&);
     explicit GltfAsset(std::unique_ptr<Impl> impl);

@@ -316,9 +316,8 @@ public:
     /// The curvature LUT's length scale d̄ (mesh units): rows are at κ·d̄ = v/(1 − v), v = j/(H − 1).
     double curvature_scale() const;
 
-    struct Impl;
-
 private:
+    struct Impl;
     std::unique_ptr<Impl> impl_;
 };
 

@@ -72,12 +72,10 @@ TmMethod parse_tm_method(std::string_view name)
     throw Error("unknown t_m method '" + std::string(name) + "' (auto, exact, clustered or grid)");
 }
 
-namespace {
-
 // What every static bake reads back after its one submission: t_m with its scattering normals,
 // how t_m was summed, and the timings (after the read-backs, which the wall time includes).
-void read_tm_result(BakeResult& r, const Baker::Impl::MeshState& m, const gpu::GpuTimer& timer, double setup,
-                    Clock::time_point t0)
+void Baker::Impl::read_tm_result(BakeResult& r, const MeshState& m, const gpu::GpuTimer& timer, double setup,
+                                 Clock::time_point t0)
 {
     r.tm = m.tm.read<glm::vec3>(m.vertex_count);
     read_scattering_normals(r, m.normal_sum, m.normals, m.vertex_count);
@@ -86,9 +84,7 @@ void read_tm_result(BakeResult& r, const Baker::Impl::MeshState& m, const gpu::G
     finish_timings(r.timings, timer, setup, t0);
 }
 
-}  // namespace
-
-Baker::Baker(Context& context) : impl_(std::make_unique<Impl>(context.gpu())) {}
+Baker::Baker(Context& context) : impl_(std::make_unique<Impl>(gpu_of(context))) {}
 Baker::~Baker() = default;
 
 std::vector<float> Baker::bake_ao(const PreparedMesh& mesh, const AoSettings& settings, BakeTimings* timings)
@@ -129,7 +125,7 @@ BakeResult Baker::bake_tm(const PreparedMesh& mesh, std::span<const float> ao, c
     });
     BakeResult r;
     r.ao.assign(ao.begin(), ao.end());
-    read_tm_result(r, m, timer, setup, t0);
+    Impl::read_tm_result(r, m, timer, setup, t0);
     return r;
 }
 
@@ -160,7 +156,7 @@ BakeResult Baker::bake(const PreparedMesh& mesh, const Material& material, const
     BakeResult r;
     r.ao = m.ao.read<float>(mesh.vertex_count());
     if (settings.thickness.enabled()) r.thickness = m.thickness.read<float>(mesh.vertex_count());
-    read_tm_result(r, m, timer, setup, t0);
+    Impl::read_tm_result(r, m, timer, setup, t0);
     return r;
 }
 

@@ -398,6 +398,11 @@ struct Baker::Impl {
     // Gathers every source and refits the cluster tree, then evaluates t_m for the targets in
     // tree slots [slot_begin, slot_end) (every slot by default; the all-pairs method always
     // evaluates every target).
+    // What every static bake reads back after its one submission (baker.cpp): t_m with its
+    // scattering normals, how t_m was summed, and the timings.
+    static void read_tm_result(BakeResult& r, const MeshState& m, const gpu::GpuTimer& timer, double setup,
+                               Clock::time_point t0);
+
     void record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSettings& s, gpu::GpuTimer* timer,
                    uint32_t slot_begin = 0, uint32_t slot_end = ~0u);
 };

@@ -205,7 +205,7 @@ MeshDeformer::MeshDeformer(Context& context, const PreparedMesh& rest)
         rest.areas.size() != rest.vertex_count())
         throw Error("MeshDeformer: the mesh is not prepared (" + std::to_string(rest.vertex_count()) + " vertices, " +
                     std::to_string(rest.normals.size()) + " normals, " + std::to_string(rest.areas.size()) + " areas)");
-    impl_ = std::make_unique<Impl>(context.gpu(), rest);
+    impl_ = std::make_unique<Impl>(gpu_of(context), rest);
 }
 
 MeshDeformer::~MeshDeformer()

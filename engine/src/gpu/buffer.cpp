@@ -54,7 +54,7 @@ void check_buffer_size(const BufferLimits& limits, VkDeviceSize bytes, VkBufferU
         throw Error(what + " exceeds the largest memory heap it can use, " + mib(limits.heap_bytes));
 }
 
-BufferLimits buffer_limits(jade::Context& ctx, bool host_visible) { return limits_of(ctx.gpu(), host_visible); }
+BufferLimits buffer_limits(jade::Context& ctx, bool host_visible) { return limits_of(gpu_of(ctx), host_visible); }
 
 uint32_t find_memory_type(const Context& ctx, uint32_t type_bits, VkMemoryPropertyFlags required,
                           VkMemoryPropertyFlags preferred)

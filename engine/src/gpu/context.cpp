@@ -485,6 +485,6 @@ Context::Context(const AdoptedVulkan& host, const ContextOptions& options)
 }
 bool Context::adopted() const { return gpu_->adopted(); }
 ObjectCounts Context::created_objects() const { return gpu_->created_objects(); }
-gpu::Context& Context::gpu() { return *gpu_; }
+gpu::Context& gpu_of(Context& context) { return *context.gpu_; }
 
 }  // namespace jade

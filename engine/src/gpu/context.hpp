@@ -114,3 +114,10 @@ private:
 };
 
 }  // namespace jade::gpu
+
+namespace jade {
+
+/// The engine's GPU layer behind a public jade::Context (engine sources and white-box tests).
+gpu::Context& gpu_of(Context& context);
+
+}  // namespace jade

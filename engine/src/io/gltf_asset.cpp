@@ -33,7 +33,7 @@ std::string_view json_text(const std::string& bytes, bool binary)
 }
 
 /// Every external image must have been read: the output embeds it.
-void check_images(const GltfAsset::Impl& a)
+void check_images(const GltfAssetImpl& a)
 {
     for (size_t i = 0; i < a.model.images.size(); ++i) {
         const auto& image = a.model.images[i];
@@ -50,7 +50,7 @@ struct Placement {
     std::string space;
 };
 
-std::vector<Placement> placements(const GltfAsset::Impl& a)
+std::vector<Placement> placements(const GltfAssetImpl& a)
 {
     const auto& model = a.model;
     std::vector<Placement> out(model.meshes.size());
@@ -79,13 +79,13 @@ std::vector<Placement> placements(const GltfAsset::Impl& a)
 }
 
 /// The bake targets of one mesh: its triangle primitives merged, one target per material group.
-void add_targets(GltfAsset::Impl& a, int mesh_index, const Placement& placement, std::vector<std::string>* warnings)
+void add_targets(GltfAssetImpl& a, int mesh_index, const Placement& placement, std::vector<std::string>* warnings)
 {
     const auto& mesh = a.model.meshes[size_t(mesh_index)];
     const std::string mesh_name = described("mesh", mesh_index, mesh.name);
     TriangleMesh merged;
     merged.name = a.name + ": " + mesh_name;
-    std::vector<GltfAsset::Impl::Span> spans(mesh.primitives.size());
+    std::vector<GltfAssetImpl::Span> spans(mesh.primitives.size());
     std::vector<int> groups;            // group key per primitive: translucent material, or -1
     std::map<int, std::string> opaque;  // materials of the caller's group, for its description
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
@@ -133,7 +133,7 @@ void add_targets(GltfAsset::Impl& a, int mesh_index, const Placement& placement,
                 t.material_name += std::string(t.material_name.empty() ? "" : ", ") + text;
             t.material_name += " (opaque for Jade)";
         }
-        std::vector<GltfAsset::Impl::Span> own = spans;
+        std::vector<GltfAssetImpl::Span> own = spans;
         for (size_t p = 0; p < own.size(); ++p) own[p].baked = own[p].baked && groups[p] == key;
         a.targets.push_back(std::move(t));
         a.spans.push_back(std::move(own));

@@ -19,6 +19,12 @@
 
 namespace jade {
 
+// What jade_io's sources call the private GltfAsset::Impl.
+struct GltfAssetAccess {
+    using Impl = GltfAsset::Impl;
+};
+using GltfAssetImpl = GltfAssetAccess::Impl;
+
 struct GltfAsset::Impl {
     /// Where a primitive's vertices lie in its target's merged mesh.
     struct Span {

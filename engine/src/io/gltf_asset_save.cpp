@@ -108,7 +108,7 @@ std::string mime_type(const std::vector<unsigned char>& b)
 
 class Writer {
 public:
-    Writer(const GltfAsset::Impl& a, std::string out_name, bool glb)
+    Writer(const GltfAssetImpl& a, std::string out_name, bool glb)
         : a_(a), out_(std::move(out_name)), glb_(glb), doc_(a.doc), refs_(a.doc), reader_(a.name, a.model)
     {
     }
@@ -377,7 +377,7 @@ private:
         return glb_ ? io::glb_container(out_, std::move(text), bin_) : text;
     }
 
-    const GltfAsset::Impl& a_;
+    const GltfAssetImpl& a_;
     std::string out_;
     bool glb_;
     json doc_;
@@ -389,7 +389,7 @@ private:
 };
 
 /// Sizes and finiteness of what is to be written, naming the element at fault.
-void check_baked(const GltfAsset::Impl& a, const std::string& out, const std::vector<BakedAttributes>& baked)
+void check_baked(const GltfAssetImpl& a, const std::string& out, const std::vector<BakedAttributes>& baked)
 {
     if (baked.size() != a.targets.size())
         fail(out, std::to_string(baked.size()) + " baked attribute sets for " + std::to_string(a.targets.size()) +

@@ -115,7 +115,7 @@ struct SceneRenderer::Impl {
             Object& o = objects[k];
             if (!o.mesh_deformer) continue;
             const auto t0 = Clock::now();
-            context.gpu().submit_and_wait([&](VkCommandBuffer cmd) {
+            gpu_of(context).submit_and_wait([&](VkCommandBuffer cmd) {
                 o.mesh_deformer->record(cmd, *o.deformer, t);
                 o.dynamic_bake->record(cmd, o.mesh_deformer->positions_buffer(), o.mesh_deformer->normals_buffer(),
                                        o.mesh_deformer->areas_buffer());
@@ -140,16 +140,16 @@ struct SceneRenderer::Impl {
         const auto msaa = VkSampleCountFlagBits(s.samples);
         const VkImageUsageFlags attachment = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
         t.color =
-            gpu::Image(context.gpu(),
+            gpu::Image(gpu_of(context),
                        {"scene colour", s.width, s.height, format,
                         attachment | (s.samples == 1 ? VkImageUsageFlags(VK_IMAGE_USAGE_TRANSFER_SRC_BIT) : 0u), msaa});
         if (s.samples > 1)
-            t.resolve = gpu::Image(context.gpu(), {"scene resolve", s.width, s.height, format,
-                                                   attachment | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
-        t.depth = gpu::Image(context.gpu(), {"scene depth", s.width, s.height, VK_FORMAT_D32_SFLOAT,
-                                             VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, msaa});
+            t.resolve = gpu::Image(gpu_of(context), {"scene resolve", s.width, s.height, format,
+                                                     attachment | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+        t.depth = gpu::Image(gpu_of(context), {"scene depth", s.width, s.height, VK_FORMAT_D32_SFLOAT,
+                                               VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, msaa});
         t.readback =
-            gpu::Buffer(context.gpu(), t.color.bytes(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, "scene read-back", true);
+            gpu::Buffer(gpu_of(context), t.color.bytes(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, "scene read-back", true);
         t.width = s.width, t.height = s.height, t.samples = s.samples;
     }
 
@@ -175,8 +175,8 @@ struct SceneRenderer::Impl {
         ensure_targets(s);
         Targets& t = targets;
         gpu::Image& result = s.samples > 1 ? t.resolve : t.color;
-        if (!timer) timer.emplace(context.gpu(), 4);
-        context.gpu().submit_and_wait([&](VkCommandBuffer cmd) {
+        if (!timer) timer.emplace(gpu_of(context), 4);
+        gpu_of(context).submit_and_wait([&](VkCommandBuffer cmd) {
             timer->begin(cmd);
             t.color.transition(cmd, gpu::use::kColorAttachment, true);
             t.depth.transition(cmd, gpu::use::kDepthAttachment, true);
@@ -237,9 +237,9 @@ const std::vector<glm::vec3>& SceneRenderer::tm(size_t object) const
     const auto& o = impl_->objects.at(object);
     if (o.dynamic_bake) {  // the last frame's t_m lives on the GPU: read it back on request only
         const DynamicBake::Buffers b = o.dynamic_bake->buffers();
-        gpu::Buffer staging(impl_->context.gpu(), VkDeviceSize(b.vertex_count) * 12, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+        gpu::Buffer staging(gpu_of(impl_->context), VkDeviceSize(b.vertex_count) * 12, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                             "scene: t_m read-back", true);
-        impl_->context.gpu().submit_and_wait([&](VkCommandBuffer cmd) {
+        gpu_of(impl_->context).submit_and_wait([&](VkCommandBuffer cmd) {
             gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                                 VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
             const VkBufferCopy region{0, 0, VkDeviceSize(b.vertex_count) * 12};

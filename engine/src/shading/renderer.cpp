@@ -358,7 +358,7 @@ struct Renderer::Impl {
 };
 
 Renderer::Renderer(Context& context, const RendererOptions& options)
-    : impl_(std::make_unique<Impl>(context.gpu(), options))
+    : impl_(std::make_unique<Impl>(gpu_of(context), options))
 {
 }
 Renderer::~Renderer()
