@@ -13,6 +13,8 @@
 #include "gpu/context.hpp"
 #include "gpu/image.hpp"
 #include "gpu/timer.hpp"
+#include "shading/frame.hpp"
+#include "shading/offscreen.hpp"
 
 #include <jade/error.hpp>
 
@@ -49,11 +51,7 @@ struct SceneRenderer::Impl {
     std::vector<Object> objects;
     glm::vec3 lo{0.0f}, hi{0.0f};
 
-    struct Targets {
-        uint32_t width = 0, height = 0, samples = 0;
-        gpu::Image color, resolve, depth;
-        gpu::Buffer readback;
-    } targets;
+    shading::OffscreenTarget targets;  // RGBA32F: read back without conversion
     std::optional<gpu::GpuTimer> timer;
 
     Impl(Context& c, const Scene& scene, const SceneSettings& s, const StaticBakeSource& source)
@@ -131,66 +129,25 @@ struct SceneRenderer::Impl {
         }
     }
 
-    void ensure_targets(const RenderSettings& s)
-    {
-        Targets& t = targets;
-        if (t.width == s.width && t.height == s.height && t.samples == s.samples) return;
-        t = Targets{};
-        const VkFormat format = VK_FORMAT_R32G32B32A32_SFLOAT;
-        const auto msaa = VkSampleCountFlagBits(s.samples);
-        const VkImageUsageFlags attachment = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
-        t.color =
-            gpu::Image(gpu_of(context),
-                       {"scene colour", s.width, s.height, format,
-                        attachment | (s.samples == 1 ? VkImageUsageFlags(VK_IMAGE_USAGE_TRANSFER_SRC_BIT) : 0u), msaa});
-        if (s.samples > 1)
-            t.resolve = gpu::Image(gpu_of(context), {"scene resolve", s.width, s.height, format,
-                                                     attachment | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
-        t.depth = gpu::Image(gpu_of(context), {"scene depth", s.width, s.height, VK_FORMAT_D32_SFLOAT,
-                                               VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, msaa});
-        t.readback =
-            gpu::Buffer(gpu_of(context), t.color.bytes(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, "scene read-back", true);
-        t.width = s.width, t.height = s.height, t.samples = s.samples;
-    }
-
     RenderedImage render(double time, const Camera& camera, std::span<const Light> lights,
                          const RenderSettings& settings_in)
     {
         const auto t0 = Clock::now();
         run_per_frame(time);
         RenderSettings s = settings_in;
-        s.float32 = true;  // the targets are RGBA32F: read back without conversion
-        if (s.width == 0 || s.height == 0 || s.width > 16384 || s.height > 16384)
-            throw Error("render settings: size " + std::to_string(s.width) + "x" + std::to_string(s.height) +
-                        " is outside 1..16384");
+        s.float32 = true;
+        shading::check_settings(gpu_of(context), s, lights);
         // One depth range for every object: the scene's bounding sphere (as Renderer fits one mesh).
-        Camera cam = camera;
-        if (!(cam.near_plane > 0.0f && cam.far_plane > cam.near_plane)) {
-            const glm::vec3 centre = 0.5f * (lo + hi);
-            const float radius = std::max(0.5f * glm::length(hi - lo), 1e-30f) * 1.01f;
-            const float distance = glm::length(cam.eye - centre);
-            cam.far_plane = distance + radius;
-            cam.near_plane = std::max(distance - radius, cam.far_plane * 1e-4f);
-        }
-        ensure_targets(s);
-        Targets& t = targets;
-        gpu::Image& result = s.samples > 1 ? t.resolve : t.color;
+        const Camera cam = shading::fit_depth_range(camera, lo, hi);
+        targets.ensure(gpu_of(context), s, VK_FORMAT_R32G32B32A32_SFLOAT, "scene");
         if (!timer) timer.emplace(gpu_of(context), 4);
         gpu_of(context).submit_and_wait([&](VkCommandBuffer cmd) {
             timer->begin(cmd);
-            t.color.transition(cmd, gpu::use::kColorAttachment, true);
-            t.depth.transition(cmd, gpu::use::kDepthAttachment, true);
-            if (t.resolve) t.resolve.transition(cmd, gpu::use::kColorAttachment, true);
+            targets.begin(cmd);
             for (size_t k = 0; k < objects.size(); ++k) {
                 RenderSettings os = s;
                 os.mode = plan.objects[k].variant.mode;
-                const RenderTarget target{t.color.view(),
-                                          t.resolve ? t.resolve.view() : VK_NULL_HANDLE,
-                                          t.depth.view(),
-                                          s.width,
-                                          s.height,
-                                          k > 0,
-                                          k + 1 < objects.size()};
+                const RenderTarget target = targets.target(k > 0, k + 1 < objects.size());
                 if (k > 0) {
                     // The previous draw's attachment writes before this draw loads them.
                     gpu::memory_barrier(
@@ -206,8 +163,7 @@ struct SceneRenderer::Impl {
                 objects[k].renderer->record(cmd, target, cam, lights, os);
             }
             timer->mark(cmd, "draw");
-            result.transition(cmd, gpu::use::kTransferSrc);
-            result.copy_to_buffer(cmd, t.readback.handle());
+            targets.copy_out(cmd);
         });
         for (const ObjectPlan& o : plan.objects)
             passes.push_back(
@@ -215,7 +171,7 @@ struct SceneRenderer::Impl {
                  std::string(shading_mode_name(o.variant.mode)) + ", CHANNELS=" + std::to_string(o.variant.channels)});
         RenderedImage img;
         img.width = s.width, img.height = s.height;
-        img.rgba = t.readback.read<float>(size_t(s.width) * s.height * 4);
+        img.rgba = targets.read_rgba();
         img.gpu_ms = timer->total_ms();
         if (s.tone_map != ToneMap::None || s.exposure != 1.0f) apply_tone_map(img, s.tone_map, s.exposure);
         img.wall_ms = ms_since(t0);

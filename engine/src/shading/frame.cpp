@@ -48,17 +48,20 @@ FramePush frame_push(const Camera& cam, glm::vec3 bbox_min, glm::vec3 bbox_max, 
         throw Error("camera: up is zero or parallel to the view direction");
     if (!(cam.fov_y_degrees > 0.0f && cam.fov_y_degrees < 180.0f))
         throw Error("camera: fov " + std::to_string(cam.fov_y_degrees) + " degrees is outside (0, 180)");
-    // Near and far hug the mesh's bounding sphere; when the eye is inside it, near is a
-    // small fraction of far (D32 keeps enough precision at 1e-4).
-    const glm::vec3 centre = 0.5f * (bbox_min + bbox_max);
-    const float radius = std::max(0.5f * glm::length(bbox_max - bbox_min), 1e-30f) * 1.01f;
-    const float distance = glm::length(cam.eye - centre);
-    Camera fitted = cam;
-    if (!(cam.near_plane > 0.0f && cam.far_plane > cam.near_plane)) {
-        fitted.far_plane = distance + radius;
-        fitted.near_plane = std::max(distance - radius, fitted.far_plane * 1e-4f);
-    }
+    const Camera fitted = fit_depth_range(cam, bbox_min, bbox_max);
     return {fitted.view_projection(float(width) / float(height)), cam.eye, light_count};
+}
+
+Camera fit_depth_range(const Camera& camera, glm::vec3 lo, glm::vec3 hi)
+{
+    Camera fitted = camera;
+    if (camera.near_plane > 0.0f && camera.far_plane > camera.near_plane) return fitted;
+    const glm::vec3 centre = 0.5f * (lo + hi);
+    const float radius = std::max(0.5f * glm::length(hi - lo), 1e-30f) * 1.01f;
+    const float distance = glm::length(camera.eye - centre);
+    fitted.far_plane = distance + radius;
+    fitted.near_plane = std::max(distance - radius, fitted.far_plane * 1e-4f);
+    return fitted;
 }
 
 FrameData material_constants(const Material& m)

@@ -37,6 +37,11 @@ void check_target(const RenderTarget& t, const RenderSettings& s);
 /// background unless t.load, stored as t.keep and t.load ask.
 void begin_rendering(VkCommandBuffer cmd, const RenderTarget& t, const RenderSettings& s);
 
+/// The camera with near and far hugging the sphere about [lo, hi] (radius half the diagonal, 1 %
+/// margin) unless it gives both; when the eye is inside the sphere, near is 1e-4 of far (D32
+/// keeps enough precision there).
+Camera fit_depth_range(const Camera& camera, glm::vec3 lo, glm::vec3 hi);
+
 /// IEEE half to float (inf, NaN, subnormals included).
 float half_to_float(uint16_t h);
 

@@ -17,6 +17,7 @@
 #include "shading/frame.hpp"
 #include "shading/mesh_pipeline.hpp"
 #include "shading/mesh_vertices.hpp"
+#include "shading/offscreen.hpp"
 #include "shading/transmission_table.hpp"
 
 #include <jade/bake.hpp>
@@ -45,7 +46,6 @@ using shading::FramePush;
 using shading::GpuLight;
 using shading::kMaxLights;
 using shading::Vertex;
-constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 
 VkFormat color_format(const RenderSettings& s)
 {
@@ -84,13 +84,7 @@ struct Renderer::Impl {
     shading::MeshPipelines pipelines;
     shading::TransmissionTable transmission_table;  // of the material's Transmission
 
-    // render()'s own targets, kept while the size and format stay the same.
-    struct Targets {
-        uint32_t width = 0, height = 0, samples = 0;
-        VkFormat format = VK_FORMAT_UNDEFINED;
-        gpu::Image color, resolve, depth;
-        gpu::Buffer readback;
-    } targets;
+    shading::OffscreenTarget targets;  // render()'s own, kept while the size and format stay the same
     std::optional<gpu::GpuTimer> timer;
 
     Impl(gpu::Context& c, const RendererOptions& o)
@@ -265,59 +259,23 @@ struct Renderer::Impl {
         vkCmdEndRendering(cmd);
     }
 
-    void ensure_targets(const RenderSettings& s)
-    {
-        Targets& t = targets;
-        const VkFormat format = color_format(s);
-        if (t.width == s.width && t.height == s.height && t.samples == s.samples && t.format == format) return;
-        t = Targets{};
-        const auto msaa = VkSampleCountFlagBits(s.samples);
-        const VkImageUsageFlags attachment = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
-        t.color = gpu::Image(
-            ctx, {"render colour", s.width, s.height, format,
-                  attachment | (s.samples == 1 ? VkImageUsageFlags(VK_IMAGE_USAGE_TRANSFER_SRC_BIT) : 0u), msaa});
-        if (s.samples > 1)
-            t.resolve = gpu::Image(
-                ctx, {"render resolve", s.width, s.height, format, attachment | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
-        t.depth = gpu::Image(
-            ctx, {"render depth", s.width, s.height, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, msaa});
-        t.readback = gpu::Buffer(ctx, t.color.bytes(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, "render read-back", true);
-        t.width = s.width, t.height = s.height, t.samples = s.samples, t.format = format;
-    }
-
     RenderedImage render(const Camera& cam, std::span<const Light> lights, const RenderSettings& s, uint32_t mode)
     {
         const auto t0 = Clock::now();
         check_ready(s, lights);
-        ensure_targets(s);
-        Targets& t = targets;
-        gpu::Image& result = s.samples > 1 ? t.resolve : t.color;
+        targets.ensure(ctx, s, color_format(s), "render");
         if (!timer) timer.emplace(ctx, 4);
         ctx.submit_and_wait([&](VkCommandBuffer cmd) {
             timer->begin(cmd);
-            // Old contents do not matter (cleared on load): discard them, but still after the
-            // previous frame's read-back copy.
-            t.color.transition(cmd, gpu::use::kColorAttachment, true);
-            t.depth.transition(cmd, gpu::use::kDepthAttachment, true);
-            if (t.resolve) t.resolve.transition(cmd, gpu::use::kColorAttachment, true);
-            record(cmd,
-                   {t.color.view(), t.resolve ? t.resolve.view() : VK_NULL_HANDLE, t.depth.view(), s.width, s.height},
-                   cam, lights, s, mode);
+            targets.begin(cmd);
+            record(cmd, targets.target(), cam, lights, s, mode);
             timer->mark(cmd, "draw");
-            result.transition(cmd, gpu::use::kTransferSrc);
-            result.copy_to_buffer(cmd, t.readback.handle());
+            targets.copy_out(cmd);
         });
 
         RenderedImage img;
         img.width = s.width, img.height = s.height;
-        const size_t n = size_t(s.width) * s.height * 4;
-        img.rgba.resize(n);
-        if (s.float32)
-            t.readback.download(img.rgba.data(), n * sizeof(float));
-        else {
-            std::vector<uint16_t> half = t.readback.read<uint16_t>(n);
-            for (size_t i = 0; i < n; ++i) img.rgba[i] = shading::half_to_float(half[i]);
-        }
+        img.rgba = targets.read_rgba();
         img.gpu_ms = timer->total_ms();
         if (s.tone_map != ToneMap::None || s.exposure != 1.0f) apply_tone_map(img, s.tone_map, s.exposure);
         if (s.mode == ShadingMode::TmFalseColor && s.legend)
