@@ -13,7 +13,7 @@
 
 // Lights drawn with transmission (data.transmitters[0 … TRANSMISSION − 1]); 0: none.
 layout(constant_id = 2) const uint TRANSMISSION = 0;
-const uint kMaxTransmitters = 4;  // shading::kMaxTransmitters
+const uint kMaxTransmitters = JADE_MAX_TRANSMITTERS;  // shading_interface.h
 
 layout(binding = 3) uniform sampler2D light_depth_atlas;  // D32: depth nearest to each light, one tile per light
 layout(binding = 5) uniform usamplerBuffer transmission_table;  // A(t_i), A(t_{i+1}) as halves

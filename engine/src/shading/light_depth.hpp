@@ -11,6 +11,8 @@
 
 #include <jade/render.hpp>
 
+#include "shading_interface.h"  // JADE_MAX_LIGHT_DEPTH_TILES
+
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
@@ -23,7 +25,8 @@ namespace jade::shading {
 
 class LightDepth {
 public:
-    static constexpr uint32_t kMaxLights = 4;  ///< lights with a depth tile; others use t̄ alone
+    static constexpr uint32_t kMaxLights =
+        JADE_MAX_LIGHT_DEPTH_TILES;  ///< lights with a depth tile; others use t̄ alone
 
     LightDepth(gpu::Context& ctx, uint32_t tile_size);
 

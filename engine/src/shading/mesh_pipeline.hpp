@@ -9,6 +9,8 @@
 
 #include <jade/render.hpp>
 
+#include "shading_interface.h"  // FramePush, GpuLight, FrameData, shared with the shaders
+
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
@@ -18,31 +20,13 @@
 
 namespace jade::shading {
 
-inline constexpr uint32_t kMaxLights = 64;  ///< shading.glsl: kMaxLights
+inline constexpr uint32_t kMaxLights = JADE_MAX_LIGHTS;
 /// Mode constant of the inputs pass: kInputsMode + k writes the k-th vec4 of the inputs (shading.glsl).
 inline constexpr uint32_t kInputsMode = 4, kInputsSlots = 6;
 /// Lights drawn with transmission per draw: the first that may shine through (transmission.glsl).
-inline constexpr uint32_t kMaxTransmitters = 4;
+inline constexpr uint32_t kMaxTransmitters = JADE_MAX_TRANSMITTERS;
 
-// Mirrors of shaders/include/shading.glsl (scalar layout).
-struct FramePush {
-    glm::mat4 view_proj;
-    glm::vec3 eye;
-    uint32_t light_count;
-};
-struct GpuLight {
-    glm::vec4 vector, color;
-};
-struct FrameData {
-    glm::vec4 albedo_strength, specular, lut_map, curvature_map, params;
-    glm::vec4 transmission, transmission_diffusion, transmission_scatter, transmission_shape, light_depth_map;
-    glm::mat4 light_depth[LightDepth::kMaxLights];
-    glm::vec4 color_map[9];
-    glm::vec4 transmission_table_map;
-    GpuLight transmitters[kMaxTransmitters];
-    GpuLight lights[kMaxLights];
-};
-static_assert(sizeof(FramePush) == 80 && sizeof(GpuLight) == 32);
+// FramePush, GpuLight and FrameData: shaders/include/shading_interface.h.
 struct Vertex {
     glm::vec3 position, normal, tm;
     float curvature, thickness;

@@ -1,0 +1,73 @@
+// shading_interface.h - what the draw's C++ (engine/src/shading) and mesh.vert/mesh.frag must
+// agree on, written once: the push constants, the frame constants and their array sizes.
+//
+// Included by the shaders (through shading.glsl) and by C++ (shading/mesh_pipeline.hpp). In C++
+// the structs live in jade::shading and the GLSL types are spelt with GLM. The shaders declare
+//     layout(push_constant, scalar) uniform FramePushBlock { FramePush frame; };
+//     layout(binding = 0, scalar) uniform FrameDataBlock { FrameData data; };
+// Scalar layout places these members (vec4, mat4, a vec3 then a uint) exactly where C++ does;
+// sizes are checked in C++.
+#ifndef JADE_SHADING_INTERFACE_H
+#define JADE_SHADING_INTERFACE_H
+
+#define JADE_MAX_LIGHTS 64            // lights per draw
+#define JADE_MAX_TRANSMITTERS 4       // lights drawn with transmission per draw (transmission.glsl)
+#define JADE_MAX_LIGHT_DEPTH_TILES 4  // transmitters with a depth tile (shading/light_depth.hpp)
+#define JADE_COLOR_MAP_STOPS 9        // false-colour stops
+
+#ifdef __cplusplus
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include <cstdint>
+
+namespace jade::shading {
+namespace glsl {
+using uint = std::uint32_t;
+using vec3 = glm::vec3;
+using vec4 = glm::vec4;
+using mat4 = glm::mat4;
+}  // namespace glsl
+using namespace glsl;  // only these names: the structs below are written in GLSL's words
+#endif
+
+struct FramePush {
+    mat4 view_proj;  // world (mesh units) to clip space, y already flipped for Vulkan
+    vec3 eye;        // camera position, mesh units
+    uint light_count;
+};
+
+struct GpuLight {
+    vec4 vector;  // xyz: towards the light (w = 0) or its position (w = 1)
+    vec4 color;   // rgb: irradiance (directional) or intensity (point); w: transmitters' depth tile, 0 none
+};
+
+struct FrameData {
+    vec4 albedo_strength;         // k_d (linear RGB), strength (variance per unit t_m)
+    vec4 specular;                // F0, α = roughness², weight; Material::spread_strength (rad² per unit spread)
+    vec4 lut_map;                 // translucency LUT quads: column cos θ·x + x, x = (W−1)/2; y = W − 1 quads
+                                  // a row; row (t / t_max)^¼ · z, z = H − 1; w = H − 2 the last row of quads
+    vec4 curvature_map;           // curvature LUT: u = cos θ · x + y, v = s / (1 + s) · z + w
+    vec4 params;                  // 1 / t_max, d̄ (curvature length, mesh units), false-colour min, 1 / range
+    vec4 transmission;            // σ_t (linear RGB, 1/mesh unit), weight (jade/material.hpp Transmission)
+    vec4 transmission_diffusion;  // σ_tr (1/mesh unit), diffusion weight
+    vec4 transmission_scatter;    // σ_s' (1/mesh unit), unused
+    vec4 transmission_shape;      // lobe exponent n, (n + 1)/(2π), normal_mix, 1: diffuse × boundary transmittance
+    vec4 light_depth_map;         // light-depth tile size (texels), tiles in the atlas, depth range (mesh units)
+    mat4 light_depth[JADE_MAX_LIGHT_DEPTH_TILES];  // world → light clip space of each transmitter's tile
+    vec4 color_map[JADE_COLOR_MAP_STOPS];          // false-colour stops, linear RGB
+    vec4 transmission_table_map;  // 1 / step of the attenuation table (mesh units), last texel, last interval
+    GpuLight transmitters[JADE_MAX_TRANSMITTERS];  // the lights drawn with transmission (transmission.glsl)
+    GpuLight lights[JADE_MAX_LIGHTS];
+};
+
+#ifdef __cplusplus
+static_assert(sizeof(FramePush) == 80 && sizeof(GpuLight) == 32);
+static_assert(sizeof(FrameData) == 10 * 16 + JADE_MAX_LIGHT_DEPTH_TILES * 64 + JADE_COLOR_MAP_STOPS * 16 + 16 +
+                                       (JADE_MAX_TRANSMITTERS + JADE_MAX_LIGHTS) * 32,
+              "FrameData must have no padding: scalar layout packs it so");
+}  // namespace jade::shading
+#endif
+
+#endif
