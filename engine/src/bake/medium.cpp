@@ -27,6 +27,14 @@ void check_eta(const char* where, double eta)
 /// Egan and Hilgeman's fit of the internal diffuse Fresnel reflectance (Jensen et al. 2001).
 double internal_diffuse_fresnel(double eta) { return -1.440 / (eta * eta) + 0.710 / eta + 0.668 + 0.0636 * eta; }
 
+// The dipole's boundary term A = (1 + F_dr)/(1 − F_dr) (Jensen et al. 2001): how much further the
+// boundary reflects diffuse light back in; F_dr < 0.9 on η ∈ (0.2, 5).
+double boundary_term(double eta)
+{
+    const double f_dr = internal_diffuse_fresnel(eta);
+    return (1.0 + f_dr) / (1.0 - f_dr);
+}
+
 // Mean free paths beyond these are not representable in the bake's float32 profile
 // evaluation; a medium that clear is, for t_m, no medium (and the clamp is documented).
 constexpr double kMinPath = 1e-12, kMaxPath = 1e12;
@@ -48,8 +56,7 @@ double diffuse_reflectance(double reduced_albedo, double eta)
     if (!(reduced_albedo >= 0.0 && reduced_albedo <= 1.0))
         throw Error("diffuse_reflectance: reduced albedo = " + fmt(reduced_albedo) + " must be in [0, 1]");
     check_eta("diffuse_reflectance", eta);
-    const double f_dr = internal_diffuse_fresnel(eta);
-    const double a = (1.0 + f_dr) / (1.0 - f_dr);  // f_dr < 0.9 on (0.2, 5)
+    const double a = boundary_term(eta);
     const double root = std::sqrt(3.0 * (1.0 - reduced_albedo));
     return std::clamp(0.5 * reduced_albedo * (1.0 + std::exp(-4.0 / 3.0 * a * root)) * std::exp(-root), 0.0, 1.0);
 }
@@ -125,8 +132,7 @@ Material Material::from_medium(const Medium& medium, const MediumFit& fit, std::
 
     Material m;
     m.name = std::move(name);
-    const double f_dr = internal_diffuse_fresnel(medium.ior);
-    const double boundary_a = (1.0 + f_dr) / (1.0 - f_dr);
+    const double boundary_a = boundary_term(medium.ior);
     for (int c = 0; c < 3; ++c) {
         const double s_reduced = medium.sigma_s[c] * (1.0 - medium.g);
         const double t_reduced = s_reduced + medium.sigma_a[c];

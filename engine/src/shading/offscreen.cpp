@@ -12,19 +12,20 @@ void OffscreenTarget::ensure(gpu::Context& ctx, const RenderSettings& s, VkForma
 {
     if (width_ == s.width && height_ == s.height && samples_ == s.samples && format_ == color_format) return;
     *this = OffscreenTarget{};
-    names_[0] = name + " colour", names_[1] = name + " resolve", names_[2] = name + " depth";
-    names_[3] = name + " read-back";
+    // The names are read only while the objects are made (debug names, error messages).
+    const std::string color = name + " colour", resolve = name + " resolve", depth = name + " depth",
+                      readback = name + " read-back";
     const auto msaa = VkSampleCountFlagBits(s.samples);
     const VkImageUsageFlags attachment = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
     // The single-sampled colour is copied out itself; a multisampled one through its resolve.
     const VkImageUsageFlags copied = s.samples == 1 ? VkImageUsageFlags(VK_IMAGE_USAGE_TRANSFER_SRC_BIT) : 0u;
-    color_ = gpu::Image(ctx, {names_[0].c_str(), s.width, s.height, color_format, attachment | copied, msaa});
+    color_ = gpu::Image(ctx, {color.c_str(), s.width, s.height, color_format, attachment | copied, msaa});
     if (s.samples > 1)
         resolve_ = gpu::Image(
-            ctx, {names_[1].c_str(), s.width, s.height, color_format, attachment | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
-    depth_ = gpu::Image(ctx, {names_[2].c_str(), s.width, s.height, VK_FORMAT_D32_SFLOAT,
+            ctx, {resolve.c_str(), s.width, s.height, color_format, attachment | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+    depth_ = gpu::Image(ctx, {depth.c_str(), s.width, s.height, VK_FORMAT_D32_SFLOAT,
                               VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, msaa});
-    readback_ = gpu::Buffer(ctx, color_.bytes(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, names_[3].c_str(), true);
+    readback_ = gpu::Buffer(ctx, color_.bytes(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, readback.c_str(), true);
     width_ = s.width, height_ = s.height, samples_ = s.samples, format_ = color_format;
 }
 

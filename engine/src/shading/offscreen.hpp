@@ -31,7 +31,6 @@ public:
 private:
     uint32_t width_ = 0, height_ = 0, samples_ = 0;
     VkFormat format_ = VK_FORMAT_UNDEFINED;
-    std::string names_[4];  // of the colour, resolve, depth and read-back, kept as long as they
     gpu::Image color_, resolve_, depth_;
     gpu::Buffer readback_;
 };
