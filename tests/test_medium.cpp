@@ -77,7 +77,7 @@ TEST(Medium, DerivesEveryParameterFromTheCoefficients)
         const double s = 1.85 - rd + 7.0 * std::pow(std::abs(rd - 0.8), 3.0);
         EXPECT_EQ(mat.profile[c].kind, ProfileKind::Burley);
         EXPECT_NEAR(mat.profile[c].d, 1.0 / (m.sigma_s[c] + m.sigma_a[c]) / s, 1e-12);
-        EXPECT_FLOAT_EQ(mat.transmission.sigma_t[c], float(m.sigma_s[c] + m.sigma_a[c]));
+        EXPECT_FLOAT_EQ(mat.transmission.sigma_t[c], float(fit.forward_extinction * (m.sigma_s[c] + m.sigma_a[c])));
         // The slab's source depth z_0 + z_b and extrapolation z_b = 2A/(3σ_t'), Egan–Hilgeman F_dr.
         const double f_dr = -1.440 / 2.25 + 0.710 / 1.5 + 0.668 + 0.0636 * 1.5;
         const double zb = 2.0 * (1.0 + f_dr) / (1.0 - f_dr) / (3.0 * (m.sigma_s[c] + m.sigma_a[c]));

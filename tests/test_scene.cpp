@@ -128,7 +128,8 @@ TEST(SceneMaterials, VolumeAndDiffuseTransmissionBecomeABurleyProfilePerChannel)
         // The medium whose derived albedo is A (medium_from_appearance): R_d = A / albedo_scale.
         const double rd = std::min(A[c] / MediumFit{}.albedo_scale, 1.0);
         EXPECT_NEAR(m.profile[c].d, mfp / burley_s(rd), 1e-6 * mfp) << "channel " << c;
-        EXPECT_NEAR(m.transmission.sigma_t[c], 1.0 / mfp, 1e-5 / mfp) << "channel " << c;
+        const double forward = MediumFit{}.forward_extinction;
+        EXPECT_NEAR(m.transmission.sigma_t[c], forward / mfp, 1e-5 / mfp) << "channel " << c;
         EXPECT_NEAR(m.albedo[c], A[c], 1e-6);
     }
     // e.g. red: ℓ = 0.02 / (1 + ln 2) = 11.81 mm, R_d = 0.5 / 0.9 = 0.556, s(0.556) = 1.396, d = 8.457 mm.

@@ -187,6 +187,52 @@ TEST_F(Thickness, BackLitSlabShowsTheBallisticTransmittance)
     EXPECT_EQ(renderer.render(cam, front, rs).pixel(16, 16)[0], 0.0f);
 }
 
+TEST_F(Thickness, LightPathCountsTheMediumAndNotTheAirBetweenParts)
+{
+    // Slabs stacked along z with air between them, lit from straight behind (−z) and seen from
+    // +z: the front slab's path (Renderer::shading_inputs) is the medium along the light's line, slab by slab, with the gaps
+    // left out, for up to two parts (four surfaces); from a third part on, the rest of the line
+    // counts as medium.
+    auto stack = [](std::initializer_list<std::pair<float, float>> slabs) {
+        TriangleMesh mesh;
+        mesh.name = "slab stack";
+        for (const auto& [lo, hi] : slabs) {
+            const TriangleMesh box = procedural::box({-5.0f, -5.0f, lo}, {5.0f, 5.0f, hi}, 16);
+            const uint32_t base = uint32_t(mesh.positions.size());
+            mesh.positions.insert(mesh.positions.end(), box.positions.begin(), box.positions.end());
+            for (uint32_t i : box.indices) mesh.indices.push_back(base + i);
+        }
+        return prepare_mesh(mesh);
+    };
+    Baker baker(context());
+    const Material m = translucent();
+    Renderer renderer(context());
+    renderer.set_material(m);
+    Camera cam;
+    cam.eye = {0.0f, 0.0f, 3.0f}, cam.target = {0.0f, 0.0f, 0.0f}, cam.fov_y_degrees = 10.0f;
+    const std::vector<Light> lights = {Light::directional({0.0f, 0.0f, -1.0f}, glm::vec3(1.0f))};
+    RenderSettings rs;
+    rs.width = rs.height = 33;
+    auto centre_path = [&](const PreparedMesh& mesh) {
+        const BakeResult r = baker.bake(mesh, m, settings(16));
+        renderer.set_mesh(mesh, r.tm, r.thickness);
+        const ShadingInputs in = renderer.shading_inputs(cam, lights, rs);
+        EXPECT_EQ(in.transmits.at(0), 1);
+        return double(in.path.at(16 * in.width + 16));
+    };
+    // Depth is stored as float32 over the light's box (twice the bounding sphere's radius).
+    // One part: the light's 0.1 is below the local thickness t̄, which the path never goes under.
+    const double one_part = centre_path(stack({{0.0f, 0.1f}}));
+    EXPECT_NEAR(one_part, slab_mean(0.1, 60.0), 3e-3);
+    // 0.1 in front, 0.3 of air, 0.2 behind: 0.3 of medium (the depth from the entry is 0.6).
+    const double two_parts = centre_path(stack({{0.0f, 0.1f}, {-0.5f, -0.3f}}));
+    EXPECT_NEAR(two_parts, 0.3, 1e-3);
+    // A third part, nearest to the light: 0.05 and 0.2 of medium in the first two parts the light
+    // meets; after them, the 0.3 of air and the 0.1 of the front slab count.
+    const double three_parts = centre_path(stack({{0.0f, 0.1f}, {-0.5f, -0.3f}, {-0.75f, -0.7f}}));
+    EXPECT_NEAR(three_parts, 0.05 + 0.2 + 0.3 + 0.1, 1e-3);
+}
+
 TEST_F(Thickness, ExtremeThicknessAndExtinctionStayFinite)
 {
     const PreparedMesh slab = prepare_mesh(procedural::box({-1.0f, -1.0f, -0.1f}, {1.0f, 1.0f, 0.1f}, 8));

@@ -102,6 +102,7 @@ MediumFit fit_from_args(const Args& args)
             fit.diffusion_weight = j.value("diffusion_weight", fit.diffusion_weight);
             fit.lobe = j.value("lobe", fit.lobe);
             fit.normal_mix = j.value("normal_mix", fit.normal_mix);
+            fit.forward_extinction = j.value("forward_extinction", fit.forward_extinction);
         } catch (const json::exception& e) {
             args.fail("--fit " + *path + ": " + e.what());
         }
@@ -355,7 +356,8 @@ int cmd_fidelity(int argc, char** argv)
                             {"transmission_weight", fit.transmission_weight},
                             {"diffusion_weight", fit.diffusion_weight},
                             {"lobe", fit.lobe},
-                            {"normal_mix", fit.normal_mix}}},
+                            {"normal_mix", fit.normal_mix},
+                            {"forward_extinction", fit.forward_extinction}}},
                           {"scenes", out}};
         write_file_atomically(*path, doc.dump(1));
     }

@@ -2,7 +2,7 @@
 //   A(t) · (n+1)/(2π) max(V·(−L), 0)^n · ((1 − m) + m max(−N·L, 0)) · E
 // with A the attenuation along the path t inside the object (attenuation.glsl). The lobe is smooth
 // over the surface and per vertex (mesh.vert). The path t (the longer of the local thickness and
-// the path from where the light enters, from the light's depth tile) is per fragment: it is not
+// the path inside the medium from where the light enters, from the light's depth layers) is per fragment: it is not
 // smooth where the body shadows a part from the light, and per vertex it lost a thumb tip's glow
 // on the coarse hand of tests/test_fidelity.cpp; A(t) is read from the table of
 // transmission_table.comp (one fetch, not nine exponentials).
@@ -15,14 +15,25 @@
 layout(constant_id = 2) const uint TRANSMISSION = 0;
 const uint kMaxTransmitters = JADE_MAX_TRANSMITTERS;  // shading_interface.h
 
-layout(binding = 3) uniform sampler2D light_depth_atlas;  // D32: depth nearest to each light, one tile per light
+layout(binding = 3) uniform sampler2D light_depth_atlas;  // RGBA32F: the depths of 4 surfaces along each light, one tile a light
 layout(binding = 5) uniform usamplerBuffer transmission_table;  // A(t_i), A(t_{i+1}) as halves
 
+// The path inside the medium up to depth z along the light, from the depths of the first four
+// surfaces at one texel (1 where there is none): [layer 0, layer 1] and [layer 2, layer 3] are
+// inside a closed mesh, the gap between them is air. Beyond layer 3 the rest counts as medium
+// (the path is then at least as long as it is). Continuous in z; 0 where no surface is.
+float medium_path(vec4 layers, float z)
+{
+    return (clamp(z, layers.x, layers.y) - layers.x) + (clamp(z, layers.z, layers.w) - layers.z) +
+           max(z - layers.w, 0.0);
+}
+
 // How far light from transmitter k travels inside the object before it reaches `position`, mesh
-// units: its depth along the light minus the depth of the surface nearest to the light,
-// bilinear between the four nearest texels of its tile (atlas column `tile` − 1). The matrix is
-// the transmitter's own (data.light_depth[k]): a constant index, which lavapipe reads once,
-// not once per lane.
+// units: the medium's share of the light's line from where it enters (medium_path), per texel
+// of its tile (atlas column `tile` − 1) and bilinear between the four nearest (per texel: a
+// texel beside a part's edge as the light sees it must not lend its layers to the next). The
+// matrix is the transmitter's own (data.light_depth[k]): a constant index, which lavapipe reads
+// once, not once per lane.
 float light_path(uint k, uint tile, vec3 position)
 {
     vec4 p = data.light_depth[k] * vec4(position, 1.0);
@@ -31,12 +42,11 @@ float light_path(uint k, uint tile, vec3 position)
     vec2 f = fract(xy);
     ivec2 base = ivec2(floor(xy)), lo = ivec2(0), hi = ivec2(int(size) - 1);
     int x0 = int(max(tile, 1u) - 1u) * int(size);
-    float d00 = texelFetch(light_depth_atlas, ivec2(x0, 0) + clamp(base, lo, hi), 0).r;
-    float d10 = texelFetch(light_depth_atlas, ivec2(x0, 0) + clamp(base + ivec2(1, 0), lo, hi), 0).r;
-    float d01 = texelFetch(light_depth_atlas, ivec2(x0, 0) + clamp(base + ivec2(0, 1), lo, hi), 0).r;
-    float d11 = texelFetch(light_depth_atlas, ivec2(x0, 0) + clamp(base + ivec2(1, 1), lo, hi), 0).r;
-    float entry = mix(mix(d00, d10, f.x), mix(d01, d11, f.x), f.y);
-    return max(p.z - entry, 0.0) * data.light_depth_map.z;
+    float t00 = medium_path(texelFetch(light_depth_atlas, ivec2(x0, 0) + clamp(base, lo, hi), 0), p.z);
+    float t10 = medium_path(texelFetch(light_depth_atlas, ivec2(x0, 0) + clamp(base + ivec2(1, 0), lo, hi), 0), p.z);
+    float t01 = medium_path(texelFetch(light_depth_atlas, ivec2(x0, 0) + clamp(base + ivec2(0, 1), lo, hi), 0), p.z);
+    float t11 = medium_path(texelFetch(light_depth_atlas, ivec2(x0, 0) + clamp(base + ivec2(1, 1), lo, hi), 0), p.z);
+    return mix(mix(t00, t10, f.x), mix(t01, t11, f.x), f.y) * data.light_depth_map.z;
 }
 
 // Transmitter k's path t at `position`: the longer of the local thickness and the path from

@@ -88,14 +88,15 @@ Medium medium_from_appearance(glm::dvec3 albedo, glm::dvec3 mean_free_path, doub
 
 /// Light that crosses the object from a light behind it (thin parts glowing), evaluated per
 /// fragment from the path length t inside the object (mesh units): the longer of the per-vertex
-/// thickness t̄ (jade/bake.hpp ThicknessSettings) and the light's path from where it enters the
-/// object (a depth map along each directional light behind the object, so parts the body shadows
-/// stay dark):
+/// thickness t̄ (jade/bake.hpp ThicknessSettings) and the light's path inside the medium from
+/// where it enters the object (the first four surfaces along each directional light behind the
+/// object, so parts the body shadows stay dark and the air between two parts does not count):
 ///   L_t = [weight · e^{−σ_t·t} + diffusion_weight · (1 − e^{−σ_s'·t}) · T_d(t)]
 ///         · lobe(μ) · ((1 − normal_mix) + normal_mix·max(−N·L, 0)) · E
 ///   lobe(μ) = (n + 1)/(2π) · max(μ, 0)^n,  μ = V·(−L),  n = `lobe`
-/// The first part is the ballistic (unscattered) transmittance of the extinction σ_t = σ_s + σ_a:
-/// grey when σ_t is grey, as measured, so thin parts of a grey-σ_t medium glow white-grey
+/// The first part is the forward (low-order) transmittance of σ_t = k·(σ_s + σ_a), k =
+/// MediumFit::forward_extinction (1: the unscattered light alone; 0.7 fitted to the path tracer):
+/// grey when σ_s + σ_a is grey, as measured, so thin parts of a grey-σ_t medium glow white-grey
 /// whatever its colour. The second is light that scattered (1 − e^{−σ_s'·t}) and then diffused
 /// through the thickness: T_d is the diffusion approximation's transmittance of a slab
 /// (slab_diffusion_transmittance), falling as 1/t in a medium without absorption and as e^{−σ_tr·t}
@@ -135,10 +136,13 @@ struct MediumFit {
     double albedo_scale = 0.9;          ///< k_d = albedo_scale · R_d(α', η)
     double strength = 0.3;              ///< Material::strength (rad² per unit t_m)
     double spread_strength = 3.0;       ///< Material::spread_strength (rad² per unit normal spread)
-    double transmission_weight = 0.65;  ///< Transmission::weight / T_boundary
-    double diffusion_weight = 0.108;    ///< Transmission::diffusion_weight / T_boundary
+    double transmission_weight = 0.35;  ///< Transmission::weight / T_boundary
+    double diffusion_weight = 0.058;    ///< Transmission::diffusion_weight / T_boundary
     double lobe = 16.0;                 ///< Transmission::lobe
-    double normal_mix = 0.5;            ///< Transmission::normal_mix
+    double normal_mix = 0.0;            ///< Transmission::normal_mix
+    /// Transmission::sigma_t = forward_extinction · (σ_s + σ_a), in (0, 1]: the forward light falls
+    /// slower than the unscattered light, since light scattered a little still leaves in the lobe.
+    double forward_extinction = 0.7;
 };
 
 /// The multiple-scattering (diffuse) reflectance of a semi-infinite medium behind a boundary of

@@ -180,7 +180,8 @@ struct RendererOptions {
     /// Mean curvature smoothing: iterations of 1-ring averaging after the cotangent Laplacian.
     uint32_t curvature_smoothing = 2;
     /// Transmission: texels of one light's depth tile (how far light travels inside the object
-    /// before it reaches a point; 4 directional lights at most, D32, 4·size² bytes each).
+    /// before it reaches a point: the depths of the first four surfaces along the light, RGBA32F,
+    /// and two D32 buffers to peel them; 4 directional lights at most, 24·size² bytes each).
     uint32_t light_depth_size = 512;
 };
 

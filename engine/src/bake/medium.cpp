@@ -129,6 +129,7 @@ Material Material::from_medium(const Medium& medium, const MediumFit& fit, std::
     check_fit("diffusion_weight", fit.diffusion_weight, 0.0, 1e3);
     check_fit("lobe", fit.lobe, 0.0, 1e3);
     check_fit("normal_mix", fit.normal_mix, 0.0, 1.0);
+    check_fit("forward_extinction", fit.forward_extinction, 1e-3, 1.0);
 
     Material m;
     m.name = std::move(name);
@@ -141,7 +142,8 @@ Material Material::from_medium(const Medium& medium, const MediumFit& fit, std::
         m.albedo[c] = float(fit.albedo_scale * reflectance);
         const double path = t_reduced > 0.0 ? std::clamp(1.0 / t_reduced, kMinPath, kMaxPath) : kMaxPath;
         m.profile[c] = ChannelProfile::burley_from_albedo(reflectance, path);
-        m.transmission.sigma_t[c] = float(std::min(medium.sigma_s[c] + medium.sigma_a[c], 3.0e38));
+        m.transmission.sigma_t[c] =
+            float(std::min(fit.forward_extinction * (medium.sigma_s[c] + medium.sigma_a[c]), 3.0e38));
         m.transmission.sigma_s_reduced[c] = float(std::min(s_reduced, 3.0e38));
         m.transmission.sigma_tr[c] = float(std::min(std::sqrt(3.0 * medium.sigma_a[c] * t_reduced), 3.0e38));
         // The slab's diffusion source and extrapolated boundary (slab_diffusion_transmittance);

@@ -59,7 +59,7 @@ GraphicsPipeline::GraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& des
     ds.depthWriteEnable = desc.depth_write;
     ds.depthCompareOp = desc.depth_compare;
     std::vector<VkPipelineColorBlendAttachmentState> blend(desc.color_formats.size());
-    for (auto& b : blend) b.colorWriteMask = 0xf;  // no blending: opaque surfaces
+    for (auto& b : blend) b.colorWriteMask = desc.color_write_mask;  // no blending: opaque surfaces
     VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
     cb.attachmentCount = uint32_t(blend.size());
     cb.pAttachments = blend.data();

@@ -44,6 +44,9 @@ struct GraphicsPipelineDesc {
     VkCullModeFlags cull = VK_CULL_MODE_BACK_BIT;
     VkFrontFace front_face = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     VkPrimitiveTopology topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    /// The channels every colour attachment takes (VK_COLOR_COMPONENT_*_BIT); the rest keep
+    /// what the attachment held.
+    VkColorComponentFlags color_write_mask = 0xf;
 
     // Vertex input: one interleaved buffer at binding 0 (stride 0 and no attributes: none).
     uint32_t vertex_stride = 0;

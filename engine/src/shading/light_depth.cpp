@@ -13,12 +13,24 @@
 
 namespace jade::shading {
 
+namespace {
+
+constexpr VkImageUsageFlags kPeelUsage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+
+}  // namespace
+
 LightDepth::LightDepth(gpu::Context& ctx, uint32_t tile_size)
     : ctx_(ctx), tile_(tile_size),
-      atlas_(ctx, {"light depth atlas", tile_size * kMaxLights, tile_size, VK_FORMAT_D32_SFLOAT,
-                   VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT})
+      atlas_(ctx, {"light depth layers", tile_size * kMaxLights, tile_size, VK_FORMAT_R32G32B32A32_SFLOAT,
+                   VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT}),
+      peel_{gpu::Image(ctx, {"light depth peel", tile_size * kMaxLights, tile_size, VK_FORMAT_D32_SFLOAT, kPeelUsage}),
+            gpu::Image(ctx, {"light depth peel", tile_size * kMaxLights, tile_size, VK_FORMAT_D32_SFLOAT, kPeelUsage})},
+      previous_sampler_(
+          gpu::make_sampler(ctx, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "light depth peel sampler"))
 {
 }
+
+uint64_t LightDepth::bytes() const { return uint64_t(tile_) * tile_ * kMaxLights * (16 + 2 * 4); }
 
 bool LightDepth::may_transmit(glm::vec3 eye, const Light& light, glm::vec3 centre, float radius)
 {
@@ -45,52 +57,82 @@ std::vector<uint32_t> LightDepth::record(VkCommandBuffer cmd, glm::vec3 eye, std
     Contents wanted{geometry_version, towards_light, centre, radius};
     if (wanted == contents_) return tile;
     contents_ = std::move(wanted);
-    if (!pipeline_) {
-        gpu::GraphicsPipelineDesc d;
-        d.name = "light depth";
-        d.vertex_spirv = shaders::light_depth_vert();
-        d.fragment_spirv = shaders::light_depth_frag();
-        d.color_formats = {};
-        d.samples = VK_SAMPLE_COUNT_1_BIT;
-        d.cull = VK_CULL_MODE_NONE;  // the surface nearest to the light, facing it or not
-        d.vertex_stride = vertex_stride;
-        d.attributes = {{0, VK_FORMAT_R32G32B32_SFLOAT, 0}};
-        d.push_size = sizeof(glm::mat4);
-        pipeline_.emplace(ctx_, d);
-    }
+    for (uint32_t layer = 0; layer < kLayers; ++layer)
+        if (!pipelines_[layer]) {
+            gpu::GraphicsPipelineDesc d;
+            d.name = "light depth layer";
+            d.vertex_spirv = shaders::light_depth_vert();
+            d.fragment_spirv = shaders::light_depth_frag();
+            d.color_formats = {VK_FORMAT_R32G32B32A32_SFLOAT};
+            d.color_write_mask = VK_COLOR_COMPONENT_R_BIT << layer;  // channel `layer`
+            d.samples = VK_SAMPLE_COUNT_1_BIT;
+            d.cull = VK_CULL_MODE_NONE;  // every surface along the light, facing it or not
+            d.vertex_stride = vertex_stride;
+            d.attributes = {{0, VK_FORMAT_R32G32B32_SFLOAT, 0}};
+            d.bindings = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
+            d.push_size = sizeof(glm::mat4);
+            d.constants = {layer};
+            pipelines_[layer].emplace(ctx_, d);
+        }
     // The orthographic box holds the bounding sphere: 2r across, depth from r in front of it to r
     // behind; a little margin for a deforming mesh that leaves its rest bounds.
     const float r = std::max(radius, 1e-20f) * 1.1f;
     depth_range_ = 2.0f * r;  // near r, far 3r
-    atlas_.transition(cmd, gpu::use::kDepthAttachment, true);
-    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    depth.imageView = atlas_.view();
-    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    depth.clearValue.depthStencil = {1.0f, 0};
-    VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    ri.renderArea = {{0, 0}, {atlas_.width(), atlas_.height()}};
-    ri.layerCount = 1;
-    ri.pDepthAttachment = &depth;
-    vkCmdBeginRendering(cmd, &ri);
-    const VkDeviceSize offset = 0;
     for (uint32_t k = 0; k < towards_light.size(); ++k) {
         const glm::vec3 l = glm::normalize(towards_light[k]);
         const glm::vec3 up = std::abs(l.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
         const glm::mat4 view = glm::lookAtRH(centre + 2.0f * r * l, centre, up);
         view_proj_[k] = glm::orthoRH_ZO(-r, r, -r, r, r, 3.0f * r) * view;
-        pipeline_->bind(cmd, {tile_, tile_}, view_proj_[k], {});
-        // Tile k: viewport and scissor moved to its column of the atlas.
-        const VkViewport vp{float(k * tile_), 0.0f, float(tile_), float(tile_), 0.0f, 1.0f};
-        const VkRect2D sc{{int32_t(k * tile_), 0}, {tile_, tile_}};
-        vkCmdSetViewport(cmd, 0, 1, &vp);
-        vkCmdSetScissor(cmd, 0, 1, &sc);
-        vkCmdBindVertexBuffers(cmd, 0, 1, &vertices, &offset);
-        vkCmdBindIndexBuffer(cmd, indices, 0, VK_INDEX_TYPE_UINT32);
-        vkCmdDrawIndexed(cmd, index_count, 1, 0, 0, 0);
     }
-    vkCmdEndRendering(cmd);
+    // Layer i: the nearest surface beyond layer i − 1, which the previous pass left in the other
+    // depth buffer. The layers atlas starts as 1 (no surface) and takes one channel a pass.
+    atlas_.transition(cmd, gpu::use::kColorAttachment, true);
+    for (uint32_t layer = 0; layer < kLayers; ++layer) {
+        gpu::Image& depth_buffer = peel_[layer % 2];
+        gpu::Image& previous = peel_[(layer + 1) % 2];
+        depth_buffer.transition(cmd, gpu::use::kDepthAttachment, true);
+        previous.transition(cmd, gpu::use::kSampled, layer == 0);
+        VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        color.imageView = atlas_.view();
+        color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        color.loadOp = layer == 0 ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
+        color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        // A loaded attachment keeps a zero clear value: lavapipe clears to a non-zero one
+        // (docs/lavapipe.md §5).
+        if (layer == 0) color.clearValue.color = {{1.0f, 1.0f, 1.0f, 1.0f}};
+        VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        depth.imageView = depth_buffer.view();
+        depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+        depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;  // the next layer's `previous`
+        depth.clearValue.depthStencil = {1.0f, 0};
+        VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+        ri.renderArea = {{0, 0}, {atlas_.width(), atlas_.height()}};
+        ri.layerCount = 1;
+        ri.colorAttachmentCount = 1;
+        ri.pColorAttachments = &color;
+        ri.pDepthAttachment = &depth;
+        vkCmdBeginRendering(cmd, &ri);
+        const VkDeviceSize offset = 0;
+        for (uint32_t k = 0; k < towards_light.size(); ++k) {
+            pipelines_[layer]->bind(
+                cmd, {tile_, tile_}, view_proj_[k],
+                {gpu::Binding::image(previous.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, previous_sampler_)});
+            // Tile k: viewport and scissor moved to its column of the atlas.
+            const VkViewport vp{float(k * tile_), 0.0f, float(tile_), float(tile_), 0.0f, 1.0f};
+            const VkRect2D sc{{int32_t(k * tile_), 0}, {tile_, tile_}};
+            vkCmdSetViewport(cmd, 0, 1, &vp);
+            vkCmdSetScissor(cmd, 0, 1, &sc);
+            vkCmdBindVertexBuffers(cmd, 0, 1, &vertices, &offset);
+            vkCmdBindIndexBuffer(cmd, indices, 0, VK_INDEX_TYPE_UINT32);
+            vkCmdDrawIndexed(cmd, index_count, 1, 0, 0, 0);
+        }
+        vkCmdEndRendering(cmd);
+        if (layer + 1 < kLayers)
+            gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                                VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                                VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+    }
     atlas_.transition(cmd, gpu::use::kSampled);
     return tile;
 }

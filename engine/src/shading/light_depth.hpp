@@ -1,9 +1,11 @@
 // shading/light_depth.hpp - how far light travels inside the object before it reaches a point,
-// for the transmission term: per directional light behind the object, the depth of the surface
-// nearest to the light, rendered orthographically along the light into one tile of a D32 atlas.
-// The fragment shader turns it into t_L = (its own depth − that depth) along the light, the
-// distance from where the light enters the object, so parts the body shadows from the light
-// (a paw behind the body) are thick even where their local thickness t̄ is small.
+// for the transmission term. Per directional light behind the object, the depths of the first
+// four surfaces along the light (depth peeling: entry, exit, entry, exit for a closed mesh),
+// rendered orthographically along the light into one tile of an RGBA32F atlas, a layer per
+// channel. The fragment shader turns them into the path t_L inside the medium from where the
+// light enters to the point (transmission.glsl): the length of [entry 1, exit 1] and of
+// [entry 2, exit 2] up to the point, without the air between them, so that a finger in front of
+// a fist is as thin as it is, while a paw that the body shadows from the light stays thick.
 #pragma once
 
 #include "gpu/image.hpp"
@@ -27,6 +29,8 @@ class LightDepth {
 public:
     static constexpr uint32_t kMaxLights =
         JADE_MAX_LIGHT_DEPTH_TILES;  ///< lights with a depth tile; others use t̄ alone
+    /// Surfaces kept per texel: the four channels of the layers atlas.
+    static constexpr uint32_t kLayers = 4;
 
     LightDepth(gpu::Context& ctx, uint32_t tile_size);
 
@@ -51,13 +55,18 @@ public:
     /// Mesh units per unit of stored depth (the orthographic depth range).
     float depth_range() const { return depth_range_; }
     uint32_t tile_size() const { return tile_; }
+    /// The layers' depths (RGBA: layers 0 … 3, 1 where there is none), kMaxLights tiles side by side.
     const gpu::Image& atlas() const { return atlas_; }
+    /// GPU memory of the atlas and the peeling's two depth buffers, bytes.
+    uint64_t bytes() const;
 
 private:
     gpu::Context& ctx_;
     uint32_t tile_;
-    gpu::Image atlas_;  // kMaxLights tiles side by side
-    std::optional<gpu::GraphicsPipeline> pipeline_;
+    gpu::Image atlas_;                    // RGBA32F, kMaxLights tiles side by side
+    std::array<gpu::Image, 2> peel_;      // D32: the pass's depth buffer, and the previous layer's
+    gpu::OwnedSampler previous_sampler_;  // nearest: the previous layer at the same texel
+    std::array<std::optional<gpu::GraphicsPipeline>, kLayers> pipelines_;  // one per layer
     std::array<glm::mat4, kMaxLights> view_proj_{};
     float depth_range_ = 1.0f;
     // What the atlas holds now.
