@@ -143,7 +143,10 @@ void main()
         for (uint k = 0; k < TRANSMISSION; ++k) {
             vec3 l, e;
             transmitter_at(k, in_position, l, e);
-            color += (in_lobe[k] * transmitter_follow(dot(n, l))) * attenuation_at(transmitter_path(k, in_position, in_thickness)) * e;
+            float n_dot_l = dot(n, l);
+            // In through the far side (this normal standing in for the entry's) and out to the eye.
+            float crossings = boundary ? boundary_transmittance(-n_dot_l) * exit_transmittance : 1.0;
+            color += (crossings * in_lobe[k] * transmitter_follow(n_dot_l)) * attenuation_at(transmitter_path(k, in_position, in_thickness)) * e;
         }
     out_color = vec4(color, 1.0);
 }

@@ -113,7 +113,8 @@ glm::dvec3 reference_pixel(const ShadingInputs& in, size_t p, const Material& m,
             const double mu = std::max(-glm::dot(v, l), 0.0);
             const double lobe = mu > 0.0 ? (double(tr.lobe) + 1.0) / (2.0 * kPi) * std::pow(mu, double(tr.lobe)) : 0.0;
             const double follow = (1.0 - double(tr.normal_mix)) + double(tr.normal_mix) * std::max(-c, 0.0);
-            color += lobe * follow * attenuation(tr, double(in.path[k * pixels + p])) * e;
+            const double crossings = m.boundary_transmittance ? boundary(std::max(-c, 0.0), f0, alpha) * exit : 1.0;
+            color += crossings * lobe * follow * attenuation(tr, double(in.path[k * pixels + p])) * e;
         }
     }
     return color;

@@ -138,8 +138,8 @@ TEST_F(Thickness, DynamicBakeKeepsItAndStillMeshesRebakeBitForBit)
 TEST_F(Thickness, BackLitSlabShowsTheBallisticTransmittance)
 {
     // A slab seen from +z with a directional light straight behind it: V·(−L) = 1 and −N·L = 1 at
-    // the centre, so the pixel is weight · (n + 1)/(2π) · e^{−σ_t t̄} · E with the diffuse and
-    // specular terms off.
+    // the centre, so the pixel is weight · (n + 1)/(2π) · e^{−σ_t t̄} · E · (1 − F0)² (both
+    // crossings of the boundary at normal incidence) with the diffuse and specular terms off.
     const float h = 0.1f;
     const PreparedMesh slab = prepare_mesh(procedural::box({-5.0f, -5.0f, -0.5f * h}, {5.0f, 5.0f, 0.5f * h}, 64));
     Baker baker(context());
@@ -160,10 +160,17 @@ TEST_F(Thickness, BackLitSlabShowsTheBallisticTransmittance)
     const RenderedImage img = renderer.render(cam, lights, rs);
     const float* centre = img.pixel(16, 16);
     const double t = slab_mean(h, 60.0), lobe = (3.0 + 1.0) / (2.0 * std::numbers::pi);
+    const double f0 = std::pow((double(m.ior) - 1.0) / (double(m.ior) + 1.0), 2.0), crossings = (1.0 - f0) * (1.0 - f0);
     for (int c = 0; c < 3; ++c) {
-        const double expected = 0.7 * lobe * std::exp(-double(m.transmission.sigma_t[c]) * t) * 2.0;
+        const double expected = 0.7 * lobe * std::exp(-double(m.transmission.sigma_t[c]) * t) * 2.0 * crossings;
         EXPECT_NEAR(centre[c], expected, 0.01 * expected) << "channel " << c;
     }
+    // Without the boundary the crossings are not there.
+    m.boundary_transmittance = false;
+    renderer.set_material(m);
+    const RenderedImage bare = renderer.render(cam, lights, rs);
+    EXPECT_NEAR(bare.pixel(16, 16)[1] / centre[1], 1.0 / crossings, 0.002) << "without boundary_transmittance";
+    m.boundary_transmittance = true;
     // The diffused part alone: (1 − e^{−σ_s' t}) T_d(t), T_d the slab's diffusion transmittance.
     m.transmission.weight = 0.0f, m.transmission.diffusion_weight = 0.5f;
     m.transmission.sigma_s_reduced = {10.0f, 5.0f, 2.0f};
@@ -176,7 +183,7 @@ TEST_F(Thickness, BackLitSlabShowsTheBallisticTransmittance)
         const double s = m.transmission.sigma_s_reduced[c], tr = m.transmission.sigma_tr[c];
         const double slab =
             slab_diffusion_transmittance(t, tr, m.transmission.source_depth[c], m.transmission.extrapolation[c]);
-        const double expected = 0.5 * lobe * (1.0 - std::exp(-s * t)) * slab * 2.0;
+        const double expected = 0.5 * lobe * (1.0 - std::exp(-s * t)) * slab * 2.0 * crossings;
         EXPECT_NEAR(diffused.pixel(16, 16)[c], expected, 0.01 * expected) << "diffused, channel " << c;
     }
     // Off when no light is behind the object, and with RenderSettings::transmission = false.

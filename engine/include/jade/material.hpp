@@ -111,8 +111,8 @@ struct Transmission {
     glm::vec3 sigma_tr{0.0f};         ///< √(3σ_a(σ_a + σ_s')), 1/mesh unit
     glm::vec3 source_depth{0.0f};     ///< z_s = z_0 + z_b of slab_diffusion_transmittance, mesh units
     glm::vec3 extrapolation{0.0f};    ///< z_b of slab_diffusion_transmittance, mesh units
-    float weight = 0.0f;              ///< ballistic part, including the boundary's transmittance
-    float diffusion_weight = 0.0f;    ///< diffused part, including the boundary's transmittance
+    float weight = 0.0f;              ///< forward part (the boundary's crossings: Material::boundary_transmittance)
+    float diffusion_weight = 0.0f;    ///< diffused part (the same)
     float lobe = 2.0f;                ///< exponent n of the forward lobe, ≥ 0
     float normal_mix = 0.3f;          ///< how much the term follows max(−N·L, 0), [0, 1]
     bool enabled() const { return weight > 0.0f || diffusion_weight > 0.0f; }
@@ -133,13 +133,13 @@ double slab_diffusion_transmittance(double t, double sigma_tr, double source_dep
 /// tracer (Mitsuba 3) on the training scenes of tools/groundtruth (fit: tools/groundtruth/fit.py,
 /// results and validation: docs/fidelity.md). The defaults are the fitted values.
 struct MediumFit {
-    double albedo_scale = 0.9;          ///< k_d = albedo_scale · R_d(α', η)
-    double strength = 0.3;              ///< Material::strength (rad² per unit t_m)
-    double spread_strength = 3.0;       ///< Material::spread_strength (rad² per unit normal spread)
-    double transmission_weight = 0.35;  ///< Transmission::weight / T_boundary
-    double diffusion_weight = 0.058;    ///< Transmission::diffusion_weight / T_boundary
-    double lobe = 16.0;                 ///< Transmission::lobe
-    double normal_mix = 0.0;            ///< Transmission::normal_mix
+    double albedo_scale = 0.9;         ///< k_d = albedo_scale · R_d(α', η)
+    double strength = 0.3;             ///< Material::strength (rad² per unit t_m)
+    double spread_strength = 3.0;      ///< Material::spread_strength (rad² per unit normal spread)
+    double transmission_weight = 0.4;  ///< Transmission::weight
+    double diffusion_weight = 0.071;   ///< Transmission::diffusion_weight
+    double lobe = 16.0;                ///< Transmission::lobe
+    double normal_mix = 0.25;          ///< Transmission::normal_mix
     /// Transmission::sigma_t = forward_extinction · (σ_s + σ_a), in (0, 1]: the forward light falls
     /// slower than the unscattered light, since light scattered a little still leaves in the lobe.
     double forward_extinction = 0.7;
@@ -172,7 +172,11 @@ struct Material {
     /// Tm shading: the diffuse light enters and leaves through the dielectric boundary, so it is
     /// multiplied by T(N·L)·T(N·V), T = 1 − Schlick's Fresnel (F0 from ior, grazing value
     /// max(1 − α, F0), α = roughness²): the F_t factors of Jensen et al. 2001's BSSRDF. Dims the
-    /// terminator and the silhouettes as a rough dielectric does. from_medium sets it.
+    /// terminator and the silhouettes as a rough dielectric does. The light transmitted through
+    /// the object crosses the boundary twice too: it is multiplied by T(max(−N·L, 0))·T(N·V), the
+    /// exit point's normal standing in for the entry's (exact for a slab facing the light; at a
+    /// rim where the light grazes the surface both crossings are near the grazing value, so a
+    /// thin rim does not glow white, as it does not in the path tracer). from_medium sets it.
     bool boundary_transmittance = false;
 
     /// Every parameter the renderer uses, derived from a physical medium (per mesh unit):
@@ -182,9 +186,9 @@ struct Material {
     ///   2015, searchlight configuration; ℓ is clamped to [1e-12, 1e12] mesh units);
     /// - strength = fit.strength, spread_strength = fit.spread_strength;
     /// - transmission: σ_t = σ_s + σ_a, σ_s', σ_tr; the slab's z_0 = 1/σ_t' and z_b = 2A/(3σ_t')
-    ///   (A as in diffuse_reflectance; both 0 where σ_s' = 0); weight = fit.transmission_weight · T_b and
-    ///   diffusion_weight = fit.diffusion_weight · T_b with T_b = (1 − F0)², F0 = ((η − 1)/(η + 1))²
-    ///   (entering and leaving); lobe and normal_mix from the fit;
+    ///   (A as in diffuse_reflectance; both 0 where σ_s' = 0); weight = fit.transmission_weight,
+    ///   diffusion_weight = fit.diffusion_weight, lobe and normal_mix from the fit (the boundary's
+    ///   two crossings are boundary_transmittance's);
     /// - ior and roughness of the specular lobe from the boundary, and boundary_transmittance on.
     /// Limits (all finite): σ_s = 0 gives k_d = 0 and only transmission; σ_a = 0 gives R_d = 1;
     /// σ_s = σ_a = 0 is a clear medium (k_d = 0, transmittance 1). Throws jade::Error naming the

@@ -154,11 +154,11 @@ Material Material::from_medium(const Medium& medium, const MediumFit& fit, std::
             m.transmission.extrapolation[c] = float(std::min(zb, 3.0e38));
         }
     }
-    const double f0 = (medium.ior - 1.0) * (medium.ior - 1.0) / ((medium.ior + 1.0) * (medium.ior + 1.0));
     m.strength = float(fit.strength);
     m.spread_strength = float(fit.spread_strength);
-    m.transmission.weight = float(fit.transmission_weight * (1.0 - f0) * (1.0 - f0));
-    m.transmission.diffusion_weight = float(fit.diffusion_weight * (1.0 - f0) * (1.0 - f0));
+    // The two crossings of the boundary are boundary_transmittance's, at the angles of the light.
+    m.transmission.weight = float(fit.transmission_weight);
+    m.transmission.diffusion_weight = float(fit.diffusion_weight);
     m.transmission.lobe = float(fit.lobe);
     m.transmission.normal_mix = float(fit.normal_mix);
     m.ior = float(medium.ior);
