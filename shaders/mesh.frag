@@ -22,6 +22,8 @@ layout(location = 4) in float in_thickness;
 layout(location = 5) in float in_lobe[kMaxTransmitters];
 layout(location = 9) in vec3 in_scattering_normal;
 layout(location = 10) in vec3 in_normal_spread;
+layout(location = 11) in vec3 in_variance;
+layout(location = 12) in float in_path[kMaxTransmitters];
 
 layout(location = 0) out vec4 out_color;
 
@@ -72,6 +74,12 @@ vec3 false_color(float x)
     return mix(data.color_map[i].rgb, data.color_map[i + 1].rgb, s - float(i));
 }
 
+// Transmitter k's path t at this fragment: interpolated from the vertices, or its own.
+float path_at(uint k)
+{
+    return PATH_PER_VERTEX == 1u ? in_path[k] : transmitter_path(k, in_position, in_thickness);
+}
+
 // The inputs pass: what the shading of this fragment reads, as rasterised.
 vec4 shading_input(uint k)
 {
@@ -82,7 +90,7 @@ vec4 shading_input(uint k)
     if (k == 5u) return vec4(in_normal_spread, 0.0);
     vec4 path = vec4(0.0);
     for (uint j = 0; j < kMaxTransmitters; ++j)
-        if (j < TRANSMISSION) path[j] = transmitter_path(j, in_position, in_thickness);
+        if (j < TRANSMISSION) path[j] = path_at(j);
     return path;
 }
 
@@ -117,14 +125,11 @@ void main()
     bool boundary = MODE == kTm && data.transmission_shape.w > 0.0;
     float exit_transmittance = boundary ? boundary_transmittance(dot(n, v)) : 1.0;
     vec3 albedo = data.albedo_strength.rgb;
-    // t = strength · t_m + spread_strength · normal spread per channel, from the interpolated
-    // values as the poster: interpolating a function of t instead (the LUT row, e^{−2t}) leaves
-    // the image budget where t_m is noisy.
+    // t = strength · t_m + spread_strength · normal spread per channel, interpolated (linear in
+    // t_m, so the poster's interpolated t_m): interpolating a function of t instead (the LUT row,
+    // e^{−2t}) leaves the image budget where t_m is noisy.
     Translucency tr;
-    if (MODE == kTm) {
-        vec3 t = variance(in_tm, in_normal_spread);
-        tr = translucency_setup(CHANNELS == 1 ? t.rrr : t);
-    }
+    if (MODE == kTm) tr = translucency_setup(CHANNELS == 1 ? in_variance.rrr : in_variance);
     float kappa_scaled = max(in_curvature, 0.0) * data.params.y;  // concave: treated as flat
 
     vec3 color = vec3(0.0);
@@ -146,7 +151,7 @@ void main()
             float n_dot_l = dot(n, l);
             // In through the far side (this normal standing in for the entry's) and out to the eye.
             float crossings = boundary ? boundary_transmittance(-n_dot_l) * exit_transmittance : 1.0;
-            color += (crossings * in_lobe[k] * transmitter_follow(n_dot_l)) * attenuation_at(transmitter_path(k, in_position, in_thickness)) * e;
+            color += (crossings * in_lobe[k] * transmitter_follow(n_dot_l)) * attenuation_at(path_at(k)) * e;
         }
     out_color = vec4(color, 1.0);
 }

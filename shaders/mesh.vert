@@ -2,7 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // mesh.vert - passes the world-space attributes through, and evaluates what of the shading is
 // smooth over the surface and per vertex in nature: each transmitting light's forward lobe
-// (transmission.glsl), once per vertex instead of once per fragment.
+// (transmission.glsl), on a fine mesh its path through the object, and the blur's variance t, once
+// per vertex instead of once per fragment.
 #include "shading.glsl"
 #include "transmission.glsl"
 
@@ -25,6 +26,9 @@ layout(location = 4) out float out_thickness;
 layout(location = 5) out float out_lobe[kMaxTransmitters];
 layout(location = 9) out vec3 out_scattering_normal;
 layout(location = 10) out vec3 out_normal_spread;
+layout(location = 11) out vec3 out_variance;  // the tm mode's t per channel (variance)
+// Per transmitting light: its path t (transmitter_path) where PATH_PER_VERTEX.
+layout(location = 12) out float out_path[kMaxTransmitters];
 
 void main()
 {
@@ -35,7 +39,10 @@ void main()
     out_thickness = in_thickness;
     out_scattering_normal = in_scattering_normal;
     out_normal_spread = in_normal_spread;
+    out_variance = MODE == kTm ? variance(in_tm, in_normal_spread) : vec3(0.0);
     vec3 v = normalize(frame.eye - in_position);
     for (uint k = 0; k < kMaxTransmitters; ++k) out_lobe[k] = k < TRANSMISSION ? transmitter_lobe(k, in_position, v) : 0.0;
+    for (uint k = 0; k < kMaxTransmitters; ++k)
+        out_path[k] = PATH_PER_VERTEX == 1u && k < TRANSMISSION ? transmitter_path(k, in_position, in_thickness) : 0.0;
     gl_Position = frame.view_proj * vec4(in_position, 1.0);
 }

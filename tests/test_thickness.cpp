@@ -213,31 +213,55 @@ TEST_F(Thickness, LightPathCountsTheMediumAndNotTheAirBetweenParts)
     };
     Baker baker(context());
     const Material m = translucent();
-    Renderer renderer(context());
-    renderer.set_material(m);
-    Camera cam;
-    cam.eye = {0.0f, 0.0f, 3.0f}, cam.target = {0.0f, 0.0f, 0.0f}, cam.fov_y_degrees = 10.0f;
-    const std::vector<Light> lights = {Light::directional({0.0f, 0.0f, -1.0f}, glm::vec3(1.0f))};
-    RenderSettings rs;
-    rs.width = rs.height = 33;
-    auto centre_path = [&](const PreparedMesh& mesh) {
-        const BakeResult r = baker.bake(mesh, m, settings(16));
-        renderer.set_mesh(mesh, r.tm, r.thickness);
-        const ShadingInputs in = renderer.shading_inputs(cam, lights, rs);
-        EXPECT_EQ(in.transmits.at(0), 1);
-        return double(in.path.at(16 * in.width + 16));
+    // Both samplings of the path: the slabs are flat where the camera looks, so they agree.
+    for (LightPathSampling sampling : {LightPathSampling::PerFragment, LightPathSampling::PerVertex}) {
+        SCOPED_TRACE(std::string(light_path_sampling_name(sampling)));
+        Renderer renderer(context(), RendererOptions{.light_path = sampling});
+        renderer.set_material(m);
+        Camera cam;
+        cam.eye = {0.0f, 0.0f, 3.0f}, cam.target = {0.0f, 0.0f, 0.0f}, cam.fov_y_degrees = 10.0f;
+        const std::vector<Light> lights = {Light::directional({0.0f, 0.0f, -1.0f}, glm::vec3(1.0f))};
+        RenderSettings rs;
+        rs.width = rs.height = 33;
+        auto centre_path = [&](const PreparedMesh& mesh) {
+            const BakeResult r = baker.bake(mesh, m, settings(16));
+            renderer.set_mesh(mesh, r.tm, r.thickness);
+            const ShadingInputs in = renderer.shading_inputs(cam, lights, rs);
+            EXPECT_EQ(in.transmits.at(0), 1);
+            return double(in.path.at(16 * in.width + 16));
+        };
+        // Depth is stored as float32 over the light's box (twice the bounding sphere's radius).
+        // One part: the light's 0.1 is below the local thickness t̄, which the path never goes under.
+        const double one_part = centre_path(stack({{0.0f, 0.1f}}));
+        EXPECT_NEAR(one_part, slab_mean(0.1, 60.0), 3e-3);
+        // 0.1 in front, 0.3 of air, 0.2 behind: 0.3 of medium (the depth from the entry is 0.6).
+        const double two_parts = centre_path(stack({{0.0f, 0.1f}, {-0.5f, -0.3f}}));
+        EXPECT_NEAR(two_parts, 0.3, 1e-3);
+        // A third part, nearest to the light: 0.05 and 0.2 of medium in the first two parts the light
+        // meets; after them, the 0.3 of air and the 0.1 of the front slab count.
+        const double three_parts = centre_path(stack({{0.0f, 0.1f}, {-0.5f, -0.3f}, {-0.75f, -0.7f}}));
+        EXPECT_NEAR(three_parts, 0.05 + 0.2 + 0.3 + 0.1, 1e-3);
+        EXPECT_EQ(renderer.light_path(), sampling);
+    }
+}
+
+TEST_F(Thickness, LightPathAutoFollowsTheMeshResolution)
+{
+    // Per vertex where the median edge spans at most 8 texels of the light's depth tile
+    // (2.2 bounding radii across): the bunny's 0.0046 of the diagonal is 2.1 texels of a 512²
+    // tile, the fist's 0.031 is 14; a 4096² tile makes the bunny's 17.
+    auto sampling = [&](const char* name, uint32_t tile) {
+        const PreparedMesh mesh = prepare_mesh(load_mesh(test::asset(name)));
+        Renderer renderer(context(), RendererOptions{.light_depth_size = tile});
+        EXPECT_EQ(renderer.light_path(), LightPathSampling::PerFragment) << "before set_mesh";
+        renderer.set_mesh(mesh);
+        return renderer.light_path();
     };
-    // Depth is stored as float32 over the light's box (twice the bounding sphere's radius).
-    // One part: the light's 0.1 is below the local thickness t̄, which the path never goes under.
-    const double one_part = centre_path(stack({{0.0f, 0.1f}}));
-    EXPECT_NEAR(one_part, slab_mean(0.1, 60.0), 3e-3);
-    // 0.1 in front, 0.3 of air, 0.2 behind: 0.3 of medium (the depth from the entry is 0.6).
-    const double two_parts = centre_path(stack({{0.0f, 0.1f}, {-0.5f, -0.3f}}));
-    EXPECT_NEAR(two_parts, 0.3, 1e-3);
-    // A third part, nearest to the light: 0.05 and 0.2 of medium in the first two parts the light
-    // meets; after them, the 0.3 of air and the 0.1 of the front slab count.
-    const double three_parts = centre_path(stack({{0.0f, 0.1f}, {-0.5f, -0.3f}, {-0.75f, -0.7f}}));
-    EXPECT_NEAR(three_parts, 0.05 + 0.2 + 0.3 + 0.1, 1e-3);
+    EXPECT_EQ(sampling("bunny00.off", 512), LightPathSampling::PerVertex);
+    EXPECT_EQ(sampling("hand.off", 512), LightPathSampling::PerFragment);
+    EXPECT_EQ(sampling("bunny00.off", 4096), LightPathSampling::PerFragment);
+    EXPECT_EQ(parse_light_path_sampling("vertex"), LightPathSampling::PerVertex);
+    EXPECT_THROW(parse_light_path_sampling("pixel"), Error);
 }
 
 TEST_F(Thickness, ExtremeThicknessAndExtinctionStayFinite)

@@ -26,6 +26,13 @@ OptionSpec eval_option()
             "how tm evaluates the translucency: auto (by the device) | alu | lut | lut16 (docs/shading.md)"};
 }
 
+OptionSpec light_path_option()
+{
+    return {"light-path", "WHERE",
+            "where tm reads a back light's path through the object: auto (by the mesh's resolution) | vertex | "
+            "fragment (docs/shading.md)"};
+}
+
 std::vector<OptionSpec> render_options()
 {
     return {{"mode", "M", "lambert | curvature | tm | tm-false-color (default tm)"},
@@ -45,7 +52,8 @@ std::vector<OptionSpec> render_options()
             {"tonemap-curve", "C", "aces | reinhard (with --tonemap)"},
             {"exposure", "X", "scale the linear colour before tone mapping (default 1)"},
             {"samples", "N", "MSAA samples 1, 2, 4, 8 (default 4)"},
-            eval_option()};
+            eval_option(),
+            light_path_option()};
 }
 
 RendererOptions renderer_options(const Args& args)
@@ -55,6 +63,11 @@ RendererOptions renderer_options(const Args& args)
         o.tm_evaluation = parse_tm_evaluation(args.get_or("eval", "auto"));
     } catch (const Error& e) {
         args.fail(std::string("--eval: ") + e.what());
+    }
+    try {
+        o.light_path = parse_light_path_sampling(args.get_or("light-path", "auto"));
+    } catch (const Error& e) {
+        args.fail(std::string("--light-path: ") + e.what());
     }
     return o;
 }
@@ -231,7 +244,8 @@ int cmd_figure1(int argc, char** argv)
                                      {"size", "WxH", "size of each of the four panels (default 512x512)"},
                                      {"mesh", "MESH", "mesh or baked .glb (default: the Stanford bunny)"},
                                      {"tonemap", "", "tone map the shaded panels with the ACES fit"},
-                                     eval_option()}});
+                                     eval_option(),
+                                     light_path_option()}});
     Args first("figure1", specs, argc, argv, 2);
     if (print_help(first,
                    "usage: jade figure1 [options]\n\nThe poster's Figure 1: the bunny made of blue jewel under a "
@@ -303,7 +317,8 @@ int cmd_bench_render(int argc, char** argv)
          "fill) | back (front key + back light): with a back light tm "
          "draws the transmission term too"},
         {"sizes", "N,N", "square image sizes (default 512,1024)"},
-        eval_option()};
+        eval_option(),
+        light_path_option()};
     const char* const usage =
         "usage: jade bench render [MESH] [options]\n\nFrame time of tm against lambert shading at 512x512 "
         "and 1024x1024, the same scene,\nmeasured alternately in one run (GPU timestamps, wall time, and the "
@@ -331,11 +346,13 @@ int cmd_bench_render(int argc, char** argv)
     set_scene(renderer, scene);
     const bool thickness = !scene.thickness.empty() || !scene.mesh.baked_thickness.empty();
     std::printf(
-        "mesh %s: %zu vertices, %zu triangles; material %s (%s; transmission %s); tm evaluation %s; device %s\n",
+        "mesh %s: %zu vertices, %zu triangles; material %s (%s; transmission %s); tm evaluation %s, light path per %s; "
+        "device %s\n",
         scene.mesh.name.c_str(), scene.prepared.vertex_count(), scene.prepared.triangle_count(),
         scene.material.name.c_str(), scene.material.grey() ? "grey: 1 channel" : "RGB: 3 channels",
         !scene.material.transmission.enabled() || !thickness ? "off" : "on where a light is behind",
-        std::string(tm_evaluation_name(renderer.tm_evaluation())).c_str(), ctx->device_info().name.c_str());
+        std::string(tm_evaluation_name(renderer.tm_evaluation())).c_str(),
+        std::string(light_path_sampling_name(renderer.light_path())).c_str(), ctx->device_info().name.c_str());
     std::printf("same camera, %zu lights (%s), %ux MSAA, RGBA16F target, specular on in both modes; %u frame pairs "
                 "per size after 2 warm-up pairs\n",
                 lights.size(), args.get_or("lights", "default").c_str(), samples, repeat);

@@ -25,18 +25,6 @@ layout(binding = 4) uniform sampler2D translucency_lut;  // R16_UNORM, linear fi
 
 const uint kMaxTerms = 6;
 
-// t = strength · t_m + spread_strength · spread per channel (jade/material.hpp), clamped to the
-// LUT's range t_max (past it f is 1/π within 2e-6). t_m is capped below +Inf first, since
-// interpolating vertex values near FLT_MAX can round up to +Inf and strength 0 · Inf would be NaN
-// (tests/test_stability.cpp renders t_m = 3e38 with strength 0 and 1e30); strength · t_m itself
-// may overflow to +Inf, which the clamp takes. The spread is in [0, 1].
-vec3 variance(vec3 tm, vec3 spread)
-{
-    tm = min(max(tm, vec3(0.0)), vec3(3.0e38));
-    vec3 t = data.albedo_strength.w * tm + data.specular.w * clamp(spread, 0.0, 1.0);
-    return min(t * data.params.x, vec3(1.0)) * (1.0 / data.params.x);
-}
-
 // What one fragment needs of t, per channel.
 struct Translucency {
     vec3 row_first, row_weight;  // quads: first quad of the row, weight of the upper row
@@ -46,7 +34,7 @@ struct Translucency {
     vec3 t, sigma, inv_sigma;    // ALU, closed form: t, √t, 1/√t
 };
 
-// t = variance(t_m).
+// t = variance(t_m, spread) (shading.glsl), interpolated from the vertices.
 Translucency translucency_setup(vec3 t)
 {
     Translucency r;

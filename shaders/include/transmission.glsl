@@ -2,9 +2,10 @@
 //   A(t) · (n+1)/(2π) max(V·(−L), 0)^n · ((1 − m) + m max(−N·L, 0)) · E
 // with A the attenuation along the path t inside the object (attenuation.glsl). The lobe is smooth
 // over the surface and per vertex (mesh.vert). The path t (the longer of the local thickness and
-// the path inside the medium from where the light enters, from the light's depth layers) is per fragment: it is not
-// smooth where the body shadows a part from the light, and per vertex it lost a thumb tip's glow
-// on the coarse hand of tests/test_fidelity.cpp; A(t) is read from the table of
+// the path inside the medium from where the light enters, from the light's depth layers) is per
+// vertex on a fine mesh and per fragment on a coarse one (PATH_PER_VERTEX): it is not smooth where
+// the body shadows a part from the light, and per vertex it lost a fifth of a thumb tip's glow on
+// the coarse hand of tests/test_fidelity.cpp; A(t) is read from the table of
 // transmission_table.comp (one fetch, not nine exponentials).
 #ifndef JADE_TRANSMISSION_GLSL
 #define JADE_TRANSMISSION_GLSL
@@ -13,6 +14,8 @@
 
 // Lights drawn with transmission (data.transmitters[0 … TRANSMISSION − 1]); 0: none.
 layout(constant_id = 2) const uint TRANSMISSION = 0;
+// 1: transmitter_path per vertex (mesh.vert) and interpolated, 0: per fragment (jade::LightPathSampling).
+layout(constant_id = 7) const uint PATH_PER_VERTEX = 0;
 const uint kMaxTransmitters = JADE_MAX_TRANSMITTERS;  // shading_interface.h
 
 layout(binding = 3) uniform sampler2D light_depth_atlas;  // RGBA32F: the depths of 4 surfaces along each light, one tile a light

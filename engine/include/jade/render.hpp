@@ -172,10 +172,25 @@ std::string_view tm_evaluation_name(TmEvaluation evaluation);
 /// The inverse of tm_evaluation_name; throws jade::Error listing the names.
 TmEvaluation parse_tm_evaluation(std::string_view name);
 
+/// Where the Tm mode reads a back light's path inside the object (Transmission: the medium along
+/// the light's line, from its depth tile; docs/shading.md "Transmission"). Per vertex saves four
+/// gathers per fragment and transmitting light; on a coarse mesh it loses the edges of what the
+/// body shadows from the light within a triangle.
+enum class LightPathSampling : uint32_t {
+    Auto = 0,         ///< PerVertex where the mesh's median edge spans ≤ 8 texels of the tile, else PerFragment
+    PerVertex = 1,    ///< in the vertex shader, interpolated
+    PerFragment = 2,  ///< per fragment, bilinear between the four nearest texels
+};
+/// "auto", "vertex", "fragment".
+std::string_view light_path_sampling_name(LightPathSampling sampling);
+/// The inverse of light_path_sampling_name; throws jade::Error listing the names.
+LightPathSampling parse_light_path_sampling(std::string_view name);
+
 /// Fixed at Renderer construction: LUT sizes (GPU memory: width × height × 4 bytes each).
 struct RendererOptions {
-    LutLayout lut;                                    ///< translucency LUT size (odd width, ≥ 3 × 2)
-    TmEvaluation tm_evaluation = TmEvaluation::Auto;  ///< Renderer::tm_evaluation() says what Auto chose
+    LutLayout lut;                                           ///< translucency LUT size (odd width, ≥ 3 × 2)
+    TmEvaluation tm_evaluation = TmEvaluation::Auto;         ///< Renderer::tm_evaluation() says what Auto chose
+    LightPathSampling light_path = LightPathSampling::Auto;  ///< Renderer::light_path() says what Auto chose
     uint32_t curvature_lut_width = 129, curvature_lut_height = 64;
     /// Mean curvature smoothing: iterations of 1-ring averaging after the cotangent Laplacian.
     uint32_t curvature_smoothing = 2;
@@ -307,6 +322,9 @@ public:
     ShadingInputs shading_inputs(const Camera& camera, std::span<const Light> lights, const RenderSettings& settings);
     /// The path RendererOptions::tm_evaluation resolved to on this device (never Auto).
     TmEvaluation tm_evaluation() const;
+    /// Where RendererOptions::light_path resolved to for the current mesh (never Auto; PerFragment
+    /// before set_mesh).
+    LightPathSampling light_path() const;
 
     const LutLayout& lut_layout() const;  ///< as given in RendererOptions
     /// The translucency LUT as the GPU built it, width × height floats, row j = variance(j).

@@ -76,7 +76,7 @@ std::vector<uint32_t> LightDepth::record(VkCommandBuffer cmd, glm::vec3 eye, std
         }
     // The orthographic box holds the bounding sphere: 2r across, depth from r in front of it to r
     // behind; a little margin for a deforming mesh that leaves its rest bounds.
-    const float r = std::max(radius, 1e-20f) * 1.1f;
+    const float r = std::max(radius, 1e-20f) * kMargin;
     depth_range_ = 2.0f * r;  // near r, far 3r
     for (uint32_t k = 0; k < towards_light.size(); ++k) {
         const glm::vec3 l = glm::normalize(towards_light[k]);

@@ -31,6 +31,8 @@ public:
         JADE_MAX_LIGHT_DEPTH_TILES;  ///< lights with a depth tile; others use t̄ alone
     /// Surfaces kept per texel: the four channels of the layers atlas.
     static constexpr uint32_t kLayers = 4;
+    /// A tile spans kMargin bounding radii each side of the centre (room for a deforming mesh).
+    static constexpr float kMargin = 1.1f;
 
     LightDepth(gpu::Context& ctx, uint32_t tile_size);
 

@@ -8,6 +8,7 @@
 
 #include "jade_shaders.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstddef>
@@ -34,6 +35,23 @@ TmEvaluation parse_tm_evaluation(std::string_view name)
     throw Error("unknown t_m evaluation '" + std::string(name) + "' (known: auto, lut, lut16, alu)");
 }
 
+std::string_view light_path_sampling_name(LightPathSampling sampling)
+{
+    switch (sampling) {
+    case LightPathSampling::Auto: return "auto";
+    case LightPathSampling::PerVertex: return "vertex";
+    case LightPathSampling::PerFragment: return "fragment";
+    }
+    return "unknown";
+}
+
+LightPathSampling parse_light_path_sampling(std::string_view name)
+{
+    for (LightPathSampling s : {LightPathSampling::Auto, LightPathSampling::PerVertex, LightPathSampling::PerFragment})
+        if (name == light_path_sampling_name(s)) return s;
+    throw Error("unknown light path sampling '" + std::string(name) + "' (known: auto, vertex, fragment)");
+}
+
 }  // namespace jade
 
 namespace jade::shading {
@@ -41,7 +59,8 @@ namespace jade::shading {
 uint64_t MeshVariant::key(VkFormat format, uint32_t samples) const
 {
     return uint64_t(mode) | uint64_t(channels) << 4 | uint64_t(transmission) << 6 | uint64_t(evaluation) << 11 |
-           uint64_t(terms) << 14 | uint64_t(small_t) << 18 | uint64_t(samples) << 20 | uint64_t(format) << 32;
+           uint64_t(terms) << 14 | uint64_t(small_t) << 18 | uint64_t(path_per_vertex) << 19 | uint64_t(samples) << 20 |
+           uint64_t(format) << 32;
 }
 
 void choose_terms(double t_min, MeshVariant& variant)
@@ -75,6 +94,14 @@ TmEvaluation resolve_evaluation(TmEvaluation requested, const gpu::Context& ctx)
     return resolve_evaluation(requested, p.deviceType);
 }
 
+LightPathSampling resolve_light_path(LightPathSampling requested, double median_edge, double radius, uint32_t tile_size)
+{
+    if (requested != LightPathSampling::Auto) return requested;
+    const double texel = 2.0 * double(LightDepth::kMargin) * radius / double(std::max(tile_size, 1u));
+    return median_edge <= kLightPathVertexTexels * texel ? LightPathSampling::PerVertex
+                                                         : LightPathSampling::PerFragment;
+}
+
 const gpu::GraphicsPipeline& MeshPipelines::get(const MeshVariant& v, VkFormat format, uint32_t samples)
 {
     auto [it, inserted] = pipelines_.try_emplace(v.key(format, samples));
@@ -99,14 +126,15 @@ const gpu::GraphicsPipeline& MeshPipelines::get(const MeshVariant& v, VkFormat f
                       VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                       VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER};
         d.push_size = sizeof(FramePush);
-        // constant_id 0 … 6 of mesh.vert/mesh.frag (shading.glsl, transmission.glsl, translucency.glsl).
+        // constant_id 0 … 7 of mesh.vert/mesh.frag (shading.glsl, transmission.glsl, translucency.glsl).
         d.constants = {v.mode,
                        v.channels,
                        v.transmission,
                        uint32_t(v.evaluation),
                        v.terms,
                        v.small_t ? 1u : 0u,
-                       std::bit_cast<uint32_t>(kSmallSigma)};
+                       std::bit_cast<uint32_t>(kSmallSigma),
+                       v.path_per_vertex ? 1u : 0u};
         it->second = gpu::GraphicsPipeline(ctx_, d);
     } catch (...) {
         pipelines_.erase(it);

@@ -41,8 +41,9 @@ struct MeshVariant {
     uint32_t channels = 3;      ///< 1: grey material
     uint32_t transmission = 0;  ///< lights drawn with transmission (FrameData::transmitters)
     TmEvaluation evaluation = TmEvaluation::Lut;
-    uint32_t terms = 5;   ///< Alu: Fourier terms
-    bool small_t = true;  ///< Alu: the closed form for √t < kSmallSigma is needed
+    uint32_t terms = 5;            ///< Alu: Fourier terms
+    bool small_t = true;           ///< Alu: the closed form for √t < kSmallSigma is needed
+    bool path_per_vertex = false;  ///< transmission: the light's path in mesh.vert (LightPathSampling)
     uint64_t key(VkFormat format, uint32_t samples) const;
 };
 
@@ -58,6 +59,16 @@ void choose_terms(double t_min, MeshVariant& variant);
 /// read is a gather of its own, arithmetic is SIMD), LutFiltered wherever there are texture units.
 TmEvaluation resolve_evaluation(TmEvaluation requested, VkPhysicalDeviceType type);
 TmEvaluation resolve_evaluation(TmEvaluation requested, const gpu::Context& ctx);  ///< for ctx's device
+
+/// LightPathSampling::Auto: per vertex where the mesh's median edge spans at most this many
+/// texels of a light's depth tile. Measured (docs/shading.md): the fidelity scenes' meshes of
+/// 2.1 … 6.8 texels gave the same FLIP (±0.001) and thin-region radiance (±1 %) either way; the
+/// fist, 14 texels, lost a fifth of its thumb tip's glow per vertex.
+inline constexpr double kLightPathVertexTexels = 8.0;
+/// What `requested` means for a mesh with this median edge length and bounding radius (mesh
+/// units) and depth tiles of `tile_size` texels (2·LightDepth::kMargin radii across).
+LightPathSampling resolve_light_path(LightPathSampling requested, double median_edge, double radius,
+                                     uint32_t tile_size);
 
 /// A light as the shaders read it; w of the colour as given (the transmitters' depth tile).
 inline GpuLight gpu_light(const Light& l, float w)

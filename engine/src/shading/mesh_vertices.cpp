@@ -58,6 +58,16 @@ MeshVertices build_vertices(const PreparedMesh& mesh, std::span<const glm::vec3>
         tm_max = std::max(tm_max, mean);
     }
     out.tm_min_mean = tm_min, out.tm_max_mean = tm_max, out.tm_min = tm_min_channel;
+    std::vector<float> edges;
+    edges.reserve(mesh.indices.size());
+    for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
+        for (size_t e = 0; e < 3; ++e)
+            edges.push_back(
+                glm::distance(mesh.positions[mesh.indices[i + e]], mesh.positions[mesh.indices[i + (e + 1) % 3]]));
+    if (!edges.empty()) {
+        std::nth_element(edges.begin(), edges.begin() + ptrdiff_t(edges.size() / 2), edges.end());
+        out.median_edge = edges[edges.size() / 2];
+    }
     return out;
 }
 

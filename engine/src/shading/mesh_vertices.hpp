@@ -17,6 +17,7 @@ struct MeshVertices {
     std::vector<Vertex> vertices;
     float tm_min_mean = 0, tm_max_mean = 0;  // of the channels' mean t_m: the false-colour range
     glm::vec3 tm_min{0.0f};                  // per channel: the smallest t the evaluation must handle
+    float median_edge = 0;                   // of the triangles' edges, mesh units (LightPathSampling::Auto)
 };
 
 /// One Vertex per bake vertex: t_m (empty: 0), thickness (empty: 0), scattering normal (empty: the

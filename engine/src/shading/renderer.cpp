@@ -75,6 +75,7 @@ struct Renderer::Impl {
     float tm_min_mean = 0.0f, tm_max_mean = 0.0f;  // range of mean(t_m) over the vertices
     glm::vec3 tm_min{0.0f};  // per channel over the vertices; 0 after record_vertex_update (not known)
     bool has_mesh = false, has_thickness = false;
+    LightPathSampling light_path = LightPathSampling::PerFragment;  // resolved for this mesh
     uint64_t geometry_version = 0;  // changes with set_mesh and record_vertex_update (light-depth reuse)
 
     std::optional<shading::LightDepth> light_depth;  // made on the first draw with transmission
@@ -113,6 +114,7 @@ struct Renderer::Impl {
         if (mode != uint32_t(ShadingMode::Tm) && mode < shading::kInputsMode) return v;
         v.channels = material->grey() ? 1 : 3;
         v.transmission = transmitters;
+        v.path_per_vertex = transmitters > 0 && light_path == LightPathSampling::PerVertex;
         if (mode >= shading::kInputsMode) return v;
         v.evaluation = evaluation;
         const float smallest = v.channels == 1 ? tm_min.x : std::min({tm_min.x, tm_min.y, tm_min.z});
@@ -341,6 +343,7 @@ void Renderer::set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm,
     std::vector<Vertex>& vertices = built.vertices;
     const float tm_min = built.tm_min_mean, tm_max = built.tm_max_mean;
     const glm::vec3 tm_min_channel = built.tm_min;
+    const float median_edge = built.median_edge;
     Impl& m = *impl_;
     if (m.has_mesh)
         m.ctx.release_after_gpu(std::move(m.vertices), std::move(m.indices));  // recorded draws may read them
@@ -357,6 +360,9 @@ void Renderer::set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm,
     m.has_mesh = true;
     ++m.geometry_version;
     m.has_thickness = !thickness.empty();
+    m.light_path = shading::resolve_light_path(m.options.light_path, double(median_edge),
+                                               0.5 * double(glm::length(mesh.bbox_max - mesh.bbox_min)),
+                                               m.options.light_depth_size);
 }
 
 void Renderer::record_vertex_update(VkCommandBuffer cmd, VkBuffer positions, VkBuffer normals, VkBuffer tm,
@@ -431,6 +437,7 @@ ShadingInputs Renderer::shading_inputs(const Camera& camera, std::span<const Lig
 }
 
 TmEvaluation Renderer::tm_evaluation() const { return impl_->evaluation; }
+LightPathSampling Renderer::light_path() const { return impl_->light_path; }
 
 void Renderer::record(VkCommandBuffer cmd, const RenderTarget& target, const Camera& camera,
                       std::span<const Light> lights, const RenderSettings& settings)
