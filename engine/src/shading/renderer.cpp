@@ -1,8 +1,8 @@
 // shading/renderer.cpp - jade::Renderer: one draw of the mesh with mesh.vert/mesh.frag into
 // MSAA colour + depth, resolved, read back (render) or left to the caller (record).
 //
-// Per draw the GPU sees: the vertex buffer {position, normal, t_m, curvature, thickness} (44
-// bytes a vertex), the index buffer, push constants {view-projection, eye, light count}, and one
+// Per draw the GPU sees: the vertex buffer (shading::Vertex: position, normal, t_m, curvature,
+// thickness, scattering normal, normal spread), the index buffer, push constants {view-projection, eye, light count}, and one
 // uniform buffer FrameData {material, LUT mappings, colour map, lights, transmitters} written
 // with vkCmdUpdateBuffer inside the command buffer (so record() needs no per-frame buffers).
 // Pipeline variants and their rules: mesh_pipeline.hpp; per-draw checks: frame.hpp.
@@ -129,6 +129,9 @@ struct Renderer::Impl {
         shading::check_settings(ctx, s, lights);
     }
 
+    // Of the sphere about the bounds' centre that holds them (the light-depth tiles' box).
+    float bounding_radius() const { return 0.5f * glm::length(bbox_max - bbox_min); }
+
     // The transmission variant is drawn only when it can add light: the material has the term,
     // the mesh a thickness, and some light is behind the object as the camera sees it, i.e. the
     // forward lobe max(V·(−L), 0) is non-zero for some V towards the eye from the bounding
@@ -138,7 +141,7 @@ struct Renderer::Impl {
         if (s.mode != ShadingMode::Tm || !s.transmission || !has_thickness || !material->transmission.enabled())
             return false;
         const glm::vec3 centre = 0.5f * (bbox_min + bbox_max);
-        const float radius = 0.5f * glm::length(bbox_max - bbox_min);
+        const float radius = bounding_radius();
         return std::any_of(lights.begin(), lights.end(), [&](const Light& l) {
             return shading::LightDepth::may_transmit(cam.eye, l, centre, radius);
         });
@@ -158,7 +161,7 @@ struct Renderer::Impl {
         Transmitting out;
         if (!transmission_reaches_camera(cam, lights, s)) return out;
         const glm::vec3 centre = 0.5f * (bbox_min + bbox_max);
-        const float radius = 0.5f * glm::length(bbox_max - bbox_min);
+        const float radius = bounding_radius();
         auto transmits = [&](const Light& l) { return shading::LightDepth::may_transmit(cam.eye, l, centre, radius); };
         std::vector<uint32_t> tiles(lights.size(), 0);
         if (std::any_of(lights.begin(), lights.end(),
@@ -343,7 +346,6 @@ void Renderer::set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm,
     std::vector<Vertex>& vertices = built.vertices;
     const float tm_min = built.tm_min_mean, tm_max = built.tm_max_mean;
     const glm::vec3 tm_min_channel = built.tm_min;
-    const float median_edge = built.median_edge;
     Impl& m = *impl_;
     if (m.has_mesh)
         m.ctx.release_after_gpu(std::move(m.vertices), std::move(m.indices));  // recorded draws may read them
@@ -360,9 +362,8 @@ void Renderer::set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm,
     m.has_mesh = true;
     ++m.geometry_version;
     m.has_thickness = !thickness.empty();
-    m.light_path = shading::resolve_light_path(m.options.light_path, double(median_edge),
-                                               0.5 * double(glm::length(mesh.bbox_max - mesh.bbox_min)),
-                                               m.options.light_depth_size);
+    m.light_path = shading::resolve_light_path(m.options.light_path, double(built.median_edge),
+                                               double(m.bounding_radius()), m.options.light_depth_size);
 }
 
 void Renderer::record_vertex_update(VkCommandBuffer cmd, VkBuffer positions, VkBuffer normals, VkBuffer tm,
