@@ -56,17 +56,6 @@ float specular_lobe(vec3 n, vec3 v, vec3 l, float n_dot_l)
     return d * vis * f * n_dot_l;
 }
 
-// The share of light that crosses the rough dielectric boundary at cos θ (entering from the light,
-// leaving towards the eye: the F_t(η, ω) factors of Jensen et al. 2001's BSSRDF): 1 − Schlick's
-// Fresnel with the roughness-damped grazing value max(1 − α, F0). (1 − μ)⁵ by multiplication:
-// pow() is a log and an exp.
-float boundary_transmittance(float cos_theta)
-{
-    float f0 = data.specular.x, grazing = max(1.0 - data.specular.y, f0);
-    float m = 1.0 - clamp(cos_theta, 0.0, 1.0), m2 = m * m;
-    return 1.0 - (f0 + (grazing - f0) * (m2 * m2 * m));
-}
-
 vec3 false_color(float x)
 {
     float s = clamp(x, 0.0, 1.0) * float(kColorMapStops - 1);
@@ -122,7 +111,7 @@ void main()
     vec3 n_diffuse = MODE == kTm ? normalize(in_scattering_normal) : n;
     vec3 v = normalize(frame.eye - in_position);
     // Leaving towards the eye: the same for every light.
-    bool boundary = MODE == kTm && data.transmission_shape.w > 0.0;
+    bool boundary = MODE == kTm && boundary_crossed();
     float exit_transmittance = boundary ? boundary_transmittance(dot(n, v)) : 1.0;
     vec3 albedo = data.albedo_strength.rgb;
     // t = strength · t_m + spread_strength · normal spread per channel, interpolated (linear in
@@ -145,13 +134,7 @@ void main()
     // Only the lights that may shine through the object towards the eye, each in its own
     // unrolled step (constant indices: a loop over a list would cost more than the term).
     if (MODE == kTm)
-        for (uint k = 0; k < TRANSMISSION; ++k) {
-            vec3 l, e;
-            transmitter_at(k, in_position, l, e);
-            float n_dot_l = dot(n, l);
-            // In through the far side (this normal standing in for the entry's) and out to the eye.
-            float crossings = boundary ? boundary_transmittance(-n_dot_l) * exit_transmittance : 1.0;
-            color += (crossings * in_lobe[k] * transmitter_follow(n_dot_l)) * attenuation_at(path_at(k)) * e;
-        }
+        for (uint k = 0; k < TRANSMISSION; ++k)
+            color += exit_transmittance * transmitted_light(k, in_position, n, in_lobe[k], path_at(k));
     out_color = vec4(color, 1.0);
 }

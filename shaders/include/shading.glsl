@@ -36,4 +36,18 @@ vec3 variance(vec3 tm, vec3 spread)
     return min(t * data.params.x, vec3(1.0)) * (1.0 / data.params.x);
 }
 
+// The share of light that crosses the rough dielectric boundary at cos θ (entering from the light,
+// leaving towards the eye: the F_t(η, ω) factors of Jensen et al. 2001's BSSRDF): 1 − Schlick's
+// Fresnel with the roughness-damped grazing value max(1 − α, F0). (1 − μ)⁵ by multiplication:
+// pow() is a log and an exp.
+float boundary_transmittance(float cos_theta)
+{
+    float f0 = data.specular.x, grazing = max(1.0 - data.specular.y, f0);
+    float m = 1.0 - clamp(cos_theta, 0.0, 1.0), m2 = m * m;
+    return 1.0 - (f0 + (grazing - f0) * (m2 * m2 * m));
+}
+
+// Whether the t_m mode's light pays the boundary's crossings (Material::boundary_transmittance).
+bool boundary_crossed() { return data.transmission_shape.w > 0.0; }
+
 #endif

@@ -11,6 +11,7 @@
 #define JADE_TRANSMISSION_GLSL
 
 #include "attenuation.glsl"
+#include "shading.glsl"  // boundary_transmittance
 
 // Lights drawn with transmission (data.transmitters[0 … TRANSMISSION − 1]); 0: none.
 layout(constant_id = 2) const uint TRANSMISSION = 0;
@@ -99,6 +100,18 @@ vec3 attenuation_at(float t)
     uvec4 q = texelFetch(transmission_table, int(i));
     vec2 rg = unpackHalf2x16(q.x), ba = unpackHalf2x16(q.y), gb = unpackHalf2x16(q.z);
     return mix(vec3(rg, ba.x), vec3(ba.y, gb), x - i);
+}
+
+// Transmitter k's light at `position` with normal n (unit), forward lobe `lobe` and path t, short
+// of the crossing out to the eye (the same for every light): in through the far side (this
+// normal standing in for the entry's), the lobe's share at this normal, the attenuation along t.
+vec3 transmitted_light(uint k, vec3 position, vec3 n, float lobe, float t)
+{
+    vec3 l, e;
+    transmitter_at(k, position, l, e);
+    float n_dot_l = dot(n, l);
+    float entry = boundary_crossed() ? boundary_transmittance(-n_dot_l) : 1.0;
+    return (entry * lobe * transmitter_follow(n_dot_l)) * attenuation_at(t) * e;
 }
 
 #endif
