@@ -57,8 +57,11 @@ const Baked& baked(const std::filesystem::path& input)
     Baked& b = it->second;
     if (added) {
         b.input = input;
+        // In the running test's own folder: ctest runs these tests as parallel processes, and
+        // out() clears a path that another process may have baked and be reading.
+        const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
         b.output =
-            jade::test::out("gltf_roundtrip/" + input.stem().string() + "_from_" +
+            jade::test::out("gltf_roundtrip/" + test + "/" + input.stem().string() + "_from_" +
                             input.extension().string().substr(1) + (input.extension() == ".glb" ? ".gltf" : ".glb"));
         b.cli = jade::test::run_cli({"bake", input.string(), "--out", b.output.string(), "--quality", "draft"});
     }
@@ -242,8 +245,9 @@ TEST(GltfRoundTrip, LoadersAndRenderReadTheBakedAttributes)
     EXPECT_EQ(mesh.baked_ao.size(), mesh.positions.size());
     EXPECT_EQ(mesh.baked_tm.size(), mesh.positions.size());
     EXPECT_EQ(mesh.baked_thickness.size(), mesh.positions.size());
-    const auto render = jade::test::run_cli({"render", engine.output.string(), "--mode", "tm", "--size", "64x64",
-                                             "--out", jade::test::out("gltf_roundtrip/engine.png").string()});
+    const auto render = jade::test::run_cli(
+        {"render", engine.output.string(), "--mode", "tm", "--size", "64x64", "--out",
+         jade::test::out("gltf_roundtrip/LoadersAndRenderReadTheBakedAttributes/engine.png").string()});
     EXPECT_EQ(render.exit_code, 0) << render.output;
     EXPECT_NE(render.output.find("t_m read from"), std::string::npos) << render.output;  // not baked again
 
