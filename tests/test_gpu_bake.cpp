@@ -157,9 +157,11 @@ TEST_P(TmAccuracy, DragonAgainstFloat64)
             // The grid carries the normal's sums exactly as t_m's; the clustered far field takes
             // each accepted node's normal sum as a monopole, whose error the sum's cancellation
             // over a wide profile magnifies (measured 0.12 rad at d = 20 %, default quality).
+            // The grid's default fit (one Gaussian an octave) measured 1.9e-3 rad and 2.3e-3 in
+            // spread, the high one (two an octave) 3.9e-4 and 1.4e-4.
             const double angle = max_angle(r.scattering_normal, ref_normal, at);
             const double bound =
-                method == TmMethod::Grid ? (q == Quality::High ? 1e-3 : 2e-3) : (q == Quality::High ? 1.5e-2 : 0.15);
+                method == TmMethod::Grid ? (q == Quality::High ? 1e-3 : 5e-3) : (q == Quality::High ? 1.5e-2 : 0.15);
             EXPECT_LE(angle, bound) << tm_method_name(method) << ", " << quality_name(q) << ": the scattering normal";
             const double spread = max_abs_error(r.normal_spread, ref_scattering.spread, at);
             std::printf("%s %s: angle %.2e spread %.2e\n", tm_method_name(method), quality_name(q), angle, spread);

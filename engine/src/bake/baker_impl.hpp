@@ -324,6 +324,7 @@ struct Baker::Impl {
         // buffers for the largest grid, the levels and S(r) table. smooth_table is a placeholder for the
         // other methods (the near pass always binds one).
         float grid_cut2 = 0, grid_table_scale = 0, grid_cube_side = 0;
+        uint32_t grid_splat_levels = 0;  // the finest grids, splatted into; the others restricted
         std::vector<bake::GpuGridLevel> grid_plan_levels;
         uint64_t grid_bytes = 0;
         double grid_r_cut = 0;

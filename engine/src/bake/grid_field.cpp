@@ -15,8 +15,7 @@ namespace jade::bake {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kSigmaRatio = std::numbers::sqrt2;  // between consecutive Gaussians
-constexpr size_t kFitSamples = 256;                  // radii of the fit, log-spaced over [r_cut, r_max]
+constexpr size_t kFitSamples = 256;  // radii of the fit, log-spaced over [r_cut, r_max]
 // The fit ignores what lies beyond this tail of the profile (its share of t_m).
 constexpr double kNegligibleTail = 1e-7;
 // r_cut in mean vertex spacings per unit of resolution: near lists of ~π·(2.5·resolution)²
@@ -119,15 +118,19 @@ double SmoothFit::S(int channel, double r) const
     return s;
 }
 
-SmoothFit fit_smooth_part(const Material& material, int channels, double r_cut, double r_max, double resolution)
+uint32_t levels_per_octave(double resolution) { return resolution >= kTwoLevelsPerOctaveFrom ? 2 : 1; }
+
+SmoothFit fit_smooth_part(const Material& material, int channels, double r_cut, double r_max, double resolution,
+                          uint32_t per_octave)
 {
+    const double ratio = std::pow(2.0, 1.0 / double(per_octave));  // between consecutive Gaussians
     SmoothFit fit;
     double extent = 0;  // beyond it the profiles hold less than kNegligibleTail
     for (int c = 0; c < channels; ++c) extent = std::max(extent, material.profile[c].radius_for_tail(kNegligibleTail));
     const double top = std::min(r_max, extent);
     if (!(top > r_cut)) return fit;  // every source that matters is within r_cut: S = 0
     std::vector<double> sigmas;
-    for (double s = r_cut / resolution; s <= 2 * top; s *= kSigmaRatio) sigmas.push_back(s);
+    for (double s = r_cut / resolution; s <= 2 * top; s *= ratio) sigmas.push_back(s);
     const size_t rows = kFitSamples, cols = sigmas.size();
     std::vector<double> radii(rows), A(rows * cols);
     for (size_t i = 0; i < rows; ++i) {
@@ -177,7 +180,7 @@ uint64_t GridPlan::bytes() const
     // fixed-point splats of the two finest grids, every grid's cells, two buffers for the
     // separable passes of the largest.
     uint64_t splat = 0;
-    for (size_t g = 0; g < std::min<size_t>(levels.size(), kSplatLevels); ++g)
+    for (size_t g = 0; g < std::min<size_t>(levels.size(), per_octave); ++g)
         splat += uint64_t(levels[g].dims.x) * levels[g].dims.y * levels[g].dims.z;
     const uint64_t cell = 4 * kGridFields;
     return cell * (splat + cells + 2 * max_level_cells) + levels.size() * sizeof(GpuGridLevel) +
@@ -241,9 +244,9 @@ std::vector<GpuGridLevel> make_levels(const PreparedMesh& mesh, const SmoothFit&
 
 // Fixed-point scale of the splatted grids: the densest cell's area at rest, ×19 for the
 // B-spline's reach (64 cells, weight ≤ (2/3)³ each), with headroom, fills 2^32.
-void set_splat_scales(std::vector<GpuGridLevel>& levels, const PreparedMesh& mesh)
+void set_splat_scales(std::vector<GpuGridLevel>& levels, uint32_t per_octave, const PreparedMesh& mesh)
 {
-    for (size_t g = 0; g < std::min<size_t>(levels.size(), kSplatLevels); ++g) {
+    for (size_t g = 0; g < std::min<size_t>(levels.size(), per_octave); ++g) {
         GpuGridLevel& l = levels[g];
         const double h = 1.0 / double(l.inv_h);
         std::vector<float> bins(size_t(l.dims.x) * l.dims.y * l.dims.z, 0.0f);
@@ -303,12 +306,13 @@ GridPlan plan_grid(const PreparedMesh& mesh, const Material& material, int chann
     const double spacing = std::sqrt(area / double(mesh.vertex_count()));
     GridPlan plan;
     plan.spacing = spacing;
+    plan.per_octave = levels_per_octave(resolution);
     plan.cube_side = deforming ? kDeformingCube * bounding_sphere_diameter(mesh) : 0.0;
     const double r_max = deforming ? std::sqrt(3.0) * plan.cube_side : double(mesh.diagonal);
     const double r_cut = kCutSpacingsPerResolution * resolution * spacing;
     plan.r_cut = r_cut;
     for (int attempt = 0;; ++attempt) {
-        plan.fit = fit_smooth_part(material, channels, plan.r_cut, r_max, resolution);
+        plan.fit = fit_smooth_part(material, channels, plan.r_cut, r_max, resolution, plan.per_octave);
         plan.levels = make_levels(mesh, plan.fit, resolution, plan.cube_side, plan.cells, plan.max_level_cells);
         if (attempt == 0) plan.cells_needed = plan.cells;
         if (plan.cells <= kGridMaxCells) break;
@@ -320,7 +324,7 @@ GridPlan plan_grid(const PreparedMesh& mesh, const Material& material, int chann
         }
         plan.r_cut *= 1.02 * std::cbrt(double(plan.cells) / double(kGridMaxCells));
     }
-    set_splat_scales(plan.levels, mesh);
+    set_splat_scales(plan.levels, plan.per_octave, mesh);
     plan.table_range = std::max(plan.r_cut, max_near_reach) * 1.01;
     plan.table.resize(2 * kGridTableSize);
     for (uint32_t k = 0; k < kGridTableSize; ++k) {

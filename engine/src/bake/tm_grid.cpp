@@ -20,6 +20,7 @@ void Baker::Impl::prepare_grid(MeshState& m, const bake::GridPlan& plan)
     m.grid_table_scale = float((bake::kGridTableSize - 1) / plan.table_range);
     m.grid_bytes = plan.bytes();
     m.grid_plan_levels = plan.levels;
+    m.grid_splat_levels = std::min<uint32_t>(uint32_t(plan.levels.size()), plan.per_octave);
     std::vector<glm::vec4> table(plan.table.size());
     for (size_t k = 0; k < table.size(); ++k) table[k] = glm::vec4(plan.table[k], 0.0f);
     m.smooth_table = gpu::Buffer(ctx, table.size() * 16, kTexelUsage, "t_m smooth-part table");
@@ -30,7 +31,7 @@ void Baker::Impl::prepare_grid(MeshState& m, const bake::GridPlan& plan)
     m.grid_levels = gpu::Buffer::from(ctx, plan.levels, kStorageUsage, "t_m grid levels");
     check_storage_range(plan.cells * kCellBytes, "t_m grid cells");
     uint64_t splat_cells = 0;
-    for (uint32_t g = 0; g < std::min<uint32_t>(uint32_t(plan.levels.size()), bake::kSplatLevels); ++g)
+    for (uint32_t g = 0; g < m.grid_splat_levels; ++g)
         splat_cells += uint64_t(plan.levels[g].dims.x) * plan.levels[g].dims.y * plan.levels[g].dims.z;
     // The fixed-point splats, then each grid's sources (restricted) and in place its blurred
     // values: the four fields of a cell in one texel (grid_splat.comp).
@@ -96,8 +97,7 @@ void Baker::Impl::record_grid(VkCommandBuffer cmd, MeshState& m, gpu::GpuTimer* 
             .dispatch(cmd, m.vertex_count, GatherPush{m.vertex_count}, {m.positions, m.grid_bounds});
     }
     gpu::compute_barrier(cmd);
-    splat.dispatch(cmd, m.vertex_count,
-                   GridSplatPush{m.vertex_count, std::min(levels, bake::kSplatLevels), m.grid_cube_side},
+    splat.dispatch(cmd, m.vertex_count, GridSplatPush{m.vertex_count, m.grid_splat_levels, m.grid_cube_side},
                    {m.grid_levels, m.positions, m.areas, m.ao, m.grid_splat, m.grid_bounds, m.normals});
     gpu::compute_barrier(cmd);
     mark("t_m grid splat");
@@ -107,7 +107,7 @@ void Baker::Impl::record_grid(VkCommandBuffer cmd, MeshState& m, gpu::GpuTimer* 
     auto separable = [&](uint32_t from, glm::uvec3 out_dims, uint32_t step, int32_t shift, uint32_t half_width,
                          const float* w, uint32_t to_offset) {
         const bake::GpuGridLevel& src = L[from];
-        const bool fixed = from < bake::kSplatLevels;
+        const bool fixed = from < m.grid_splat_levels;
         glm::uvec3 in = dims_of(src);
         for (uint32_t axis = 0; axis < 3; ++axis) {
             glm::uvec3 out = in;
@@ -131,8 +131,8 @@ void Baker::Impl::record_grid(VkCommandBuffer cmd, MeshState& m, gpu::GpuTimer* 
         }
     };
     static constexpr float kTwoScale[3] = {6.0f / 8, 4.0f / 8, 1.0f / 8};
-    for (uint32_t g = bake::kSplatLevels; g < levels; ++g)
-        separable(g - 2, dims_of(L[g]), 2, -2, 2, kTwoScale, L[g].offset);
+    for (uint32_t g = m.grid_splat_levels; g < levels; ++g)
+        separable(g - m.grid_splat_levels, dims_of(L[g]), 2, -2, 2, kTwoScale, L[g].offset);
     mark("t_m grid restrict");
     for (uint32_t g = 0; g < levels; ++g)
         if (L[g].weight != glm::vec3(0)) separable(g, dims_of(L[g]), 1, 0, L[g].half_width, L[g].blur, L[g].offset);
