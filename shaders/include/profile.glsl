@@ -17,14 +17,26 @@ layout(constant_id = 2) const uint PROFILE_KIND = PROFILE_MIXED;
 
 uint profile_kind(uint runtime_kind) { return PROFILE_KIND == PROFILE_MIXED ? runtime_kind : PROFILE_KIND; }
 
+// The Gaussian sums run over all PROFILE_MAX_GAUSSIANS slots, unrolled, the unused ones masked
+// (their variance may be 0): a loop to `count` would cost lavapipe a loop back-edge per term,
+// and its budget of 65,535 back-edges per invocation (docs/lavapipe.md) then ran out inside
+// the all-pairs pass of a 10,000-vertex mesh, which silently left out most of the sources.
+const uint PROFILE_MAX_GAUSSIANS = 6u;  // Material::ChannelProfile::kMaxGaussians
+
+// One Gaussian term w/(2πv)·e^{−t²/2v} of slot k, or 0 for an unused slot.
+float gaussian_term(float w, float v, float t2, bool used)
+{
+    return used ? w / (2.0 * JADE_PI * v) * exp(-t2 / (2.0 * v)) : 0.0;
+}
+
 struct Profile {
     uint kind;
     uint count;   // Gaussians: number of terms
     float a;      // Burley: d.  Dipole: σ_tr
     float b;      // Dipole: z_r
     float c;      // Dipole: z_v
-    float w[6];   // Gaussians: weights (sum 1)
-    float v[6];   // Gaussians: variances, units²
+    float w[PROFILE_MAX_GAUSSIANS];  // Gaussians: weights (sum 1)
+    float v[PROFILE_MAX_GAUSSIANS];  // Gaussians: variances, units²
     float faint_radius;  // tm_cluster.comp: clusters farther than this are faint
 };
 
@@ -63,7 +75,7 @@ float profile_rt(Profile p, float t)
     if (profile_kind(p.kind) == PROFILE_DIPOLE)
         return (dipole_source_rt(p.a, p.b, t) + dipole_source_rt(p.a, p.c, t)) / (2.0 * JADE_PI * dipole_total(p));
     float s = 0.0;
-    for (uint k = 0u; k < p.count; ++k) s += p.w[k] / (2.0 * JADE_PI * p.v[k]) * exp(-t * t / (2.0 * p.v[k]));
+    [[unroll]] for (uint k = 0u; k < PROFILE_MAX_GAUSSIANS; ++k) s += gaussian_term(p.w[k], p.v[k], t * t, k < p.count);
     return s * t;
 }
 
@@ -72,7 +84,7 @@ float profile_r(Profile p, float t)
 {
     if (profile_kind(p.kind) == PROFILE_GAUSSIANS) {
         float s = 0.0;
-        for (uint k = 0u; k < p.count; ++k) s += p.w[k] / (2.0 * JADE_PI * p.v[k]) * exp(-t * t / (2.0 * p.v[k]));
+        [[unroll]] for (uint k = 0u; k < PROFILE_MAX_GAUSSIANS; ++k) s += gaussian_term(p.w[k], p.v[k], t * t, k < p.count);
         return s;
     }
     return profile_rt(p, t) / t;
@@ -101,9 +113,10 @@ ProfileDerivatives profile_derivatives(Profile p, float t)
         o.r2 = k * (f2 * g0 + 2.0 * f1 * g1 + f0 * g2);
         o.r3 = k * (f3 * g0 + 3.0 * f2 * g1 + 3.0 * f1 * g2 + f0 * g3);
     } else if (profile_kind(p.kind) == PROFILE_GAUSSIANS) {
-        for (uint k = 0u; k < p.count; ++k) {
-            float v = p.v[k];
-            float g = p.w[k] / (2.0 * JADE_PI * v) * exp(-t * t / (2.0 * v));
+        [[unroll]] for (uint k = 0u; k < PROFILE_MAX_GAUSSIANS; ++k) {
+            bool used = k < p.count;
+            float v = used ? p.v[k] : 1.0;
+            float g = gaussian_term(p.w[k], v, t * t, used);
             o.r1 -= t / v * g;
             o.r2 += (t * t / (v * v) - 1.0 / v) * g;
             o.r3 += (3.0 * t / (v * v) - t * t * t / (v * v * v)) * g;
@@ -122,7 +135,10 @@ float profile_cdf(Profile p, float r)
     if (profile_kind(p.kind) == PROFILE_DIPOLE)
         return (dipole_source_cdf(p.a, p.b, r) + dipole_source_cdf(p.a, p.c, r)) / dipole_total(p);
     float s = 0.0;
-    for (uint k = 0u; k < p.count; ++k) s -= p.w[k] * expm1_accurate(-r * r / (2.0 * p.v[k]));
+    [[unroll]] for (uint k = 0u; k < PROFILE_MAX_GAUSSIANS; ++k) {
+        bool used = k < p.count;
+        s -= used ? p.w[k] * expm1_accurate(-r * r / (2.0 * (used ? p.v[k] : 1.0))) : 0.0;
+    }
     return s;
 }
 
