@@ -8,6 +8,12 @@
 //             spacing, STEP 2: out[o] = Σ_k w[|k|]·in[2o − 2 + k]. Exact: splatting into the
 //             coarse grid gives the same cells, so only the two finest grids take atomics.
 // Cells outside the input grid are zero (every source lies two cells or more inside).
+// A deforming mesh's grids are cubes that hold any pose (grid_field.hpp), several times the
+// cells its sources reach in one frame. There every pass works on the box of cells this frame's
+// sources reach (footprint_box, from the bounds of grid_bounds.comp): the gather reads nothing
+// outside it, and the cells outside it are zero in the splat and in every pass's exact result,
+// so the taps read only inside it (the buffers hold earlier frames' values out there) and
+// threads whose output lies outside return at once.
 // One thread per RUN consecutive output cells along the axis: it fetches the inputs they share
 // once (lavapipe pays per fetch, not per multiply-add). The half-width and step are
 // specialisation constants, so the taps unroll with constant indices.
@@ -29,6 +35,23 @@ layout(push_constant, scalar) uniform Push { GridAxisPush pc; };
 layout(binding = 0) uniform usamplerBuffer splat;  // texel fetches: lavapipe's storage loads are per-lane loops
 layout(binding = 1) uniform samplerBuffer source;
 layout(binding = 2, scalar) writeonly buffer Target { vec4 target[]; };
+layout(binding = 3, scalar) readonly buffer Levels { GridLevel levels[]; };
+layout(binding = 4, scalar) readonly buffer Bounds { uvec3 bounds_lo, bounds_hi; };  // grid_bounds.comp
+
+// The cells [first, last] of `level` that this frame's sources reach: all of a static mesh's
+// grids, which fit its bounds.
+void active_box(uint level, out ivec3 first, out ivec3 last)
+{
+    uvec3 dims = levels[level].dims;
+    first = ivec3(0), last = ivec3(dims) - 1;
+    if (pc.cube_side > 0.0) {
+        vec3 corner = cube_corner(pc.cube_side, bounds_lo, bounds_hi);
+        GridLevel l;
+        l.inv_h = levels[level].inv_h, l.dims = dims;
+        footprint_box(l, level_origin(l, pc.cube_side, corner), from_ordered_bits(bounds_lo),
+                      from_ordered_bits(bounds_hi), first, last);
+    }
+}
 
 vec4 fetch(int texel)
 {
@@ -46,16 +69,31 @@ void main()
     uvec3 od = pc.out_dims;
     o[pc.axis] *= uint(RUN);
     if (o.x >= od.x || o.y >= od.y || o.z >= od.z) return;
+    // The input's box: axes already filtered are the output level's, the others the input's.
+    ivec3 in_first, in_last, out_first, out_last;
+    active_box(pc.level_in, in_first, in_last);
+    active_box(pc.level_out, out_first, out_last);
+    [[unroll]] for (uint a = 0u; a < 3u; ++a)
+        if (a < pc.axis) in_first[a] = out_first[a], in_last[a] = out_last[a];
+    ivec3 io = ivec3(o);
+    bool outside = false;
+    [[unroll]] for (uint a = 0u; a < 3u; ++a) {
+        bool along = a == pc.axis;
+        outside = outside || (along ? io[a] > out_last[a] || io[a] + RUN - 1 < out_first[a]
+                                    : io[a] < in_first[a] || io[a] > in_last[a]);
+    }
+    if (outside) return;
     uvec3 id = pc.in_dims;
     int stride = pc.axis == 0u ? 1 : pc.axis == 1u ? int(id.x) : int(id.x * id.y);
     uvec3 at = o;
     at[pc.axis] = 0u;
     int row = int(pc.in_offset + (at.z * id.y + at.y) * id.x + at.x);  // the input row's first cell
-    int first = STEP * int(o[pc.axis]) + pc.shift - HALF_WIDTH, last = int(id[pc.axis]) - 1;
+    int first = STEP * int(o[pc.axis]) + pc.shift - HALF_WIDTH;
+    int lo = max(in_first[pc.axis], 0), hi = min(in_last[pc.axis], int(id[pc.axis]) - 1);
     vec4 inputs[INPUTS];
     [[unroll]] for (int i = 0; i < INPUTS; ++i) {
         int at_i = first + i;
-        inputs[i] = at_i >= 0 && at_i <= last ? fetch(row + clamp(at_i, 0, last) * stride) : vec4(0.0);
+        inputs[i] = at_i >= lo && at_i <= hi ? fetch(row + clamp(at_i, lo, hi) * stride) : vec4(0.0);
     }
     int out_stride = pc.axis == 0u ? 1 : pc.axis == 1u ? int(od.x) : int(od.x * od.y);
     int out_at = int(pc.out_offset + (o.z * od.y + o.y) * od.x + o.x);

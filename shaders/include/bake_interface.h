@@ -115,6 +115,11 @@ struct GridAxisPush {
     uint in_offset;
     uint out_offset;
     float inv_scale;
+    // A deforming mesh's grids (cube_side > 0) work only on the cells that this frame's sources
+    // reach on the levels read and written (grid_axis.comp).
+    uint level_in;
+    uint level_out;
+    float cube_side;
     float w[JADE_GRID_MAX_HALF_WIDTH + 1];
 };
 
@@ -149,7 +154,7 @@ struct ClusterPush {
 static_assert(sizeof(AoPush) == 36 && sizeof(AoResolvePush) == 12 && sizeof(ThicknessPush) == 36 &&
               sizeof(ThicknessResolvePush) == 16 && sizeof(GatherPush) == 4 && sizeof(RefitPush) == 8 &&
               sizeof(RayRefitPush) == 12 && sizeof(NearPush) == 24 && sizeof(GridSplatPush) == 12 &&
-              sizeof(GridAxisPush) == 44 + 4 * (JADE_GRID_MAX_HALF_WIDTH + 1) && sizeof(GridGatherPush) == 16 &&
+              sizeof(GridAxisPush) == 56 + 4 * (JADE_GRID_MAX_HALF_WIDTH + 1) && sizeof(GridGatherPush) == 16 &&
               sizeof(ExactPush) == 12 && sizeof(ClusterPush) == 28);
 }  // namespace jade::bake
 #endif

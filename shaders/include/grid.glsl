@@ -31,11 +31,11 @@ float from_ordered_bits(uint u) { return uintBitsToFloat((u & 0x80000000u) != 0u
 // deforming mesh's (cube_side > 0) are cubes of that side centred on its current bounds
 // (`corner`: the cube's lowest corner), each two cells beyond the corner as the static ones are
 // beyond the mesh's bounds.
+vec3 from_ordered_bits(uvec3 u) { return vec3(from_ordered_bits(u.x), from_ordered_bits(u.y), from_ordered_bits(u.z)); }
+
 vec3 cube_corner(float cube_side, uvec3 lo_bits, uvec3 hi_bits)
 {
-    vec3 lo = vec3(from_ordered_bits(lo_bits.x), from_ordered_bits(lo_bits.y), from_ordered_bits(lo_bits.z));
-    vec3 hi = vec3(from_ordered_bits(hi_bits.x), from_ordered_bits(hi_bits.y), from_ordered_bits(hi_bits.z));
-    return 0.5 * (lo + hi) - 0.5 * cube_side;
+    return 0.5 * (from_ordered_bits(lo_bits) + from_ordered_bits(hi_bits)) - 0.5 * cube_side;
 }
 vec3 level_origin(GridLevel l, float cube_side, vec3 corner) { return cube_side > 0.0 ? corner - 2.0 / l.inv_h : l.origin; }
 
@@ -57,6 +57,16 @@ void bspline_footprint(GridLevel l, vec3 origin, vec3 x, out ivec3 base, out vec
     wx = bspline_weights(t.x);
     wy = bspline_weights(t.y);
     wz = bspline_weights(t.z);
+}
+
+// The cells that the splats of points within [lo, hi] reach on level l: from the footprint of
+// lo to that of hi (the footprint's first cell does not decrease as x grows).
+void footprint_box(GridLevel l, vec3 origin, vec3 lo, vec3 hi, out ivec3 first, out ivec3 last)
+{
+    vec4 wx, wy, wz;
+    bspline_footprint(l, origin, lo, first, wx, wy, wz);
+    bspline_footprint(l, origin, hi, last, wx, wy, wz);
+    last += ivec3(3);
 }
 
 uint grid_cell(GridLevel l, ivec3 c) { return l.offset + (uint(c.z) * l.dims.y + uint(c.y)) * l.dims.x + uint(c.x); }

@@ -73,7 +73,7 @@ void Baker::Impl::record_grid(VkCommandBuffer cmd, MeshState& m, gpu::GpuTimer* 
     auto axis_kernel = [&](uint32_t half_width, uint32_t step, bool fixed) -> const gpu::Kernel& {
         return kernel(grid_axis[fixed][step - 1][half_width], {"grid_axis",
                                                                shaders::grid_axis_comp(),
-                                                               {kTexels, kTexels, kStorage},
+                                                               {kTexels, kTexels, kStorage, kStorage, kStorage},
                                                                sizeof(bake::GridAxisPush),
                                                                kAxisGroup,
                                                                {half_width, step, fixed ? 1u : 0u}});
@@ -102,17 +102,17 @@ void Baker::Impl::record_grid(VkCommandBuffer cmd, MeshState& m, gpu::GpuTimer* 
     gpu::compute_barrier(cmd);
     mark("t_m grid splat");
 
-    // Three passes x, y, z from level `from` (its cells, or its fixed-point splat) into
-    // `to_offset` of the cell buffer, through the two scratch buffers.
-    auto separable = [&](uint32_t from, glm::uvec3 out_dims, uint32_t step, int32_t shift, uint32_t half_width,
-                         const float* w, uint32_t to_offset) {
+    // Three passes x, y, z from level `from` (its cells, or its fixed-point splat) into level
+    // `to` of the cell buffer, through the two scratch buffers.
+    auto separable =
+        [&](uint32_t from, uint32_t to, uint32_t step, int32_t shift, uint32_t half_width, const float* w) {
         const bake::GpuGridLevel& src = L[from];
         const bool fixed = from < m.grid_splat_levels;
         glm::uvec3 in = dims_of(src);
         for (uint32_t axis = 0; axis < 3; ++axis) {
             glm::uvec3 out = in;
-            out[axis] = out_dims[axis];
-            bake::GridAxisPush p{in, out, axis, shift, 0, 0, 1.0f, {}};
+            out[axis] = dims_of(L[to])[axis];
+            bake::GridAxisPush p{in, out, axis, shift, 0, 0, 1.0f, from, to, m.grid_cube_side, {}};
             std::copy(w, w + half_width + 1, p.w);
             const gpu::TexelView* source = &m.grid_scratch_texels[(axis + 1) % 2];
             const gpu::Buffer* target = &m.grid_scratch[axis % 2];
@@ -121,21 +121,20 @@ void Baker::Impl::record_grid(VkCommandBuffer cmd, MeshState& m, gpu::GpuTimer* 
                 p.in_offset = src.offset;
                 p.inv_scale = 1.0f / src.splat_scale;
             }
-            if (axis == 2) target = &m.grid_cells, p.out_offset = to_offset;
+            if (axis == 2) target = &m.grid_cells, p.out_offset = L[to].offset;
             glm::uvec3 runs = out;
             runs[axis] = (out[axis] + kAxisRun - 1) / kAxisRun;
             axis_kernel(half_width, step, fixed && axis == 0)
-                .dispatch_3d(cmd, runs, p, {m.grid_splat_texels, *source, *target});
+                .dispatch_3d(cmd, runs, p, {m.grid_splat_texels, *source, *target, m.grid_levels, m.grid_bounds});
             gpu::compute_barrier(cmd);
             in = out;
         }
     };
     static constexpr float kTwoScale[3] = {6.0f / 8, 4.0f / 8, 1.0f / 8};
-    for (uint32_t g = m.grid_splat_levels; g < levels; ++g)
-        separable(g - m.grid_splat_levels, dims_of(L[g]), 2, -2, 2, kTwoScale, L[g].offset);
+    for (uint32_t g = m.grid_splat_levels; g < levels; ++g) separable(g - m.grid_splat_levels, g, 2, -2, 2, kTwoScale);
     mark("t_m grid restrict");
     for (uint32_t g = 0; g < levels; ++g)
-        if (L[g].weight != glm::vec3(0)) separable(g, dims_of(L[g]), 1, 0, L[g].half_width, L[g].blur, L[g].offset);
+        if (L[g].weight != glm::vec3(0)) separable(g, g, 1, 0, L[g].half_width, L[g].blur);
     mark("t_m grid blur");
     gather.dispatch(cmd, slot_end - slot_begin,
                     GridGatherPush{levels, slot_begin, slot_end - slot_begin, m.grid_cube_side},
