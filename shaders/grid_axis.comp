@@ -38,11 +38,10 @@ layout(binding = 2, scalar) writeonly buffer Target { vec4 target[]; };
 layout(binding = 3, scalar) readonly buffer Levels { GridLevel levels[]; };
 layout(binding = 4, scalar) readonly buffer Bounds { uvec3 bounds_lo, bounds_hi; };  // grid_bounds.comp
 
-// The cells [first, last] of `level` that this frame's sources reach: all of a static mesh's
-// grids, which fit its bounds.
-void active_box(uint level, out ivec3 first, out ivec3 last)
+// The cells [first, last] of `level` (of `dims` cells) that this frame's sources reach: all of a
+// static mesh's grids, which fit its bounds.
+void active_box(uint level, uvec3 dims, out ivec3 first, out ivec3 last)
 {
-    uvec3 dims = levels[level].dims;
     first = ivec3(0), last = ivec3(dims) - 1;
     if (pc.cube_side > 0.0) {
         vec3 corner = cube_corner(pc.cube_side, bounds_lo, bounds_hi);
@@ -69,10 +68,11 @@ void main()
     uvec3 od = pc.out_dims;
     o[pc.axis] *= uint(RUN);
     if (o.x >= od.x || o.y >= od.y || o.z >= od.z) return;
-    // The input's box: axes already filtered are the output level's, the others the input's.
+    // The input's box: axes already filtered are the output level's, the others the input's
+    // (so the push constants' dims are the levels' own on every axis used).
     ivec3 in_first, in_last, out_first, out_last;
-    active_box(pc.level_in, in_first, in_last);
-    active_box(pc.level_out, out_first, out_last);
+    active_box(pc.level_in, pc.in_dims, in_first, in_last);
+    active_box(pc.level_out, pc.out_dims, out_first, out_last);
     [[unroll]] for (uint a = 0u; a < 3u; ++a)
         if (a < pc.axis) in_first[a] = out_first[a], in_last[a] = out_last[a];
     ivec3 io = ivec3(o);

@@ -17,17 +17,11 @@ layout(constant_id = 2) const uint PROFILE_KIND = PROFILE_MIXED;
 
 uint profile_kind(uint runtime_kind) { return PROFILE_KIND == PROFILE_MIXED ? runtime_kind : PROFILE_KIND; }
 
-// The Gaussian sums run over all PROFILE_MAX_GAUSSIANS slots, unrolled, the unused ones masked
-// (their variance may be 0): a loop to `count` would cost lavapipe a loop back-edge per term,
+// The Gaussian sums run over all PROFILE_MAX_GAUSSIANS slots, unrolled, the unused ones
+// weighing 0 (gaussian_weight): a loop to `count` would cost lavapipe a loop back-edge per term,
 // and its budget of 65,535 back-edges per invocation (docs/lavapipe.md) then ran out inside
 // the all-pairs pass of a 10,000-vertex mesh, which silently left out most of the sources.
 const uint PROFILE_MAX_GAUSSIANS = 6u;  // Material::ChannelProfile::kMaxGaussians
-
-// One Gaussian term w/(2πv)·e^{−t²/2v} of slot k, or 0 for an unused slot.
-float gaussian_term(float w, float v, float t2, bool used)
-{
-    return used ? w / (2.0 * JADE_PI * v) * exp(-t2 / (2.0 * v)) : 0.0;
-}
 
 struct Profile {
     uint kind;
@@ -62,6 +56,18 @@ float dipole_source_cdf(float sigma, float z, float r)
     return exp(-sigma * z) * (delta - z * expm1_accurate(-sigma * delta)) / d;
 }
 
+// Slot k's weight and variance; an unused slot weighs 0 with variance 1, so every sum over the
+// slots adds an exact 0 for it.
+float gaussian_weight(Profile p, uint k) { return k < p.count ? p.w[k] : 0.0; }
+float gaussian_variance(Profile p, uint k) { return k < p.count ? p.v[k] : 1.0; }
+
+// w/(2πv)·e^{−t²/2v}, the plane-normalised Gaussian of slot k.
+float gaussian_term(Profile p, uint k, float t2)
+{
+    float v = gaussian_variance(p, k);
+    return gaussian_weight(p, k) / (2.0 * JADE_PI * v) * exp(-t2 / (2.0 * v));
+}
+
 float dipole_total(Profile p) { return exp(-p.a * p.b) + exp(-p.a * p.c); }
 
 // R(t)·t, finite at t = 0 for every profile.
@@ -75,7 +81,7 @@ float profile_rt(Profile p, float t)
     if (profile_kind(p.kind) == PROFILE_DIPOLE)
         return (dipole_source_rt(p.a, p.b, t) + dipole_source_rt(p.a, p.c, t)) / (2.0 * JADE_PI * dipole_total(p));
     float s = 0.0;
-    [[unroll]] for (uint k = 0u; k < PROFILE_MAX_GAUSSIANS; ++k) s += gaussian_term(p.w[k], p.v[k], t * t, k < p.count);
+    [[unroll]] for (uint k = 0u; k < PROFILE_MAX_GAUSSIANS; ++k) s += gaussian_term(p, k, t * t);
     return s * t;
 }
 
@@ -84,7 +90,7 @@ float profile_r(Profile p, float t)
 {
     if (profile_kind(p.kind) == PROFILE_GAUSSIANS) {
         float s = 0.0;
-        [[unroll]] for (uint k = 0u; k < PROFILE_MAX_GAUSSIANS; ++k) s += gaussian_term(p.w[k], p.v[k], t * t, k < p.count);
+        [[unroll]] for (uint k = 0u; k < PROFILE_MAX_GAUSSIANS; ++k) s += gaussian_term(p, k, t * t);
         return s;
     }
     return profile_rt(p, t) / t;
@@ -114,9 +120,8 @@ ProfileDerivatives profile_derivatives(Profile p, float t)
         o.r3 = k * (f3 * g0 + 3.0 * f2 * g1 + 3.0 * f1 * g2 + f0 * g3);
     } else if (profile_kind(p.kind) == PROFILE_GAUSSIANS) {
         [[unroll]] for (uint k = 0u; k < PROFILE_MAX_GAUSSIANS; ++k) {
-            bool used = k < p.count;
-            float v = used ? p.v[k] : 1.0;
-            float g = gaussian_term(p.w[k], v, t * t, used);
+            float v = gaussian_variance(p, k);
+            float g = gaussian_term(p, k, t * t);
             o.r1 -= t / v * g;
             o.r2 += (t * t / (v * v) - 1.0 / v) * g;
             o.r3 += (3.0 * t / (v * v) - t * t * t / (v * v * v)) * g;
@@ -135,10 +140,8 @@ float profile_cdf(Profile p, float r)
     if (profile_kind(p.kind) == PROFILE_DIPOLE)
         return (dipole_source_cdf(p.a, p.b, r) + dipole_source_cdf(p.a, p.c, r)) / dipole_total(p);
     float s = 0.0;
-    [[unroll]] for (uint k = 0u; k < PROFILE_MAX_GAUSSIANS; ++k) {
-        bool used = k < p.count;
-        s -= used ? p.w[k] * expm1_accurate(-r * r / (2.0 * (used ? p.v[k] : 1.0))) : 0.0;
-    }
+    [[unroll]] for (uint k = 0u; k < PROFILE_MAX_GAUSSIANS; ++k)
+        s -= gaussian_weight(p, k) * expm1_accurate(-r * r / (2.0 * gaussian_variance(p, k)));
     return s;
 }
 
