@@ -1,0 +1,192 @@
+#!/usr/bin/env python3
+"""Which way does the light through a thin part leave? A study of the transmission lobe's axis.
+
+Jade's transmitted light leaves in a lobe (n+1)/(2π)·max(V·(−L), 0)^n about the light's own
+direction. Two measurements against the path tracer (docs/fidelity.md, "The lobe's axis"):
+
+  slab    Mitsuba renders a slab of optical thickness τ behind the references' rough dielectric
+          (GGX α 0.36, IOR 1.5), lit along its normal, seen from 0…60° off that axis: the
+          physical exit lobe of a part whose faces are parallel.
+  scenes  On the committed back-lit references, the lobe about other axes, the weights refitted
+          as fit.py's stage 2 does: `axis` (−L, Jade's), `prism` (−L refracted in through the
+          entry surface, Mitsuba's ray cast from each pixel towards the light, and out through
+          the pixel's normal), `exit` (refracted out only), `strict` (`prism`, but no light where a
+          refraction is total; `prism` falls back to −L there), `blend B` (−L moved B of the way to
+          `prism`). Needs the lobe-free terms of
+            build/samples/cli/jade fidelity --scene _back --components DIR --strengths 0.3 --lobes 0
+
+  tools/groundtruth/.venv/bin/python tools/groundtruth/lobe_study.py slab --tau 0.9,1.8,3.6
+  tools/groundtruth/.venv/bin/python tools/groundtruth/lobe_study.py scenes DIR
+"""
+import argparse
+import glob
+import json
+import os
+import sys
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import fit  # noqa: E402
+import gt_io  # noqa: E402
+import render_reference as rr  # noqa: E402
+
+mi = rr.mi
+CFG = json.load(open(os.path.join(HERE, "scenes.json")))
+ALBEDO_SCALE = json.load(open(os.path.join(HERE, "fit_result.json")))["albedo_scale"]  # MediumFit's
+ANGLES = (0, 10, 20, 30, 45, 60)
+
+
+def slab_radiance(tau, albedo, g, degrees, spp=4096, alpha=0.36, ior=1.5):
+    """Mean radiance seen `degrees` off the normal of a slab 1 unit thick, lit from behind along it (E = 1)."""
+    th = np.radians(degrees)
+    T = mi.ScalarTransform4f
+    scene = mi.load_dict({
+        "type": "scene", "integrator": {"type": "volpath", "max_depth": 256},
+        "sensor": {"type": "perspective", "fov": 0.5,
+                   "to_world": T().look_at(origin=[10 * np.sin(th), 0, 10 * np.cos(th)], target=[0, 0, 0], up=[0, 1, 0]),
+                   "film": {"type": "hdrfilm", "width": 4, "height": 4, "pixel_format": "rgb", "rfilter": {"type": "box"}},
+                   "sampler": {"type": "independent", "sample_count": spp}},
+        "slab": {"type": "cube", "to_world": T().scale([200, 200, 0.5]),
+                 "bsdf": {"type": "roughdielectric", "distribution": "ggx", "alpha": alpha, "int_ior": ior, "ext_ior": 1.0},
+                 "interior": {"type": "homogeneous", "sigma_t": {"type": "srgb", "color": [tau] * 3, "unbounded": True},
+                              "albedo": rr.rgb(albedo), "scale": 1.0, "phase": {"type": "hg", "g": g}}},
+        "light": {"type": "directional", "direction": [0, 0, 1], "irradiance": rr.rgb([1, 1, 1])}})
+    return np.array(mi.render(scene)).reshape(-1, 3).mean(0)
+
+
+def geometry(mesh_name):
+    """Per pixel of the back-lit view: position, normal, and the normal where the light enters (0: none)."""
+    cache = os.path.join(HERE, ".cache", f"{mesh_name}_lobe_geometry.npz")
+    if os.path.exists(cache):
+        return np.load(cache)
+    mc = CFG["meshes"][mesh_name]
+    mesh = rr.load_mesh(mesh_name, mc)
+    cam = rr.camera_for(mesh, mc, CFG)
+    towards, _ = rr.light_world(CFG["lights"]["back"], cam)
+    W, H = CFG["resolution"]
+    scene = rr.build_scene(mesh, cam, (W, H))
+    sensor, sign = scene.sensors()[0], mesh["outward_sign"]
+    P, N, NE = np.zeros((H, W, 3)), np.zeros((H, W, 3)), np.zeros((H, W, 3))
+    for y in range(H):
+        for x in range(W):
+            ray, _ = sensor.sample_ray(0.0, 0.5, mi.Point2f((x + .5) / W, (y + .5) / H), mi.Point2f(.5))
+            si = scene.ray_intersect(ray)
+            if not si.is_valid():
+                continue
+            P[y, x] = [si.p[i] for i in range(3)]
+            N[y, x] = [sign * si.sh_frame.n[i] for i in range(3)]
+            o = P[y, x] - rr.THIN_OFFSET_PER_DIAGONAL * mesh["diagonal"] * N[y, x]
+            entry = scene.ray_intersect(mi.Ray3f(mi.Point3f(*o), mi.Vector3f(*towards)))
+            if entry.is_valid():
+                NE[y, x] = [sign * entry.sh_frame.n[i] for i in range(3)]
+    os.makedirs(os.path.dirname(cache), exist_ok=True)
+    np.savez(cache, P=P, N=N, NE=NE, towards=towards, eye=np.array(cam["eye"]))
+    return np.load(cache)
+
+
+def unit(v):
+    return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-12)
+
+
+def refract(i, n, eta):
+    """GLSL refract(): i and n unit, n against i; second result False on total internal reflection."""
+    c = -np.sum(i * n, -1, keepdims=True)
+    k = 1 - eta * eta * (1 - c * c)
+    return unit(eta * i + (eta * c - np.sqrt(np.maximum(k, 0))) * n), k[..., 0] > 0
+
+
+def lobe_cosine(scene, kind, blend):
+    g = geometry(scene["name"].split("_")[0])
+    ior = CFG["media"][scene["name"].split("_")[1]]["ior"]
+    v = unit(g["eye"] - g["P"])
+    i = -g["towards"] * np.ones_like(v)
+    if kind == "axis":
+        d = i
+    elif kind == "exit":
+        d, ok = refract(i, -g["N"], ior)
+        d = np.where(ok[..., None], d, i)
+    else:
+        inside, ok_in = refract(i, g["NE"], 1 / ior)
+        out, ok_out = refract(inside, -g["N"], ior)
+        ok = ok_in & ok_out & (np.abs(g["NE"]).sum(-1) > 0)
+        if kind == "strict":  # no light where either refraction is total or no entry was found
+            return np.where(ok, np.maximum(np.sum(v * out, -1), 0), 0)
+        d = np.where(ok[..., None], out, i) if kind == "prism" else unit(np.where(ok[..., None], i + blend * (out - i), i))
+    return np.maximum(np.sum(v * d, -1), 0)
+
+
+def study(scenes, kind, n, blend=0.0, normal_mix=0.25):
+    parts = []
+    for s in scenes:
+        lobe = ((n + 1) * lobe_cosine(s, kind, blend) ** n)[..., None]  # the n = 0 terms carry 1/(2π)
+        tb = ((1 - normal_mix) * s["terms"]["transmission_b_n0_m0"] + normal_mix * s["terms"]["transmission_b_n0_m1"]) * lobe
+        td = ((1 - normal_mix) * s["terms"]["transmission_d_n0_m0"] + normal_mix * s["terms"]["transmission_d_n0_m1"]) * lobe
+        parts.append((s, ALBEDO_SCALE * s["terms"]["diffuse_s0.3"] + s["terms"]["specular"], tb, td))
+    rows, rhs = [], []
+    for s, base, tb, td in parts:  # fit.py's stage 2: thin-region and object means, relative
+        for region, w in ((s["thin"], 1.0), (s["mask"], 0.5)):
+            ref = s["ref_linear"][region].mean(0)
+            for c in range(3):
+                k = w / max(ref[c], 1e-3)
+                rows.append([k * tb[region].mean(0)[c], k * td[region].mean(0)[c]])
+                rhs.append(k * (ref[c] - base[region].mean(0)[c]))
+    A, y = np.array(rows), np.array(rhs)
+    best = None
+    for wb in np.linspace(0, 3, 301):
+        r = y - A[:, 0] * wb
+        wd = max(0.0, float(A[:, 1] @ r / max(A[:, 1] @ A[:, 1], 1e-30)))
+        e = float(np.sum((r - A[:, 1] * wd) ** 2))
+        if best is None or e < best[0]:
+            best = (e, wb, wd)
+    _, wb, wd = best
+    flips, within = [], 0
+    for s, base, tb, td in parts:
+        img = base + wb * tb + wd * td
+        flips.append(fit.flip_masked(s["ref_srgb"], img, s["mask"]))
+        ratio = img[s["thin"]].mean(0) / s["ref_linear"][s["thin"]].mean(0)
+        within += bool(np.all(np.abs(ratio - 1) <= 0.25))
+    label = f"{kind} {blend:g}" if kind == "blend" else kind
+    print(f"{label:10s} n {n:3g}: w_b {wb:.3f} w_d {wd:.3f}  back-lit mean masked FLIP {np.mean(flips):.4f}, "
+          f"thin regions within 25 % {within}/{len(parts)}", flush=True)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = ap.add_subparsers(dest="what", required=True)
+    sl = sub.add_parser("slab")
+    sl.add_argument("--tau", default="0.9,1.8,3.6")
+    sl.add_argument("--albedo", default="0.6,0.75,0.98", help="single-scattering albedo per channel (the jewel's)")
+    sl.add_argument("--g", type=float, default=0.0)
+    sc = sub.add_parser("scenes")
+    sc.add_argument("components")
+    sc.add_argument("--lobes", default="4,8,16,32")
+    a = ap.parse_args()
+    if a.what == "slab":
+        albedo = [float(x) for x in a.albedo.split(",")]
+        print("radiance (R G B) off the slab's normal, E = 1; in brackets L(θ)/L(0) in green, then cos^16")
+        for tau in (float(t) for t in a.tau.split(",")):
+            l0 = None
+            for deg in ANGLES:
+                L = slab_radiance(tau, albedo, a.g, deg)
+                l0 = L if l0 is None else l0
+                print(f"  τ {tau:4.2f}  {deg:2d}°: {L[0]:.4f} {L[1]:.4f} {L[2]:.4f}  "
+                      f"[{L[1] / l0[1]:.3f}, {np.cos(np.radians(deg)) ** 16:.3f}]", flush=True)
+        return
+    refs = os.path.join(HERE, "references")
+    names = sorted(os.path.basename(p).split("__")[0] for p in glob.glob(os.path.join(a.components, "*_back__specular.exr")))
+    if not names:
+        sys.exit(f"lobe_study.py: no back-lit components in {a.components} (see --help)")
+    scenes = [fit.load_scene(a.components, refs, n) for n in names]
+    lobes = [float(x) for x in a.lobes.split(",")]
+    for kind in ("axis", "exit", "prism", "strict"):
+        for n in lobes:
+            study(scenes, kind, n)
+    for blend in (0.2, 0.4):
+        for n in (8, 16):
+            study(scenes, "blend", n, blend)
+
+
+if __name__ == "__main__":
+    main()
