@@ -345,6 +345,20 @@ int cmd_fidelity(int argc, char** argv)
                     std::snprintf(term, sizeof term, "transmission_%s_n%g_m%d", part == 0 ? "b" : "d", n, mix);
                     write(m, true, term);
                 }
+        // What the shading reads per pixel, for fitting other transmission models offline: the
+        // position (w: coverage) and the normal with the first light's path t (w; 0 without).
+        renderer.set_material(material);
+        rs.transmission = true;
+        const ShadingInputs in = renderer.shading_inputs(camera, lights, rs);
+        std::vector<float> position, normal_path;
+        for (size_t p = 0; p < in.position.size(); ++p) {
+            const glm::vec4 x = in.position[p], n = in.normal[p];
+            position.insert(position.end(), {x.x, x.y, x.z, x.w});
+            normal_path.insert(normal_path.end(), {n.x, n.y, n.z, in.path.empty() ? 0.0f : in.path[p]});
+        }
+        const auto folder = std::filesystem::path(*components);
+        save_image(folder / (ref.name + "__inputs_position.exr"), int(in.width), int(in.height), position);
+        save_image(folder / (ref.name + "__inputs_normal_path.exr"), int(in.width), int(in.height), normal_path);
     }
     if (out.empty()) throw Error("--references " + dir.string() + ": no reference scene matched");
     if (auto path = args.get("markdown")) write_file_atomically(*path, fidelity_markdown(out, ctx->device_info().name));

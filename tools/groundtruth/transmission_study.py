@@ -1,22 +1,28 @@
 #!/usr/bin/env python3
-"""Which way does the light through a thin part leave? A study of the transmission lobe's axis.
+"""Studies of Jade's transmission term against the path tracer (docs/fidelity.md, "Studied, not adopted").
 
 Jade's transmitted light leaves in a lobe (n+1)/(2π)·max(V·(−L), 0)^n about the light's own
-direction. Two measurements against the path tracer (docs/fidelity.md, "The lobe's axis"):
+direction, attenuated by a forward part and a diffused part (the diffusion approximation's slab
+transmittance). Three measurements:
 
   slab    Mitsuba renders a slab of optical thickness τ behind the references' rough dielectric
           (GGX α 0.36, IOR 1.5), lit along its normal, seen from 0…60° off that axis: the
           physical exit lobe of a part whose faces are parallel.
-  scenes  On the committed back-lit references, the lobe about other axes, the weights refitted
+  axes    On the committed back-lit references, the lobe about other axes, the weights refitted
           as fit.py's stage 2 does: `axis` (−L, Jade's), `prism` (−L refracted in through the
           entry surface, Mitsuba's ray cast from each pixel towards the light, and out through
           the pixel's normal), `exit` (refracted out only), `strict` (`prism`, but no light where a
           refraction is total; `prism` falls back to −L there), `blend B` (−L moved B of the way to
           `prism`). Needs the lobe-free terms of
             build/samples/cli/jade fidelity --scene _back --components DIR --strengths 0.3 --lobes 0
+  scattered  The diffused part replaced by the scattered transmittance of a slab of the same
+          reduced optical thickness and albedo, by Monte Carlo (slab_scattering.py), leaving
+          as a cosine (1/π) or in a lobe; per pixel from the shading inputs (position, normal,
+          path t) that the same --components run writes.
 
-  tools/groundtruth/.venv/bin/python tools/groundtruth/lobe_study.py slab --tau 0.9,1.8,3.6
-  tools/groundtruth/.venv/bin/python tools/groundtruth/lobe_study.py scenes DIR
+  tools/groundtruth/.venv/bin/python tools/groundtruth/transmission_study.py slab --tau 0.9,1.8,3.6
+  tools/groundtruth/.venv/bin/python tools/groundtruth/transmission_study.py axes DIR
+  tools/groundtruth/.venv/bin/python tools/groundtruth/transmission_study.py scattered DIR
 """
 import argparse
 import glob
@@ -31,6 +37,7 @@ sys.path.insert(0, HERE)
 import fit  # noqa: E402
 import gt_io  # noqa: E402
 import render_reference as rr  # noqa: E402
+import slab_scattering  # noqa: E402
 
 mi = rr.mi
 CFG = json.load(open(os.path.join(HERE, "scenes.json")))
@@ -124,6 +131,12 @@ def study(scenes, kind, n, blend=0.0, normal_mix=0.25):
         tb = ((1 - normal_mix) * s["terms"]["transmission_b_n0_m0"] + normal_mix * s["terms"]["transmission_b_n0_m1"]) * lobe
         td = ((1 - normal_mix) * s["terms"]["transmission_d_n0_m0"] + normal_mix * s["terms"]["transmission_d_n0_m1"]) * lobe
         parts.append((s, ALBEDO_SCALE * s["terms"]["diffuse_s0.3"] + s["terms"]["specular"], tb, td))
+    label = f"{kind} {blend:g}" if kind == "blend" else kind
+    report(parts, f"{label}, n {n:g}")
+
+
+def report(parts, label):
+    """Fits w_b, w_2 of base + w_b·part_b + w_2·part_2 as fit.py's stage 2 does; prints FLIP and thin regions."""
     rows, rhs = [], []
     for s, base, tb, td in parts:  # fit.py's stage 2: thin-region and object means, relative
         for region, w in ((s["thin"], 1.0), (s["mask"], 0.5)):
@@ -147,9 +160,53 @@ def study(scenes, kind, n, blend=0.0, normal_mix=0.25):
         flips.append(fit.flip_masked(s["ref_srgb"], img, s["mask"]))
         ratio = img[s["thin"]].mean(0) / s["ref_linear"][s["thin"]].mean(0)
         within += bool(np.all(np.abs(ratio - 1) <= 0.25))
-    label = f"{kind} {blend:g}" if kind == "blend" else kind
-    print(f"{label:10s} n {n:3g}: w_b {wb:.3f} w_d {wd:.3f}  back-lit mean masked FLIP {np.mean(flips):.4f}, "
+    print(f"{label:34s} w_b {wb:.3f} w_2 {wd:.3f}  back-lit mean masked FLIP {np.mean(flips):.4f}, "
           f"thin regions within 25 % {within}/{len(parts)}", flush=True)
+
+
+
+def read_rgba(path):
+    import OpenEXR
+    with OpenEXR.File(path) as f:
+        return np.asarray(f.channels()["RGBA"].pixels, dtype=np.float64)
+
+
+def scattered_study(scenes, components, taus, hists, n, k, exit_lobe, normal_mix=0.25):
+    """Forward part e^{−kσ_t t}·lobe_n plus the Monte Carlo slab's scattered transmittance at the
+    same reduced optical thickness and albedo, leaving as a cosine (exit_lobe None) or in a lobe."""
+    parts = []
+    for s in scenes:
+        rec = json.load(open(os.path.join(HERE, "references", s["name"] + ".json")))
+        med = rec["medium"]
+        ss, sa, g = np.array(med["sigma_s"]), np.array(med["sigma_a"]), med["g"]
+        pos = read_rgba(os.path.join(components, s["name"] + "__inputs_position.exr"))
+        npath = read_rgba(os.path.join(components, s["name"] + "__inputs_normal_path.exr"))
+        v = unit(np.array(rec["camera"]["eye"]) - pos[..., :3])
+        nrm = unit(npath[..., :3])
+        towards = np.array(rec["light"]["towards_light"])
+        f0 = ((med["ior"] - 1) / (med["ior"] + 1)) ** 2
+        grazing = max(1 - med["roughness"] ** 2, f0)  # shading.glsl's boundary_transmittance
+
+        def crossing(c):
+            return 1 - (f0 + (grazing - f0) * (1 - np.clip(c, 0, 1)) ** 5)
+
+        n_dot_l = np.sum(nrm * towards, -1)
+        geometry_factor = ((1 - normal_mix) + normal_mix * np.maximum(-n_dot_l, 0)) * crossing(-n_dot_l) * \
+            crossing(np.sum(nrm * v, -1)) * (pos[..., 3] > 0.5)
+        c = geometry_factor[..., None] * np.array(rec["light"]["irradiance"])
+        t = npath[..., 3:4]
+        mu = np.maximum(-np.sum(v * towards, -1), 0)
+
+        def lobe(e):
+            return ((e + 1) / (2 * np.pi) * mu ** e)[..., None]
+
+        reduced_s = ss * (1 - g)
+        forward = c * lobe(n) * np.exp(-k * (ss + sa) * t)
+        tau = (reduced_s + sa) * t
+        scattered = slab_scattering.scattered_transmittance(taus, hists, tau, reduced_s / (reduced_s + sa))
+        scattered = c * scattered * (1 / np.pi if exit_lobe is None else lobe(exit_lobe))
+        parts.append((s, ALBEDO_SCALE * s["terms"]["diffuse_s0.3"] + s["terms"]["specular"], forward, scattered))
+    report(parts, f"k {k:g}, n {n:g}, scattered {'cosine' if exit_lobe is None else f'lobe {exit_lobe:g}'}")
 
 
 def main():
@@ -159,9 +216,10 @@ def main():
     sl.add_argument("--tau", default="0.9,1.8,3.6")
     sl.add_argument("--albedo", default="0.6,0.75,0.98", help="single-scattering albedo per channel (the jewel's)")
     sl.add_argument("--g", type=float, default=0.0)
-    sc = sub.add_parser("scenes")
+    sc = sub.add_parser("axes")
     sc.add_argument("components")
     sc.add_argument("--lobes", default="4,8,16,32")
+    sub.add_parser("scattered").add_argument("components")
     a = ap.parse_args()
     if a.what == "slab":
         albedo = [float(x) for x in a.albedo.split(",")]
@@ -175,10 +233,18 @@ def main():
                       f"[{L[1] / l0[1]:.3f}, {np.cos(np.radians(deg)) ** 16:.3f}]", flush=True)
         return
     refs = os.path.join(HERE, "references")
-    names = sorted(os.path.basename(p).split("__")[0] for p in glob.glob(os.path.join(a.components, "*_back__specular.exr")))
+    pattern = "*_back__inputs_position.exr" if a.what == "scattered" else "*_back__specular.exr"
+    names = sorted(os.path.basename(p).split("__")[0] for p in glob.glob(os.path.join(a.components, pattern)))
     if not names:
-        sys.exit(f"lobe_study.py: no back-lit components in {a.components} (see --help)")
+        sys.exit(f"transmission_study.py: no back-lit components in {a.components} (see --help)")
     scenes = [fit.load_scene(a.components, refs, n) for n in names]
+    if a.what == "scattered":
+        taus, hists = slab_scattering.table()
+        for k in (0.7, 1.0):
+            for n in (8, 16):
+                for exit_lobe in (None, 4, 16):
+                    scattered_study(scenes, a.components, taus, hists, n, k, exit_lobe)
+        return
     lobes = [float(x) for x in a.lobes.split(",")]
     for kind in ("axis", "exit", "prism", "strict"):
         for n in lobes:
