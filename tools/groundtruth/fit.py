@@ -69,6 +69,39 @@ def thin_error(scene, image):
     return float(np.mean(np.abs(got - ref) / np.maximum(ref, 1e-3)))
 
 
+def thin_ratio(scene, image):
+    """The thin region's mean radiance per channel, relative to the reference's."""
+    return image[scene["thin"]].mean(axis=0) / scene["ref_linear"][scene["thin"]].mean(axis=0)
+
+
+def in_band(ratio):
+    """Within 25 % of the reference in every channel: the acceptance band tests/test_fidelity.cpp asserts."""
+    return bool(np.all(np.abs(ratio - 1) <= 0.25))
+
+
+def stage2_weights(parts, wb_grid=np.linspace(0.0, 8.0, 161)):
+    """Weights (w_b, w_d ≥ 0) of base + w_b·tb + w_d·td by least squares on the thin-region and object
+    means, each channel relative to the reference; parts: (scene, base, tb, td) images."""
+    rows, rhs = [], []
+    for s, base, tb, td in parts:
+        for region, weight in ((s["thin"], 1.0), (s["mask"], 0.5)):
+            ref = s["ref_linear"][region].mean(axis=0)
+            b = base[region].mean(axis=0)
+            for c in range(3):
+                k = weight / max(ref[c], 1e-3)
+                rows.append([k * tb[region].mean(axis=0)[c], k * td[region].mean(axis=0)[c]])
+                rhs.append(k * (ref[c] - b[c]))
+    A, y = np.array(rows), np.array(rhs)
+    best = None
+    for wb in wb_grid:  # tiny NNLS: scan w_b, solve w_d ≥ 0 in closed form
+        r = y - A[:, 0] * wb
+        wd = max(0.0, float(A[:, 1] @ r / max(A[:, 1] @ A[:, 1], 1e-30)))
+        e = float(np.sum((r - A[:, 1] * wd) ** 2))
+        if best is None or e < best[0]:
+            best = (e, float(wb), wd)
+    return best[1], best[2]
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("components")
@@ -115,31 +148,16 @@ def main():
     back = [s for s in scenes if s["light"] == "back"]
     base = {s["name"]: scale * s["terms"]["diffuse_s" + st] + s["terms"]["specular"] for s in behind}
 
+    def terms(s, n, m):
+        t = lambda part, mm: s["terms"][f"transmission_{part}_n{n}_m{mm}"]
+        return (1 - m) * t("b", 0) + m * t("b", 1), (1 - m) * t("d", 0) + m * t("d", 1)
+
     def weights(n, m):
-        rows, rhs = [], []
-        for s in back:
-            tb = (1 - m) * s["terms"][f"transmission_b_n{n}_m0"] + m * s["terms"][f"transmission_b_n{n}_m1"]
-            td = (1 - m) * s["terms"][f"transmission_d_n{n}_m0"] + m * s["terms"][f"transmission_d_n{n}_m1"]
-            for region, weight in ((s["thin"], 1.0), (s["mask"], 0.5)):
-                ref = s["ref_linear"][region].mean(axis=0)
-                b = base[s["name"]][region].mean(axis=0)
-                for c in range(3):
-                    k = weight / max(ref[c], 1e-3)
-                    rows.append([k * tb[region].mean(axis=0)[c], k * td[region].mean(axis=0)[c]])
-                    rhs.append(k * (ref[c] - b[c]))
-        A, y = np.array(rows), np.array(rhs)
-        best = None
-        for wb in np.linspace(0.0, 8.0, 161):  # tiny NNLS: scan w_b, solve w_d ≥ 0 in closed form
-            r = y - A[:, 0] * wb
-            wd = max(0.0, float(A[:, 1] @ r / max(A[:, 1] @ A[:, 1], 1e-30)))
-            e = float(np.sum((r - A[:, 1] * wd) ** 2))
-            if best is None or e < best[0]:
-                best = (e, float(wb), wd)
-        return best[1], best[2]
+        return stage2_weights([(s, base[s["name"]]) + terms(s, n, m) for s in back])
 
     def image(s, n, m, wb, wd):
-        t = lambda part, mm: s["terms"][f"transmission_{part}_n{n}_m{mm}"]
-        return base[s["name"]] + wb * ((1 - m) * t("b", 0) + m * t("b", 1)) + wd * ((1 - m) * t("d", 0) + m * t("d", 1))
+        tb, td = terms(s, n, m)
+        return base[s["name"]] + wb * tb + wd * td
 
     def objective(n, m, wb, wd):
         errs, thin = [], []
@@ -147,52 +165,49 @@ def main():
             img = image(s, n, m, wb, wd)
             errs.append(flip_masked(s["ref_srgb"], img, s["mask"]))
             thin.append(thin_error(s, img))
-        return float(np.mean(errs)) + a.thin_weight * float(np.mean(thin)), float(np.mean(errs)), thin
+        return float(np.mean(errs)) + a.thin_weight * float(np.mean(thin)), float(np.mean(errs))
 
     def band_weights(n, m):
         """(count, weights) of the weight pairs that put the most thin regions within 25 %."""
-        rel = []
-        for s in back:
-            th, ref = s["thin"], s["ref_linear"][s["thin"]].mean(axis=0)
-            tb = (1 - m) * s["terms"][f"transmission_b_n{n}_m0"] + m * s["terms"][f"transmission_b_n{n}_m1"]
-            td = (1 - m) * s["terms"][f"transmission_d_n{n}_m0"] + m * s["terms"][f"transmission_d_n{n}_m1"]
-            rel.append((base[s["name"]][th].mean(axis=0) / ref, tb[th].mean(axis=0) / ref, td[th].mean(axis=0) / ref))
+        # The thin-region ratios are linear in the weights: their parts once, then any weights.
+        rel = [(thin_ratio(s, base[s["name"]]),) + tuple(thin_ratio(s, t) for t in terms(s, n, m)) for s in back]
         scored = []
         for wb in np.linspace(0.0, 1.5, 151):
             for wd in np.linspace(0.0, 0.3, 61):
                 ratios = [b + wb * tb + wd * td for b, tb, td in rel]
-                count = sum(bool(np.all(np.abs(r - 1) <= 0.25)) for r in ratios)
+                count = sum(in_band(r) for r in ratios)
                 worst = max(float(np.max(np.abs(np.log(np.maximum(r, 1e-6))))) for r in ratios)
                 scored.append((count, worst, float(wb), float(wd)))
         top = max(c for c, _, _, _ in scored)
         central = sorted((w, wb, wd) for c, w, wb, wd in scored if c == top)[:12]  # the most central in the band
         return top, [(wb, wd) for _, wb, wd in central]
 
-    best2 = None
+    best2 = None  # (key, w_b, w_d, n, m, count, objective)
     for n in lobes:
         for m in (0.0, 0.25, 0.5, 0.75, 1.0):
             if a.criterion == "least-squares":
                 candidates = [weights(n, m)]
-                count = sum(bool(np.all(np.abs(image(s, n, m, *candidates[0])[s["thin"]].mean(axis=0) /
-                                               s["ref_linear"][s["thin"]].mean(axis=0) - 1) <= 0.25)) for s in back)
+                count = sum(in_band(thin_ratio(s, image(s, n, m, *candidates[0]))) for s in back)
             else:
                 count, candidates = band_weights(n, m)
+            best = None
             for wb, wd in candidates:
-                err, flip_mean, thin = objective(n, m, wb, wd)
-                key = (-count if a.criterion == "thin-band" else 0, err)
-                if best2 is None or key < best2[0]:
-                    best2 = (key, wb, wd, n, m, count)
-            _, wb_, wd_, n_, m_, _ = best2
-            print(f"  lobe {n}, normal_mix {m}: {count} training thin regions within 25 %; "
-                  f"best so far n {n_}, m {m_}, w_b {wb_:.3f}, w_d {wd_:.3f}, objective {best2[0][1]:.4f}", flush=True)
-    best2 = (best2[0][1], best2[1], best2[2], best2[3], best2[4], best2[5])
-    _, w, wd, n, m, count = best2
+                err, flip_mean = objective(n, m, wb, wd)
+                if best is None or err < best[0]:
+                    best = (err, flip_mean, wb, wd)
+            err, flip_mean, wb, wd = best
+            print(f"  lobe {n}, normal_mix {m}: w_b {wb:.3f}, w_d {wd:.3f}: FLIP {flip_mean:.4f}, objective {err:.4f}, "
+                  f"{count} training thin regions within 25 %", flush=True)
+            key = (-count if a.criterion == "thin-band" else 0, err)
+            if best2 is None or key < best2[0]:
+                best2 = (key, wb, wd, n, m, count, err)
+    _, w, wd, n, m, count, objective2 = best2
     print(f"stage 2 ({a.criterion}): transmission_weight {w:.3f}, diffusion_weight {wd:.3f}, lobe {n}, normal_mix {m}: "
-          f"{count} of {len(back)} training thin regions within 25 %, objective {best2[0]:.4f} over {len(behind)} "
+          f"{count} of {len(back)} training thin regions within 25 %, objective {objective2:.4f} over {len(behind)} "
           f"side/back scenes ({time.time() - t0:.0f} s)")
     result = {"albedo_scale": scale, "strength": float(st), "spread_strength": a.spread_strength, "transmission_weight": w, "diffusion_weight": wd,
               "lobe": float(n), "normal_mix": m,
-              "objective_stage1": best1[0], "objective_stage2": best2[0], "thin_weight": a.thin_weight,
+              "objective_stage1": best1[0], "objective_stage2": objective2, "thin_weight": a.thin_weight,
               "criterion": a.criterion, "training_thin_regions_within_25_percent": count,
               "training_scenes": names, "command": " ".join(sys.argv)}
     tmp = a.out + ".tmp"

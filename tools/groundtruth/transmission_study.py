@@ -137,32 +137,14 @@ def study(scenes, kind, n, blend=0.0, normal_mix=0.25):
 
 def report(parts, label):
     """Fits w_b, w_2 of base + w_b·part_b + w_2·part_2 as fit.py's stage 2 does; prints FLIP and thin regions."""
-    rows, rhs = [], []
-    for s, base, tb, td in parts:  # fit.py's stage 2: thin-region and object means, relative
-        for region, w in ((s["thin"], 1.0), (s["mask"], 0.5)):
-            ref = s["ref_linear"][region].mean(0)
-            for c in range(3):
-                k = w / max(ref[c], 1e-3)
-                rows.append([k * tb[region].mean(0)[c], k * td[region].mean(0)[c]])
-                rhs.append(k * (ref[c] - base[region].mean(0)[c]))
-    A, y = np.array(rows), np.array(rhs)
-    best = None
-    for wb in np.linspace(0, 3, 301):
-        r = y - A[:, 0] * wb
-        wd = max(0.0, float(A[:, 1] @ r / max(A[:, 1] @ A[:, 1], 1e-30)))
-        e = float(np.sum((r - A[:, 1] * wd) ** 2))
-        if best is None or e < best[0]:
-            best = (e, wb, wd)
-    _, wb, wd = best
+    wb, wd = fit.stage2_weights(parts, np.linspace(0, 3, 301))
     flips, within = [], 0
     for s, base, tb, td in parts:
         img = base + wb * tb + wd * td
         flips.append(fit.flip_masked(s["ref_srgb"], img, s["mask"]))
-        ratio = img[s["thin"]].mean(0) / s["ref_linear"][s["thin"]].mean(0)
-        within += bool(np.all(np.abs(ratio - 1) <= 0.25))
+        within += fit.in_band(fit.thin_ratio(s, img))
     print(f"{label:34s} w_b {wb:.3f} w_2 {wd:.3f}  back-lit mean masked FLIP {np.mean(flips):.4f}, "
           f"thin regions within 25 % {within}/{len(parts)}", flush=True)
-
 
 
 def read_rgba(path):
