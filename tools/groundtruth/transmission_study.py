@@ -19,10 +19,15 @@ transmittance). Three measurements:
           reduced optical thickness and albedo, by Monte Carlo (slab_scattering.py), leaving
           as a cosine (1/π) or in a lobe; per pixel from the shading inputs (position, normal,
           path t) that the same --components run writes.
+  cone    The forward part's attenuation averaged over lines in a cone about the light (through
+          air gaps, floored at the local thickness, Mitsuba's ray casts) instead of Jade's one
+          line along it. Needs the components of lobe 16 and the shading inputs:
+            build/samples/cli/jade fidelity --scene _back --components DIR --strengths 0.3 --lobes 16
 
   tools/groundtruth/.venv/bin/python tools/groundtruth/transmission_study.py slab --tau 0.9,1.8,3.6
   tools/groundtruth/.venv/bin/python tools/groundtruth/transmission_study.py axes DIR
   tools/groundtruth/.venv/bin/python tools/groundtruth/transmission_study.py scattered DIR
+  tools/groundtruth/.venv/bin/python tools/groundtruth/transmission_study.py cone DIR --angles 0,20,40
 """
 import argparse
 import glob
@@ -153,42 +158,135 @@ def read_rgba(path):
         return np.asarray(f.channels()["RGBA"].pixels, dtype=np.float64)
 
 
+def shading_inputs(s, components, normal_mix):
+    """Per pixel of a back-lit scene, from the shading inputs of `jade fidelity --components`: the
+    medium record, the light's geometry factor times its irradiance (both crossings of the boundary and
+    the normal mix), V·(−L) and Jade's path t."""
+    rec = json.load(open(os.path.join(HERE, "references", s["name"] + ".json")))
+    med = rec["medium"]
+    pos = read_rgba(os.path.join(components, s["name"] + "__inputs_position.exr"))
+    npath = read_rgba(os.path.join(components, s["name"] + "__inputs_normal_path.exr"))
+    v = unit(np.array(rec["camera"]["eye"]) - pos[..., :3])
+    nrm = unit(npath[..., :3])
+    towards = np.array(rec["light"]["towards_light"])
+    f0 = ((med["ior"] - 1) / (med["ior"] + 1)) ** 2
+    grazing = max(1 - med["roughness"] ** 2, f0)  # shading.glsl's boundary_transmittance
+
+    def crossing(c):
+        return 1 - (f0 + (grazing - f0) * (1 - np.clip(c, 0, 1)) ** 5)
+
+    n_dot_l = np.sum(nrm * towards, -1)
+    geometry_factor = ((1 - normal_mix) + normal_mix * np.maximum(-n_dot_l, 0)) * crossing(-n_dot_l) * \
+        crossing(np.sum(nrm * v, -1)) * (pos[..., 3] > 0.5)
+    c = geometry_factor[..., None] * np.array(rec["light"]["irradiance"])
+    return med, c, np.maximum(-np.sum(v * towards, -1), 0), npath[..., 3:4]
+
+
+def lobe(mu, n):
+    return ((n + 1) / (2 * np.pi) * mu ** n)[..., None]
+
+
+def base_image(s):
+    return ALBEDO_SCALE * s["terms"]["diffuse_s0.3"] + s["terms"]["specular"]
+
+
 def scattered_study(scenes, components, taus, hists, n, k, exit_lobe, normal_mix=0.25):
     """Forward part e^{−kσ_t t}·lobe_n plus the Monte Carlo slab's scattered transmittance at the
     same reduced optical thickness and albedo, leaving as a cosine (exit_lobe None) or in a lobe."""
     parts = []
     for s in scenes:
-        rec = json.load(open(os.path.join(HERE, "references", s["name"] + ".json")))
-        med = rec["medium"]
+        med, c, mu, t = shading_inputs(s, components, normal_mix)
         ss, sa, g = np.array(med["sigma_s"]), np.array(med["sigma_a"]), med["g"]
-        pos = read_rgba(os.path.join(components, s["name"] + "__inputs_position.exr"))
-        npath = read_rgba(os.path.join(components, s["name"] + "__inputs_normal_path.exr"))
-        v = unit(np.array(rec["camera"]["eye"]) - pos[..., :3])
-        nrm = unit(npath[..., :3])
-        towards = np.array(rec["light"]["towards_light"])
-        f0 = ((med["ior"] - 1) / (med["ior"] + 1)) ** 2
-        grazing = max(1 - med["roughness"] ** 2, f0)  # shading.glsl's boundary_transmittance
-
-        def crossing(c):
-            return 1 - (f0 + (grazing - f0) * (1 - np.clip(c, 0, 1)) ** 5)
-
-        n_dot_l = np.sum(nrm * towards, -1)
-        geometry_factor = ((1 - normal_mix) + normal_mix * np.maximum(-n_dot_l, 0)) * crossing(-n_dot_l) * \
-            crossing(np.sum(nrm * v, -1)) * (pos[..., 3] > 0.5)
-        c = geometry_factor[..., None] * np.array(rec["light"]["irradiance"])
-        t = npath[..., 3:4]
-        mu = np.maximum(-np.sum(v * towards, -1), 0)
-
-        def lobe(e):
-            return ((e + 1) / (2 * np.pi) * mu ** e)[..., None]
-
         reduced_s = ss * (1 - g)
-        forward = c * lobe(n) * np.exp(-k * (ss + sa) * t)
+        forward = c * lobe(mu, n) * np.exp(-k * (ss + sa) * t)
         tau = (reduced_s + sa) * t
         scattered = slab_scattering.scattered_transmittance(taus, hists, tau, reduced_s / (reduced_s + sa))
-        scattered = c * scattered * (1 / np.pi if exit_lobe is None else lobe(exit_lobe))
-        parts.append((s, ALBEDO_SCALE * s["terms"]["diffuse_s0.3"] + s["terms"]["specular"], forward, scattered))
+        scattered = c * scattered * (1 / np.pi if exit_lobe is None else lobe(mu, exit_lobe))
+        parts.append((s, base_image(s), forward, scattered))
     report(parts, f"k {k:g}, n {n:g}, scattered {'cosine' if exit_lobe is None else f'lobe {exit_lobe:g}'}")
+
+
+def cone_paths(s, components, rays, half_angle):
+    """Per covered pixel (row-major index into the image): the medium's share of `rays` lines in the
+    cone of `half_angle` degrees about the light (air gaps left out, as Jade's light-depth layers do),
+    floored at the pixel's inward-cone thickness (32 rays in the 60° cone about −n). Surface points
+    and normals come from Mitsuba's primary rays: the components' EXRs are half floats, too coarse
+    on the dragon (~170 units across). Ray casts by Mitsuba's vectorised LLVM variant."""
+    rec = json.load(open(os.path.join(HERE, "references", s["name"] + ".json")))
+    covered = read_rgba(os.path.join(components, s["name"] + "__inputs_position.exr"))[..., 3] > 0.5
+    mesh = rr.load_mesh(rec["mesh"], CFG["meshes"][rec["mesh"]])
+    scene = mi.load_dict({"type": "scene", "o": {"type": "ply", "filename": str(mesh["ply"]), "face_normals": False}})
+
+    def cast(o, d):
+        ray = mi.Ray3f(mi.Point3f(*[mi.Float(o[:, i].astype(np.float32)) for i in range(3)]),
+                       mi.Vector3f(*[mi.Float(np.ascontiguousarray(d[:, i]).astype(np.float32)) for i in range(3)]))
+        si = scene.ray_intersect(ray)
+        return si, np.array(si.is_valid()), np.where(np.array(si.is_valid()), np.array(si.t), 0.0)
+
+    idx = np.flatnonzero(covered.ravel())
+    cam = rec["camera"]
+    H, W = covered.shape
+    eye = np.array(cam["eye"])
+    f = unit(np.array(cam["target"]) - eye)
+    r = unit(np.cross(f, cam["up"]))
+    u = np.cross(r, f)
+    th = np.tan(np.radians(cam["fov_y_degrees"]) / 2)
+    y, x = np.divmod(idx, W)
+    d = unit(f + (((x + 0.5) / W * 2 - 1) * th * W / H)[:, None] * r + ((1 - (y + 0.5) / H * 2) * th)[:, None] * u)
+    si, hit, _ = cast(np.broadcast_to(eye, d.shape), d)
+    P = np.stack([np.array(si.p[i]) for i in range(3)], 1)
+    N = mesh["outward_sign"] * np.stack([np.array(si.sh_frame.n[i]) for i in range(3)], 1)
+    keep = hit
+    idx, P, N = idx[keep], P[keep], N[keep]
+    origin = P - rr.THIN_OFFSET_PER_DIAGONAL * mesh["diagonal"] * N
+
+    def cone(axis, n, degrees):  # uniform in solid angle, Hammersley; axis (m, 3)
+        u1, u2 = rr.hammersley_cone(n, degrees)
+        ct = 1 - u1 * (1 - np.cos(np.radians(degrees)))
+        st, ph = np.sqrt(1 - ct * ct), 2 * np.pi * u2
+        t = unit(np.cross(axis, np.where(np.abs(axis[:, 1:2]) < 0.9, [[0.0, 1, 0]], [[1.0, 0, 0]])))
+        b = np.cross(axis, t)
+        return [st[k] * np.cos(ph[k]) * t + st[k] * np.sin(ph[k]) * b + ct[k] * axis for k in range(n)]
+
+    thickness = np.zeros(len(idx))
+    count = np.zeros(len(idx))
+    for dk in cone(-N, 32, 60):
+        _, v, t = cast(origin, dk)
+        thickness += t
+        count += v
+    thickness /= np.maximum(count, 1)
+    towards = np.broadcast_to(np.array(rec["light"]["towards_light"]), N.shape)
+    eps = 2 * rr.THIN_OFFSET_PER_DIAGONAL * mesh["diagonal"]
+    paths = np.zeros((len(idx), rays))
+    for k, dk in enumerate(cone(towards, rays, half_angle)):
+        o, inside, alive = origin.copy(), np.ones(len(idx), bool), np.ones(len(idx), bool)
+        for _ in range(8):  # in and out of the medium: up to four parts along the line
+            _, v, t = cast(o, dk)
+            paths[:, k] += np.where(alive & inside & v, t, 0.0)
+            alive &= v
+            o = o + (t + eps)[:, None] * dk
+            inside = ~inside
+    return idx, np.maximum(paths, thickness[:, None])
+
+
+def cone_study(scenes, components, half_angle, rays=16, n=16, k=0.7, normal_mix=0.25):
+    """The forward part's attenuation averaged over the lines in a cone about the light (light
+    scattered through small angles comes along them too) instead of Jade's one line; the diffused
+    part as Jade computes it (the components of lobe n)."""
+    parts = []
+    for s in scenes:
+        med, c, mu, t = shading_inputs(s, components, normal_mix)
+        sigma_t = np.array(med["sigma_s"]) + np.array(med["sigma_a"])
+        if half_angle < 0:  # Jade's own path, for reference
+            attenuation = np.exp(-k * sigma_t * t)
+        else:
+            idx, paths = cone_paths(s, components, rays, half_angle)
+            attenuation = np.zeros(t.shape[:2] + (3,))
+            attenuation.reshape(-1, 3)[idx] = np.exp(-k * sigma_t * paths[..., None]).mean(1)
+        terms = s["terms"]
+        diffused = (1 - normal_mix) * terms[f"transmission_d_n{n}_m0"] + normal_mix * terms[f"transmission_d_n{n}_m1"]
+        parts.append((s, base_image(s), c * lobe(mu, n) * attenuation, diffused))
+    report(parts, "Jade's path" if half_angle < 0 else f"cone {half_angle:g}°, {rays} lines")
 
 
 def main():
@@ -202,6 +300,9 @@ def main():
     sc.add_argument("components")
     sc.add_argument("--lobes", default="4,8,16,32")
     sub.add_parser("scattered").add_argument("components")
+    co = sub.add_parser("cone")
+    co.add_argument("components")
+    co.add_argument("--angles", default="0,20,40", help="half-angles of the cone, degrees")
     a = ap.parse_args()
     if a.what == "slab":
         albedo = [float(x) for x in a.albedo.split(",")]
@@ -215,7 +316,7 @@ def main():
                       f"[{L[1] / l0[1]:.3f}, {np.cos(np.radians(deg)) ** 16:.3f}]", flush=True)
         return
     refs = os.path.join(HERE, "references")
-    pattern = "*_back__inputs_position.exr" if a.what == "scattered" else "*_back__specular.exr"
+    pattern = "*_back__specular.exr" if a.what == "axes" else "*_back__inputs_position.exr"
     names = sorted(os.path.basename(p).split("__")[0] for p in glob.glob(os.path.join(a.components, pattern)))
     if not names:
         sys.exit(f"transmission_study.py: no back-lit components in {a.components} (see --help)")
@@ -226,6 +327,14 @@ def main():
             for n in (8, 16):
                 for exit_lobe in (None, 4, 16):
                     scattered_study(scenes, a.components, taus, hists, n, k, exit_lobe)
+        return
+    if a.what == "cone":
+        for llvm in sorted(glob.glob("/usr/lib/x86_64-linux-gnu/libLLVM-1[4-9].so*"))[-1:]:  # Debian's
+            os.environ.setdefault("DRJIT_LIBLLVM_PATH", llvm)
+        mi.set_variant("llvm_ad_rgb")  # vectorised ray casts
+        cone_study(scenes, a.components, -1)
+        for angle in (float(x) for x in a.angles.split(",")):
+            cone_study(scenes, a.components, angle)
         return
     lobes = [float(x) for x in a.lobes.split(",")]
     for kind in ("axis", "exit", "prism", "strict"):
