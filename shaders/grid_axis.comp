@@ -8,17 +8,15 @@
 //             spacing, STEP 2: out[o] = Σ_k w[|k|]·in[2o − 2 + k]. Exact: splatting into the
 //             coarse grid gives the same cells, so only the two finest grids take atomics.
 // Cells outside the input grid are zero (every source lies two cells or more inside).
-// A deforming mesh's grids are cubes that hold any pose (grid_field.hpp), several times the
-// cells its sources reach in one frame. There every pass works on the box of cells this frame's
-// sources reach (footprint_box, from the bounds of grid_bounds.comp): the gather reads nothing
-// outside it, and the cells outside it are zero in the splat and in every pass's exact result,
-// so the taps read only inside it (the buffers hold earlier frames' values out there) and
-// threads whose output lies outside return at once.
+// A deforming mesh's grids are cubes that hold any pose (grid_field.hpp). There a pass works on
+// the box of cells this frame's sources reach (grid_axis_box.glsl): it is dispatched over that
+// box's threads (grid_boxes.comp), the taps read only inside it (the buffers hold earlier frames'
+// values out there), and threads that rounding adds return at once.
 // One thread per RUN consecutive output cells along the axis: it fetches the inputs they share
 // once (lavapipe pays per fetch, not per multiply-add). The half-width and step are
 // specialisation constants, so the taps unroll with constant indices.
 #include "common.glsl"
-#include "grid.glsl"
+#include "grid_axis_box.glsl"
 
 layout(constant_id = 1) const int HALF_WIDTH = 8;
 layout(constant_id = 2) const int STEP = 1;
@@ -27,7 +25,6 @@ layout(constant_id = 3) const uint FIXED = 0u;
 const int RUN = 8;
 const int INPUTS = STEP * (RUN - 1) + 2 * HALF_WIDTH + 1;
 
-#include "bake_interface.h"  // struct GridAxisPush, shared with engine/src/bake
 layout(push_constant, scalar) uniform Push { GridAxisPush pc; };
 
 // Four fields per cell, one RGBA texel (grid_splat.comp): one fetch serves them all, and
@@ -37,20 +34,7 @@ layout(binding = 1) uniform samplerBuffer source;
 layout(binding = 2, scalar) writeonly buffer Target { vec4 target[]; };
 layout(binding = 3, scalar) readonly buffer Levels { GridLevel levels[]; };
 layout(binding = 4, scalar) readonly buffer Bounds { uvec3 bounds_lo, bounds_hi; };  // grid_bounds.comp
-
-// The cells [first, last] of `level` (of `dims` cells) that this frame's sources reach: all of a
-// static mesh's grids, which fit its bounds.
-void active_box(uint level, uvec3 dims, out ivec3 first, out ivec3 last)
-{
-    first = ivec3(0), last = ivec3(dims) - 1;
-    if (pc.cube_side > 0.0) {
-        vec3 corner = cube_corner(pc.cube_side, bounds_lo, bounds_hi);
-        GridLevel l;
-        l.inv_h = levels[level].inv_h, l.dims = dims;
-        footprint_box(l, level_origin(l, pc.cube_side, corner), from_ordered_bits(bounds_lo),
-                      from_ordered_bits(bounds_hi), first, last);
-    }
-}
+layout(binding = 5, scalar) readonly buffer Dispatches { GridAxisDispatch dispatches[]; };  // grid_boxes.comp
 
 vec4 fetch(int texel)
 {
@@ -63,18 +47,16 @@ vec4 fetch(int texel)
 
 void main()
 {
-    // gl_GlobalInvocationID counts runs along the axis, cells along the others.
+    // gl_GlobalInvocationID counts runs along the axis, cells along the others, from the active
+    // box's first thread.
     uvec3 o = gl_GlobalInvocationID;
+    if (pc.cube_side > 0.0) o += dispatches[pc.pass].first;
     uvec3 od = pc.out_dims;
     o[pc.axis] *= uint(RUN);
     if (o.x >= od.x || o.y >= od.y || o.z >= od.z) return;
-    // The input's box: axes already filtered are the output level's, the others the input's
-    // (so the push constants' dims are the levels' own on every axis used).
     ivec3 in_first, in_last, out_first, out_last;
-    active_box(pc.level_in, pc.in_dims, in_first, in_last);
-    active_box(pc.level_out, pc.out_dims, out_first, out_last);
-    [[unroll]] for (uint a = 0u; a < 3u; ++a)
-        if (a < pc.axis) in_first[a] = out_first[a], in_last[a] = out_last[a];
+    axis_pass_boxes(pc, levels[pc.level_in].inv_h, levels[pc.level_out].inv_h, bounds_lo, bounds_hi, in_first,
+                    in_last, out_first, out_last);
     ivec3 io = ivec3(o);
     bool outside = false;
     [[unroll]] for (uint a = 0u; a < 3u; ++a) {

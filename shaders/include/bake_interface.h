@@ -120,7 +120,17 @@ struct GridAxisPush {
     uint level_in;
     uint level_out;
     float cube_side;
+    uint pass;  // with cube_side > 0: this pass's slot in the GridAxisDispatch buffer (grid_boxes.comp)
     float w[JADE_GRID_MAX_HALF_WIDTH + 1];
+};
+
+// grid_boxes.comp → grid_axis.comp: a deforming mesh's pass is dispatched over the threads of its
+// active box only (groups: a VkDispatchIndirectCommand), and `first` is that box's first thread.
+struct GridAxisDispatch {
+    uvec3 groups;
+    uint pad0;
+    uvec3 first;
+    uint pad1;
 };
 
 // grid_gather.comp: the grids' values at the targets of tree slots [slot_begin, + slot_count).
@@ -154,8 +164,8 @@ struct ClusterPush {
 static_assert(sizeof(AoPush) == 36 && sizeof(AoResolvePush) == 12 && sizeof(ThicknessPush) == 36 &&
               sizeof(ThicknessResolvePush) == 16 && sizeof(GatherPush) == 4 && sizeof(RefitPush) == 8 &&
               sizeof(RayRefitPush) == 12 && sizeof(NearPush) == 24 && sizeof(GridSplatPush) == 12 &&
-              sizeof(GridAxisPush) == 56 + 4 * (JADE_GRID_MAX_HALF_WIDTH + 1) && sizeof(GridGatherPush) == 16 &&
-              sizeof(ExactPush) == 12 && sizeof(ClusterPush) == 28);
+              sizeof(GridAxisPush) == 60 + 4 * (JADE_GRID_MAX_HALF_WIDTH + 1) && sizeof(GridAxisDispatch) == 32 &&
+              sizeof(GridGatherPush) == 16 && sizeof(ExactPush) == 12 && sizeof(ClusterPush) == 28);
 }  // namespace jade::bake
 #endif
 

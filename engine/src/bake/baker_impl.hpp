@@ -180,7 +180,7 @@ struct Baker::Impl {
     // t_m kernels per [grey (1 channel) or RGB][profile kind: Burley, dipole, Gaussians, mixed].
     std::optional<gpu::Kernel> tm_exact[2][4], tm_cluster[2][4];
     std::optional<gpu::Kernel> tm_near[2][2][4];  // [grid far field][grey][kind]
-    std::optional<gpu::Kernel> grid_splat, grid_gather, grid_bounds;
+    std::optional<gpu::Kernel> grid_splat, grid_gather, grid_bounds, grid_boxes;
     std::optional<gpu::Kernel>
         grid_axis[2][2][bake::kGridMaxHalfWidth + 1];  // [fixed-point input][blur, restrict][half-width]
     std::optional<gpu::Kernel> tm_exact_f64[2][4];     // BakeSettings::tm_float64_sums
@@ -329,6 +329,7 @@ struct Baker::Impl {
         uint64_t grid_bytes = 0;
         double grid_r_cut = 0;
         gpu::Buffer grid_levels, grid_splat, grid_cells, grid_scratch[2], smooth_table, grid_bounds;
+        gpu::Buffer grid_dispatch;  // a deforming mesh's: a GridAxisDispatch per axis pass (grid_boxes.comp)
         gpu::TexelView smooth_table_texels, grid_splat_texels, grid_cell_texels, grid_scratch_texels[2];
         uint32_t grid_level_count() const { return uint32_t(grid_plan_levels.size()); }
         TmMethod method() const { return exact ? TmMethod::Exact : grid ? TmMethod::Grid : TmMethod::Clustered; }

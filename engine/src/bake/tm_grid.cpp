@@ -42,6 +42,12 @@ void Baker::Impl::prepare_grid(MeshState& m, const bake::GridPlan& plan)
     m.grid_cells = gpu::Buffer(ctx, plan.cells * kCellBytes, kTexelUsage, "t_m grid cells");
     m.grid_cell_texels =
         gpu::TexelView(ctx, m.grid_cells, VK_FORMAT_R32G32B32A32_SFLOAT, kCellBytes, "t_m grid cells (texels)");
+    if (plan.cube_side > 0) {  // three axis passes per restricted grid and per blurred grid
+        uint32_t passes = 3 * (uint32_t(plan.levels.size()) - m.grid_splat_levels);
+        for (const auto& l : plan.levels) passes += l.weight != glm::vec3(0) ? 3 : 0;
+        m.grid_dispatch = gpu::Buffer(ctx, std::max<uint32_t>(passes, 1) * sizeof(bake::GridAxisDispatch),
+                                      kStorageUsage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, "t_m grid pass dispatches");
+    }
     for (int i = 0; i < 2; ++i) {
         m.grid_scratch[i] = gpu::Buffer(ctx, plan.max_level_cells * kCellBytes, kTexelUsage, "t_m grid pass scratch");
         m.grid_scratch_texels[i] = gpu::TexelView(ctx, m.grid_scratch[i], VK_FORMAT_R32G32B32A32_SFLOAT, kCellBytes,
@@ -71,12 +77,13 @@ void Baker::Impl::record_grid(VkCommandBuffer cmd, MeshState& m, gpu::GpuTimer* 
     const auto& splat = kernel(
         grid_splat, {"grid_splat", shaders::grid_splat_comp(), storage_bindings(7), sizeof(GridSplatPush), 64, {}});
     auto axis_kernel = [&](uint32_t half_width, uint32_t step, bool fixed) -> const gpu::Kernel& {
-        return kernel(grid_axis[fixed][step - 1][half_width], {"grid_axis",
-                                                               shaders::grid_axis_comp(),
-                                                               {kTexels, kTexels, kStorage, kStorage, kStorage},
-                                                               sizeof(bake::GridAxisPush),
-                                                               kAxisGroup,
-                                                               {half_width, step, fixed ? 1u : 0u}});
+        return kernel(grid_axis[fixed][step - 1][half_width],
+                      {"grid_axis",
+                       shaders::grid_axis_comp(),
+                       {kTexels, kTexels, kStorage, kStorage, kStorage, kStorage},
+                       sizeof(bake::GridAxisPush),
+                       kAxisGroup,
+                       {half_width, step, fixed ? 1u : 0u}});
     };
     const auto& gather =
         kernel(grid_gather,
@@ -104,6 +111,14 @@ void Baker::Impl::record_grid(VkCommandBuffer cmd, MeshState& m, gpu::GpuTimer* 
 
     // Three passes x, y, z from level `from` (its cells, or its fixed-point splat) into level
     // `to` of the cell buffer, through the two scratch buffers.
+    struct AxisPass {
+        const gpu::Kernel* kernel;
+        bake::GridAxisPush push;
+        glm::uvec3 runs;  // threads: runs of kAxisRun cells along the axis, cells along the others
+        const gpu::TexelView* source;
+        const gpu::Buffer* target;
+    };
+    std::vector<AxisPass> passes;
     auto separable =
         [&](uint32_t from, uint32_t to, uint32_t step, int32_t shift, uint32_t half_width, const float* w) {
         const bake::GpuGridLevel& src = L[from];
@@ -112,7 +127,8 @@ void Baker::Impl::record_grid(VkCommandBuffer cmd, MeshState& m, gpu::GpuTimer* 
         for (uint32_t axis = 0; axis < 3; ++axis) {
             glm::uvec3 out = in;
             out[axis] = dims_of(L[to])[axis];
-            bake::GridAxisPush p{in, out, axis, shift, 0, 0, 1.0f, from, to, m.grid_cube_side, {}};
+            bake::GridAxisPush p{in, out, axis, shift, 0, 0, 1.0f, from, to, m.grid_cube_side, uint32_t(passes.size()),
+                                 {}};
             std::copy(w, w + half_width + 1, p.w);
             const gpu::TexelView* source = &m.grid_scratch_texels[(axis + 1) % 2];
             const gpu::Buffer* target = &m.grid_scratch[axis % 2];
@@ -124,17 +140,43 @@ void Baker::Impl::record_grid(VkCommandBuffer cmd, MeshState& m, gpu::GpuTimer* 
             if (axis == 2) target = &m.grid_cells, p.out_offset = L[to].offset;
             glm::uvec3 runs = out;
             runs[axis] = (out[axis] + kAxisRun - 1) / kAxisRun;
-            axis_kernel(half_width, step, fixed && axis == 0)
-                .dispatch_3d(cmd, runs, p, {m.grid_splat_texels, *source, *target, m.grid_levels, m.grid_bounds});
-            gpu::compute_barrier(cmd);
+            passes.push_back({&axis_kernel(half_width, step, fixed && axis == 0), p, runs, source, target});
             in = out;
         }
     };
     static constexpr float kTwoScale[3] = {6.0f / 8, 4.0f / 8, 1.0f / 8};
     for (uint32_t g = m.grid_splat_levels; g < levels; ++g) separable(g - m.grid_splat_levels, g, 2, -2, 2, kTwoScale);
-    mark("t_m grid restrict");
+    const size_t restrict_passes = passes.size();
     for (uint32_t g = 0; g < levels; ++g)
         if (L[g].weight != glm::vec3(0)) separable(g, g, 1, 0, L[g].half_width, L[g].blur);
+    // A deforming mesh's passes run over this frame's active boxes only (grid_axis_box.glsl).
+    const bool boxed = m.grid_cube_side > 0;
+    if (boxed) {
+        const auto& boxes = kernel(grid_boxes, {"grid_boxes",
+                                                shaders::grid_boxes_comp(),
+                                                storage_bindings(3),
+                                                sizeof(bake::GridAxisPush),
+                                                1,
+                                                {kAxisGroup, kAxisRun}});
+        for (const AxisPass& pass : passes)
+            boxes.dispatch(cmd, 1, pass.push, {m.grid_levels, m.grid_bounds, m.grid_dispatch});
+        gpu::indirect_barrier(cmd);
+    }
+    if (restrict_passes == 0) mark("t_m grid restrict");
+    for (size_t i = 0; i < passes.size(); ++i) {
+        const AxisPass& pass = passes[i];
+        // A static mesh's passes read no dispatches: any storage buffer stands in.
+        const gpu::Buffer& dispatches = boxed ? m.grid_dispatch : m.grid_bounds;
+        const std::initializer_list<gpu::Binding> bindings{m.grid_splat_texels, *pass.source,  *pass.target,
+                                                           m.grid_levels,       m.grid_bounds, dispatches};
+        if (boxed)
+            pass.kernel->dispatch_indirect(cmd, m.grid_dispatch, i * sizeof(bake::GridAxisDispatch), pass.push,
+                                           bindings);
+        else
+            pass.kernel->dispatch_3d(cmd, pass.runs, pass.push, bindings);
+        gpu::compute_barrier(cmd);
+        if (i + 1 == restrict_passes) mark("t_m grid restrict");
+    }
     mark("t_m grid blur");
     gather.dispatch(cmd, slot_end - slot_begin,
                     GridGatherPush{levels, slot_begin, slot_end - slot_begin, m.grid_cube_side},

@@ -159,6 +159,13 @@ void Kernel::dispatch_3d(VkCommandBuffer cmd, glm::uvec3 threads, const void* pu
     vkCmdDispatch(cmd, gx, threads.y, threads.z);
 }
 
+void Kernel::dispatch_indirect(VkCommandBuffer cmd, const Buffer& groups, VkDeviceSize offset, const void* push,
+                               std::initializer_list<Binding> bindings) const
+{
+    bind(cmd, push, bindings);
+    vkCmdDispatchIndirect(cmd, groups.handle(), offset);
+}
+
 void Kernel::dispatch(VkCommandBuffer cmd, uint64_t threads, const void* push,
                       std::initializer_list<Binding> bindings) const
 {
@@ -174,6 +181,13 @@ void Kernel::dispatch(VkCommandBuffer cmd, uint64_t threads, const void* push,
         throw Error(std::string("kernel ") + name_ + ": " + std::to_string(threads) +
                     " threads exceed the device's work-group limits");
     vkCmdDispatch(cmd, uint32_t(gx), uint32_t(gy), 1);
+}
+
+void indirect_barrier(VkCommandBuffer cmd)
+{
+    memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_WRITE_BIT,
+                   VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                   VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_READ_BIT);
 }
 
 void compute_barrier(VkCommandBuffer cmd)

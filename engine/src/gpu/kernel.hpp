@@ -88,6 +88,19 @@ public:
         dispatch_3d(cmd, threads, static_cast<const void*>(&push), bindings);
     }
 
+    /// Records one dispatch whose group counts the GPU wrote: a VkDispatchIndirectCommand at
+    /// `offset` in `groups` (a buffer with VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, written before an
+    /// indirect_barrier).
+    template <class Push>
+    void dispatch_indirect(VkCommandBuffer cmd, const Buffer& groups, VkDeviceSize offset, const Push& push,
+                           std::initializer_list<Binding> bindings) const
+    {
+        check_push(sizeof(Push));
+        dispatch_indirect(cmd, groups, offset, static_cast<const void*>(&push), bindings);
+    }
+    void dispatch_indirect(VkCommandBuffer cmd, const Buffer& groups, VkDeviceSize offset, const void* push,
+                           std::initializer_list<Binding> bindings) const;
+
     const char* name() const { return name_; }
     uint32_t local_size() const { return local_size_; }
     VkPipelineLayout layout() const { return layout_; }
@@ -126,5 +139,7 @@ OwnedPipeline own_pipeline(const Context& ctx, VkPipeline pipeline, const char* 
 
 /// Full memory barrier between compute passes (writes of one visible to reads of the next).
 void compute_barrier(VkCommandBuffer cmd);
+/// Compute shaders' writes visible to the indirect dispatches (and shaders) that read them.
+void indirect_barrier(VkCommandBuffer cmd);
 
 }  // namespace jade::gpu
