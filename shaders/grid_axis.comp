@@ -9,14 +9,13 @@
 //             coarse grid gives the same cells, so only the two finest grids take atomics.
 // Cells outside the input grid are zero (every source lies two cells or more inside).
 // A deforming mesh's grids are cubes that hold any pose (grid_field.hpp). There a pass works on
-// the box of cells this frame's sources reach (grid_axis_box.glsl): it is dispatched over that
-// box's threads (grid_boxes.comp), the taps read only inside it (the buffers hold earlier frames'
-// values out there), and threads that rounding adds return at once.
+// the box of cells this frame's sources reach, dispatched over that box's threads alone
+// (grid_boxes.comp): its taps read only inside it (the buffers hold earlier frames' values out
+// there), and threads that rounding adds return at once.
 // One thread per RUN consecutive output cells along the axis: it fetches the inputs they share
 // once (lavapipe pays per fetch, not per multiply-add). The half-width and step are
 // specialisation constants, so the taps unroll with constant indices.
 #include "common.glsl"
-#include "grid_axis_box.glsl"
 
 layout(constant_id = 1) const int HALF_WIDTH = 8;
 layout(constant_id = 2) const int STEP = 1;
@@ -25,6 +24,7 @@ layout(constant_id = 3) const uint FIXED = 0u;
 const int RUN = 8;
 const int INPUTS = STEP * (RUN - 1) + 2 * HALF_WIDTH + 1;
 
+#include "bake_interface.h"  // structs GridAxisPush, GridAxisDispatch, shared with engine/src/bake
 layout(push_constant, scalar) uniform Push { GridAxisPush pc; };
 
 // Four fields per cell, one RGBA texel (grid_splat.comp): one fetch serves them all, and
@@ -32,9 +32,7 @@ layout(push_constant, scalar) uniform Push { GridAxisPush pc; };
 layout(binding = 0) uniform usamplerBuffer splat;  // texel fetches: lavapipe's storage loads are per-lane loops
 layout(binding = 1) uniform samplerBuffer source;
 layout(binding = 2, scalar) writeonly buffer Target { vec4 target[]; };
-layout(binding = 3, scalar) readonly buffer Levels { GridLevel levels[]; };
-layout(binding = 4, scalar) readonly buffer Bounds { uvec3 bounds_lo, bounds_hi; };  // grid_bounds.comp
-layout(binding = 5, scalar) readonly buffer Dispatches { GridAxisDispatch dispatches[]; };  // grid_boxes.comp
+layout(binding = 3, scalar) readonly buffer Dispatches { GridAxisDispatch dispatches[]; };  // grid_boxes.comp
 
 vec4 fetch(int texel)
 {
@@ -47,31 +45,26 @@ vec4 fetch(int texel)
 
 void main()
 {
-    // gl_GlobalInvocationID counts runs along the axis, cells along the others, from the active
-    // box's first thread.
-    uvec3 o = gl_GlobalInvocationID;
-    if (pc.cube_side > 0.0) o += dispatches[pc.pass].first;
+    // gl_GlobalInvocationID counts runs along the axis, cells along the others (from the active
+    // box's first thread when there is one). The taps read input cells [lo, hi] along the axis.
+    uvec3 id = pc.in_dims;
+    ivec3 thread = ivec3(gl_GlobalInvocationID);
+    int lo = 0, hi = int(id[pc.axis]) - 1;
+    if (pc.cube_side > 0.0) {
+        GridAxisDispatch box = dispatches[pc.pass];
+        thread += box.first;
+        if (any(greaterThan(thread, box.last))) return;
+        lo = box.tap_first, hi = box.tap_last;
+    }
+    uvec3 o = uvec3(thread);
     uvec3 od = pc.out_dims;
     o[pc.axis] *= uint(RUN);
     if (o.x >= od.x || o.y >= od.y || o.z >= od.z) return;
-    ivec3 in_first, in_last, out_first, out_last;
-    axis_pass_boxes(pc, levels[pc.level_in].inv_h, levels[pc.level_out].inv_h, bounds_lo, bounds_hi, in_first,
-                    in_last, out_first, out_last);
-    ivec3 io = ivec3(o);
-    bool outside = false;
-    [[unroll]] for (uint a = 0u; a < 3u; ++a) {
-        bool along = a == pc.axis;
-        outside = outside || (along ? io[a] > out_last[a] || io[a] + RUN - 1 < out_first[a]
-                                    : io[a] < in_first[a] || io[a] > in_last[a]);
-    }
-    if (outside) return;
-    uvec3 id = pc.in_dims;
     int stride = pc.axis == 0u ? 1 : pc.axis == 1u ? int(id.x) : int(id.x * id.y);
     uvec3 at = o;
     at[pc.axis] = 0u;
     int row = int(pc.in_offset + (at.z * id.y + at.y) * id.x + at.x);  // the input row's first cell
     int first = STEP * int(o[pc.axis]) + pc.shift - HALF_WIDTH;
-    int lo = max(in_first[pc.axis], 0), hi = min(in_last[pc.axis], int(id[pc.axis]) - 1);
     vec4 inputs[INPUTS];
     [[unroll]] for (int i = 0; i < INPUTS; ++i) {
         int at_i = first + i;

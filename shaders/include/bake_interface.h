@@ -25,6 +25,7 @@ namespace jade::bake {
 namespace glsl {
 using uint = std::uint32_t;
 using uvec3 = glm::uvec3;
+using ivec3 = glm::ivec3;
 }  // namespace glsl
 using namespace glsl;  // only these two names: the structs below are written in GLSL's words
 #endif
@@ -125,12 +126,15 @@ struct GridAxisPush {
 };
 
 // grid_boxes.comp → grid_axis.comp: a deforming mesh's pass is dispatched over the threads of its
-// active box only (groups: a VkDispatchIndirectCommand), and `first` is that box's first thread.
+// active box only (groups: a VkDispatchIndirectCommand); [first, last] are that box's threads
+// (groups round x up) and [tap_first, tap_last] the input cells along the axis that its taps read.
 struct GridAxisDispatch {
     uvec3 groups;
-    uint pad0;
-    uvec3 first;
-    uint pad1;
+    int tap_first;
+    ivec3 first;
+    int tap_last;
+    ivec3 last;
+    uint pad;
 };
 
 // grid_gather.comp: the grids' values at the targets of tree slots [slot_begin, + slot_count).
@@ -164,7 +168,7 @@ struct ClusterPush {
 static_assert(sizeof(AoPush) == 36 && sizeof(AoResolvePush) == 12 && sizeof(ThicknessPush) == 36 &&
               sizeof(ThicknessResolvePush) == 16 && sizeof(GatherPush) == 4 && sizeof(RefitPush) == 8 &&
               sizeof(RayRefitPush) == 12 && sizeof(NearPush) == 24 && sizeof(GridSplatPush) == 12 &&
-              sizeof(GridAxisPush) == 60 + 4 * (JADE_GRID_MAX_HALF_WIDTH + 1) && sizeof(GridAxisDispatch) == 32 &&
+              sizeof(GridAxisPush) == 60 + 4 * (JADE_GRID_MAX_HALF_WIDTH + 1) && sizeof(GridAxisDispatch) == 48 &&
               sizeof(GridGatherPush) == 16 && sizeof(ExactPush) == 12 && sizeof(ClusterPush) == 28);
 }  // namespace jade::bake
 #endif

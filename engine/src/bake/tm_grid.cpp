@@ -77,13 +77,12 @@ void Baker::Impl::record_grid(VkCommandBuffer cmd, MeshState& m, gpu::GpuTimer* 
     const auto& splat = kernel(
         grid_splat, {"grid_splat", shaders::grid_splat_comp(), storage_bindings(7), sizeof(GridSplatPush), 64, {}});
     auto axis_kernel = [&](uint32_t half_width, uint32_t step, bool fixed) -> const gpu::Kernel& {
-        return kernel(grid_axis[fixed][step - 1][half_width],
-                      {"grid_axis",
-                       shaders::grid_axis_comp(),
-                       {kTexels, kTexels, kStorage, kStorage, kStorage, kStorage},
-                       sizeof(bake::GridAxisPush),
-                       kAxisGroup,
-                       {half_width, step, fixed ? 1u : 0u}});
+        return kernel(grid_axis[fixed][step - 1][half_width], {"grid_axis",
+                                                               shaders::grid_axis_comp(),
+                                                               {kTexels, kTexels, kStorage, kStorage},
+                                                               sizeof(bake::GridAxisPush),
+                                                               kAxisGroup,
+                                                               {half_width, step, fixed ? 1u : 0u}});
     };
     const auto& gather =
         kernel(grid_gather,
@@ -149,7 +148,7 @@ void Baker::Impl::record_grid(VkCommandBuffer cmd, MeshState& m, gpu::GpuTimer* 
     const size_t restrict_passes = passes.size();
     for (uint32_t g = 0; g < levels; ++g)
         if (L[g].weight != glm::vec3(0)) separable(g, g, 1, 0, L[g].half_width, L[g].blur);
-    // A deforming mesh's passes run over this frame's active boxes only (grid_axis_box.glsl).
+    // A deforming mesh's passes run over this frame's active boxes only (grid_boxes.comp).
     const bool boxed = m.grid_cube_side > 0;
     if (boxed) {
         const auto& boxes = kernel(grid_boxes, {"grid_boxes",
@@ -165,10 +164,9 @@ void Baker::Impl::record_grid(VkCommandBuffer cmd, MeshState& m, gpu::GpuTimer* 
     if (restrict_passes == 0) mark("t_m grid restrict");
     for (size_t i = 0; i < passes.size(); ++i) {
         const AxisPass& pass = passes[i];
-        // A static mesh's passes read no dispatches: any storage buffer stands in.
-        const gpu::Buffer& dispatches = boxed ? m.grid_dispatch : m.grid_bounds;
-        const std::initializer_list<gpu::Binding> bindings{m.grid_splat_texels, *pass.source,  *pass.target,
-                                                           m.grid_levels,       m.grid_bounds, dispatches};
+        // A static mesh's passes read no boxes: any storage buffer stands in.
+        const gpu::Buffer& boxes = boxed ? m.grid_dispatch : m.grid_levels;
+        const std::initializer_list<gpu::Binding> bindings{m.grid_splat_texels, *pass.source, *pass.target, boxes};
         if (boxed)
             pass.kernel->dispatch_indirect(cmd, m.grid_dispatch, i * sizeof(bake::GridAxisDispatch), pass.push,
                                            bindings);
