@@ -181,14 +181,19 @@ TEST_F(DeformGpu, ProceduralDeformersMatchFloat64OnSeveralFrames)
 
 // The GPU-resident frame: deform, re-bake and draw without mesh data through the host
 // (Renderer::update_vertices from the deformer's and the re-bake's buffers) renders the same
-// image as handing the read-back deformed mesh and t_m to set_mesh.
+// image as handing the read-back deformed mesh and bake to set_mesh: t_m, the thickness, and the
+// scattering normals and spreads the renderer derives from the per-channel normal sums.
 TEST_F(DeformGpu, GpuVertexUpdateRendersLikeTheHostPath)
 {
     const PreparedMesh rest = load_case_mesh("box");
     MeshDeformer deformer(context(), rest);
     const ProceduralDeformer bend = ProceduralDeformer::fit(DeformerKind::Bend, rest, 1);
     deformer.deform(bend, 0.5);
-    const Material material = burley_material(glm::dvec3(0.1, 0.2, 0.3), glm::vec3(0.8f));
+    // A coloured medium a few mean free paths across the box: t_m, spreads and thickness all matter.
+    Medium medium;
+    medium.sigma_s = glm::dvec3(4.0, 8.0, 16.0) / double(rest.diagonal),
+    medium.sigma_a = glm::dvec3(0.5 / rest.diagonal);
+    const Material material = Material::from_medium(medium);
     Baker baker(context());
     DynamicBake rebake(baker, rest, material, BakeSettings::preset(Quality::Draft));
     const BakeResult baked =
@@ -200,16 +205,24 @@ TEST_F(DeformGpu, GpuVertexUpdateRendersLikeTheHostPath)
     RenderSettings settings;
     settings.width = settings.height = 96;
 
-    Renderer gpu_path(context());
+    // Light paths read per vertex: per fragment they come from a depth tile placed about the
+    // bounds set_mesh saw, the rest pose's here and the deformed pose's in the host path, so
+    // the two tiles' texels differ (by up to ~0.01 at this size).
+    RendererOptions options;
+    options.light_path = LightPathSampling::PerVertex;
+    Renderer gpu_path(context(), options);
     gpu_path.set_material(material);
     gpu_path.set_mesh(rest);
     const RenderedImage before = gpu_path.render(camera, lights, settings);
-    gpu_path.update_vertices(deformer.positions_buffer(), deformer.normals_buffer(), rebake.buffers().tm);
+    gpu_path.update_vertices(deformer.positions_buffer(), deformer.normals_buffer(), rebake.buffers().tm,
+                             rebake.buffers().thickness, rebake.buffers().scattering_normal);
     const RenderedImage gpu_image = gpu_path.render(camera, lights, settings);
 
-    Renderer host_path(context());
+    Renderer host_path(context(), options);
     host_path.set_material(material);
-    host_path.set_mesh(deformed_mesh(rest, deformer.read()), baked.tm);
+    ASSERT_FALSE(baked.thickness.empty());
+    ASSERT_FALSE(baked.normal_spread.empty());
+    host_path.set_mesh(deformed_mesh(rest, deformer.read()), baked);
     const RenderedImage host_image = host_path.render(camera, lights, settings);
 
     float worst = 0, moved = 0;

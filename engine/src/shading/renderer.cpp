@@ -383,7 +383,8 @@ void Renderer::record_vertex_update(VkCommandBuffer cmd, VkBuffer positions, VkB
                                                 sizeof(PackPush),
                                                 64,
                                                 {}});
-    const VkDeviceSize stream = VkDeviceSize(m.vertex_count) * 12;
+    const VkDeviceSize stream = VkDeviceSize(m.vertex_count) * 12;  // one float3 per vertex
+    const VkDeviceSize normal_sums = 3 * stream;                    // one float3 per vertex and channel
     // Earlier compute or transfer writes to the inputs, and earlier draws' reads of the vertices.
     gpu::memory_barrier(cmd,
                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT |
@@ -396,7 +397,7 @@ void Renderer::record_vertex_update(VkCommandBuffer cmd, VkBuffer positions, VkB
         cmd, m.vertex_count, PackPush{m.vertex_count, thickness ? 1u : 0u, scattering_normal ? 1u : 0u},
         {gpu::Binding(positions, 0, stream), gpu::Binding(normals, 0, stream), gpu::Binding(tm, 0, stream), m.vertices,
          gpu::Binding(thickness ? thickness : tm, 0, stream / 3),
-         gpu::Binding(scattering_normal ? scattering_normal : tm, 0, stream)});
+         gpu::Binding(scattering_normal ? scattering_normal : tm, 0, scattering_normal ? normal_sums : stream)});
     if (thickness) m.has_thickness = true;
     m.tm_min = glm::vec3(0.0f);  // t_m now comes from the GPU: the evaluation must hold for any t
     ++m.geometry_version;
