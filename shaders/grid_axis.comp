@@ -19,7 +19,9 @@
 
 layout(constant_id = 1) const int HALF_WIDTH = 8;
 layout(constant_id = 2) const int STEP = 1;
-// 1: the input is the fixed-point splat (inv_scale: area per unit; x unsigned, yzw signed at half the scale)
+// The input: 0 floats; the fixed-point splat (inv_scale: area per unit; the weight unsigned, the
+// normal's xyz signed at half the scale) as 1: four 32-bit sums, 2: two 64-bit sums of pairs
+// (grid_splat_body.glsl), whose high halves carry the low halves' borrows.
 layout(constant_id = 3) const uint FIXED = 0u;
 const int RUN = 8;
 const int INPUTS = STEP * (RUN - 1) + 2 * HALF_WIDTH + 1;
@@ -36,9 +38,13 @@ layout(binding = 3, scalar) readonly buffer Dispatches { GridAxisDispatch dispat
 
 vec4 fetch(int texel)
 {
-    if (FIXED == 1u) {
+    if (FIXED != 0u) {
         uvec4 u = texelFetch(splat, texel);
-        return vec4(float(u.x), vec3(ivec3(u.yzw)) * 2.0) * pc.inv_scale;
+        ivec3 n = ivec3(u.yzw);
+        // 64-bit pairs: (weight, n.x) has no borrow (the weight is never negative); (n.y, n.z)
+        // borrowed one from n.z where the sum of n.y is negative.
+        if (FIXED == 2u && n.y < 0) n.z += 1;
+        return vec4(float(u.x), vec3(n) * 2.0) * pc.inv_scale;
     }
     return texelFetch(source, texel);
 }

@@ -137,6 +137,45 @@ TEST_F(Embed, AdoptedContextBakesLikeAnOwnedOneAndLeavesTheDeviceAlive)
     vkDestroyFence(host.device, fence, nullptr);
 }
 
+// The grid far field splats with two 64-bit atomics a tap where the device has
+// shaderBufferInt64Atomics, and with four 32-bit ones where it does not (a host's device that
+// did not enable them): the same fixed-point sums either way, so the same bake, bit for bit.
+TEST_F(Embed, GridSplatWithoutInt64AtomicsBakesTheSameBits)
+{
+    const PreparedMesh sphere = prepare_mesh(procedural::sphere(1.0f, 48, 64));
+    const Material material = burley_material({0.4, 0.2, 0.1}, glm::vec3(0.8f));
+    BakeSettings settings = BakeSettings::preset(Quality::Default);
+    settings.method = TmMethod::Grid;
+    std::vector<float> ao(sphere.vertex_count());
+    for (size_t i = 0; i < ao.size(); ++i) ao[i] = 0.5f + 0.4f * std::sin(0.37f * float(i));
+    BakeResult packed;
+    {
+        ContextOptions o;
+        o.validation = true;
+        Context context(o);
+        if (!context.device_info().int64_atomics)
+            GTEST_SKIP() << context.device_info().name << " has no 64-bit buffer atomics";
+        packed = Baker(context).bake_tm(sphere, ao, material, settings);
+        EXPECT_EQ(context.validation_messages(), 0u);
+    }
+    Host host(true);  // Jade's required features only: no shaderInt64, no 64-bit atomics
+    BakeResult four;
+    {
+        Context context(host.adopted());
+        EXPECT_FALSE(context.device_info().int64_atomics);
+        four = Baker(context).bake_tm(sphere, ao, material, settings);
+    }
+    ASSERT_EQ(packed.method_used, TmMethod::Grid);
+    ASSERT_EQ(four.method_used, TmMethod::Grid);
+    ASSERT_EQ(packed.tm.size(), four.tm.size());
+    ASSERT_GT(packed.tm_bytes, (1u << 20)) << "the profile must reach past the near field: grids in use";
+    for (size_t i = 0; i < packed.tm.size(); ++i) {
+        ASSERT_EQ(packed.tm[i], four.tm[i]) << "vertex " << i;
+        ASSERT_EQ(packed.scattering_normal[i], four.scattering_normal[i]) << "vertex " << i;
+        ASSERT_EQ(packed.normal_spread[i], four.normal_spread[i]) << "vertex " << i;
+    }
+}
+
 // Jade never waits for the host's device: what it lets go of while recorded work is pending
 // outlives that work. The host's command buffer waits on a timeline semaphore that only the host
 // signals, after the Jade calls, so a vkDeviceWaitIdle (or a wait for the queue) in any of them

@@ -23,6 +23,7 @@ static void print_device(const DeviceInfo& d)
                 d.max_workgroup_count[1], d.max_workgroup_count[2], d.max_workgroup_invocations);
     std::printf("subgroup size     %u\n", d.subgroup_size);
     std::printf("float64           %s\n", d.float64 ? "yes" : "no");
+    std::printf("int64 atomics     %s\n", d.int64_atomics ? "yes" : "no");
     std::printf("timestamp period  %.3g ns\n", d.timestamp_period_ns);
     std::printf("device memory     %.1f GiB\n", double(d.device_local_heap_bytes) / (1u << 30));
 }

@@ -51,7 +51,8 @@ struct ContextOptions {
 ///   VkPhysicalDeviceFeatures2 and/or VkPhysicalDeviceVulkan12Features/Vulkan13Features or the
 ///   matching single-feature structs): dynamicRendering, synchronization2, maintenance4,
 ///   scalarBlockLayout, hostQueryReset. Context::enable_required_features() sets them.
-/// Optional: shaderFloat64 (reported in DeviceInfo::float64).
+/// Optional: shaderFloat64 (reported in DeviceInfo::float64), and shaderInt64 with
+/// shaderBufferInt64Atomics (DeviceInfo::int64_atomics: the grid far field's splat takes half the atomics).
 ///
 /// Function loading: the extension entry points Jade needs (vkCmdPushDescriptorSetKHR,
 /// vkSetDebugUtilsObjectNameEXT) are loaded through `get_device_proc_addr` /
@@ -133,6 +134,7 @@ struct DeviceInfo {
     uint32_t max_workgroup_invocations = 0;
     uint32_t subgroup_size = 0;              ///< default subgroup size (8 on lavapipe)
     bool float64 = false;                    ///< shaderFloat64
+    bool int64_atomics = false;              ///< shaderInt64 and shaderBufferInt64Atomics, both enabled
     double timestamp_period_ns = 0;          ///< nanoseconds per timestamp tick
     uint64_t device_local_heap_bytes = 0;    ///< size of the largest device-local heap
     std::string api_version_string() const;  ///< "1.3.238"

@@ -8,7 +8,7 @@
 
 namespace jade {
 
-// A grid cell: four floats (or fixed-point integers), the fields of grid_splat.comp.
+// A grid cell: four floats (or fixed-point integers), the fields of grid_splat_body.glsl.
 constexpr uint32_t kCellBytes = 4 * bake::kGridFields;
 
 void Baker::Impl::prepare_grid(MeshState& m, const bake::GridPlan& plan)
@@ -34,7 +34,7 @@ void Baker::Impl::prepare_grid(MeshState& m, const bake::GridPlan& plan)
     for (uint32_t g = 0; g < m.grid_splat_levels; ++g)
         splat_cells += uint64_t(plan.levels[g].dims.x) * plan.levels[g].dims.y * plan.levels[g].dims.z;
     // The fixed-point splats, then each grid's sources (restricted) and in place its blurred
-    // values: the four fields of a cell in one texel (grid_splat.comp).
+    // values: the four fields of a cell in one texel (grid_splat_body.glsl).
     m.grid_splat =
         gpu::Buffer(ctx, splat_cells * kCellBytes, kTexelUsage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, "t_m grid splats");
     m.grid_splat_texels =
@@ -74,15 +74,22 @@ void Baker::Impl::record_grid(VkCommandBuffer cmd, MeshState& m, gpu::GpuTimer* 
     auto mark = [&](const char* stage) {
         if (timer) timer->mark(cmd, stage);
     };
-    const auto& splat = kernel(
-        grid_splat, {"grid_splat", shaders::grid_splat_comp(), storage_bindings(7), sizeof(GridSplatPush), 64, {}});
+    // Two 64-bit atomics a tap where the device has them, else four of 32 bits (the same sums).
+    const bool int64_splat = ctx.info().int64_atomics;
+    const auto& splat = kernel(grid_splat, {"grid_splat",
+                                            int64_splat ? shaders::grid_splat_int64_comp() : shaders::grid_splat_comp(),
+                                            storage_bindings(7),
+                                            sizeof(GridSplatPush),
+                                            64,
+                                            {}});
+    const uint32_t splat_format = int64_splat ? 2u : 1u;  // FIXED in grid_axis.comp
     auto axis_kernel = [&](uint32_t half_width, uint32_t step, bool fixed) -> const gpu::Kernel& {
         return kernel(grid_axis[fixed][step - 1][half_width], {"grid_axis",
                                                                shaders::grid_axis_comp(),
                                                                {kTexels, kTexels, kStorage, kStorage},
                                                                sizeof(bake::GridAxisPush),
                                                                kAxisGroup,
-                                                               {half_width, step, fixed ? 1u : 0u}});
+                                                               {half_width, step, fixed ? splat_format : 0u}});
     };
     const auto& gather =
         kernel(grid_gather,

@@ -48,6 +48,7 @@ namespace {
 struct RequiredFeatures {
     bool dynamic_rendering = false, synchronization2 = false, maintenance4 = false;
     bool scalar_block_layout = false, host_query_reset = false, float64 = false;
+    bool int64 = false, buffer_int64_atomics = false;  // optional, both needed
 
     void read(const void* chain);
 };
@@ -70,6 +71,8 @@ constexpr PromotedFeature kPromotedFeatures[] = {
      offsetof(VkPhysicalDeviceScalarBlockLayoutFeatures, scalarBlockLayout)},
     {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_HOST_QUERY_RESET_FEATURES, &RequiredFeatures::host_query_reset,
      offsetof(VkPhysicalDeviceHostQueryResetFeatures, hostQueryReset)},
+    {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_INT64_FEATURES, &RequiredFeatures::buffer_int64_atomics,
+     offsetof(VkPhysicalDeviceShaderAtomicInt64Features, shaderBufferInt64Atomics)},
 };
 
 void RequiredFeatures::read(const void* chain)
@@ -78,11 +81,13 @@ void RequiredFeatures::read(const void* chain)
         switch (s->sType) {
         case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2:
             float64 |= bool(reinterpret_cast<const VkPhysicalDeviceFeatures2*>(s)->features.shaderFloat64);
+            int64 |= bool(reinterpret_cast<const VkPhysicalDeviceFeatures2*>(s)->features.shaderInt64);
             break;
         case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES: {
             auto* f = reinterpret_cast<const VkPhysicalDeviceVulkan12Features*>(s);
             scalar_block_layout |= bool(f->scalarBlockLayout);
             host_query_reset |= bool(f->hostQueryReset);
+            buffer_int64_atomics |= bool(f->shaderBufferInt64Atomics);
             break;
         }
         case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES: {
@@ -156,6 +161,7 @@ void Context::check_adopted(const AdoptedVulkan& host)
     if (!f.scalar_block_layout) missing.push_back("feature scalarBlockLayout");
     if (!f.host_query_reset) missing.push_back("feature hostQueryReset");
     float64_ = f.float64;
+    int64_atomics_ = f.int64 && f.buffer_int64_atomics;
     if (missing.empty()) return;
     std::string msg = "adopted Vulkan device " + std::string(props.deviceName) + " lacks what Jade needs:";
     for (auto& m : missing) msg += "\n  " + m;

@@ -313,6 +313,10 @@ void Context::create_device()
     VkPhysicalDeviceFeatures2 supported{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
     vkGetPhysicalDeviceFeatures2(physical_, &supported);
     float64_ = supported.features.shaderFloat64;
+    VkPhysicalDeviceVulkan12Features supported12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    VkPhysicalDeviceFeatures2 supported_chain{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &supported12};
+    vkGetPhysicalDeviceFeatures2(physical_, &supported_chain);
+    int64_atomics_ = supported.features.shaderInt64 && supported12.shaderBufferInt64Atomics;
 
     VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     f13.dynamicRendering = VK_TRUE;
@@ -321,8 +325,10 @@ void Context::create_device()
     VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
     f12.scalarBlockLayout = VK_TRUE;
     f12.hostQueryReset = VK_TRUE;
+    f12.shaderBufferInt64Atomics = int64_atomics_;  // optional: the grid splat's packed atomics
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
     features.features.shaderFloat64 = supported.features.shaderFloat64;
+    features.features.shaderInt64 = int64_atomics_;
     features.features.sampleRateShading = supported.features.sampleRateShading;
 
     float priority = 1.0f;
@@ -376,6 +382,7 @@ void Context::fill_info()
     info_.max_workgroup_invocations = l.maxComputeWorkGroupInvocations;
     info_.subgroup_size = subgroup.subgroupSize;
     info_.float64 = float64_;
+    info_.int64_atomics = int64_atomics_;
     info_.timestamp_period_ns = l.timestampPeriod;
     for (uint32_t i = 0; i < memory_.memoryHeapCount; ++i)
         if (memory_.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)

@@ -101,6 +101,7 @@ private:
     VkPhysicalDeviceProperties properties_{};
     VkPhysicalDeviceMemoryProperties memory_{};
     bool float64_ = false;
+    bool int64_atomics_ = false;  // shaderInt64 and shaderBufferInt64Atomics, enabled
     VkDeviceSize max_memory_allocation_size_ = 0;
     uint32_t queue_family_ = 0;
     VkDevice device_ = VK_NULL_HANDLE;
