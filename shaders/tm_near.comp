@@ -12,8 +12,7 @@
 // point pairs R − S, the target itself its self disk minus S(0).
 // The lists are in slot order and hold source slots; a dispatch covers slots [first_slot,
 // first_slot + slot_count) and sees only their window of the list entries, from entry
-// index_base: lists of large meshes outgrow one storage-buffer binding (maxStorageBufferRange,
-// 128 MiB on lavapipe). Sources are read as texels (gather_sources.comp; tm_common.glsl).
+// index_base: lists of large meshes outgrow one texel view (maxTexelBufferElements). Sources are read as texels (gather_sources.comp; tm_common.glsl).
 #include "common.glsl"
 #include "tm_common.glsl"
 
@@ -24,7 +23,7 @@ layout(constant_id = 3) const uint GRID = 0u;
 
 layout(binding = 1) uniform usamplerBuffer sources;  // two texels per source slot
 layout(binding = 2, scalar) readonly buffer NearOffsets { uint near_offsets[]; };  // per slot, + 1
-layout(binding = 3, scalar) readonly buffer NearIndices { uint near_indices[]; };  // source slots
+layout(binding = 3) uniform usamplerBuffer near_indices;  // source slots, R32UI texels
 layout(binding = 4, scalar) readonly buffer NearDisks { uint near_disks[]; };      // per slot: disk candidates first
 layout(binding = 5, scalar) readonly buffer Order { uint order[]; };               // slot → bake vertex
 // GRID: S(r), then (R − S)(r)·r, per channel at r = k / table_scale (bake/grid_field.hpp).
@@ -65,7 +64,7 @@ void main()
     // sides of a branch, so the disk integral stays out of the second, longer loop.
     uint split = near_offsets[k] + near_disks[k];
     for (uint e = near_offsets[k]; e < split; ++e) {
-        uint j = near_indices[e - pc.index_base];
+        uint j = texelFetch(near_indices, int(e - pc.index_base)).x;
         vec4 s = source_texel(j, 0u), extra = source_texel(j, 1u);
         float area = extra.y;
         float rho = sqrt(area / JADE_PI);
@@ -100,7 +99,7 @@ void main()
     }
     if (GRID == 1u) {
         for (uint e = split; e < near_offsets[k + 1u]; ++e) {
-            uint j = near_indices[e - pc.index_base];
+            uint j = texelFetch(near_indices, int(e - pc.index_base)).x;
             vec4 s = source_texel(j, 0u);
             vec3 to_source = s.xyz - x;
             float r2 = dot(to_source, to_source);

@@ -1,6 +1,8 @@
 // Device limits on buffer sizes: a buffer that cannot exist on the device is refused with a
 // jade::Error naming it and the limit, before any Vulkan call (gpu::Buffer's constructor runs
 // check_buffer_size first). The rule is checked with made-up limits, then against lavapipe's.
+// Lists longer than one texel view are read through several (the near field's windows).
+#include "../engine/src/bake/near_field.hpp"
 #include "../engine/src/gpu/buffer_limits.hpp"
 
 #include "gpu_fixture.hpp"
@@ -79,6 +81,41 @@ TEST_F(buffer_limits_device, LimitsComeFromTheDevice)
         EXPECT_EQ(refusal(l, l.max_storage_range, kStorage), "");
         EXPECT_NE(refusal(l, l.max_storage_range + 1, kStorage).find("maxStorageBufferRange"), std::string::npos);
         EXPECT_NE(refusal(l, l.heap_bytes + 1, kStorage, StorageBinding::Windows), "");
+    }
+}
+
+// The near lists' windows (bake::plan_near_windows): every row in exactly one window, in order;
+// each window aligned, within the view size, and holding its rows' entries; the fewest windows.
+TEST(NearWindows, CoverEveryRowOnceAlignedAndWithinTheViewSize)
+{
+    std::vector<uint32_t> offsets{0};
+    for (uint32_t k = 0; k < 1000; ++k) offsets.push_back(offsets.back() + 1 + (k * 7919u) % 61u);
+    const uint64_t align = 16, max_bytes = 1024;
+    const auto windows = jade::bake::plan_near_windows(offsets, align, max_bytes);
+    ASSERT_GT(windows.size(), 20u) << "the lists must need many windows here";
+    uint32_t next_row = 0;
+    for (const auto& w : windows) {
+        EXPECT_EQ(w.first_row, next_row);
+        EXPECT_GT(w.row_count, 0u);
+        EXPECT_EQ(uint64_t(w.first_entry) * 4 % align, 0u);
+        EXPECT_LE(w.first_entry, offsets[w.first_row]);
+        EXPECT_GE(uint64_t(w.first_entry) * 4 + w.bytes, uint64_t(offsets[w.first_row + w.row_count]) * 4);
+        EXPECT_LE(w.bytes, max_bytes);
+        // The fewest windows: one more row would not have fitted.
+        if (w.first_row + w.row_count < offsets.size() - 1)
+            EXPECT_GT(uint64_t(offsets[w.first_row + w.row_count + 1]) * 4 - uint64_t(w.first_entry) * 4,
+                      max_bytes - align);
+        next_row = w.first_row + w.row_count;
+    }
+    EXPECT_EQ(next_row, offsets.size() - 1);
+    // Lists that fit one view take one window.
+    EXPECT_EQ(jade::bake::plan_near_windows(offsets, align, uint64_t(offsets.back()) * 4 + 2 * align).size(), 1u);
+    // A row longer than a view is an error that names it.
+    try {
+        jade::bake::plan_near_windows(std::vector<uint32_t>{0, 10, 1000, 1010}, align, 256);
+        ADD_FAILURE() << "expected a jade::Error";
+    } catch (const jade::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("vertex slot 1"), std::string::npos) << e.what();
     }
 }
 

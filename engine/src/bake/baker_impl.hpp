@@ -245,7 +245,7 @@ struct Baker::Impl {
         constants.push_back(grid ? 1u : 0u);
         return kernel(tm_near[grid][v.grey][v.kind], {"tm_near",
                                                       shaders::tm_near_comp(),
-                                                      {kStorage, kTexels, kStorage, kStorage, kStorage, kStorage,
+                                                      {kStorage, kTexels, kStorage, kTexels, kStorage, kStorage,
                                                        kTexels, kStorage, kStorage, kStorage, kStorage},
                                                       sizeof(NearPush),
                                                       64,
@@ -315,10 +315,10 @@ struct Baker::Impl {
         uint32_t source_base = 0;
         std::vector<uint32_t> level_offsets;
         struct NearWindow {
-            uint32_t first_slot, slot_count, index_base;
-            VkDeviceSize bytes;
+            bake::NearWindow span;   // rows = tree slots
+            gpu::TexelView indices;  // near_indices from entry span.first_entry on
         };
-        std::vector<NearWindow> near_windows;  // near-pass dispatches, each within one binding's range
+        std::vector<NearWindow> near_windows;  // near-pass dispatches, each within one texel view
         // The grid far field: its plan's sizes, cells (fixed-point splats, blurred values; four
         // fields per cell, grid_splat.comp: the weight, then times n.x, n.y, n.z), two blur
         // buffers for the largest grid, the levels and S(r) table. smooth_table is a placeholder for the
@@ -354,10 +354,6 @@ struct Baker::Impl {
                         std::to_string(ctx.limits().maxStorageBufferRange) +
                         "): the mesh has too many vertices for this device");
     }
-
-    // Splits the slots into runs whose near-list entries fit one storage-buffer binding
-    // (maxStorageBufferRange), each window starting at an allowed binding offset (tm_passes.cpp).
-    void plan_near_windows(MeshState& m, const std::vector<uint32_t>& offsets) const;
 
     void upload_mesh(MeshState& m, const PreparedMesh& mesh, VkBufferUsageFlags extra_usage = 0)
     {

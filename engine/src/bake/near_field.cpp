@@ -1,11 +1,14 @@
 #include "bake/near_field.hpp"
 
+#include <jade/error.hpp>
+
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
 #include <thread>
 
 namespace jade::bake {
@@ -89,6 +92,32 @@ NearLists build_near_lists(const PreparedMesh& mesh, const Bvh& tree, float marg
         lists.indices.insert(lists.indices.end(), points[i].begin(), points[i].end());
     }
     return lists;
+}
+
+std::vector<NearWindow> plan_near_windows(std::span<const uint32_t> offsets, uint64_t align, uint64_t max_bytes)
+{
+    max_bytes = (max_bytes / align) * align - align;  // room for the aligned start
+    const uint32_t rows = uint32_t(offsets.size() - 1);
+    std::vector<NearWindow> windows;
+    for (uint32_t k0 = 0; k0 < rows;) {
+        const uint64_t start = (uint64_t(offsets[k0]) * 4 / align) * align;
+        if (uint64_t(offsets[k0 + 1]) * 4 - start > max_bytes)
+            throw Error("t_m: the near-field list of vertex slot " + std::to_string(k0) + " (" +
+                        std::to_string(offsets[k0 + 1] - offsets[k0]) +
+                        " entries) exceeds the device's texel-buffer range");
+        // The longest run from k0 that fits (binary search over the monotone offsets).
+        uint32_t lo = k0 + 1, hi = rows;
+        while (lo < hi) {
+            const uint32_t mid = lo + (hi - lo + 1) / 2;
+            if (uint64_t(offsets[mid]) * 4 - start <= max_bytes)
+                lo = mid;
+            else
+                hi = mid - 1;
+        }
+        windows.push_back({k0, lo - k0, uint32_t(start / 4), std::max<uint64_t>(uint64_t(offsets[lo]) * 4 - start, 4)});
+        k0 = lo;
+    }
+    return windows;
 }
 
 NearLists reorder_rows(const NearLists& lists, std::span<const uint32_t> order)

@@ -41,4 +41,16 @@ uint64_t sample_near_entries(const PreparedMesh& mesh, const Bvh& point_tree, fl
 /// The same lists with rows in the order `order` (row k = the list of vertex order[k]).
 NearLists reorder_rows(const NearLists& lists, std::span<const uint32_t> order);
 
+/// Rows [first_row, first_row + row_count) of the lists, whose entries a view of `bytes` from
+/// entry `first_entry` holds (it may start before the first row's entries, to be aligned).
+struct NearWindow {
+    uint32_t first_row = 0, row_count = 0, first_entry = 0;
+    uint64_t bytes = 0;
+};
+
+/// Splits the rows into windows of at most `max_bytes` of 4-byte entries, each starting at a
+/// multiple of `align` bytes (a power of two ≥ 4), the fewest of them (each as long as it can be).
+/// Throws jade::Error when one row alone does not fit.
+std::vector<NearWindow> plan_near_windows(std::span<const uint32_t> offsets, uint64_t align, uint64_t max_bytes);
+
 }  // namespace jade::bake

@@ -5,36 +5,6 @@
 
 namespace jade {
 
-// Splits the slots into runs whose near-list entries fit one storage-buffer binding
-// (maxStorageBufferRange), each window starting at an allowed binding offset.
-void Baker::Impl::plan_near_windows(MeshState& m, const std::vector<uint32_t>& offsets) const
-{
-    const auto& lim = ctx.limits();
-    const VkDeviceSize align = std::max<VkDeviceSize>(lim.minStorageBufferOffsetAlignment, 4);
-    const VkDeviceSize max_bytes = (VkDeviceSize(lim.maxStorageBufferRange) / align) * align - align;
-    const uint32_t slots = uint32_t(offsets.size() - 1);
-    m.near_windows.clear();
-    for (uint32_t k0 = 0; k0 < slots;) {
-        const VkDeviceSize start = (VkDeviceSize(offsets[k0]) * 4 / align) * align;
-        uint32_t k1 = k0 + 1;
-        if (VkDeviceSize(offsets[k1]) * 4 - start > max_bytes)
-            throw Error("t_m: the near-field list of one vertex exceeds the device's storage-buffer range");
-        // The longest run from k0 that fits (binary search over the monotone offsets).
-        uint32_t lo = k1, hi = slots;
-        while (lo < hi) {
-            const uint32_t mid = lo + (hi - lo + 1) / 2;
-            if (VkDeviceSize(offsets[mid]) * 4 - start <= max_bytes)
-                lo = mid;
-            else
-                hi = mid - 1;
-        }
-        k1 = lo;
-        const VkDeviceSize bytes = std::max<VkDeviceSize>(VkDeviceSize(offsets[k1]) * 4 - start, 4);
-        m.near_windows.push_back({k0, k1 - k0, uint32_t(start / 4), bytes});
-        k0 = k1;
-    }
-}
-
 void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Material& material, const BakeSettings& s,
                              float near_margin)
 {
@@ -103,14 +73,22 @@ void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Mater
         for (uint32_t k = 0; k < n; ++k) slot_of[tree.order[k]] = k;
         for (uint32_t& j : near.indices) j = slot_of[j];
     }
-    plan_near_windows(m, near.offsets);
     m.near_offsets = gpu::Buffer::from(ctx, near.offsets, kStorageUsage, "near-field offsets");
     m.near_disks = gpu::Buffer::from(ctx, near.disk_counts, kStorageUsage, "near-field disk candidates");
     near.indices.resize(near.indices.size() + 64, 0);  // room for a window's aligned start and minimum size
-    // Bound in windows (plan_near_windows), so it may outgrow one binding.
-    m.near_indices = gpu::Buffer(ctx, near.indices.size() * 4, kStorageUsage, "near-field sources", false,
+    // Read as texels (one SIMD gather on lavapipe, not a loop of bounds-checked loads), through
+    // one view per window of slots, so the lists may outgrow one view (maxTexelBufferElements).
+    m.near_indices = gpu::Buffer(ctx, near.indices.size() * 4, kTexelUsage, "near-field sources", false,
                                  gpu::StorageBinding::Windows);
     m.near_indices.upload(near.indices.data(), near.indices.size() * 4);
+    const auto& lim = ctx.limits();
+    m.near_windows.clear();
+    for (const bake::NearWindow& w :
+         bake::plan_near_windows(near.offsets, std::max<VkDeviceSize>(lim.minTexelBufferOffsetAlignment, 4),
+                                 VkDeviceSize(lim.maxTexelBufferElements) * 4))
+        m.near_windows.push_back(
+            {w, gpu::TexelView(ctx, m.near_indices, VK_FORMAT_R32_UINT, 4, "near-field sources (texels)",
+                               VkDeviceSize(w.first_entry) * 4, w.bytes)});
     if (m.exact || m.grid) {
         m.point_order = m.exact ? gpu::Buffer::from(ctx, identity, kStorageUsage, "identity order")
                                 : gpu::Buffer::from(ctx, tree.order, kStorageUsage, "point tree order");
@@ -146,16 +124,14 @@ void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Mater
 
 void Baker::Impl::record_near(VkCommandBuffer cmd, MeshState& m, uint32_t slot_begin, uint32_t slot_end)
 {
-    for (const auto& w : m.near_windows) {
-        const uint32_t first = std::max(w.first_slot, slot_begin),
-                       end = std::min(w.first_slot + w.slot_count, slot_end);
+    for (const auto& [w, indices] : m.near_windows) {
+        const uint32_t first = std::max(w.first_row, slot_begin), end = std::min(w.first_row + w.row_count, slot_end);
         if (first >= end) continue;
         near_kernel(m.variant, m.grid)
             .dispatch(cmd, end - first,
-                      NearPush{first, end - first, w.index_base, m.source_base, m.grid_cut2, m.grid_table_scale},
-                      {m.profiles, m.source_texels, m.near_offsets,
-                       gpu::Binding(m.near_indices.handle(), VkDeviceSize(w.index_base) * 4, w.bytes), m.near_disks,
-                       m.point_order, m.smooth_table_texels, m.partial_sum, m.partial_comp, m.tm, m.normal_sum});
+                      NearPush{first, end - first, w.first_entry, m.source_base, m.grid_cut2, m.grid_table_scale},
+                      {m.profiles, m.source_texels, m.near_offsets, indices, m.near_disks, m.point_order,
+                       m.smooth_table_texels, m.partial_sum, m.partial_comp, m.tm, m.normal_sum});
     }
     gpu::compute_barrier(cmd);
 }

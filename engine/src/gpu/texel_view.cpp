@@ -8,8 +8,14 @@
 namespace jade::gpu {
 
 TexelView::TexelView(Context& ctx, const Buffer& buffer, VkFormat format, uint32_t texel_bytes, const char* name)
+    : TexelView(ctx, buffer, format, texel_bytes, name, 0, buffer.size())
 {
-    const VkDeviceSize texels = buffer.size() / texel_bytes;
+}
+
+TexelView::TexelView(Context& ctx, const Buffer& buffer, VkFormat format, uint32_t texel_bytes, const char* name,
+                     VkDeviceSize offset, VkDeviceSize bytes)
+{
+    const VkDeviceSize texels = bytes / texel_bytes;
     if (texels > ctx.limits().maxTexelBufferElements)
         throw Error(std::string(name) + ": " + std::to_string(texels) +
                     " texels exceed the device's maxTexelBufferElements (" +
@@ -17,7 +23,7 @@ TexelView::TexelView(Context& ctx, const Buffer& buffer, VkFormat format, uint32
     VkBufferViewCreateInfo ci{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
     ci.buffer = buffer.handle();
     ci.format = format;
-    ci.offset = 0;
+    ci.offset = offset;
     ci.range = texels * texel_bytes;
     VkBufferView v;
     check(vkCreateBufferView(ctx.device(), &ci, nullptr, &v), (std::string("vkCreateBufferView ") + name).c_str());

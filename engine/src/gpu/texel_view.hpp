@@ -25,6 +25,9 @@ public:
     /// `format`, `texel_bytes` each. Throws jade::Error when the buffer holds more texels than
     /// the device's maxTexelBufferElements.
     TexelView(Context& ctx, const Buffer& buffer, VkFormat format, uint32_t texel_bytes, const char* name);
+    /// Views `bytes` of `buffer` from byte `offset` (a multiple of minTexelBufferOffsetAlignment).
+    TexelView(Context& ctx, const Buffer& buffer, VkFormat format, uint32_t texel_bytes, const char* name,
+              VkDeviceSize offset, VkDeviceSize bytes);
 
     VkBufferView handle() const { return view_; }
     explicit operator bool() const { return bool(view_); }
