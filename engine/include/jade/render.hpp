@@ -284,8 +284,11 @@ public:
     /// is optional: VK_NULL_HANDLE keeps the thickness set_mesh was given. `scattering_normal`
     /// (the per-channel normal sums, three float3 per bake vertex:
     /// DynamicBake::buffers().scattering_normal) gives the scattering normal and the normal
-    /// spread as BakeResult defines them; VK_NULL_HANDLE: the new vertex normals, spread 0. Throws jade::Error without a mesh or
-    /// with a null positions, normals or t_m buffer.
+    /// spread as BakeResult defines them; VK_NULL_HANDLE: the new vertex normals, spread 0. The
+    /// light-depth tiles of the transmission term stay placed about set_mesh's bounds, with room
+    /// for 1.1 × its bounding sphere: a part deformed beyond that takes its local thickness as
+    /// its light path (it is not shadowed by the rest of the body). Throws jade::Error without a
+    /// mesh or with a null positions, normals or t_m buffer.
     void record_vertex_update(VkCommandBuffer cmd, VkBuffer positions, VkBuffer normals, VkBuffer tm,
                               VkBuffer thickness = VK_NULL_HANDLE, VkBuffer scattering_normal = VK_NULL_HANDLE);
     /// The same in a submission of its own (waits).
