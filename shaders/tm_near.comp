@@ -98,7 +98,8 @@ void main()
         add_weighted(normal, pair, decode_direction(extra.w));
     }
     if (GRID == 1u) {
-        for (uint e = split; e < near_offsets[k + 1u]; ++e) {
+        uint end = near_offsets[k + 1u];
+        for (uint e = split; e < end; ++e) {
             uint j = texelFetch(near_indices, int(e - pc.index_base)).x;
             vec4 s = source_texel(j, 0u);
             vec3 to_source = s.xyz - x;
