@@ -29,7 +29,7 @@ const int INPUTS = STEP * (RUN - 1) + 2 * HALF_WIDTH + 1;
 #include "bake_interface.h"  // structs GridAxisPush, GridAxisDispatch, shared with engine/src/bake
 layout(push_constant, scalar) uniform Push { GridAxisPush pc; };
 
-// Four fields per cell, one RGBA texel (grid_splat.comp): one fetch serves them all, and
+// Four fields per cell, one RGBA texel (grid_splat_body.glsl): one fetch serves them all, and
 // lavapipe pays per fetch, not per multiply-add.
 layout(binding = 0) uniform usamplerBuffer splat;  // texel fetches: lavapipe's storage loads are per-lane loops
 layout(binding = 1) uniform samplerBuffer source;

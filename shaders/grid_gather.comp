@@ -15,7 +15,7 @@ layout(push_constant, scalar) uniform Push { GridGatherPush pc; };
 layout(binding = 1, scalar) readonly buffer Levels { GridLevel levels[]; };
 layout(binding = 2, scalar) readonly buffer Positions { vec3 positions[]; };
 layout(binding = 3, scalar) readonly buffer Order { uint order[]; };  // slot → bake vertex
-// Per cell: (1 − A_o)·area, and times n.x, n.y, n.z (grid_splat.comp), blurred.
+// Per cell: (1 − A_o)·area, and times n.x, n.y, n.z (grid_splat_body.glsl), blurred.
 layout(binding = 4) uniform samplerBuffer blurred;
 
 layout(binding = 9, scalar) readonly buffer Bounds { uvec3 bounds_lo, bounds_hi; };  // grid_bounds.comp

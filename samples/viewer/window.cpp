@@ -175,15 +175,8 @@ void VulkanHost::pick_physical_device()
 void VulkanHost::create_device()
 {
     setup_.extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
-    // Optional: 64-bit buffer atomics halve the grid splat's atomics in every re-bake of a
-    // deforming mesh (docs/embedding.md).
-    VkPhysicalDeviceVulkan12Features supported12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
-    VkPhysicalDeviceFeatures2 supported{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &supported12};
-    vkGetPhysicalDeviceFeatures2(physical_, &supported);
-    if (supported.features.shaderInt64 && supported12.shaderBufferInt64Atomics) {
-        setup_.features.features.shaderInt64 = VK_TRUE;
-        setup_.f12.shaderBufferInt64Atomics = VK_TRUE;
-    }
+    // 64-bit buffer atomics halve the grid splat's atomics in every re-bake of a deforming mesh.
+    jade::Context::enable_optional_features(physical_, setup_.features, setup_.f12);
     VkDevice device = setup_.create(physical_, family_);
     device_ = Owned<VkDevice>(device, [](VkDevice d) { vkDestroyDevice(d, nullptr); });
     vkGetDeviceQueue(device, family_, 0, &queue_);

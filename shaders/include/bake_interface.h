@@ -100,7 +100,7 @@ struct NearPush {
     float table_scale;  // GRID: table entries per unit of distance
 };
 
-// grid_splat.comp: the sources into the finest grids.
+// grid_splat_body.glsl: the sources into the finest grids.
 struct GridSplatPush {
     uint vertex_count;
     uint level_count;

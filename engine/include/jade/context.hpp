@@ -169,6 +169,10 @@ public:
     static std::vector<const char*> required_device_extensions();
     /// Sets the features Jade needs in the host's feature structs (leaves the others alone).
     static void enable_required_features(VkPhysicalDeviceVulkan12Features& f12, VkPhysicalDeviceVulkan13Features& f13);
+    /// Sets the optional features Jade uses (shaderFloat64; shaderInt64 with
+    /// shaderBufferInt64Atomics) in the host's feature structs where `physical` supports them.
+    static void enable_optional_features(VkPhysicalDevice physical, VkPhysicalDeviceFeatures2& features,
+                                         VkPhysicalDeviceVulkan12Features& f12);
 
 private:
     friend gpu::Context& gpu_of(Context& context);  // the engine's GPU layer, for engine sources only

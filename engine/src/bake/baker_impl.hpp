@@ -320,7 +320,7 @@ struct Baker::Impl {
         };
         std::vector<NearWindow> near_windows;  // near-pass dispatches, each within one texel view
         // The grid far field: its plan's sizes, cells (fixed-point splats, blurred values; four
-        // fields per cell, grid_splat.comp: the weight, then times n.x, n.y, n.z), two blur
+        // fields per cell, grid_splat_body.glsl: the weight, then times n.x, n.y, n.z), two blur
         // buffers for the largest grid, the levels and S(r) table. smooth_table is a placeholder for the
         // other methods (the near pass always binds one).
         float grid_cut2 = 0, grid_table_scale = 0, grid_cube_side = 0;

@@ -22,7 +22,7 @@ constexpr double kNegligibleTail = 1e-7;
 // entries on an even mesh (44 at resolution 1.5, 79 at 2), the disk pairs among them.
 constexpr double kCutSpacingsPerResolution = 2.5;
 // A deforming mesh may gather up to this many times a cell's rest mass before the fixed-point
-// sums could wrap (grid_splat.comp).
+// sums could wrap (grid_splat_body.glsl).
 constexpr double kSplatHeadroom = 2.0;
 
 // Gaussian g normalised as a surface kernel, times 2πr² (t_m per unit of ln r).
@@ -176,7 +176,7 @@ uint64_t GridPlan::near_entries(size_t vertices, double margin) const
 
 uint64_t GridPlan::bytes() const
 {
-    // Four fields per cell (the weight, and times each normal coordinate: grid_splat.comp):
+    // Four fields per cell (the weight, and times each normal coordinate: grid_splat_body.glsl):
     // fixed-point splats of the two finest grids, every grid's cells, two buffers for the
     // separable passes of the largest.
     uint64_t splat = 0;

@@ -7,7 +7,7 @@
 // share of t_m per unit of ln r, so R_short = R − S is negligible beyond r_cut. The near pass
 // (tm_near.comp) sums R_short exactly over every source within r_cut (disk pairs over their
 // disk), the grid passes sum S over every source:
-//   splat  (grid_splat.comp):  sources (1 − A_o)·area into the one or two finest grids with cubic
+//   splat  (grid_splat_body.glsl):  sources (1 − A_o)·area into the one or two finest grids with cubic
 //                              B-spline weights, fixed-point integer atomics (deterministic);
 //   restrict (grid_axis.comp): each coarser grid from the one of half its spacing, exactly
 //                              (the B-spline's two-scale relation);
@@ -45,7 +45,7 @@ constexpr double kGridMaxCoarsening = 1.5;  // ... by at most this factor (the n
 constexpr double kTwoLevelsPerOctaveFrom = 3.0;
 uint32_t levels_per_octave(double resolution);
 // Fields splatted and blurred per grid: (1 − A_o)·area, and times n.x, n.y, n.z for the
-// scattering normal (shaders/grid_splat.comp).
+// scattering normal (shaders/include/grid_splat_body.glsl).
 constexpr uint32_t kGridFields = 4;
 constexpr double kDeformingCube = 1.1;  // a deforming mesh's grids: cubes of this × the rest pose's bounding sphere
 

@@ -184,6 +184,19 @@ void Context::enable_required_features(VkPhysicalDeviceVulkan12Features& f12, Vk
     f13.maintenance4 = VK_TRUE;  // group size from a specialisation constant (LocalSizeId)
 }
 
+void Context::enable_optional_features(VkPhysicalDevice physical, VkPhysicalDeviceFeatures2& features,
+                                       VkPhysicalDeviceVulkan12Features& f12)
+{
+    VkPhysicalDeviceVulkan12Features supported12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    VkPhysicalDeviceFeatures2 supported{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &supported12};
+    vkGetPhysicalDeviceFeatures2(physical, &supported);
+    if (supported.features.shaderFloat64) features.features.shaderFloat64 = VK_TRUE;
+    if (supported.features.shaderInt64 && supported12.shaderBufferInt64Atomics) {  // the grid splat's packed atomics
+        features.features.shaderInt64 = VK_TRUE;
+        f12.shaderBufferInt64Atomics = VK_TRUE;
+    }
+}
+
 HostDeviceSetup::HostDeviceSetup(bool with_jade_requirements)
 {
     if (!with_jade_requirements) return;

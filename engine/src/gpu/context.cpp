@@ -312,24 +312,15 @@ void Context::create_device()
 {
     VkPhysicalDeviceFeatures2 supported{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
     vkGetPhysicalDeviceFeatures2(physical_, &supported);
-    float64_ = supported.features.shaderFloat64;
-    VkPhysicalDeviceVulkan12Features supported12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
-    VkPhysicalDeviceFeatures2 supported_chain{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &supported12};
-    vkGetPhysicalDeviceFeatures2(physical_, &supported_chain);
-    int64_atomics_ = supported.features.shaderInt64 && supported12.shaderBufferInt64Atomics;
 
     VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-    f13.dynamicRendering = VK_TRUE;
-    f13.synchronization2 = VK_TRUE;
-    f13.maintenance4 = VK_TRUE;  // group size from a specialisation constant (LocalSizeId)
     VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
-    f12.scalarBlockLayout = VK_TRUE;
-    f12.hostQueryReset = VK_TRUE;
-    f12.shaderBufferInt64Atomics = int64_atomics_;  // optional: the grid splat's packed atomics
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
-    features.features.shaderFloat64 = supported.features.shaderFloat64;
-    features.features.shaderInt64 = int64_atomics_;
+    jade::Context::enable_required_features(f12, f13);
+    jade::Context::enable_optional_features(physical_, features, f12);
     features.features.sampleRateShading = supported.features.sampleRateShading;
+    float64_ = features.features.shaderFloat64;
+    int64_atomics_ = features.features.shaderInt64 && f12.shaderBufferInt64Atomics;
 
     float priority = 1.0f;
     VkDeviceQueueCreateInfo queue{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
