@@ -46,10 +46,10 @@ void back_lit_scenes_are_far_closer_than_lambert_and_curvature()
     }
     EXPECT_EQ(back, 13);
     EXPECT_EQ(closer_than_curvature, 13);
-    EXPECT_GE(thirty_percent, 12) << "measured: all but dragon_marble_back (0.76 of Lambert)";
+    EXPECT_EQ(thirty_percent, 13) << "measured: dragon_marble_back, the nearest, at 0.67 of Lambert";
     EXPECT_GE(helped, 12) << "transmission and the boundary transmittance make no back-lit scene worse than tm but "
-                             "dragon_marble_back (0.383 against 0.339)";
-    EXPECT_LE(sum_ours, 0.6 * sum_lambert) << "mean masked FLIP, back light: measured 0.385 against Lambert's 0.73";
+                             "dragon_marble_back (0.351 against 0.348)";
+    EXPECT_LE(sum_ours, 0.6 * sum_lambert) << "mean masked FLIP, back light: measured 0.382 against Lambert's 0.735";
 }
 
 void front_and_side_lit_scenes_are_closer_than_lambert_and_curvature_everywhere()
