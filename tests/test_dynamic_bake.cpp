@@ -141,7 +141,8 @@ TEST_F(GpuTest, DynamicBakeRejectsInputsOfTheWrongSize)
 }
 
 // Amortised re-bakes (jade::Amortisation) redo one AO ray slice and one t_m vertex range per
-// frame. Each slice computes exactly what the full re-bake computes for it, so:
+// frame (here without retrace_changed, tested below). Each slice computes exactly what the full
+// re-bake computes for it, so:
 // - on a still mesh every amortised frame equals the full re-bake bit for bit;
 // - after the pose changes, AO is exact once every ray slice was re-traced (ao_slices frames),
 //   and t_m once every vertex range was re-evaluated after that (tm_slices more frames, minus
@@ -157,7 +158,7 @@ TEST_F(GpuTest, AmortisedDynamicBakeConvergesToTheFullReBake)
     Baker baker(context());
     DynamicBake full(baker, rest, material, settings);
     DynamicBake amortised(baker, rest, material, settings);
-    const Amortisation slices{4, 3};
+    const Amortisation slices{4, 3, false};
     amortised.set_amortisation(slices);
     EXPECT_EQ(amortised.amortisation().ao_slices, 4u);
 
@@ -184,6 +185,54 @@ TEST_F(GpuTest, AmortisedDynamicBakeConvergesToTheFullReBake)
         else
             EXPECT_EQ(tm_off, 0u);
     }
+}
+
+// Amortisation::retrace_changed: the vertices whose fresh AO slice changed get their other
+// slices traced in the same frame, so after the pose changes much of the lag is gone at once;
+// a still mesh lists no vertex and keeps the full re-bake's bits. What is left at frame 1 are
+// the vertices whose changed rays all lie in the slices not traced that frame (measured on this
+// jump of a tenth of a turn: AO RMS 0.024 against 0.040, 2,780 vertices off against 4,353).
+TEST_F(GpuTest, AmortisedAoRetracesTheVerticesWhoseSliceChanged)
+{
+    const TriangleMesh source = load_mesh(test::asset("ChineseDragon-10kv.off"));
+    const PreparedMesh rest = prepare_mesh(source);
+    const Material material = burley_material(glm::dvec3(0.05 * rest.diagonal), glm::vec3(0.8f));
+    BakeSettings settings = BakeSettings::preset(Quality::Default);
+    settings.ao.rays = 32;
+    Baker baker(context());
+    DynamicBake full(baker, rest, material, settings), plain(baker, rest, material, settings),
+        retraced(baker, rest, material, settings);
+    plain.set_amortisation({4, 1, false});
+    retraced.set_amortisation({4, 1, true});
+
+    const BakeResult still = full.bake(rest.positions, rest.normals, rest.areas);
+    for (int f = 0; f < 3; ++f) {
+        plain.bake(rest.positions, rest.normals, rest.areas);
+        ASSERT_EQ(retraced.bake(rest.positions, rest.normals, rest.areas).ao, still.ao) << "still mesh, frame " << f;
+    }
+
+    PreparedMesh moved = prepare_mesh(twisted(source, 0.1));
+    moved.diagonal = rest.diagonal;
+    const BakeResult target = full.bake(moved.positions, moved.normals, moved.areas);
+    auto error = [&](const BakeResult& r) {
+        double sq = 0;
+        size_t off = 0;
+        for (size_t i = 0; i < r.ao.size(); ++i) {
+            sq += double(r.ao[i] - target.ao[i]) * (r.ao[i] - target.ao[i]);
+            off += r.ao[i] != target.ao[i];
+        }
+        return std::pair<double, size_t>{std::sqrt(sq / double(r.ao.size())), off};
+    };
+    const auto [plain_rms, plain_off] = error(plain.bake(moved.positions, moved.normals, moved.areas));
+    const auto [retraced_rms, retraced_off] = error(retraced.bake(moved.positions, moved.normals, moved.areas));
+    SCOPED_TRACE("frame 1 after the pose changed: AO RMS " + std::to_string(plain_rms) + " one slice, " +
+                 std::to_string(retraced_rms) + " retraced; vertices off " + std::to_string(plain_off) + ", " +
+                 std::to_string(retraced_off));
+    EXPECT_GT(plain_off, rest.vertex_count() / 4);
+    EXPECT_LT(retraced_off, plain_off * 3 / 4);
+    EXPECT_LT(retraced_rms, 0.75 * plain_rms);
+    for (uint32_t f = 2; f <= 4; ++f) retraced.bake(moved.positions, moved.normals, moved.areas);
+    EXPECT_EQ(retraced.bake(moved.positions, moved.normals, moved.areas).ao, target.ao) << "exact once every slice ran";
 }
 
 TEST_F(GpuTest, AmortisationRejectsSlicesThatDoNotDivideTheRays)

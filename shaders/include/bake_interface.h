@@ -30,7 +30,8 @@ using ivec3 = glm::ivec3;
 using namespace glsl;  // only these two names: the structs below are written in GLSL's words
 #endif
 
-// ao_trace.comp: one ray slice of the AO pass.
+// ao_trace.comp: one ray slice of the AO pass; ao_changed.comp and ao_retrace.comp: the other
+// slices of the vertices whose slice `slice` changed (Amortisation::retrace_changed).
 struct AoPush {
     uint vertex_count;
     uint rays;

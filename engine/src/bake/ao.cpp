@@ -64,27 +64,44 @@ void Baker::Impl::record_ray_refit(VkCommandBuffer cmd, MeshState& m)
     }
 }
 
-void Baker::Impl::record_ao(VkCommandBuffer cmd, MeshState& m, const AoSettings& s, uint32_t first, uint32_t count)
+void Baker::Impl::record_ao(VkCommandBuffer cmd, MeshState& m, const AoSettings& s, uint32_t first, uint32_t count,
+                            bool retrace_changed)
 {
     if (count == 0) count = m.ao_slices;
     const VkDeviceSize slice_bytes = VkDeviceSize(m.vertex_count) * sizeof(uint32_t);
+    const bool retrace = retrace_changed && count == 1 && m.ao_slices > 1;
+    if (retrace) {  // the slice's counts as the frame that last traced it left them; an empty list
+        const VkBufferCopy slice{first * slice_bytes, 0, slice_bytes};
+        vkCmdCopyBuffer(cmd, m.hits.handle(), m.ao_previous.handle(), 1, &slice);
+        vkCmdFillBuffer(cmd, m.ao_changed_list.handle(), 0, 16, 0);
+        vkCmdFillBuffer(cmd, m.ao_changed_list.handle(), 8, 4, 1);  // groups.z
+        gpu::compute_barrier(cmd);
+    }
     vkCmdFillBuffer(cmd, m.hits.handle(), first * slice_bytes, count * slice_bytes, 0);
     gpu::compute_barrier(cmd);
     const uint32_t rays_in_slice = s.rays / m.ao_slices;
-    for (uint32_t slice = first; slice < first + count; ++slice) {
-        AoPush push{m.vertex_count,
-                    s.rays,
-                    s.seed,
-                    s.low_discrepancy ? 1u : 0u,
-                    s.ray_offset_rel * m.diagonal,
-                    s.max_distance_rel * m.diagonal,
-                    m.item_count,
-                    m.ao_slices,
-                    slice};
-        ao_kernel().dispatch(cmd, uint64_t(m.vertex_count) * rays_in_slice, push,
+    auto push = [&](uint32_t slice) {
+        return AoPush{m.vertex_count,
+                      s.rays,
+                      s.seed,
+                      s.low_discrepancy ? 1u : 0u,
+                      s.ray_offset_rel * m.diagonal,
+                      s.max_distance_rel * m.diagonal,
+                      m.item_count,
+                      m.ao_slices,
+                      slice};
+    };
+    for (uint32_t slice = first; slice < first + count; ++slice)
+        ao_kernel().dispatch(cmd, uint64_t(m.vertex_count) * rays_in_slice, push(slice),
                              {m.positions, m.normals, m.ray_item_texels, m.hits});
-    }
     gpu::compute_barrier(cmd);
+    if (retrace) {
+        ao_changed_kernel().dispatch(cmd, m.vertex_count, push(first), {m.hits, m.ao_previous, m.ao_changed_list});
+        gpu::indirect_barrier(cmd);
+        ao_retrace_kernel().dispatch_indirect(cmd, m.ao_changed_list, 0, push(first),
+                                              {m.positions, m.normals, m.ray_item_texels, m.hits, m.ao_changed_list});
+        gpu::compute_barrier(cmd);
+    }
     ao_resolve_kernel().dispatch(cmd, m.vertex_count, AoResolvePush{m.vertex_count, s.rays, m.ao_slices},
                                  {m.hits, m.ao});
 }

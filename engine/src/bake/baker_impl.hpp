@@ -44,6 +44,7 @@ constexpr VkBufferUsageFlags kStorageUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
 // Written by one pass as a storage buffer, fetched by the next as texels (gpu/texel_view.hpp).
 constexpr VkBufferUsageFlags kTexelUsage =
     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+constexpr uint32_t kAoRetraceGroup = 64;  // threads per group of ao_retrace.comp (ao_changed.comp sizes its dispatch)
 constexpr uint32_t kTriangleLeafSize = 4;
 constexpr uint32_t kPointLeafSize = 8;
 static_assert(kPointLeafSize <= 8, "cluster_refit.comp scans at most 8 sources per leaf");
@@ -149,6 +150,7 @@ using bake::finish_timings;
 using bake::GatherPush;
 using bake::GridGatherPush;
 using bake::GridSplatPush;
+using bake::kAoRetraceGroup;
 using bake::kClusterWorkPerDispatch;
 using bake::kDynamicNearMargin;
 using bake::kExactSourcesPerDispatch;
@@ -176,7 +178,8 @@ using gpu::storage_bindings;
 struct Baker::Impl {
     gpu::Context& ctx;
     // Pipelines are made on first use: a scene that never needs one never creates it.
-    std::optional<gpu::Kernel> ao_trace, ao_resolve, gather, refit, ray_refit, thickness_trace, thickness_resolve;
+    std::optional<gpu::Kernel> ao_trace, ao_resolve, ao_changed, ao_retrace, gather, refit, ray_refit, thickness_trace,
+        thickness_resolve;
     // t_m kernels per [grey (1 channel) or RGB][profile kind: Burley, dipole, Gaussians, mixed].
     std::optional<gpu::Kernel> tm_exact[2][4], tm_cluster[2][4];
     std::optional<gpu::Kernel> tm_near[2][2][4];  // [grid far field][grey][kind]
@@ -197,6 +200,21 @@ struct Baker::Impl {
         return kernel(
             ao_trace,
             {"ao_trace", shaders::ao_trace_comp(), {kStorage, kStorage, kTexels, kStorage}, sizeof(AoPush), 64, {}});
+    }
+    const gpu::Kernel& ao_retrace_kernel()
+    {
+        return kernel(ao_retrace, {"ao_retrace",
+                                   shaders::ao_retrace_comp(),
+                                   {kStorage, kStorage, kTexels, kStorage, kStorage},
+                                   sizeof(AoPush),
+                                   kAoRetraceGroup,
+                                   {}});
+    }
+    const gpu::Kernel& ao_changed_kernel()
+    {
+        return kernel(
+            ao_changed,
+            {"ao_changed", shaders::ao_changed_comp(), storage_bindings(3), sizeof(AoPush), 64, {kAoRetraceGroup}});
     }
     const gpu::Kernel& ao_resolve_kernel()
     {
@@ -297,6 +315,9 @@ struct Baker::Impl {
         // AO: the BVH as ray items; refit data when the mesh deforms.
         uint32_t item_count = 0;
         gpu::Buffer ray_items, hits, ao;  // hits: per ray slice, per vertex
+        // Amortised AO (Amortisation::retrace_changed): the fresh slice's counts from the frame
+        // that last traced it, and ao_changed.comp's indirect dispatch and list of vertices.
+        gpu::Buffer ao_previous, ao_changed_list;
         uint32_t ao_slices = 1;
         gpu::TexelView ray_item_texels;
         gpu::Buffer indices, item_origin, ray_work;  // dynamic only
@@ -369,8 +390,11 @@ struct Baker::Impl {
     void prepare_ao(MeshState& m, const PreparedMesh& mesh, bool refittable);
     void record_ray_refit(VkCommandBuffer cmd, MeshState& m);
     // Traces the ray slices [first, first + count) of m.ao_slices (ao_trace.comp) into their
-    // hit counts, then resolves A_o from the counts of every slice.
-    void record_ao(VkCommandBuffer cmd, MeshState& m, const AoSettings& s, uint32_t first = 0, uint32_t count = 0);
+    // hit counts, then resolves A_o from the counts of every slice. `retrace_changed`, with one
+    // slice of several: the vertices whose slice changed have their other slices traced too
+    // (ao_changed.comp, Amortisation::retrace_changed).
+    void record_ao(VkCommandBuffer cmd, MeshState& m, const AoSettings& s, uint32_t first = 0, uint32_t count = 0,
+                   bool retrace_changed = false);
 
     // The thickness pass (bake/thickness.cpp) traces the AO pass's ray items: prepare_ao first.
     void prepare_thickness(MeshState& m, const ThicknessSettings& s);

@@ -101,7 +101,7 @@ void DynamicBake::State::record(VkCommandBuffer cmd, gpu::GpuTimer* timer)
     frame = full ? 1 : this_frame + 1;
     // The ray slices of this frame: all of them (count 0) after a full re-bake, else one in turn.
     const uint32_t slice = full ? 0 : uint32_t(this_frame % m.ao_slices), slices = full ? 0 : 1;
-    impl.record_ao(cmd, m, settings.ao, slice, slices);
+    impl.record_ao(cmd, m, settings.ao, slice, slices, amortisation.retrace_changed);
     gpu::compute_barrier(cmd);
     if (timer) timer->mark(cmd, "ao");
     if (settings.thickness.enabled()) {
@@ -129,8 +129,16 @@ void DynamicBake::set_amortisation(const Amortisation& a)
     if (a.ao_slices != m.ao_slices) {
         // Recorded frames may still use the old per-slice sums.
         state_->impl.ctx.release_after_gpu(std::move(m.hits), std::move(m.thickness_sums));
+        state_->impl.ctx.release_after_gpu(std::move(m.ao_previous), std::move(m.ao_changed_list));
         m.hits = gpu::Buffer(state_->impl.ctx, VkDeviceSize(m.vertex_count) * a.ao_slices * sizeof(uint32_t),
                              kStorageUsage, "ao hit counts (per ray slice)");
+        if (a.ao_slices > 1) {
+            m.ao_previous = gpu::Buffer(state_->impl.ctx, VkDeviceSize(m.vertex_count) * sizeof(uint32_t),
+                                        kStorageUsage, "ao hit counts of the fresh slice, before");
+            m.ao_changed_list = gpu::Buffer(state_->impl.ctx, 16 + VkDeviceSize(m.vertex_count) * sizeof(uint32_t),
+                                            kStorageUsage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
+                                            "ao vertices to retrace (ao_changed.comp)");
+        }
         m.ao_slices = a.ao_slices;
         if (thickness_rays > 0)
             m.thickness_sums =
