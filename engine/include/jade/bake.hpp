@@ -187,11 +187,12 @@ private:
 struct Amortisation {
     uint32_t ao_slices = 1;  ///< ≥ 1, divides AoSettings::rays and ThicknessSettings::rays; 1: every ray every frame
     uint32_t tm_slices = 1;  ///< ≥ 1; 1: every vertex's t_m every frame
-    /// With ao_slices > 1: a vertex whose fresh slice hits a different number of times than the
-    /// same rays did when that slice was last traced has moved against its surroundings, so its
-    /// other slices are traced again in the same frame. Where parts sweep past each other this
-    /// removes most of the lag, at a cost that follows how much of the mesh moves that way; a
-    /// still or rigidly moving mesh costs nothing extra. false: one slice a frame, always.
+    /// With ao_slices > 1: a vertex whose fresh AO slice hits a different number of times than
+    /// the same rays did when that slice was last traced has moved against its surroundings, so
+    /// its other AO slices are traced again in the same frame (the thickness rays keep one slice
+    /// a frame). Where parts sweep past each other this removes much of the lag (docs/deform.md),
+    /// at a cost that follows how much of the mesh moves that way; a still or rigidly moving
+    /// mesh costs nothing extra. false: one slice a frame, always.
     bool retrace_changed = true;
 };
 
