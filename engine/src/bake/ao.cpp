@@ -73,8 +73,8 @@ void Baker::Impl::record_ao(VkCommandBuffer cmd, MeshState& m, const AoSettings&
     if (retrace) {  // the slice's counts as the frame that last traced it left them; an empty list
         const VkBufferCopy slice{first * slice_bytes, 0, slice_bytes};
         vkCmdCopyBuffer(cmd, m.hits.handle(), m.ao_previous.handle(), 1, &slice);
-        vkCmdFillBuffer(cmd, m.ao_changed_list.handle(), 0, 16, 0);
-        vkCmdFillBuffer(cmd, m.ao_changed_list.handle(), 8, 4, 1);  // groups.z
+        const uint32_t no_groups_no_list[4] = {0, 0, 1, 0};  // groups (x, y, z), count: ao_changed.comp
+        vkCmdUpdateBuffer(cmd, m.ao_changed_list.handle(), 0, sizeof(no_groups_no_list), no_groups_no_list);
         gpu::compute_barrier(cmd);
     }
     vkCmdFillBuffer(cmd, m.hits.handle(), first * slice_bytes, count * slice_bytes, 0);
