@@ -128,8 +128,8 @@ void DynamicBake::set_amortisation(const Amortisation& a)
     auto& m = state_->mesh;
     if (a.ao_slices != m.ao_slices) {
         // Recorded frames may still use the old per-slice sums.
-        state_->impl.ctx.release_after_gpu(std::move(m.hits), std::move(m.thickness_sums));
-        state_->impl.ctx.release_after_gpu(std::move(m.ao_previous), std::move(m.ao_changed_list));
+        state_->impl.ctx.release_after_gpu(std::move(m.hits), std::move(m.thickness_sums), std::move(m.ao_previous),
+                                           std::move(m.ao_changed_list));
         m.hits = gpu::Buffer(state_->impl.ctx, VkDeviceSize(m.vertex_count) * a.ao_slices * sizeof(uint32_t),
                              kStorageUsage, "ao hit counts (per ray slice)");
         if (a.ao_slices > 1) {
