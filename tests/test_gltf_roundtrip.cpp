@@ -337,7 +337,7 @@ TEST(GltfBakeInPlace, OutEqualToTheInputNeedsInPlace)
 }
 
 /// When to send SIGKILL: `delay` after the start, or (when `after_temp`) `delay` after the
-/// bake's temporary file "<asset>.tmp-<pid>" has its first bytes, i.e. while it is written,
+/// bake's temporary file "<asset>.tmp-<pid>-<random>" has its first bytes, i.e. while it is written,
 /// synced or renamed. A negative delay lets the bake finish.
 struct Kill {
     std::chrono::microseconds delay;
@@ -360,11 +360,16 @@ void bake_and_kill(const std::filesystem::path& asset, Kill when)
         ::_exit(127);
     }
     if (when.after_temp) {
-        // check_output_file's probe has the same name but stays empty.
-        const auto temp = std::filesystem::path(file + ".tmp-" + std::to_string(pid));
-        std::error_code ec;
+        // check_output_file's probe has the same prefix but stays empty.
+        const std::string prefix = asset.filename().string() + ".tmp-" + std::to_string(pid) + "-";
+        const auto temp_has_bytes = [&] {
+            std::error_code ec;
+            for (const auto& e : std::filesystem::directory_iterator(asset.parent_path(), ec))
+                if (e.path().filename().string().rfind(prefix, 0) == 0 && e.file_size(ec) > 0 && !ec) return true;
+            return false;
+        };
         int status = 0;
-        while (!(std::filesystem::file_size(temp, ec) > 0 && !ec) && ::waitpid(pid, &status, WNOHANG) == 0)
+        while (!temp_has_bytes() && ::waitpid(pid, &status, WNOHANG) == 0)
             std::this_thread::sleep_for(std::chrono::microseconds(100));
     }
     if (when.delay.count() >= 0) {

@@ -43,8 +43,16 @@ void bake_asset(const Args& args, const std::filesystem::path& in, const std::fi
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
     std::vector<std::string> warnings;
-    const GltfAsset asset = GltfAsset::load(in, &warnings);
+    const GltfAsset asset = GltfAsset::load(in, &warnings, read_options(args));
     for (const auto& w : warnings) std::fprintf(stderr, "jade: warning: %s\n", w.c_str());
+    // The output replaces one file: never one the asset is read from (its buffer or an image),
+    // or the asset would no longer load. Compared as files (links, `..`, hard links), not names.
+    for (size_t i = 1; i < asset.files().size(); ++i) {
+        std::error_code ec;
+        if (std::filesystem::exists(out, ec) && std::filesystem::equivalent(out, asset.files()[i], ec))
+            throw Error("--out " + out.string() + ": is " + asset.files()[i].string() + ", a file that " +
+                        asset.name() + " reads (its buffer or image); writing there would break the input");
+    }
     if (asset.targets().empty()) throw Error(asset.name() + ": no mesh has triangles to bake");
     const Material fallback = material_from_args(args, asset_diagonal(asset));
 

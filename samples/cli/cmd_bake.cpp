@@ -23,7 +23,7 @@ void print_timings(const BakeResult& r)
 /// An OFF, PLY or OBJ mesh: one bake, written as a new glTF of that mesh alone.
 void bake_mesh(const Args& args, const std::string& in, const std::filesystem::path& out, const BakeSettings& settings)
 {
-    TriangleMesh mesh = load_mesh_arg(in);
+    TriangleMesh mesh = load_mesh_arg(in, read_options(args));
     Material material = material_from_args(args, diagonal(mesh));
     auto ctx = make_context(args);
     if (args.flag("verbose")) std::fprintf(stderr, "jade: device %s\n", ctx->device_info().name.c_str());
@@ -61,7 +61,8 @@ int cmd_bake(int argc, char** argv)
                                          {"in-place", "",
                                           "replace the glTF input itself (atomically: the old or the new file, never "
                                           "half)"}};
-    Args args("bake", all_options({device_options(), material_options(), bake_options(), own}), argc, argv, 2);
+    Args args("bake", all_options({device_options(), material_options(), bake_options(), input_options(), own}), argc,
+              argv, 2);
     if (print_help(args,
                    "usage: jade bake MESH --out FILE.glb|.gltf [options]\n"
                    "       jade bake ASSET.gltf|.glb --in-place [options]\n\n"
@@ -81,12 +82,21 @@ int cmd_bake(int argc, char** argv)
     if (!out_arg && !in_place) args.fail("--out FILE is required (or --in-place to replace a glTF input)");
     if (in_place && !is_gltf(in)) args.fail("--in-place: " + in + " is not a glTF file (.gltf, .glb)");
     std::error_code ec;
+    // The input is looked at before its path is resolved: a missing file or a dangling link is
+    // the user's mistake to be named, not an internal error.
+    if (!std::filesystem::exists(in, ec)) {
+        const bool dangling = std::filesystem::is_symlink(std::filesystem::symlink_status(in, ec));
+        throw Error(
+            std::filesystem::path(in).filename().string() + ": cannot open: " +
+            (dangling ? "a symbolic link to a file that does not exist (" + in + ")" : "file not found (" + in + ")"));
+    }
     const bool same = out_arg && std::filesystem::exists(*out_arg, ec) && std::filesystem::equivalent(in, *out_arg, ec);
     if (in_place && out_arg && !same)
         args.fail("--in-place replaces " + in + "; --out " + *out_arg + " names another file");
     if (same && !in_place) args.fail("--out " + *out_arg + " is the input file; give --in-place to replace it");
     // In place, the file a link points to is replaced, not the link.
-    const std::filesystem::path out = in_place ? std::filesystem::canonical(in) : std::filesystem::path(*out_arg);
+    const std::filesystem::path out = in_place ? std::filesystem::canonical(in, ec) : std::filesystem::path(*out_arg);
+    if (ec) throw Error(in + ": cannot resolve the path to replace: " + ec.message());
     BakeSettings settings = bake_settings_from_args(args);
     check_output_file(args, in_place ? "in-place" : "out", out, {".glb", ".gltf"});
 

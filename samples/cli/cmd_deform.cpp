@@ -76,7 +76,8 @@ int cmd_deform(int argc, char** argv)
         "usage: jade deform [MESH] --deformer bend|twist|squash|wave|gltf [options]\n\nDeforms the mesh "
         "on the GPU frame by frame, re-bakes AO and t_m and renders t_m shading;\nwrites DIR/frame_NNN.png, "
         "an animated GIF and a per-stage GPU time table (ms).\n(--quality defaults to draft here.)";
-    Args args("deform", all_options({device_options(), material_options(), bake_options(), deform_options()}),
+    Args args("deform",
+              all_options({device_options(), material_options(), bake_options(), input_options(), deform_options()}),
               int(word_ptrs.size()), word_ptrs.data(), 2);
     if (print_help(args, usage)) return 0;
     if (args.positional().size() > 1) args.fail("expects at most one MESH");
@@ -114,10 +115,10 @@ int cmd_deform(int argc, char** argv)
     std::optional<AnimatedMesh> animated;
     TriangleMesh mesh;
     if (gltf) {
-        animated = load_animated_gltf(mesh_path);
+        animated = load_animated_gltf(mesh_path, read_options(args));
         mesh = animated->mesh;
     } else {
-        mesh = load_mesh_arg(mesh_path);
+        mesh = load_mesh_arg(mesh_path, read_options(args));
     }
     const PreparedMesh rest = prepare_mesh(mesh);
     const size_t animation = args.count("animation", 0, 0, 1000000);
@@ -175,7 +176,7 @@ int cmd_deform(int argc, char** argv)
     render_settings.mode = ShadingMode::Tm;
     render_settings.tone_map = ToneMap::AcesFitted;
 
-    std::filesystem::create_directories(out_dir);
+    check_output_folder("out", out_dir);
     Baker baker(*ctx);
     DynamicBake rebake(baker, rest, material, bake_settings);
     if (const uint32_t n = args.count("amortise", 1, 1, 64); n > 1) {

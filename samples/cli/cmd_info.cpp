@@ -29,12 +29,12 @@ static void print_device(const DeviceInfo& d)
 }
 
 /// What `jade bake` recorded in a glTF's asset.extras.jade (bake_record.hpp), if anything.
-static void print_bake_record(const std::string& path)
+static void print_bake_record(const std::string& path, const ReadOptions& options)
 {
     std::string ext = std::filesystem::path(path).extension().string();
     for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
     if (ext != ".glb" && ext != ".gltf") return;
-    const std::string text = GltfAsset::load(path).asset_extras_json();
+    const std::string text = GltfAsset::load(path, nullptr, options).asset_extras_json();
     const auto extras = nlohmann::json::parse(text.empty() ? "{}" : text, nullptr, false);
     if (!extras.is_object() || !extras.contains("jade") || !extras["jade"].is_object()) {
         std::printf("baked by jade     no (no asset.extras.jade)\n");
@@ -83,11 +83,11 @@ static void print_bake_record(const std::string& path)
     }
 }
 
-static void print_mesh(const std::string& path)
+static void print_mesh(const std::string& path, const ReadOptions& options)
 {
     using Clock = std::chrono::steady_clock;
     auto t0 = Clock::now();
-    TriangleMesh mesh = load_mesh_arg(path);
+    TriangleMesh mesh = load_mesh_arg(path, options);
     auto t1 = Clock::now();
     PreparedMesh p = prepare_mesh(mesh);
     auto t2 = Clock::now();
@@ -115,7 +115,7 @@ static void print_mesh(const std::string& path)
         auto [lo, hi] = std::minmax_element(mesh.baked_thickness.begin(), mesh.baked_thickness.end());
         std::printf("baked thickness   %.4g .. %.4g mesh units\n", *lo, *hi);
     }
-    print_bake_record(path);
+    print_bake_record(path, options);
     std::printf("timings           load %s, prepare %s\n", format_ms(ms(t0, t1)).c_str(),
                 format_ms(ms(t1, t2)).c_str());
 }
@@ -126,7 +126,9 @@ int cmd_info(int argc, char** argv)
         "usage: jade info [MESH]\n\nWithout MESH: the Vulkan device Jade would use. With MESH: counts "
         "after\npreparation (welding, degenerate triangles), bounds and timings; for a file written by jade "
         "bake,\nthe ranges of the baked attributes and what was baked with which settings.";
-    Args args("info", all_options({device_options(), {{"materials", "", "list the material presets"}}}), argc, argv, 2);
+    Args args("info",
+              all_options({device_options(), input_options(), {{"materials", "", "list the material presets"}}}), argc,
+              argv, 2);
     if (print_help(args, usage)) return 0;
     if (args.positional().size() > 1) args.fail("takes at most one mesh");
     if (args.flag("materials")) {
@@ -134,7 +136,7 @@ int cmd_info(int argc, char** argv)
         return 0;
     }
     if (!args.positional().empty()) {
-        print_mesh(args.positional()[0]);
+        print_mesh(args.positional()[0], read_options(args));
         return 0;
     }
     auto ctx = make_context(args);

@@ -163,7 +163,7 @@ void set_scene(Renderer& renderer, const Scene& s)
 Scene load_scene(const Args& args, Context& ctx, const std::string& path, bool need_tm)
 {
     Scene s;
-    s.mesh = load_mesh_arg(path);
+    s.mesh = load_mesh_arg(path, read_options(args));
     s.prepared = prepare_mesh(s.mesh);
     s.material = material_from_args(args, s.prepared);
     if (!s.mesh.baked_tm.empty()) {
@@ -198,8 +198,9 @@ int cmd_render(int argc, char** argv)
         "usage: jade render MESH|BAKED.glb [options]\n\nRenders the mesh with translucency-magnitude "
         "shading (Kubo et al. 2015). A file written by\n`jade bake` (with _TM) renders at once; any other "
         "mesh is baked first (with --material).";
-    Args args("render", all_options({device_options(), material_options(), bake_options(), render_options()}), argc,
-              argv, 2);
+    Args args("render",
+              all_options({device_options(), material_options(), bake_options(), input_options(), render_options()}),
+              argc, argv, 2);
     if (print_help(args, usage)) return 0;
     if (args.positional().size() > 1) args.fail("expects one MESH");
     RenderSettings settings;

@@ -36,7 +36,7 @@ Scene load_scene_arg(const Args& args)
 {
     if (args.positional().empty()) args.fail("no scene file (a .gltf or .glb)");
     std::vector<std::string> warnings;
-    Scene scene = load_scene(args.positional()[0], &warnings);
+    Scene scene = load_scene(args.positional()[0], &warnings, read_options(args));
     for (const auto& w : warnings) std::fprintf(stderr, "jade: warning: %s\n", w.c_str());
     return scene;
 }
@@ -78,7 +78,8 @@ int cmd_scene(int argc, char** argv)
                                          {"size", "N", "square image size in pixels (default 512)"},
                                          {"time", "T", "seconds: the deformers' time (default 0.5)"},
                                          {"samples", "N", "MSAA samples 1, 2, 4, 8 (default 4)"}};
-    Args args("scene", all_options({scene_options(), device_options(), bake_options(), own}), argc, argv, 2);
+    Args args("scene", all_options({scene_options(), device_options(), bake_options(), input_options(), own}), argc,
+              argv, 2);
     if (print_help(args,
                    "usage: jade scene SCENE.gltf [--cache DIR] [--out F.png] [--verbose] [options]\n\nRenders a glTF "
                    "scene running only the planned passes (see jade plan); --verbose\nlists the passes that ran."))

@@ -5,6 +5,7 @@
 
 #include <jade/bake.hpp>
 #include <jade/context.hpp>
+#include <jade/io.hpp>
 #include <jade/material.hpp>
 #include <jade/mesh.hpp>
 #include <jade/scene.hpp>
@@ -36,6 +37,9 @@ Command cmd_fidelity;
 std::vector<OptionSpec> device_options();
 std::vector<OptionSpec> material_options();
 std::vector<OptionSpec> bake_options();
+/// --allow-outside-links: what the readers may follow (ReadOptions).
+std::vector<OptionSpec> input_options();
+ReadOptions read_options(const Args& args);
 /// A command's options: the groups in order, e.g. all_options({device_options(), bake_options(),
 /// {{"out", "FILE", "output file"}}}).
 std::vector<OptionSpec> all_options(std::initializer_list<std::vector<OptionSpec>> groups);
@@ -54,7 +58,7 @@ Material material_from_args(const Args& args, double diagonal);
 BakeSettings bake_settings_from_args(const Args& args);
 /// The built-in default scene when `path` is empty or "bunny": the Stanford bunny if
 /// assets/ has it, else a procedural sphere.
-TriangleMesh load_mesh_arg(const std::string& path);
+TriangleMesh load_mesh_arg(const std::string& path, const ReadOptions& options = {});
 /// A file of the test meshes (third_party/fetch_assets.sh) by name, from $JADE_ASSETS, ./assets or
 /// the source tree's assets/, whatever the working directory; empty when none has it.
 std::filesystem::path find_asset(const std::string& name);

@@ -51,6 +51,20 @@ std::vector<OptionSpec> bake_options()
             {"epsilon", "T", "t_m far-field opening ratio theta (0.3: ~2e-5 error, 1: ~2e-3)"}};
 }
 
+std::vector<OptionSpec> input_options()
+{
+    return {{"allow-outside-links", "",
+             "read a glTF's buffers and images through symbolic links that lead out of its folder (off: a baked "
+             "asset must not carry other files of this machine)"}};
+}
+
+ReadOptions read_options(const Args& args)
+{
+    ReadOptions options;
+    options.allow_outside_links = args.flag("allow-outside-links");
+    return options;
+}
+
 std::vector<OptionSpec> all_options(std::initializer_list<std::vector<OptionSpec>> groups)
 {
     std::vector<OptionSpec> out;
@@ -190,9 +204,9 @@ std::filesystem::path find_asset(const std::string& name)
     return {};
 }
 
-TriangleMesh load_mesh_arg(const std::string& path)
+TriangleMesh load_mesh_arg(const std::string& path, const ReadOptions& options)
 {
-    if (!path.empty() && path != "bunny") return load_mesh(path);
+    if (!path.empty() && path != "bunny") return load_mesh(path, options);
     const std::filesystem::path bunny = find_asset("bunny00.off");
     if (!bunny.empty()) return load_mesh(bunny);
     std::fprintf(stderr,
@@ -210,24 +224,18 @@ std::string lower(std::string s)
     return s;
 }
 
-/// Creates and removes "<path>.tmp-<pid>" (the name the writers use for their temporary file):
+/// Creates and removes a temporary file beside `path` the way the writers do
+/// (write_file_atomically: exclusively, under a name nobody can guess, never through a link):
 /// permission bits do not stop root, a read-only or full file system does, so only a real
 /// file tells. Throws jade::Error naming the flag and the folder.
 void probe_writable(const std::string& flag, const std::filesystem::path& path, const std::filesystem::path& folder)
 {
-    auto probe = path;
-    probe += ".tmp-" + std::to_string(::getpid());
-    bool created = false;
-    {
-        std::ofstream f(probe, std::ios::binary | std::ios::trunc);
-        created = f.is_open();
-    }
-    const int error = errno;
-    std::error_code ignored;
-    std::filesystem::remove(probe, ignored);
-    if (!created)
+    try {
+        check_writable(path);
+    } catch (const Error& e) {
         throw Error("--" + flag + " " + path.string() + ": cannot create a file in folder '" + folder.string() +
-                    "': " + std::strerror(error));
+                    "': " + e.what());
+    }
 }
 
 }  // namespace

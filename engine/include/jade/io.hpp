@@ -16,6 +16,15 @@
 
 namespace jade {
 
+/// How the readers treat what a file points to.
+struct ReadOptions {
+    /// A glTF's external buffers and images are read only from its folder and below. The URI is
+    /// judged lexically and then by the real path of its target (symbolic links resolved, in the
+    /// URI and in the folder): a link inside the folder that leads out of it is refused unless
+    /// this is set (a shared asset must not carry files from the machine that baked it).
+    bool allow_outside_links = false;
+};
+
 /// Loads a triangle mesh, choosing the reader by extension (case-insensitive):
 ///   .gltf / .glb  glTF 2.0: every triangle primitive of the default scene (or scene 0), node
 ///                 transforms applied, indexed or not; reads `_AO`/`_TM`/`_THICKNESS` if present.
@@ -24,14 +33,14 @@ namespace jade {
 ///   .obj          Wavefront OBJ (via tinyobjloader)
 /// Throws jade::Error naming the file, the element and what is wrong; never returns a partly
 /// read mesh. Header counts are checked against the file size before anything is allocated.
-TriangleMesh load_mesh(const std::filesystem::path& path);
+TriangleMesh load_mesh(const std::filesystem::path& path, const ReadOptions& options = {});
 
 /// Loads the first node with a mesh of a glTF file with its skin (JOINTS_0/WEIGHTS_0, inverse
 /// bind matrices), morph targets (POSITION deltas), node hierarchy and animations (LINEAR, STEP,
 /// CUBICSPLINE), for jade/deform.hpp, and the baked `_AO`/`_TM`/`_THICKNESS` of the bind pose
 /// when every primitive has them (a file written by jade bake). Only TRIANGLES primitives;
 /// errors as load_mesh.
-AnimatedMesh load_animated_gltf(const std::filesystem::path& path);
+AnimatedMesh load_animated_gltf(const std::filesystem::path& path, const ReadOptions& options = {});
 
 /// Writes an animated image (frames of width × height linear-RGB RGBA floats, sRGB-encoded,
 /// 8 bit) at `fps` frames per second (0 < fps ≤ 100; GIF stores a delay in 1/100 s) as a looping
@@ -41,11 +50,18 @@ void save_animation(const std::filesystem::path& path, int width, int height,
                     const std::vector<std::vector<float>>& frames, double fps);
 
 /// Writes `bytes` to `path` atomically, as every file writer here does: a temporary file
-/// "<path>.tmp-<pid>" in the same folder is written, synced to disk (fsync), renamed to `path`
-/// and the folder synced. A failure or a crash at any moment leaves the old file (or none) or
+/// "<path>.tmp-<pid>-<random>" in the same folder is created exclusively (never through a link
+/// planted under its name), written, given the mode (and where allowed the owner) of the file it
+/// replaces, synced to disk (fsync), renamed to `path` (a link at `path` is replaced, not
+/// followed) and the folder synced. A failure or a crash at any moment leaves the old file (or none) or
 /// the complete new one; a crash may leave the temporary file behind. Throws jade::Error
 /// naming the file.
 void write_file_atomically(const std::filesystem::path& path, std::string_view bytes);
+
+/// Creates and removes the temporary file that write_file_atomically would create for `path`,
+/// to learn before long work whether the write can happen (a read-only or full file system,
+/// a missing permission). Throws jade::Error with the reason.
+void check_writable(const std::filesystem::path& path);
 
 /// What `jade bake` stores next to the mesh.
 struct BakedAttributes {
@@ -92,13 +108,17 @@ public:
     /// Reads the file (errors as load_mesh, naming the file and the element). External buffers
     /// and images must exist: the output holds them. `warnings` receives what the material
     /// mapping says (docs/scene.md).
-    static GltfAsset load(const std::filesystem::path& path, std::vector<std::string>* warnings = nullptr);
+    static GltfAsset load(const std::filesystem::path& path, std::vector<std::string>* warnings = nullptr,
+                          const ReadOptions& options = {});
 
     GltfAsset(GltfAsset&&) noexcept;
     GltfAsset& operator=(GltfAsset&&) noexcept;
     ~GltfAsset();
 
     const std::string& name() const;  ///< the file name, for messages
+    /// Every file the asset was read from: the asset itself, then its external buffers and
+    /// images (as resolved, symbolic links followed), so that a writer can refuse to replace one.
+    const std::vector<std::filesystem::path>& files() const;
     const std::vector<BakeTarget>& targets() const;
     /// The `asset.extras` JSON object of the file (empty when it has none), where `jade bake`
     /// keeps what it baked with.
@@ -151,6 +171,7 @@ LoadedImage load_image(const std::filesystem::path& path);
 /// extras.jade). Warnings about unknown or contradictory values (each names the file, the
 /// material and the value, and the fallback taken) go to `warnings`. Throws jade::Error naming
 /// the file and element for malformed files.
-Scene load_scene(const std::filesystem::path& path, std::vector<std::string>* warnings = nullptr);
+Scene load_scene(const std::filesystem::path& path, std::vector<std::string>* warnings = nullptr,
+                 const ReadOptions& options = {});
 
 }  // namespace jade

@@ -10,7 +10,11 @@
 #include <fstream>
 #include <system_error>
 
+#include <optional>
+#include <random>
+
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace jade::io {
@@ -109,10 +113,11 @@ std::string one_line(const std::string& message)
 namespace {
 
 /// Flushes a file's data and metadata to the disk (fsync), so that a rename published after it
-/// never names a file whose bytes a crash could still lose.
+/// never names a file whose bytes a crash could still lose. Never through a link: the temporary
+/// file is Jade's own, and a link in its place would be someone else's.
 void sync_path(std::string_view name, const std::filesystem::path& path, bool folder)
 {
-    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | (folder ? O_DIRECTORY : 0));
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | (folder ? O_DIRECTORY : O_NOFOLLOW));
     if (fd < 0) fail(name, "cannot open " + path.string() + " to sync it: " + std::strerror(errno));
     const int rc = ::fsync(fd);
     const int error = errno;
@@ -122,18 +127,68 @@ void sync_path(std::string_view name, const std::filesystem::path& path, bool fo
         fail(name, "cannot sync " + path.string() + " to disk: " + std::strerror(error));
 }
 
+/// `count` random lower-case hex digits from the kernel's generator (std::random_device reads
+/// it), for names nobody can plant a file or link under in advance.
+std::string random_hex(int count)
+{
+    static std::random_device device;
+    static constexpr char kHex[] = "0123456789abcdef";
+    std::string out;
+    while (int(out.size()) < count) {
+        auto bits = device();
+        for (int i = 0; i < 8 && int(out.size()) < count; ++i, bits >>= 4) out += kHex[bits & 15];
+    }
+    return out;
+}
+
+/// The mode and owner a replacement of `path` should have: those of the file it replaces, so
+/// that replacing a private file (mode 600) does not publish it; nullopt for a new file.
+std::optional<struct stat> replaced_file(const std::filesystem::path& path)
+{
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return std::nullopt;
+    return st;
+}
+
 }  // namespace
 
-void write_atomically(const std::filesystem::path& path, const std::function<void(const std::filesystem::path&)>& write)
+TemporaryFile create_temporary_beside(const std::filesystem::path& path)
 {
     const auto name = display_name(path);
-    auto tmp = path;
-    tmp += ".tmp-" + std::to_string(::getpid());
+    // O_EXCL makes the name ours alone and refuses any link planted under it; O_NOFOLLOW says so
+    // again. The name cannot be guessed in advance, and a collision is retried with another.
+    for (int attempt = 0; attempt < 100; ++attempt) {
+        auto tmp = path;
+        tmp += ".tmp-" + std::to_string(::getpid()) + "-" + random_hex(12);
+        const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+        if (fd >= 0) return {tmp, fd};
+        if (errno != EEXIST) fail(name, "cannot create " + tmp.string() + ": " + std::strerror(errno));
+    }
+    fail(name, "cannot create a temporary file beside it: 100 names were taken");
+}
+
+void write_atomically(const std::filesystem::path& path,
+                      const std::function<void(const std::filesystem::path&, int fd)>& write)
+{
+    const auto name = display_name(path);
+    const auto [tmp, fd] = create_temporary_beside(path);
+    bool fd_open = true;
     try {
-        write(tmp);
+        write(tmp, fd);
+        // After writing: a writer that opens the file by its name could not if it were read-only.
+        if (const auto old = replaced_file(path)) {
+            if (::fchmod(fd, old->st_mode & 07777) != 0)
+                fail(name,
+                     "cannot give " + tmp.string() + " the mode of the file it replaces: " + std::strerror(errno));
+            // Keeping the owner needs privileges (or changes nothing for one's own files): best effort.
+            [[maybe_unused]] const int ignored = ::fchown(fd, old->st_uid, old->st_gid);
+        }
+        fd_open = false;
+        if (::close(fd) != 0) fail(name, "writing " + tmp.string() + " failed: " + std::strerror(errno));
         sync_path(name, tmp, false);
         std::filesystem::rename(tmp, path);
     } catch (const std::exception& e) {
+        if (fd_open) ::close(fd);
         std::error_code ignored;
         std::filesystem::remove(tmp, ignored);
         if (dynamic_cast<const Error*>(&e)) throw;
@@ -142,6 +197,11 @@ void write_atomically(const std::filesystem::path& path, const std::function<voi
     // The new name must reach the disk too, or a crash could bring back the old file (or none).
     const auto folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
     sync_path(name, folder, true);
+}
+
+void write_atomically(const std::filesystem::path& path, const std::function<void(const std::filesystem::path&)>& write)
+{
+    write_atomically(path, [&](const std::filesystem::path& tmp, int) { write(tmp); });
 }
 
 std::string lower_extension(const std::filesystem::path& path)
@@ -158,13 +218,23 @@ namespace jade {
 void write_file_atomically(const std::filesystem::path& path, std::string_view bytes)
 {
     const auto name = io::display_name(path);
-    io::write_atomically(path, [&](const std::filesystem::path& tmp) {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out) io::fail(name, "cannot open " + tmp.string() + " for writing: " + std::strerror(errno));
-        out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-        out.close();
-        if (!out) io::fail(name, "writing " + tmp.string() + " failed (disk full?)");
+    io::write_atomically(path, [&](const std::filesystem::path& tmp, int fd) {
+        // Through the descriptor that created the file: the name is never opened again.
+        for (size_t done = 0; done < bytes.size();) {
+            const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 0) io::fail(name, "writing " + tmp.string() + " failed: " + std::strerror(errno));
+            done += size_t(n);
+        }
     });
+}
+
+void check_writable(const std::filesystem::path& path)
+{
+    const auto [tmp, fd] = io::create_temporary_beside(path);
+    ::close(fd);
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
 }
 
 }  // namespace jade

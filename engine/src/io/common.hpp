@@ -77,12 +77,27 @@ std::string printable(std::string_view text, size_t max = 32);
 /// URIs) shortened.
 std::string one_line(const std::string& message);
 
-/// Writes a file atomically, the one way every writer of Jade does: `write` fills
-/// "<path>.tmp-<pid>" beside it, which is synced to disk (fsync), renamed to `path`, and the
-/// folder synced, so that a crash at any moment leaves the old file or the complete new one.
-/// On any failure the temporary file is removed and the error is rethrown as jade::Error.
+/// A file created for this process alone: its path and an open, writable descriptor.
+struct TemporaryFile {
+    std::filesystem::path path;
+    int fd = -1;
+};
+
+/// Creates "<path>.tmp-<pid>-<12 random hex digits>" beside `path`, exclusively (O_CREAT |
+/// O_EXCL | O_NOFOLLOW: a file or link planted under the name is never opened, another name is
+/// tried), mode 0666 less the umask. Throws jade::Error naming `path`.
+TemporaryFile create_temporary_beside(const std::filesystem::path& path);
+
+/// Writes a file atomically, the one way every writer of Jade does: `write` fills the temporary
+/// file of create_temporary_beside (by its descriptor, or by its name, which only this process
+/// knows), which gets the mode (and, where allowed, the owner) of the file it replaces, is synced
+/// to disk (fsync), renamed to `path`, and the folder synced, so that a crash at any moment
+/// leaves the old file or the complete new one. A link at `path` is replaced, not followed. On
+/// any failure the temporary file is removed and the error is rethrown as jade::Error.
 void write_atomically(const std::filesystem::path& path,
-                      const std::function<void(const std::filesystem::path&)>& write);
+                      const std::function<void(const std::filesystem::path& tmp, int fd)>& write);
+void write_atomically(const std::filesystem::path& path,
+                      const std::function<void(const std::filesystem::path& tmp)>& write);
 
 /// Lower-case extension with its dot (".glb"), for dispatching on the file type.
 std::string lower_extension(const std::filesystem::path& path);

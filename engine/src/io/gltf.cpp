@@ -327,10 +327,10 @@ TriangleMesh read_gltf_primitive(const std::string& name, const tinygltf::Model&
 }
 
 TriangleMesh read_gltf(const std::filesystem::path& path, const std::string& name, const std::string& bytes,
-                       bool binary)
+                       bool binary, const ReadOptions& options)
 {
     if (bytes.empty()) fail(name, "file is empty");
-    const auto model = parse_gltf(path, name, bytes, binary);
+    const auto model = parse_gltf(path, name, bytes, binary, options);
     check_required_extensions(name, model);
     MeshBuilder builder(name, model);
     for (const auto& instance : scene_mesh_instances(name, model)) builder.add(instance);

@@ -347,14 +347,14 @@ void read_animations(const Reader& r, AnimatedMesh& out)
     }
 }
 
-AnimatedMesh read_animated(const std::filesystem::path& path, const std::string& name)
+AnimatedMesh read_animated(const std::filesystem::path& path, const std::string& name, const ReadOptions& options)
 {
     const auto ext = io::lower_extension(path);
     if (ext != ".gltf" && ext != ".glb")
         fail(name, "animated meshes are read from glTF (.gltf, .glb), not '" + ext + "'");
     const std::string bytes = io::read_file(path);
     if (bytes.empty()) fail(name, "file is empty");
-    const auto model = io::parse_gltf(path, name, bytes, ext == ".glb");
+    const auto model = io::parse_gltf(path, name, bytes, ext == ".glb", options);
     io::check_required_extensions(name, model);
     Reader r(name, model);
     AnimatedMesh out;
@@ -374,10 +374,10 @@ AnimatedMesh read_animated(const std::filesystem::path& path, const std::string&
 
 }  // namespace
 
-AnimatedMesh load_animated_gltf(const std::filesystem::path& path)
+AnimatedMesh load_animated_gltf(const std::filesystem::path& path, const ReadOptions& options)
 {
     const auto name = io::display_name(path);
-    return io::naming_file(name, [&] { return read_animated(path, name); });
+    return io::naming_file(name, [&] { return read_animated(path, name, options); });
 }
 
 }  // namespace jade

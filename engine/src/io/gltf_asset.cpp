@@ -149,6 +149,7 @@ GltfAsset::~GltfAsset() = default;
 
 const std::string& GltfAsset::name() const { return impl_->name; }
 const std::vector<GltfAsset::BakeTarget>& GltfAsset::targets() const { return impl_->targets; }
+const std::vector<std::filesystem::path>& GltfAsset::files() const { return impl_->files; }
 
 std::string GltfAsset::asset_extras_json() const
 {
@@ -157,7 +158,8 @@ std::string GltfAsset::asset_extras_json() const
     return (*asset)["extras"].dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
 }
 
-GltfAsset GltfAsset::load(const std::filesystem::path& path, std::vector<std::string>* warnings)
+GltfAsset GltfAsset::load(const std::filesystem::path& path, std::vector<std::string>* warnings,
+                          const ReadOptions& options)
 {
     const std::string name = io::display_name(path);
     return io::naming_file(name, [&] {
@@ -168,7 +170,8 @@ GltfAsset GltfAsset::load(const std::filesystem::path& path, std::vector<std::st
         auto a = std::make_unique<Impl>();
         a->path = path;
         a->name = name;
-        a->model = io::parse_gltf(path, name, bytes, ext == ".glb", &a->image_bytes);
+        a->files.push_back(path);
+        a->model = io::parse_gltf(path, name, bytes, ext == ".glb", options, &a->image_bytes, &a->files);
         io::check_required_extensions(name, a->model);
         try {
             a->doc = nlohmann::ordered_json::parse(json_text(bytes, ext == ".glb"));

@@ -37,6 +37,7 @@ struct GltfAsset::Impl {
     nlohmann::ordered_json doc;
     tinygltf::Model model;
     std::vector<std::vector<unsigned char>> image_bytes;  ///< per image, as tinygltf read it
+    std::vector<std::filesystem::path> files;             ///< the asset, then what it read (GltfAsset::files)
     std::vector<BakeTarget> targets;
     std::vector<std::vector<Span>> spans;              ///< per target, per primitive of its mesh
     std::vector<std::optional<Material>> translucent;  ///< per glTF material: Jade's, when translucent

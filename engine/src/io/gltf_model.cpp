@@ -19,26 +19,44 @@ namespace {
 /// `basedir + "/" + uri` (uri percent-decoded), so the URI is recovered from the path and judged
 /// lexically: absolute paths, URIs with a scheme (`file:`, `C:`) and relative paths whose `..`
 /// climb above the folder are refused and remembered, so that the load fails naming them instead
-/// of with tinygltf's "File not found". Symbolic links inside the folder are followed.
+/// of with tinygltf's "File not found". Then the real path of the target is judged (symbolic
+/// links resolved, in the folder's path too): a link inside the folder that leads out of it would
+/// otherwise put any file the user can read into a baked asset that is then shared.
 struct FsContext {
-    std::filesystem::path folder;  ///< absolute, lexically normal, no trailing separator
-    std::string prefix;            ///< folder + "/": what tinygltf puts before every URI
-    std::string refused_uri;       ///< the first URI refused, percent-decoded
-    std::string refused_why;       ///< why, e.g. "is an absolute path"
+    std::filesystem::path folder;                         ///< absolute, lexically normal, no trailing separator
+    std::filesystem::path real_folder;                    ///< `folder` with its links resolved
+    std::string prefix;                                   ///< folder + "/": what tinygltf puts before every URI
+    bool allow_outside_links = false;                     ///< ReadOptions::allow_outside_links
+    std::string refused_uri;                              ///< the first URI refused, percent-decoded
+    std::string refused_why;                              ///< why, e.g. "is an absolute path (...)"
+    std::vector<std::filesystem::path>* files = nullptr;  ///< receives what was read (real paths)
 };
 
-/// Why the file at `uri` (relative to the glTF's folder) may not be read; empty if it may.
-std::string outside_reason(const std::filesystem::path& folder, const std::string& uri)
+bool inside(const std::filesystem::path& folder, const std::filesystem::path& target)
 {
+    return std::mismatch(folder.begin(), folder.end(), target.begin(), target.end()).first == folder.end();
+}
+
+/// Why the file at `uri` (relative to the glTF's folder) may not be read; empty if it may.
+std::string outside_reason(const FsContext& ctx, const std::string& uri)
+{
+    static const std::string kOnlyBelow = " (only files in the glTF file's folder or below it are read)";
     if (uri.empty()) return {};  // names the folder itself: not a file, tinygltf says "File not found"
-    if (uri.front() == '/' || uri.front() == '\\') return "is an absolute path";
+    if (uri.front() == '/' || uri.front() == '\\') return "is an absolute path" + kOnlyBelow;
     const auto colon = uri.find(':');
     if (colon != std::string::npos && uri.find_first_of("/\\") > colon)
         return "is not a relative file path (it has a scheme or drive '" + printable(uri.substr(0, colon + 1), 16) +
-               "')";
-    const auto target = (folder / uri).lexically_normal();
-    const auto mismatch = std::mismatch(folder.begin(), folder.end(), target.begin(), target.end());
-    if (mismatch.first != folder.end()) return "points outside the glTF file's folder";
+               "')" + kOnlyBelow;
+    if (!inside(ctx.folder, (ctx.folder / uri).lexically_normal()))
+        return "points outside the glTF file's folder" + kOnlyBelow;
+    if (ctx.allow_outside_links) return {};
+    std::error_code ec;
+    const auto real = std::filesystem::weakly_canonical(ctx.folder / uri, ec);
+    if (ec) return {};  // nothing there to read: tinygltf reports the missing file
+    if (!inside(ctx.real_folder, real))
+        return "resolves to '" + printable(real.string(), 512) +
+               "', outside the glTF file's folder (a symbolic link out of the folder is followed only when allowed: "
+               "jade --allow-outside-links, ReadOptions::allow_outside_links)";
     return {};
 }
 
@@ -54,7 +72,7 @@ bool fs_exists(const std::string& path, void* user)
     auto& ctx = *static_cast<FsContext*>(user);
     const auto uri = uri_of(ctx, path);
     if (!uri) return false;
-    if (auto why = outside_reason(ctx.folder, *uri); !why.empty()) {
+    if (auto why = outside_reason(ctx, *uri); !why.empty()) {
         if (ctx.refused_uri.empty()) ctx.refused_uri = *uri, ctx.refused_why = std::move(why);
         return false;
     }
@@ -68,13 +86,18 @@ bool fs_read(std::vector<unsigned char>* out, std::string* err, const std::strin
 {
     const auto& ctx = *static_cast<const FsContext*>(user);
     const auto uri = uri_of(ctx, path);
-    if (!uri || !outside_reason(ctx.folder, *uri).empty()) {  // tinygltf reads only what fs_exists accepted
+    if (!uri || !outside_reason(ctx, *uri).empty()) {  // tinygltf reads only what fs_exists accepted
         if (err) *err += "refused to read a file outside the glTF file's folder";
         return false;
     }
     try {
-        const auto bytes = read_file(path);
+        // The real path that was judged is what is read, so a link changed in between is not followed.
+        std::error_code ec;
+        auto real = std::filesystem::canonical(path, ec);
+        if (ec) real = path;
+        const auto bytes = read_file(real);
         out->assign(bytes.begin(), bytes.end());
+        if (ctx.files) ctx.files->push_back(real);
         return true;
     } catch (const std::exception& e) {
         if (err) *err += e.what();
@@ -106,8 +129,7 @@ void fail_refused_uri(const std::string& name, const FsContext& ctx, const tinyg
     std::string element = "buffer " + std::to_string(model.buffers.size());
     for (size_t i = 0; i < model.images.size(); ++i)
         if (percent_decoded(model.images[i].uri) == ctx.refused_uri) element = "image " + std::to_string(i);
-    fail(name, element + ": URI '" + printable(ctx.refused_uri, 64) + "' " + ctx.refused_why +
-                   " (only files in the glTF file's folder or below it are read)");
+    fail(name, element + ": URI '" + printable(ctx.refused_uri, 64) + "' " + ctx.refused_why);
 }
 
 bool fs_write(std::string* err, const std::string&, const std::vector<unsigned char>&, void*)
@@ -199,7 +221,8 @@ bool geometry_neutral(const std::string& ext)
 }  // namespace
 
 tinygltf::Model parse_gltf(const std::filesystem::path& path, const std::string& name, const std::string& bytes,
-                           bool binary, std::vector<std::vector<unsigned char>>* images)
+                           bool binary, const ReadOptions& options, std::vector<std::vector<unsigned char>>* images,
+                           std::vector<std::filesystem::path>* files)
 {
     tinygltf::TinyGLTF loader;
     FsContext ctx;
@@ -208,6 +231,10 @@ tinygltf::Model parse_gltf(const std::filesystem::path& path, const std::string&
     if (ctx.folder.has_relative_path() && ctx.folder.filename().empty()) ctx.folder = ctx.folder.parent_path();
     const std::string folder = ctx.folder.string();
     ctx.prefix = folder.ends_with('/') ? folder : folder + "/";
+    ctx.real_folder = std::filesystem::weakly_canonical(ctx.folder, ec);
+    if (ec) ctx.real_folder = ctx.folder;
+    ctx.allow_outside_links = options.allow_outside_links;
+    ctx.files = files;
     loader.SetFsCallbacks({&fs_exists, &fs_expand, &fs_read, &fs_write, &ctx});
     loader.SetImageLoader(&keep_image, images);
 

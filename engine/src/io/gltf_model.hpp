@@ -1,6 +1,7 @@
 // io/gltf_model.hpp - parsing a glTF file into a tinygltf::Model (private to jade_io).
 #pragma once
 
+#include <jade/io.hpp>
 #include <jade/mesh.hpp>
 
 #include <tiny_gltf.h>
@@ -17,10 +18,15 @@ namespace jade::io {
 /// a BIN chunk run 8 bytes past the end of the file); external buffers are read only from the
 /// folder of `path` and below it (a URI outside it is an error naming the buffer or image),
 /// within the file size limit; images are never decoded.
+/// A URI whose target's real path (links resolved) leaves the folder is refused too, unless
+/// `options.allow_outside_links`.
 /// `images`, when given, receives the bytes of every image tinygltf read (external files and
-/// data URIs; empty for an image it could not read), indexed like model.images.
+/// data URIs; empty for an image it could not read), indexed like model.images. `files`, when
+/// given, receives the real path of every external file read.
 tinygltf::Model parse_gltf(const std::filesystem::path& path, const std::string& name, const std::string& bytes,
-                           bool binary, std::vector<std::vector<unsigned char>>* images = nullptr);
+                           bool binary, const ReadOptions& options,
+                           std::vector<std::vector<unsigned char>>* images = nullptr,
+                           std::vector<std::filesystem::path>* files = nullptr);
 
 /// Rejects every required extension except those that only change materials or textures,
 /// naming it (compressed geometry, KHR_mesh_quantization, ...).

@@ -11,7 +11,7 @@ namespace jade {
 
 namespace {
 
-TriangleMesh read_by_extension(const std::filesystem::path& path, const std::string& name)
+TriangleMesh read_by_extension(const std::filesystem::path& path, const std::string& name, const ReadOptions& options)
 {
     const auto ext = io::lower_extension(path);
     const bool gltf = ext == ".gltf" || ext == ".glb";
@@ -21,16 +21,16 @@ TriangleMesh read_by_extension(const std::filesystem::path& path, const std::str
     if (ext == ".off") return io::read_off(name, bytes);
     if (ext == ".ply") return io::read_ply(name, bytes);
     if (ext == ".obj") return io::read_obj(name, bytes);
-    return io::read_gltf(path, name, bytes, ext == ".glb");
+    return io::read_gltf(path, name, bytes, ext == ".glb", options);
 }
 
 }  // namespace
 
-TriangleMesh load_mesh(const std::filesystem::path& path)
+TriangleMesh load_mesh(const std::filesystem::path& path, const ReadOptions& options)
 {
     const auto name = io::display_name(path);
     return io::naming_file(name, [&] {
-        TriangleMesh mesh = read_by_extension(path, name);
+        TriangleMesh mesh = read_by_extension(path, name, options);
         io::validate_loaded(mesh);
         return mesh;
     });

@@ -5,6 +5,7 @@
 // checks common to all formats (io::validate_loaded).
 #pragma once
 
+#include <jade/io.hpp>
 #include <jade/mesh.hpp>
 
 #include <filesystem>
@@ -18,6 +19,6 @@ TriangleMesh read_ply(const std::string& name, std::string_view bytes);
 TriangleMesh read_obj(const std::string& name, const std::string& bytes);
 /// `path` locates external buffers (relative URIs are resolved in its folder, and only there).
 TriangleMesh read_gltf(const std::filesystem::path& path, const std::string& name, const std::string& bytes,
-                       bool binary);
+                       bool binary, const ReadOptions& options);
 
 }  // namespace jade::io

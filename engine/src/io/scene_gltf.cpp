@@ -54,7 +54,7 @@ std::optional<ProceduralDeformer> node_deformer(const std::string& file, const t
 
 }  // namespace
 
-Scene load_scene(const std::filesystem::path& path, std::vector<std::string>* warnings)
+Scene load_scene(const std::filesystem::path& path, std::vector<std::string>* warnings, const ReadOptions& options)
 {
     const std::string name = io::display_name(path);
     return io::naming_file(name, [&] {
@@ -62,7 +62,7 @@ Scene load_scene(const std::filesystem::path& path, std::vector<std::string>* wa
         if (ext != ".gltf" && ext != ".glb") io::fail(name, "a scene file must be .gltf or .glb, not '" + ext + "'");
         const std::string bytes = io::read_file(path);
         if (bytes.empty()) io::fail(name, "file is empty");
-        const tinygltf::Model model = io::parse_gltf(path, name, bytes, ext == ".glb");
+        const tinygltf::Model model = io::parse_gltf(path, name, bytes, ext == ".glb", options);
         Scene scene;
         scene.name = name;
         io::MaterialMapper mapper(name, model, warnings);
