@@ -50,13 +50,13 @@ def smax(a, b, k):
 
 def ear(p, side):
     """A rounded thin disc: in-plane ellipse (half-axes 14 x 28 mm) + rim radius 2.2 mm,
-    half-thickness 1.0 + 2.2 = 3.2 mm. Flared 30 deg: the front edge meets the skull, the back
-    edge stands ~16 mm off it. side = +1 (x > 0) or -1."""
-    a = np.radians(30.0)
+    half-thickness 1.0 + 2.2 = 3.2 mm. Flared 35 deg: the front edge meets the skull, the back
+    edge stands ~20 mm off it. side = +1 (x > 0) or -1."""
+    a = np.radians(35.0)
     u = np.array([side * np.sin(a), 0.0, -np.cos(a)])   # in plane, backwards and outwards
     v = np.array([0.0, 1.0, 0.0])
     w = np.array([side * np.cos(a), 0.0, np.sin(a)])     # normal, outwards and forwards
-    q = rotated(p, [side * 75.0, -8.0, -12.0], [u, v, w])
+    q = rotated(p, [side * 77.0, -8.0, -12.0], [u, v, w])
     r2 = np.array([14.0, 28.0])
     qq = q[..., :2] / r2
     k0 = np.linalg.norm(qq, axis=-1)
