@@ -5,6 +5,7 @@ PNG via Mitsuba's Bitmap (no extra dependency), EXR via the OpenEXR python bindi
 misdecodes).
 """
 import os
+from pathlib import Path
 
 import numpy as np
 
@@ -176,3 +177,30 @@ def write_ply_binary(path, V, N, F):
         fh.write(vdata.tobytes())
         fh.write(fdata.tobytes())
     os.replace(tmp, path)
+
+
+# ---------------------------------------------------------------- noise floor
+def half_noise(img0, img1, mask_path, thin_path, away_path=None):
+    """LDR FLIP (sRGB PNG values) and linear means between two independent half renders."""
+    import flip_evaluator as flip
+    a = (linear_to_srgb8(img0) / 255.0).astype(np.float32)
+    b = (linear_to_srgb8(img1) / 255.0).astype(np.float32)
+    emap, fmean, _ = flip.evaluate(a, b, "LDR", applyMagma=False)
+    emap = np.asarray(emap)
+    emap = emap[:, :, 0] if emap.ndim == 3 else emap
+    out = {"flip": float(fmean)}
+    if Path(mask_path).exists():
+        m = read_mask(mask_path)
+        out["flip_masked"] = float(emap[m].mean())
+        out["mean_linear_object_each"] = [img0[m].mean(axis=0).round(5).tolist(), img1[m].mean(axis=0).round(5).tolist()]
+    if Path(thin_path).exists():
+        t = read_mask(thin_path)
+        if t.any():
+            out["flip_thin"] = float(emap[t].mean())
+            out["mean_linear_thin_each"] = [img0[t].mean(axis=0).round(5).tolist(), img1[t].mean(axis=0).round(5).tolist()]
+    if away_path and Path(away_path).exists():
+        t = read_mask(away_path)
+        if t.any():
+            out["flip_away"] = float(emap[t].mean())
+            out["mean_linear_away_each"] = [img0[t].mean(axis=0).round(6).tolist(), img1[t].mean(axis=0).round(6).tolist()]
+    return out

@@ -7,7 +7,8 @@ For every scene <mesh>_<medium>_<light> of scenes.json this writes into --out
   <scene>.png   sRGB 8 bit of the linear image (clamped, no tone map)
   <scene>.json  the fully resolved record (camera, light as Jade takes it, medium per
                 mesh unit, spp, timings, jade_render_args, ...)
-and once per mesh (view): <mesh>_mask.png, <mesh>_thin.png, <mesh>_masks.json.
+and once per mesh (view): <mesh>_mask.png, <mesh>_thin.png, <mesh>_masks.json; for the sets
+that list "scenes" (regimes) also <mesh>_<light>_away.png: surfaces facing away from the light.
 
 Run with tools/groundtruth/.venv/bin/python (see setup_venv.sh and README.md).
 """
@@ -117,17 +118,38 @@ def light_world(light_cfg, cam):
     return towards, [float(x) for x in irr]
 
 
-def medium_per_unit(med_cfg, diagonal):
-    ss = np.array(med_cfg["sigma_s_per_diagonal"], dtype=np.float64) / diagonal
-    sa = np.array(med_cfg["sigma_a_per_diagonal"], dtype=np.float64) / diagonal
+def point_light(light_cfg, cam, mesh):
+    """Point light at bbox centre + distance_per_diagonal * diagonal * towards; intensity I per
+    mesh unit (E = I / r^2): given, or irradiance_at_centre * distance^2."""
+    r, u, b = camera_frame(cam)
+    c = np.asarray(light_cfg["camera_dir"], dtype=np.float64)
+    towards = normalize(c[0] * r + c[1] * u + c[2] * b)
+    dist = float(light_cfg["distance_per_diagonal"]) * mesh["diagonal"]
+    pos = 0.5 * (np.array(mesh["bbox_min"]) + np.array(mesh["bbox_max"])) + dist * towards
+    i = light_cfg.get("intensity")
+    i = float(light_cfg["irradiance_at_centre"]) * dist * dist if i is None else float(i)
+    return {"type": "point", "position": pos.tolist(), "intensity": [i, i, i], "towards_light_from_centre": towards.tolist(),
+            "distance_from_centre": dist, "irradiance_at_centre": i / (dist * dist),
+            "camera_dir": light_cfg["camera_dir"], "distance_per_diagonal": light_cfg["distance_per_diagonal"]}
+
+
+def medium_per_unit(med_cfg, diagonal, mm_per_unit=None):
+    if "sigma_s_prime_per_mm" in med_cfg:  # physical units: sigma per mm * mm per unit
+        if not mm_per_unit:
+            raise SystemExit("a medium in mm needs the mesh's mm_per_unit")
+        ss = np.array(med_cfg["sigma_s_prime_per_mm"], dtype=np.float64) * mm_per_unit
+        sa = np.array(med_cfg["sigma_a_per_mm"], dtype=np.float64) * mm_per_unit
+    else:
+        ss = np.array(med_cfg["sigma_s_per_diagonal"], dtype=np.float64) / diagonal
+        sa = np.array(med_cfg["sigma_a_per_diagonal"], dtype=np.float64) / diagonal
     return {"sigma_s": ss.tolist(), "sigma_a": sa.tolist(), "g": float(med_cfg["g"]),
             "ior": float(med_cfg["ior"]), "roughness": float(med_cfg["roughness"])}
 
 
-def jade_args(cam, res, towards, irr):
+def jade_args(cam, res, towards, irr, point=None):
+    light = f"point:{fmt3(point['position'])}:{fmt3(point['intensity'])}" if point else f"dir:{fmt3(towards)}:{fmt3(irr)}"
     return ["--eye", fmt3(cam["eye"]), "--target", fmt3(cam["target"]), "--up", fmt3(cam["up"]),
-            "--fov", f"{cam['fov_y_degrees']:g}", "--size", f"{res[0]}x{res[1]}",
-            "--light", f"dir:{fmt3(towards)}:{fmt3(irr)}"]
+            "--fov", f"{cam['fov_y_degrees']:g}", "--size", f"{res[0]}x{res[1]}", "--light", light]
 
 
 # ---------------------------------------------------------------- mitsuba scene
@@ -149,7 +171,7 @@ def sensor_dict(cam, res):
     }
 
 
-def build_scene(mesh, cam, res, towards=None, irr=None, medium=None):
+def build_scene(mesh, cam, res, towards=None, irr=None, medium=None, point=None):
     shape = {"type": "ply", "filename": str(mesh["ply"]), "face_normals": False}
     if medium is not None:
         ss = np.array(medium["sigma_s"])
@@ -168,7 +190,9 @@ def build_scene(mesh, cam, res, towards=None, irr=None, medium=None):
          "integrator": {"type": "volpath", "max_depth": MAX_DEPTH},
          "sensor": sensor_dict(cam, res),
          "object": shape}
-    if towards is not None:
+    if point is not None:
+        d["light"] = {"type": "point", "position": point["position"], "intensity": rgb(point["intensity"])}
+    elif towards is not None:
         d["light"] = {"type": "directional", "direction": (-np.asarray(towards)).tolist(),
                       "irradiance": rgb(irr)}
     return mi.load_dict(d)
@@ -183,25 +207,34 @@ def hammersley_cone(n, half_angle_deg):
     return u1, u2
 
 
+def primary_rays(name, mesh, cam, res):
+    """The scene without material and, per pixel centre: hit?, hit point, outward interpolated normal."""
+    scene = build_scene(mesh, cam, res)
+    if name not in _primary:
+        sensor = scene.sensors()[0]
+        W, H, sign = int(res[0]), int(res[1]), mesh["outward_sign"]
+        cover, P, Nn = np.zeros((H, W), dtype=bool), np.zeros((H, W, 3)), np.zeros((H, W, 3))
+        for y in range(H):
+            for x in range(W):
+                ray, _ = sensor.sample_ray(0.0, 0.5, mi.Point2f((x + 0.5) / W, (y + 0.5) / H), mi.Point2f(0.5))
+                si = scene.ray_intersect(ray)
+                if si.is_valid():
+                    cover[y, x] = True
+                    P[y, x] = [si.p[0], si.p[1], si.p[2]]
+                    n = si.sh_frame.n
+                    Nn[y, x] = [sign * n[0], sign * n[1], sign * n[2]]
+        _primary[name] = (cover, P, Nn)
+    return scene, _primary[name]
+
+
+_primary = {}
+
+
 def masks_for(name, mesh, cam, res, out_dir, n_rays=THIN_RAYS, tau=0.1):
     t0 = time.time()
-    scene = build_scene(mesh, cam, res)
-    sensor = scene.sensors()[0]
     W, H = int(res[0]), int(res[1])
     diag = mesh["diagonal"]
-    sign = mesh["outward_sign"]
-    cover = np.zeros((H, W), dtype=bool)
-    P = np.zeros((H, W, 3))
-    Nn = np.zeros((H, W, 3))
-    for y in range(H):
-        for x in range(W):
-            ray, _ = sensor.sample_ray(0.0, 0.5, mi.Point2f((x + 0.5) / W, (y + 0.5) / H), mi.Point2f(0.5))
-            si = scene.ray_intersect(ray)
-            if si.is_valid():
-                cover[y, x] = True
-                P[y, x] = [si.p[0], si.p[1], si.p[2]]
-                n = si.sh_frame.n
-                Nn[y, x] = [sign * n[0], sign * n[1], sign * n[2]]
+    scene, (cover, P, Nn) = primary_rays(name, mesh, cam, res)
     t_primary = time.time() - t0
 
     # cone rays: Hammersley in (cos theta, phi) + per-pixel Cranley-Patterson rotation (fixed seed)
@@ -260,26 +293,21 @@ def masks_for(name, mesh, cam, res, out_dir, n_rays=THIN_RAYS, tau=0.1):
     return rec
 
 
-# ---------------------------------------------------------------- noise floor
-def half_noise(img0, img1, mask_path, thin_path):
-    """LDR FLIP (sRGB PNG values) and linear means between two independent half renders."""
-    import flip_evaluator as flip
-    a = (gt_io.linear_to_srgb8(img0) / 255.0).astype(np.float32)
-    b = (gt_io.linear_to_srgb8(img1) / 255.0).astype(np.float32)
-    emap, fmean, _ = flip.evaluate(a, b, "LDR", applyMagma=False)
-    emap = np.asarray(emap)
-    emap = emap[:, :, 0] if emap.ndim == 3 else emap
-    out = {"flip": float(fmean)}
-    if Path(mask_path).exists():
-        m = gt_io.read_mask(mask_path)
-        out["flip_masked"] = float(emap[m].mean())
-        out["mean_linear_object_each"] = [img0[m].mean(axis=0).round(5).tolist(), img1[m].mean(axis=0).round(5).tolist()]
-    if Path(thin_path).exists():
-        t = gt_io.read_mask(thin_path)
-        if t.any():
-            out["flip_thin"] = float(emap[t].mean())
-            out["mean_linear_thin_each"] = [img0[t].mean(axis=0).round(5).tolist(), img1[t].mean(axis=0).round(5).tolist()]
-    return out
+def away_mask(name, lname, mesh, cam, res, out_dir, towards=None, point=None):
+    """<mesh>_<light>_away.png: pixels whose surface (interpolated normal n at the primary hit p)
+    faces away from the light, n.l < -0.1 (l = towards the light; for a point light normalise(pos - p)),
+    thin pixels excluded. Returns (file name, pixel count)."""
+    _, (cover, P, Nn) = primary_rays(name, mesh, cam, res)
+    thin = gt_io.read_mask(out_dir / f"{name}_thin.png")
+    if point is not None:
+        L = np.asarray(point["position"]) - P
+        L /= np.maximum(np.linalg.norm(L, axis=2, keepdims=True), 1e-30)
+    else:
+        L = np.broadcast_to(np.asarray(towards), P.shape)
+    away = cover & ~thin & (np.einsum("ijk,ijk->ij", Nn, L) < -0.1)
+    fname = f"{name}_{lname}_away.png"
+    gt_io.write_png(out_dir / fname, (away * 255).astype(np.uint8))
+    return fname, int(away.sum())
 
 
 # ---------------------------------------------------------------- main
@@ -288,6 +316,9 @@ def scene_list(cfg, which):
     sets = ["train", "validation"] if which == "all" else [which]
     for s in sets:
         st = cfg["sets"][s]
+        if "scenes" in st:  # an explicit list of <mesh>_<medium>_<light>
+            out += [(s, *n.split("_")) for n in st["scenes"]]
+            continue
         for m in st["meshes"]:
             for med in st["media"]:
                 for l in st["lights"]:
@@ -298,7 +329,8 @@ def scene_list(cfg, which):
 def main():
     global MAX_DEPTH
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--set", default="all", choices=["train", "validation", "all"])
+    ap.add_argument("--set", default="all", choices=["train", "validation", "all", "regimes"],
+                    help="all = train + validation; regimes (held out) only by name")
     ap.add_argument("--scene", action="append", help="only this scene (repeatable); <mesh>_<medium>_<light>")
     ap.add_argument("--spp", type=int, default=DEFAULT_SPP)
     ap.add_argument("--seed", type=int, default=0, help="sampler seed (noise-floor runs use another)")
@@ -312,11 +344,10 @@ def main():
                     help="render spp/2 with seed and seed+1, store the average and the half-vs-half FLIP")
     ap.add_argument("--merge", metavar="DIR",
                     help="no rendering: average --out's scenes with DIR's (same scenes, other seed)")
-    ap.add_argument("--max-depth", type=int, default=MAX_DEPTH)
+    ap.add_argument("--max-depth", type=int, default=None, help="default: the medium's max_depth, else 256")
     ap.add_argument("--threads", type=int, default=0, help="render threads (0 = all cores)")
     args = ap.parse_args()
 
-    MAX_DEPTH = args.max_depth
     if args.threads:
         import drjit as dr
         dr.set_thread_count(args.threads)
@@ -354,8 +385,16 @@ def main():
         if args.skip_existing and (out_dir / f"{scene_name}.json").exists():
             print(f"[skip] {scene_name}")
             continue
-        towards, irr = light_world(cfg["lights"][lname], cam)
-        medium = medium_per_unit(cfg["media"][medname], mesh["diagonal"])
+        lcfg, med_cfg = cfg["lights"][lname], cfg["media"][medname]
+        MAX_DEPTH = args.max_depth or int(med_cfg.get("max_depth", 256))
+        point = point_light(lcfg, cam, mesh) if lcfg.get("type") == "point" else None
+        towards, irr = light_world(lcfg, cam) if point is None else (None, None)
+        mmpu = mesh_cfg.get("mm_per_unit")
+        medium = medium_per_unit(med_cfg, mesh["diagonal"], mmpu)
+        away = None
+        if "scenes" in cfg["sets"][set_name]:
+            away = away_mask(mname, lname, mesh, cam, res, out_dir, towards, point)
+            print(f"[away] {away[0]}: {away[1]} px", flush=True)
         halves = None
         spp_total, seeds = args.spp, [args.seed]
         if args.merge:
@@ -371,7 +410,7 @@ def main():
             seeds = [rec0["seed"], rec1["seed"]]
             cmds = [rec0["command"], rec1["command"], cmdline]
         elif args.halves:
-            scene = build_scene(mesh, cam, res, towards, irr, medium)
+            scene = build_scene(mesh, cam, res, towards, irr, medium, point)
             imgs, secs_each = [], []
             for sd in (args.seed, args.seed + 1):
                 t0 = time.time()
@@ -382,7 +421,7 @@ def main():
             seeds = [args.seed, args.seed + 1]
             cmds = [cmdline]
         else:
-            scene = build_scene(mesh, cam, res, towards, irr, medium)
+            scene = build_scene(mesh, cam, res, towards, irr, medium, point)
             t0 = time.time()
             img = np.array(mi.render(scene, spp=args.spp, seed=args.seed), dtype=np.float64)
             secs = time.time() - t0
@@ -391,7 +430,8 @@ def main():
                 (spp_each[0] * img0 + spp_each[1] * img1) / sum(spp_each)
             spp_total = int(sum(spp_each))
             secs = float(sum(secs_each))
-            halves = half_noise(img0, img1, out_dir / f"{mname}_mask.png", out_dir / f"{mname}_thin.png")
+            halves = gt_io.half_noise(img0, img1, out_dir / f"{mname}_mask.png", out_dir / f"{mname}_thin.png",
+                                out_dir / away[0] if away else None)
             halves.update({"spp_each": spp_each, "seeds": seeds, "render_seconds_each": secs_each})
             cmdline_rec = " ; ".join(cmds)
         else:
@@ -406,11 +446,15 @@ def main():
                        "fov_y_degrees": cam["fov_y_degrees"], "fov_axis": "y",
                        "framing": "bounding sphere (radius diagonal/2) fills the vertical fov with 5% margin"},
             "resolution": list(res),
-            "light": {"type": "directional", "towards_light": towards.tolist(), "irradiance": irr,
-                      "camera_dir": cfg["lights"][lname]["camera_dir"]},
+            "light": point or {"type": "directional", "towards_light": towards.tolist(), "irradiance": irr,
+                               "camera_dir": cfg["lights"][lname]["camera_dir"]},
             "medium": medium,
-            "medium_per_diagonal": cfg["media"][medname],
-            "medium_units": "per mesh unit (sigma_per_diagonal / diagonal)",
+            **({"mm_per_unit": mmpu, "size_mm": mesh_cfg.get("size_mm"), "medium_per_mm": med_cfg,
+                "medium_units": "per mesh unit (sigma_per_mm * mm_per_unit); Jensen et al. 2001 table 2: "
+                                "sigma_s = reduced sigma_s' with g = 0",
+                "sigma_t_times_diagonal": (np.add(medium["sigma_s"], medium["sigma_a"]) * mesh["diagonal"]).round(2).tolist()}
+               if "sigma_s_prime_per_mm" in med_cfg else
+               {"medium_per_diagonal": med_cfg, "medium_units": "per mesh unit (sigma_per_diagonal / diagonal)"}),
             "bsdf": {"type": "roughdielectric", "distribution": "ggx", "alpha": medium["roughness"] ** 2,
                      "int_ior": medium["ior"], "ext_ior": 1.0},
             "vertex_normals": "normalised sum of unnormalised face normals (area-weighted)",
@@ -420,10 +464,13 @@ def main():
             "render_seconds": round(secs, 2),
             "mitsuba_version": mi.__version__, "variant": mi.variant(),
             "command": cmdline_rec,
-            "jade_render_args": jade_args(cam, res, towards, irr),
+            "jade_render_args": jade_args(cam, res, towards, irr, point),
             "files": {"exr": f"{scene_name}.exr", "png": f"{scene_name}.png",
                       "mask": f"{mname}_mask.png", "thin": f"{mname}_thin.png"},
         }
+        if away:
+            rec["files"]["away"] = away[0]
+            rec["away_definition"] = "object, not thin, n.l < -0.1 (n interpolated normal, l towards the light at p)"
         if halves is not None:
             rec["halves"] = halves
         with open(out_dir / f"{scene_name}.json", "w") as fh:
