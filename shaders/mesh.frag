@@ -108,7 +108,10 @@ void main()
     vec3 n = normalize(in_normal);
     // The t_m modes light the diffuse term along the scattering normal (BakeResult::
     // scattering_normal: bumps within the profile's reach smoothed out), the rest along n.
-    vec3 n_diffuse = MODE == kTm ? normalize(in_scattering_normal) : n;
+    // Interpolated across a thin part's rim, where the vertices' scattering normals point apart,
+    // the sum can vanish: the vertex normal stands in there (no NaN from normalize).
+    vec3 sn = in_scattering_normal;
+    vec3 n_diffuse = MODE == kTm && dot(sn, sn) > 1e-12 ? normalize(sn) : n;
     vec3 v = normalize(frame.eye - in_position);
     // Leaving towards the eye: the same for every light.
     bool boundary = MODE == kTm && boundary_crossed();
@@ -135,6 +138,6 @@ void main()
     // unrolled step (constant indices: a loop over a list would cost more than the term).
     if (MODE == kTm)
         for (uint k = 0; k < TRANSMISSION; ++k)
-            color += exit_transmittance * transmitted_light(k, in_position, n, in_lobe[k], path_at(k));
+            color += exit_transmittance * transmitted_light(k, in_position, n, in_lobe[k], path_at(k), in_thickness);
     out_color = vec4(color, 1.0);
 }

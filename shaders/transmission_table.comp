@@ -1,8 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// transmission_table.comp - A(t) of attenuation.glsl at t_i = i · step, i < count, for mesh.frag
-// to interpolate (one texel fetch instead of nine exponentials per fragment and light). Texel i
-// holds A(t_i) and A(t_{i+1}) as six halves, so that one fetch gives both ends of the interval.
+// transmission_table.comp - the two parts A_b(t), A_d(t) of attenuation.glsl at t_i = i · step,
+// i < count, for mesh.frag to interpolate (a texel fetch a part instead of nine exponentials per
+// fragment and light). Texel i holds A_b(t_i) and A_b(t_{i+1}) as six halves, so that one fetch
+// gives both ends of the interval; texel count + i holds the same of A_d.
 #include "common.glsl"
 #include "attenuation.glsl"
 
@@ -15,12 +16,13 @@ layout(binding = 0, scalar) writeonly buffer Table { uvec4 texels[]; };
 
 void main()
 {
-    uint i = jade_thread_index();
-    if (i >= pc.count) return;
+    uint thread = jade_thread_index();
+    if (thread >= 2u * pc.count) return;
+    uint part = thread / pc.count, i = thread - part * pc.count;
     float step = pc.scatter.w;
-    vec3 a = transmission_attenuation(float(i) * step, pc.extinction, pc.diffusion, pc.scatter.xyz, pc.source.xyz,
-                                      pc.boundary.xyz);
-    vec3 b = transmission_attenuation(float(min(i + 1u, pc.count - 1u)) * step, pc.extinction, pc.diffusion,
+    vec3 a = transmission_attenuation(part, float(i) * step, pc.extinction, pc.diffusion, pc.scatter.xyz,
+                                      pc.source.xyz, pc.boundary.xyz);
+    vec3 b = transmission_attenuation(part, float(min(i + 1u, pc.count - 1u)) * step, pc.extinction, pc.diffusion,
                                       pc.scatter.xyz, pc.source.xyz, pc.boundary.xyz);
-    texels[i] = uvec4(packHalf2x16(a.rg), packHalf2x16(vec2(a.b, b.r)), packHalf2x16(b.gb), 0u);
+    texels[thread] = uvec4(packHalf2x16(a.rg), packHalf2x16(vec2(a.b, b.r)), packHalf2x16(b.gb), 0u);
 }

@@ -134,7 +134,9 @@ TEST(SceneMaterials, VolumeAndDiffuseTransmissionBecomeABurleyProfilePerChannel)
     }
     // e.g. red: ℓ = 0.02 / (1 + ln 2) = 11.81 mm, R_d = 0.5 / 0.9 = 0.556, s(0.556) = 1.396, d = 8.457 mm.
     EXPECT_NEAR(m.profile[0].d, 0.011812322 / (1.85 - 0.5 / 0.9 + 7.0 * std::pow(0.8 - 0.5 / 0.9, 3.0)), 1e-8);
-    EXPECT_NEAR(m.strength, 0.5 * 1.5, 1e-6);  // diffuseTransmissionFactor × extras strength
+    // diffuseTransmissionFactor × extras strength scales the medium's blur.
+    EXPECT_NEAR(m.strength, MediumFit{}.strength * 0.5 * 1.5, 1e-6);
+    EXPECT_NEAR(m.spread_strength, MediumFit{}.spread_strength * 0.5 * 1.5, 1e-6);
     EXPECT_NEAR(m.roughness, 0.3, 1e-6);
 }
 
@@ -156,7 +158,8 @@ TEST(SceneMaterials, WhiteAttenuationIsGreyAndPresetsComeFromExtras)
     const Material& m = marble.objects[0].material;
     EXPECT_FALSE(m.opaque);
     EXPECT_EQ(m.profile, material_preset("marble", 250).profile);
-    EXPECT_FLOAT_EQ(m.strength, 2.0f);
+    EXPECT_FLOAT_EQ(m.strength, 2.0f * material_preset("marble", 250).strength);
+    EXPECT_FLOAT_EQ(m.spread_strength, 2.0f * material_preset("marble", 250).spread_strength);
 
     const Scene plain =
         one_material("plain", R"({"pbrMetallicRoughness":{"baseColorFactor":[0.2,0.4,0.6,1]}})", &warnings);

@@ -61,8 +61,9 @@ double specular(glm::dvec3 n, glm::dvec3 v, glm::dvec3 l, double n_dot_l, double
     return d * vis * (f0 + (1.0 - f0) * std::pow(1.0 - v_dot_h, 5.0)) * n_dot_l;
 }
 
-// Ballistic and diffused transmittance along t (Material::transmission).
-glm::dvec3 attenuation(const Transmission& tr, double t)
+// Ballistic (in the forward lobe) and diffused (Lambertian, 1/π) transmittance along t
+// (Material::transmission).
+glm::dvec3 attenuation(const Transmission& tr, double t, double lobe)
 {
     glm::dvec3 out;
     for (int c = 0; c < 3; ++c) {
@@ -70,7 +71,7 @@ glm::dvec3 attenuation(const Transmission& tr, double t)
         const double diffused =
             -std::expm1(-double(tr.sigma_s_reduced[c]) * t) *
             slab_diffusion_transmittance(t, tr.sigma_tr[c], tr.source_depth[c], tr.extrapolation[c]);
-        out[c] = double(tr.weight) * ballistic + double(tr.diffusion_weight) * diffused;
+        out[c] = double(tr.weight) * ballistic * lobe + double(tr.diffusion_weight) * diffused / kPi;
     }
     return out;
 }
@@ -88,10 +89,11 @@ glm::dvec3 reference_pixel(const ShadingInputs& in, size_t p, const Material& m,
     const double exit = m.boundary_transmittance ? boundary(glm::dot(n, v), f0, alpha) : 1.0;
     glm::dvec3 t;
     for (int c = 0; c < 3; ++c)
-        t[c] = std::min(double(m.strength) * std::clamp(double(in.tm[p][m.grey() ? 0 : c]), 0.0, 3e38) +
-                            double(m.spread_strength) *
-                                std::clamp(double(in.normal_spread[p][m.grey() ? 0 : c]), 0.0, 1.0),
-                        LutLayout::kMaxVariance);
+        t[c] =
+            std::min(std::clamp(double(in.tm[p][m.grey() ? 0 : c]), 0.0, 3e38) *
+                         (double(m.strength) + double(m.spread_strength) *
+                                                   std::clamp(double(in.normal_spread[p][m.grey() ? 0 : c]), 0.0, 1.0)),
+                     LutLayout::kMaxVariance);
     const size_t pixels = size_t(in.width) * in.height;
     glm::dvec3 color(0.0);
     for (size_t k = 0; k < lights.size(); ++k) {
@@ -115,7 +117,7 @@ glm::dvec3 reference_pixel(const ShadingInputs& in, size_t p, const Material& m,
             const double lobe = mu > 0.0 ? (double(tr.lobe) + 1.0) / (2.0 * kPi) * std::pow(mu, double(tr.lobe)) : 0.0;
             const double follow = (1.0 - double(tr.normal_mix)) + double(tr.normal_mix) * std::max(-c, 0.0);
             const double crossings = m.boundary_transmittance ? boundary(std::max(-c, 0.0), f0, alpha) * exit : 1.0;
-            color += crossings * lobe * follow * attenuation(tr, double(in.path[k * pixels + p])) * e;
+            color += crossings * follow * attenuation(tr, double(in.path[k * pixels + p]), lobe) * e;
         }
     }
     return color;

@@ -171,7 +171,8 @@ TEST_F(Thickness, BackLitSlabShowsTheBallisticTransmittance)
     const RenderedImage bare = renderer.render(cam, lights, rs);
     EXPECT_NEAR(bare.pixel(16, 16)[1] / centre[1], 1.0 / crossings, 0.002) << "without boundary_transmittance";
     m.boundary_transmittance = true;
-    // The diffused part alone: (1 − e^{−σ_s' t}) T_d(t), T_d the slab's diffusion transmittance.
+    // The diffused part alone: (1 − e^{−σ_s' t}) T_d(t), T_d the slab's diffusion transmittance,
+    // leaving the far side as a Lambertian emitter (1/π), whatever the lobe.
     m.transmission.weight = 0.0f, m.transmission.diffusion_weight = 0.5f;
     m.transmission.sigma_s_reduced = {10.0f, 5.0f, 2.0f};
     m.transmission.sigma_tr = {1.0f, 3.0f, 9.0f};
@@ -183,7 +184,7 @@ TEST_F(Thickness, BackLitSlabShowsTheBallisticTransmittance)
         const double s = m.transmission.sigma_s_reduced[c], tr = m.transmission.sigma_tr[c];
         const double slab =
             slab_diffusion_transmittance(t, tr, m.transmission.source_depth[c], m.transmission.extrapolation[c]);
-        const double expected = 0.5 * lobe * (1.0 - std::exp(-s * t)) * slab * 2.0 * crossings;
+        const double expected = 0.5 / std::numbers::pi * (1.0 - std::exp(-s * t)) * slab * 2.0 * crossings;
         EXPECT_NEAR(diffused.pixel(16, 16)[c], expected, 0.01 * expected) << "diffused, channel " << c;
     }
     // Off when no light is behind the object, and with RenderSettings::transmission = false.

@@ -49,6 +49,7 @@ struct Reference {
     LoadedImage image;                // linear (from the EXR)
     flip::Image srgb;                 // the 8-bit PNG, for FLIP
     std::vector<uint8_t> mask, thin;  // object and thin-region masks, 0/1 per pixel
+    std::vector<uint8_t> away;        // surfaces facing away from the light, not thin (empty: none given)
 };
 
 std::vector<uint8_t> read_mask(const std::filesystem::path& path, int width, int height)
@@ -73,6 +74,8 @@ Reference load_reference(const std::filesystem::path& dir, const std::filesystem
         r.srgb = flip::from_linear(uint32_t(png.width), uint32_t(png.height), png.rgba.data(), 4);
         r.mask = read_mask(dir / files.at("mask").get<std::string>(), r.image.width, r.image.height);
         r.thin = read_mask(dir / files.at("thin").get<std::string>(), r.image.width, r.image.height);
+        if (files.contains("away"))
+            r.away = read_mask(dir / files.at("away").get<std::string>(), r.image.width, r.image.height);
     } catch (const json::exception& e) {
         throw Error(record_path.string() + ": " + e.what());
     }
@@ -119,6 +122,19 @@ Medium medium_of(const json& record)
     medium.g = m.at("g"), medium.ior = m.at("ior"), medium.roughness = m.at("roughness");
     return medium;
 }
+
+/// The record's light: directional (towards_light, irradiance) or point (position, intensity:
+/// irradiance intensity/r² on a surface facing it at distance r, Mitsuba's and Jade's convention).
+Light light_of(const json& light)
+{
+    if (light.value("type", std::string("directional")) == "point")
+        return Light::point(vec3_of(light.at("position")), vec3_of(light.at("intensity")));
+    return Light::directional(vec3_of(light.at("towards_light")), vec3_of(light.at("irradiance")));
+}
+
+/// The poster's model as the comparison draws it: its Gaussian's variance strength · t_m, with
+/// the strength the training scenes' fit chose for it (docs/fidelity.md, *Calibration*).
+constexpr float kPosterStrength = 0.3f;
 
 /// A mesh baked once per medium and reused by every light of it.
 struct BakedMesh {
@@ -183,7 +199,8 @@ int cmd_fidelity(int argc, char** argv)
         for (auto& b : bake_options()) o.push_back(b);
         o.push_back({"references", "DIR", "the committed references (default tools/groundtruth/references)"});
         o.push_back({"root", "DIR", "where the records' mesh paths start (default: three folders above DIR)"});
-        o.push_back({"set", "S", "train | validation | all (default all)"});
+        o.push_back(
+            {"set", "S", "train | validation | regimes (held out: physical media, point lights) | all (default all)"});
         o.push_back({"scene", "TEXT", "only scenes whose name contains TEXT"});
         o.push_back({"fit", "FILE", "JSON of MediumFit values instead of the built-in defaults"});
         o.push_back({"json", "FILE", "write every number as JSON"});
@@ -209,8 +226,8 @@ int cmd_fidelity(int argc, char** argv)
     const std::filesystem::path root =
         args.get_or("root", (std::filesystem::absolute(dir) / ".." / ".." / "..").string());
     const std::string set = args.get_or("set", "all"), filter = args.get_or("scene", "");
-    if (set != "train" && set != "validation" && set != "all")
-        args.fail("--set: '" + set + "' is not train, validation or all");
+    if (set != "train" && set != "validation" && set != "regimes" && set != "all")
+        args.fail("--set: '" + set + "' is not train, validation, regimes or all");
     const MediumFit fit = fit_from_args(args);
     BakeSettings bake_settings = bake_settings_from_args(args);
     const auto components = args.get("components"), images = args.get("images");
@@ -270,8 +287,7 @@ int cmd_fidelity(int argc, char** argv)
         camera.target = vec3_of(rec.at("camera").at("target"));
         camera.up = vec3_of(rec.at("camera").at("up"));
         camera.fov_y_degrees = rec.at("camera").at("fov_y_degrees").get<float>();
-        const std::vector<Light> lights = {Light::directional(vec3_of(rec.at("light").at("towards_light")),
-                                                              vec3_of(rec.at("light").at("irradiance")))};
+        const std::vector<Light> lights = {light_of(rec.at("light"))};
         RenderSettings rs;
         rs.width = uint32_t(ref.image.width), rs.height = uint32_t(ref.image.height);
         rs.float32 = true;
@@ -282,6 +298,10 @@ int cmd_fidelity(int argc, char** argv)
                     {"medium", rec.at("medium_name")}};
         const glm::dvec3 ref_thin = region_mean(ref.image.rgba, ref.thin);
         row["thin_reference"] = {ref_thin.x, ref_thin.y, ref_thin.z};
+        if (!ref.away.empty()) {
+            const glm::dvec3 away = region_mean(ref.image.rgba, ref.away);
+            row["away_reference"] = {away.x, away.y, away.z};
+        }
         std::printf("%-26s", ref.name.c_str());
         renderer.set_material(material);
         glm::dvec3 thin_default(0.0);
@@ -291,7 +311,7 @@ int cmd_fidelity(int argc, char** argv)
             // The poster's model alone: no boundary transmittance either.
             Material as_drawn = material;
             as_drawn.boundary_transmittance = mode.transmission;
-            if (!mode.transmission) as_drawn.spread_strength = 0.0f;
+            if (!mode.transmission) as_drawn.spread_strength = 0.0f, as_drawn.strength = kPosterStrength;
             renderer.set_material(as_drawn);
             RenderedImage img = renderer.render(camera, lights, rs);
             const flip::Image test = flip::from_linear(img.width, img.height, img.rgba.data(), 4);
@@ -300,14 +320,24 @@ int cmd_fidelity(int argc, char** argv)
             const glm::dvec3 thin = region_mean(img.rgba, ref.thin);
             row[mode.name] = {
                 {"flip", whole}, {"flip_masked", masked}, {"gpu_ms", img.gpu_ms}, {"thin", {thin.x, thin.y, thin.z}}};
+            if (!ref.away.empty()) {
+                const glm::dvec3 away = region_mean(img.rgba, ref.away);
+                row[mode.name]["away"] = {away.x, away.y, away.z};
+            }
             if (std::string(mode.name) == "default") thin_default = thin;
             if (images)
                 save_image(std::filesystem::path(*images) / (ref.name + "__" + mode.name + ".png"), int(img.width),
                            int(img.height), img.rgba);
             std::printf(" %8.4f", masked);
         }
-        std::printf("   %.3f %.3f %.3f | %.3f %.3f %.3f\n", ref_thin.x, ref_thin.y, ref_thin.z, thin_default.x,
+        std::printf("   %.3f %.3f %.3f | %.3f %.3f %.3f", ref_thin.x, ref_thin.y, ref_thin.z, thin_default.x,
                     thin_default.y, thin_default.z);
+        if (row.contains("away_reference")) {
+            const json &a = row["away_reference"], &d = row["default"]["away"];
+            std::printf("   away %.4f %.4f %.4f | %.4f %.4f %.4f", a[0].get<double>(), a[1].get<double>(),
+                        a[2].get<double>(), d[0].get<double>(), d[1].get<double>(), d[2].get<double>());
+        }
+        std::printf("\n");
         std::fflush(stdout);
         out.push_back(row);
         if (!components) continue;

@@ -1,6 +1,6 @@
 // attenuation.glsl - the transmittance of the transmission term along a path t inside the
-// object (jade/material.hpp Transmission): ballistic and diffused,
-//   A(t) = w_b e^{−σ_t t} + w_d (1 − e^{−σ_s' t}) T_d(t),
+// object (jade/material.hpp Transmission), in two parts, ballistic and diffused:
+//   A_b(t) = w_b e^{−σ_t t},  A_d(t) = w_d (1 − e^{−σ_s' t}) T_d(t),
 //   T_d(t) = min(1, sinh(σ_tr z_s) cosh(σ_tr z_b) / sinh(σ_tr (t + 2 z_b))), z_s = z_0 + z_b,
 // the diffusion approximation's transmittance through a slab of thickness t
 // (jade::slab_diffusion_transmittance, its float64 home).
@@ -27,15 +27,19 @@ vec3 slab_diffusion(float t, vec3 sigma_tr, vec3 source, vec3 boundary)
     return mix(r, vec3(0.0), isnan(r));  // a capped σ of 3e38 times a zero distance
 }
 
+// The two parts of the transmittance along t, weighted: `part` 0 is the forward (ballistic) part
+// w_b e^{−σ_t t}, which leaves in the forward lobe; 1 is the diffused part
+// w_d (1 − e^{−σ_s' t}) T_d(t), which leaves the far side diffusely (transmission.glsl).
 // extinction: σ_t, w_b; diffusion: σ_tr, w_d; scatter: σ_s' (1/mesh unit); source: z_s, boundary:
-// z_b (mesh units). σ ≤ 3e38 and t > 0: the
-// products are finite or +Inf, never NaN, and e^{−Inf} = 0. A zero (or NaN) t transmits
-// fully without the product: lavapipe turned 3e38 · 0 into a NaN there (tests/test_thickness.cpp).
-vec3 transmission_attenuation(float t, vec4 extinction, vec4 diffusion, vec3 scatter, vec3 source, vec3 boundary)
+// z_b (mesh units). σ ≤ 3e38 and t > 0: the products are finite or +Inf, never NaN, and
+// e^{−Inf} = 0. A zero (or NaN) t transmits fully without the product: lavapipe turned 3e38 · 0
+// into a NaN there (tests/test_thickness.cpp).
+vec3 transmission_attenuation(uint part, float t, vec4 extinction, vec4 diffusion, vec3 scatter, vec3 source,
+                              vec3 boundary)
 {
-    vec3 ballistic = t > 0.0 ? exp(-extinction.rgb * t) : vec3(1.0);
-    vec3 diffused = t > 0.0 ? one_minus_exp(scatter * t) * slab_diffusion(t, diffusion.rgb, source, boundary) : vec3(0.0);
-    return extinction.w * ballistic + diffusion.w * diffused;
+    if (part == 0u) return extinction.w * (t > 0.0 ? exp(-extinction.rgb * t) : vec3(1.0));
+    return diffusion.w *
+           (t > 0.0 ? one_minus_exp(scatter * t) * slab_diffusion(t, diffusion.rgb, source, boundary) : vec3(0.0));
 }
 
 #endif

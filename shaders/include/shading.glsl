@@ -22,17 +22,22 @@ const uint kMaxLights = JADE_MAX_LIGHTS;
 
 layout(binding = 0, scalar) uniform FrameDataBlock { FrameData data; };
 
-// t = strength · t_m + spread_strength · spread per channel (jade/material.hpp), clamped to the
-// LUT's range t_max (past it f is 1/π within 2e-6). t_m is capped below +Inf first, since
-// strength 0 · Inf would be NaN (tests/test_stability.cpp renders t_m = 3e38 with strength 0 and
-// 1e30); strength · t_m itself may overflow to +Inf, which the clamp takes. The spread is in
-// [0, 1]. Evaluated per vertex (mesh.vert): t is linear in t_m and the spread, so interpolating t
-// is interpolating them, as the poster does, with three varyings fewer; the clamps hold under
+// t = t_m · (strength + spread_strength · spread) per channel (jade/material.hpp), clamped to the
+// LUT's range t_max (past it f is 1/π within 2e-6). strength alone is the poster's model: a blur
+// whose angle does not depend on how far light travels under the surface. The spread (≈ ⟨θ²⟩/2
+// of the normals within the profile's reach, ≈ the variance of the angle that light crosses on
+// its way under a curved surface) gives the blur the scale of the medium against the shape:
+// a head of skin (reach ~1 mm, curvature radius ~80 mm) blurs by a few degrees, a jade bunny by
+// tens; t_m scales it by how much light arrives (occlusion lowers it, a thin part raises it).
+// t_m is capped below +Inf first, since 0 · Inf would be NaN (tests/test_stability.cpp renders
+// t_m = 3e38 with strength 0 and 1e30); the product itself may overflow to +Inf, which the clamp
+// takes. The spread is in [0, 1]. Evaluated per vertex (mesh.vert): t is smooth over a triangle,
+// as the poster's interpolated t_m, with three varyings fewer; the clamps hold under
 // interpolation.
 vec3 variance(vec3 tm, vec3 spread)
 {
     tm = min(max(tm, vec3(0.0)), vec3(3.0e38));
-    vec3 t = data.albedo_strength.w * tm + data.specular.w * clamp(spread, 0.0, 1.0);
+    vec3 t = tm * (data.albedo_strength.w + data.specular.w * clamp(spread, 0.0, 1.0));
     return min(t * data.params.x, vec3(1.0)) * (1.0 / data.params.x);
 }
 

@@ -57,7 +57,8 @@ struct FrameData {
     vec4 light_depth_map;         // light-depth tile size (texels), tiles in the atlas, depth range (mesh units)
     mat4 light_depth[JADE_MAX_LIGHT_DEPTH_TILES];  // world → light clip space of each transmitter's tile
     vec4 color_map[JADE_COLOR_MAP_STOPS];          // false-colour stops, linear RGB
-    vec4 transmission_table_map;  // 1 / step of the attenuation table (mesh units), last texel, last interval
+    vec4
+        transmission_table_map;  // 1 / step of the attenuation table (mesh units), last texel, last interval, texels a part
     GpuLight transmitters[JADE_MAX_TRANSMITTERS];  // the lights drawn with transmission (transmission.glsl)
     GpuLight lights[JADE_MAX_LIGHTS];
 };

@@ -37,6 +37,10 @@ struct Translucency {
 // t = variance(t_m, spread) (shading.glsl), interpolated from the vertices.
 Translucency translucency_setup(vec3 t)
 {
+    // Under MSAA a pixel's centre can lie outside the triangle it shades, and the interpolated t
+    // is then extrapolated: below 0 it would make e^{−2k²t} grow without bound (a white line
+    // along a silhouette where t changes fast).
+    t = clamp(t, vec3(0.0), vec3(1.0 / data.params.x));
     Translucency r;
     if (EVAL == kEvalQuads || EVAL == kEvalFiltered) {
         // Row y = (t / t_max)^¼ · (H − 1): docs/shading.md says why the fourth root.

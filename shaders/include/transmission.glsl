@@ -1,12 +1,13 @@
 // transmission.glsl - light from behind through the object (jade/material.hpp Transmission):
-//   A(t) · (n+1)/(2π) max(V·(−L), 0)^n · ((1 − m) + m max(−N·L, 0)) · E
-// with A the attenuation along the path t inside the object (attenuation.glsl). The lobe is smooth
+//   [A_b(t) · (n+1)/(2π) max(V·(−L), 0)^n + A_d(t)/π] · ((1 − m) + m max(−N·L, 0)) · E
+// with A_b, A_d the ballistic and diffused attenuation along the path t inside the object
+// (attenuation.glsl). The lobe is smooth
 // over the surface and per vertex (mesh.vert). The path t (the longer of the local thickness and
 // the path inside the medium from where the light enters, from the light's depth layers) is per
 // vertex on a fine mesh and per fragment on a coarse one (PATH_PER_VERTEX): it is not smooth where
 // the body shadows a part from the light, and per vertex it lost a fifth of a thumb tip's glow on
-// the coarse hand of tests/test_fidelity.cpp; A(t) is read from the table of
-// transmission_table.comp (one fetch, not nine exponentials).
+// the coarse hand of tests/test_fidelity.cpp; A_b(t) and A_d(t) are read from the table
+// of transmission_table.comp (a fetch each, not nine exponentials).
 #ifndef JADE_TRANSMISSION_GLSL
 #define JADE_TRANSMISSION_GLSL
 
@@ -92,26 +93,39 @@ float transmitter_follow(float n_dot_l)
     return (1.0 - data.transmission_shape.z) + data.transmission_shape.z * max(-n_dot_l, 0.0);
 }
 
-// A(t), interpolated from the table (the last entry, ~0, beyond it; a NaN t reads an end).
-vec3 attenuation_at(float t)
+// A part of the attenuation at t (0: ballistic, 1: diffused; attenuation.glsl), interpolated
+// from the table (the last entry, ~0, beyond it; a NaN t reads an end).
+vec3 attenuation_at(uint part, float t)
 {
     float x = clamp(t * data.transmission_table_map.x, 0.0, data.transmission_table_map.y);
     float i = min(floor(x), data.transmission_table_map.z);
-    uvec4 q = texelFetch(transmission_table, int(i));
+    uvec4 q = texelFetch(transmission_table, int(i) + int(part) * int(data.transmission_table_map.w));
     vec2 rg = unpackHalf2x16(q.x), ba = unpackHalf2x16(q.y), gb = unpackHalf2x16(q.z);
     return mix(vec3(rg, ba.x), vec3(ba.y, gb), x - i);
 }
 
-// Transmitter k's light at `position` with normal n (unit), forward lobe `lobe` and path t, short
-// of the crossing out to the eye (the same for every light): in through the far side (this
-// normal standing in for the entry's), the lobe's share at this normal, the attenuation along t.
-vec3 transmitted_light(uint k, vec3 position, vec3 n, float lobe, float t)
+// The mean inward-cone thickness t̄ (ThicknessSettings: rays in the 60° cone about −n) of a flat
+// slab of thickness h is h · ln 4: ∫ h/cos θ dΩ over the cone / its solid angle.
+const float kSlabPerConeThickness = 0.72134752;  // 1 / ln 4
+
+// Transmitter k's light at `position` with normal n (unit), forward lobe `lobe`, path t along
+// the light and local thickness t̄, short of the crossing out to the eye (the same for every
+// light): in through the far side (this normal standing in for the entry's), the share at this
+// normal, then the two parts. The ballistic light travels the line, e^{−σ_t t}, and leaves in the
+// forward lobe. The diffused light has forgotten its direction: it crosses the slab between where
+// it entered and here, whose thickness is the path's depth along the normal, t·(−N·L) (exact for
+// a flat slab lit at any angle), and never less than the slab that the local thickness stands
+// for, t̄/ln 4; it leaves as a Lambertian emitter, 1/π of its flux per steradian (the exit flux
+// of the diffusion approximation's slab, T_d). A back-facing surface of a thick body gets ~0.
+vec3 transmitted_light(uint k, vec3 position, vec3 n, float lobe, float t, float thickness)
 {
     vec3 l, e;
     transmitter_at(k, position, l, e);
     float n_dot_l = dot(n, l);
     float entry = boundary_crossed() ? boundary_transmittance(-n_dot_l) : 1.0;
-    return (entry * lobe * transmitter_follow(n_dot_l)) * attenuation_at(t) * e;
+    float slab = max(kSlabPerConeThickness * thickness, t * max(-n_dot_l, 0.0));
+    vec3 a = lobe * attenuation_at(0u, t) + (1.0 / JADE_PI) * attenuation_at(1u, min(slab, t));
+    return (entry * transmitter_follow(n_dot_l)) * a * e;
 }
 
 #endif

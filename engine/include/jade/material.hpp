@@ -91,20 +91,22 @@ Medium medium_from_appearance(glm::dvec3 albedo, glm::dvec3 mean_free_path, doub
 /// thickness t̄ (jade/bake.hpp ThicknessSettings) and the light's path inside the medium from
 /// where it enters the object (the first four surfaces along each directional light behind the
 /// object, so parts the body shadows stay dark and the air between two parts does not count):
-///   L_t = [weight · e^{−σ_t·t} + diffusion_weight · (1 − e^{−σ_s'·t}) · T_d(t)]
-///         · lobe(μ) · ((1 − normal_mix) + normal_mix·max(−N·L, 0)) · E
+///   L_t = [weight · e^{−σ_t·t} · lobe(μ) + diffusion_weight · (1 − e^{−σ_s'·h}) · T_d(h) / π]
+///         · ((1 − normal_mix) + normal_mix·max(−N·L, 0)) · E
 ///   lobe(μ) = (n + 1)/(2π) · max(μ, 0)^n,  μ = V·(−L),  n = `lobe`
+///   h = min(t, max(t̄/ln 4, t·max(−N·L, 0)))
 /// The first part is the forward (low-order) transmittance of σ_t = k·(σ_s + σ_a), k =
-/// MediumFit::forward_extinction (1: the unscattered light alone; 0.7 fitted to the path tracer):
-/// grey when σ_s + σ_a is grey, as measured, so thin parts of a grey-σ_t medium glow white-grey
-/// whatever its colour. The second is light that scattered (1 − e^{−σ_s'·t}) and then diffused
-/// through the thickness: T_d is the diffusion approximation's transmittance of a slab
-/// (slab_diffusion_transmittance), falling as 1/t in a medium without absorption and as e^{−σ_tr·t}
-/// in a thick absorbing one, σ_tr = √(3σ_a(σ_a + σ_s')). It is the part that makes thin parts of
-/// a dense, little-absorbing medium (marble, milk, wax) glow in its colour while the thick body,
-/// many transport lengths across, stays dark.
-/// Both are spread into a forward lobe (normalised over the hemisphere about −L) by the rough
-/// boundary and forward scattering. weight = diffusion_weight = 0 turns the term off.
+/// MediumFit::forward_extinction: grey when σ_s + σ_a is grey, as measured, so thin parts of a
+/// grey-σ_t medium glow white-grey whatever its colour; it leaves in a forward lobe (the rough
+/// boundary and forward scattering spread it), normalised over the hemisphere about −L. The
+/// second is light that scattered and then diffused through the part: T_d is the diffusion
+/// approximation's transmittance of a slab (slab_diffusion_transmittance), falling as 1/h in a
+/// medium without absorption and as e^{−σ_tr·h} in a thick absorbing one, σ_tr =
+/// √(3σ_a(σ_a + σ_s')); it is coloured (red crosses skin furthest). Diffused light has forgotten
+/// its direction, so it leaves as a Lambertian emitter (1/π), and what it crosses is the slab
+/// between where it entered and here: h, the path's depth along the normal (exact for a flat
+/// slab lit at any angle, t̄/ln 4 being the slab that the cone's mean thickness stands for).
+/// weight = diffusion_weight = 0 turns the term off.
 struct Transmission {
     glm::vec3 sigma_t{0.0f};          ///< extinction σ_s + σ_a, 1/mesh unit
     glm::vec3 sigma_s_reduced{0.0f};  ///< σ_s' = σ_s(1 − g), 1/mesh unit
@@ -130,18 +132,32 @@ struct Transmission {
 double slab_diffusion_transmittance(double t, double sigma_tr, double source_depth, double extrapolation);
 
 /// The constants of Material::from_medium that the model leaves free, fitted to a volumetric path
-/// tracer (Mitsuba 3) on the training scenes of tools/groundtruth (fit: tools/groundtruth/fit.py,
-/// results and validation: docs/fidelity.md). The defaults are the fitted values.
+/// tracer (Mitsuba 3) on the training scenes of tools/groundtruth (27 scenes: bunny, dragon, camel
+/// × jewel, marble, wax × front, side, back light; fit and validation: docs/fidelity.md). The
+/// defaults are the fitted values; the validation scenes (hand, elephant) and the held-out
+/// regimes (skin at a head's scale, Jensen et al.'s media in millimetres, point lights) never
+/// took part in choosing them.
 struct MediumFit {
-    double albedo_scale = 0.9;         ///< k_d = albedo_scale · R_d(α', η)
-    double strength = 0.3;             ///< Material::strength (rad² per unit t_m)
-    double spread_strength = 3.0;      ///< Material::spread_strength (rad² per unit normal spread)
-    double transmission_weight = 0.4;  ///< Transmission::weight
-    double diffusion_weight = 0.071;   ///< Transmission::diffusion_weight
-    double lobe = 16.0;                ///< Transmission::lobe
-    double normal_mix = 0.25;          ///< Transmission::normal_mix
+    /// k_d = albedo_scale · R_d(α', η): fitted (stage 1, front and side light); the dipole's R_d
+    /// alone overestimates what leaves a rough dielectric.
+    double albedo_scale = 0.9;
+    /// Material::strength, rad² per unit t_m: the poster's scale-free blur. 0: the default's blur
+    /// comes from the spread alone, whose angle follows the medium's reach against the shape (a
+    /// scale-free one lit a back-lit head's face, where the path tracer has nothing).
+    double strength = 0.0;
+    /// Material::spread_strength, rad² per unit t_m · normal spread: fitted (front and side light,
+    /// 4.5 against 3, 6 and 12); the spread ≈ ⟨θ²⟩/2 of the normals within the profile's reach.
+    double spread_strength = 4.5;
+    double transmission_weight = 0.4;  ///< Transmission::weight: fitted (stage 2, back light)
+    /// Transmission::diffusion_weight: fitted on the training scenes' back light (0.1, 0.2, 0.35;
+    /// 1 would be the slab's own flux, which overestimates the light through a finite body,
+    /// whose sides the diffusing light also leaves by).
+    double diffusion_weight = 0.2;
+    double lobe = 16.0;        ///< Transmission::lobe: fitted (stage 2)
+    double normal_mix = 0.25;  ///< Transmission::normal_mix: fitted (stage 2)
     /// Transmission::sigma_t = forward_extinction · (σ_s + σ_a), in (0, 1]: the forward light falls
-    /// slower than the unscattered light, since light scattered a little still leaves in the lobe.
+    /// slower than the unscattered light, since light scattered a little still leaves in the lobe
+    /// (fitted: 0.5, 0.6, 0.7, 0.85, 1).
     double forward_extinction = 0.7;
 };
 
@@ -159,10 +175,11 @@ struct Material {
     std::string name;                       ///< preset or user name, used in messages and reports
     std::array<ChannelProfile, 3> profile;  ///< linear RGB
     glm::vec3 albedo{0.8f};                 ///< diffuse albedo k_d, linear RGB
-    float strength = 1.0f;                  ///< Gaussian variance (rad²) = strength · t_m + spread_strength · spread
-    /// Blur that follows the surface's shape within the profile's reach: rad² added per unit of
-    /// BakeResult::normal_spread (≈ ⟨θ²⟩/2 of the normals there, per channel). 0 is the
-    /// poster's model; from_medium sets it from the fit.
+    float strength = 1.0f;  ///< Gaussian variance (rad²) = t_m · (strength + spread_strength · spread)
+    /// Blur that follows the surface's shape within the profile's reach: rad² per unit of t_m ·
+    /// BakeResult::normal_spread (≈ ⟨θ²⟩/2 of the normals there, per channel): a medium whose
+    /// light travels far against the surface's curvature blurs more. 0 is the poster's model;
+    /// from_medium sets it from the fit.
     float spread_strength = 0.0f;
     float ior = 1.5f;           ///< for the specular Fresnel term
     float roughness = 0.25f;    ///< GGX roughness (perceptual, squared in the shader)

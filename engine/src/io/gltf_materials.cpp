@@ -165,7 +165,10 @@ Material MaterialMapper::map(int index)
     m.name = g.name.empty() ? "material " + std::to_string(index) : g.name;
     m.albedo = glm::vec3(albedo);
     m.roughness = float(clamped("roughnessFactor", g.pbrMetallicRoughness.roughnessFactor, 0.0, 1.0, 1.0));
-    m.strength = float(strength);
+    // extras.jade.strength (times the diffuse transmission factor) scales the material's blur: the
+    // poster's scale-free part and the spread's part alike.
+    m.strength *= float(strength);
+    m.spread_strength *= float(strength);
     m.opaque = !translucent;
     return m;
 }

@@ -25,7 +25,7 @@ constexpr uint32_t kMaxTexels = 1u << 16;
 
 TransmissionTable::TransmissionTable(gpu::Context& ctx) : ctx_(ctx)
 {
-    buffer_ = gpu::Buffer::from(ctx, std::vector<glm::uvec4>(2, glm::uvec4(0)),
+    buffer_ = gpu::Buffer::from(ctx, std::vector<glm::uvec4>(4, glm::uvec4(0)),
                                 VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                 "transmission table");
     view_ = gpu::TexelView(ctx, buffer_, VK_FORMAT_R32G32B32A32_UINT, 16, "transmission table");
@@ -50,7 +50,7 @@ TransmissionTable::Layout TransmissionTable::table_layout(const Transmission& tr
 
 uint64_t TransmissionTable::bytes(const Transmission& tr)
 {
-    return tr.enabled() ? uint64_t(table_layout(tr).count) * 16 : 32;
+    return tr.enabled() ? uint64_t(table_layout(tr).count) * 2 * 16 : 64;
 }
 
 void TransmissionTable::update(const Transmission& tr)
@@ -65,9 +65,9 @@ void TransmissionTable::update(const Transmission& tr)
     const double step = layout.step;
     const glm::vec3 rates[] = {glm::min(tr.sigma_t, glm::vec3(3e38f)), glm::min(tr.sigma_tr, glm::vec3(3e38f)),
                                glm::min(tr.sigma_s_reduced, glm::vec3(3e38f))};
-    if (buffer_.size() < VkDeviceSize(count) * 16) {
+    if (buffer_.size() < VkDeviceSize(count) * 2 * 16) {
         if (buffer_) ctx_.release_after_gpu(std::move(view_), std::move(buffer_));  // recorded draws may read it
-        buffer_ = gpu::Buffer(ctx_, VkDeviceSize(count) * 16,
+        buffer_ = gpu::Buffer(ctx_, VkDeviceSize(count) * 2 * 16,
                               VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                               "transmission table");
         view_ = gpu::TexelView(ctx_, buffer_, VK_FORMAT_R32G32B32A32_UINT, 16, "transmission table");
@@ -89,12 +89,12 @@ void TransmissionTable::update(const Transmission& tr)
         // After the reads of draws submitted earlier (the table is rewritten in place).
         gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_NONE,
                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_NONE);
-        kernel_->dispatch(cmd, count, push, {buffer_});
+        kernel_->dispatch(cmd, 2 * count, push, {buffer_});  // both parts
         // For every later draw on the queue.
         gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_WRITE_BIT,
                             VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_READ_BIT);
     });
-    map_ = glm::vec4(float(1.0 / step), float(count - 1), float(count - 2), 0.0f);
+    map_ = glm::vec4(float(1.0 / step), float(count - 1), float(count - 2), float(count));
     held_ = tr;
 }
 

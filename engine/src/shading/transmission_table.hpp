@@ -17,7 +17,7 @@ namespace jade::shading {
 
 class TransmissionTable {
 public:
-    /// A table of two texels (A = 0) until the first update().
+    /// A table of two texels a part (A = 0) until the first update().
     explicit TransmissionTable(gpu::Context& ctx);
 
     /// Tabulates `tr` unless it is the one held: one submission, waited for. The caller makes
@@ -27,7 +27,8 @@ public:
     /// The device bytes the table holds for a material with `tr` (for scene plans).
     static uint64_t bytes(const Transmission& tr);
 
-    /// What attenuation_at() indexes with: x = 1/step (per mesh unit), y = last texel, z = last interval.
+    /// What attenuation_at() indexes with: x = 1/step (per mesh unit), y = last texel, z = last
+    /// interval, w = texels a part (the diffused part's first texel).
     glm::vec4 shader_map() const { return map_; }
     const gpu::TexelView& texels() const { return view_; }
 
@@ -42,7 +43,7 @@ private:
     std::optional<gpu::Kernel> kernel_;
     gpu::Buffer buffer_;
     gpu::TexelView view_;  // destroyed before buffer_
-    glm::vec4 map_{0.0f, 1.0f, 0.0f, 0.0f};
+    glm::vec4 map_{0.0f, 1.0f, 0.0f, 2.0f};
     std::optional<Transmission> held_;
 };
 
