@@ -10,6 +10,9 @@
 #include <jade/error.hpp>
 
 #include <fstream>
+#include <iterator>
+#include <cstring>
+#include <cmath>
 
 using namespace jade;
 
@@ -136,6 +139,42 @@ TEST_F(BakeCacheTest, CorruptOrStaleEntriesAreDetectedAndRebaked)
     EXPECT_EQ(bake_with_cache(context(), cache, sphere, material, settings).source, BakeSource::Baked);
     EXPECT_TRUE(cache.load(key, sphere.vertex_count()));
     EXPECT_EQ(files_in(dir), 1u);
+}
+
+TEST_F(BakeCacheTest, AnEntryWithNonFiniteValuesUnderAValidChecksumIsStaleAndRebaked)
+{
+    BakeCache cache(dir);
+    const uint64_t key = bake_key(sphere, material, settings);
+    bake_with_cache(context(), cache, sphere, material, settings);
+    const auto path = cache.entry_path(key);
+    std::string bytes;
+    {
+        std::ifstream in(path, std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    // A NaN t_m for vertex 3 (the payload: AO, then t_m), and Inf AO for vertex 1, and the
+    // checksum (64-bit FNV-1a of the payload, at byte 32) made to match.
+    const float nan = std::nanf(""), inf = INFINITY;
+    std::memcpy(&bytes[40 + sphere.vertex_count() * 4 + 3 * 12 + 4], &nan, 4);
+    std::memcpy(&bytes[40 + 1 * 4], &inf, 4);
+    uint64_t h = 0xcbf29ce484222325ull;
+    for (size_t i = 40; i < bytes.size(); ++i) h = (h ^ uint8_t(bytes[i])) * 0x100000001b3ull;
+    std::memcpy(&bytes[32], &h, 8);
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+
+    std::string why;
+    EXPECT_FALSE(cache.load(key, sphere.vertex_count(), &why));
+    EXPECT_EQ(why, "stale: values of vertex 1 are not finite; baked again");
+    const CachedBake rebaked = bake_with_cache(context(), cache, sphere, material, settings);
+    EXPECT_EQ(rebaked.source, BakeSource::Baked);
+    EXPECT_EQ(rebaked.note, why);
+    ASSERT_TRUE(cache.load(key, sphere.vertex_count(), &why)) << why;  // replaced by a sound entry
+
+    // Storing one is refused: the cache never holds what it would call stale.
+    BakeResult bad = rebaked.result;
+    bad.tm[0].x = nan;
+    EXPECT_THROW(cache.store(key, bad), Error);
+    EXPECT_TRUE(cache.load(key, sphere.vertex_count()));
 }
 
 TEST_F(BakeCacheTest, OpaqueMaterialBakesNothing)

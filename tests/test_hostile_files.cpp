@@ -83,8 +83,8 @@ TEST(hostile_links, ALinkToAFileOutsideTheFolderIsRefusedNamingTheUri)
                          "/CesiumLogoFlat.png', outside the glTF file's folder"),
               std::string::npos)
         << image;
-    for (const auto& load : std::vector<std::function<void()>>{[&] { jade::load_scene(asset); },
-                                                               [&] { jade::load_animated_gltf(asset); }})
+    for (const auto& load :
+         std::vector<std::function<void()>>{[&] { jade::load_scene(asset); }, [&] { jade::load_animated_gltf(asset); }})
         EXPECT_NE(error_of(load).find("resolves to"), std::string::npos) << error_of(load);
 
     // Allowed on request, and then GltfAsset::files names what was read, links resolved.
@@ -177,8 +177,8 @@ TEST(hostile_writes, APlantedLinkAtTheTemporaryNameIsNeverFollowed)
     EXPECT_EQ(read_all(victim), "precious\n");
 
     // Likewise through the CLI, whose output check creates a probe file first.
-    const auto r = run_cli({"bake", data("tetra_normals.off").string(), "--out", target.string(), "--quality", "draft",
-                            "--ao-rays", "4"});
+    const auto r = run_cli(
+        {"bake", data("tetra_normals.off").string(), "--out", target.string(), "--quality", "draft", "--ao-rays", "4"});
     EXPECT_EQ(r.exit_code, 0) << r.output;
     EXPECT_EQ(read_all(victim), "precious\n");
     for (const auto& e : fs::directory_iterator(dir)) {

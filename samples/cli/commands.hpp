@@ -39,6 +39,7 @@ std::vector<OptionSpec> material_options();
 std::vector<OptionSpec> bake_options();
 /// --allow-outside-links: what the readers may follow (ReadOptions).
 std::vector<OptionSpec> input_options();
+/// The ReadOptions of --allow-outside-links.
 ReadOptions read_options(const Args& args);
 /// A command's options: the groups in order, e.g. all_options({device_options(), bake_options(),
 /// {{"out", "FILE", "output file"}}}).
@@ -58,6 +59,7 @@ Material material_from_args(const Args& args, double diagonal);
 BakeSettings bake_settings_from_args(const Args& args);
 /// The built-in default scene when `path` is empty or "bunny": the Stanford bunny if
 /// assets/ has it, else a procedural sphere.
+/// What the reader repaired (ReadOptions::warnings) is printed as "jade: warning: ...".
 TriangleMesh load_mesh_arg(const std::string& path, const ReadOptions& options = {});
 /// A file of the test meshes (third_party/fetch_assets.sh) by name, from $JADE_ASSETS, ./assets or
 /// the source tree's assets/, whatever the working directory; empty when none has it.

@@ -130,6 +130,41 @@ Material material_from_args(const Args& args, const PreparedMesh& mesh)
     return material_from_args(args, double(mesh.diagonal));
 }
 
+namespace {
+
+/// The bake runs in single precision on a mesh scaled to about unit size: a profile far smaller
+/// or far larger than the object underflows or overflows there (R's 1/d³, the dipole's depths
+/// squared, a Gaussian's variance) and gives NaN. Beyond these ratios t_m has long reached its
+/// limits (1: the object is all near field; 0: the light leaves before it scatters back), so
+/// nothing is lost by refusing, the same range as --d's.
+constexpr double kMinProfileRatio = 1e-9, kMaxProfileRatio = 1e9;
+
+void check_profile_scale(const Args& args, const Material& m, double diagonal, double mm_per_unit)
+{
+    if (!(diagonal > 0.0) || !std::isfinite(diagonal)) return;  // the mesh checks name that
+    for (int c = 0; c < 3; ++c) {
+        const double radius = m.profile[c].radius_for_tail(0.5);  // the median scattering radius
+        const double ratio = radius / diagonal;
+        if (ratio >= kMinProfileRatio && ratio <= kMaxProfileRatio) continue;
+        char text[320];
+        std::snprintf(text, sizeof text,
+                      "material %s: its median scattering radius (channel %d: %.3g units) is %.3g times the "
+                      "object's diagonal (%.3g units), outside [%g, %g]: t_m would not be finite in single precision",
+                      m.name.c_str(), c, radius, ratio, diagonal, kMinProfileRatio, kMaxProfileRatio);
+        if (args.get("medium")) args.fail(std::string("--medium: ") + text);
+        if (args.get("d")) args.fail(std::string("--d: ") + text);
+        char mm[64];
+        std::snprintf(mm, sizeof mm, "%g", mm_per_unit);
+        args.fail(std::string("--mm-per-unit ") + mm + ": " + text + " (the object would be " + [&] {
+            char s[32];
+            std::snprintf(s, sizeof s, "%.3g", diagonal * mm_per_unit);
+            return std::string(s);
+        }() + " mm across)");
+    }
+}
+
+}  // namespace
+
 Material material_from_args(const Args& args, double diagonal)
 {
     double default_mm = diagonal > 0 ? 100.0 / diagonal : 1.0;
@@ -157,6 +192,7 @@ Material material_from_args(const Args& args, double diagonal)
             p = ChannelProfile::burley((p.kind == ProfileKind::Burley ? p.d / mean : 1.0) * rel * diagonal);
     }
     m.strength = float(args.number("strength", m.strength, 0.0, 1e6));
+    check_profile_scale(args, m, diagonal, mm_per_unit);
     return m;
 }
 
@@ -206,7 +242,14 @@ std::filesystem::path find_asset(const std::string& name)
 
 TriangleMesh load_mesh_arg(const std::string& path, const ReadOptions& options)
 {
-    if (!path.empty() && path != "bunny") return load_mesh(path, options);
+    if (!path.empty() && path != "bunny") {
+        std::vector<std::string> warnings;
+        ReadOptions with_warnings = options;
+        with_warnings.warnings = &warnings;
+        TriangleMesh mesh = load_mesh(path, with_warnings);
+        for (const auto& w : warnings) std::fprintf(stderr, "jade: warning: %s\n", w.c_str());
+        return mesh;
+    }
     const std::filesystem::path bunny = find_asset("bunny00.off");
     if (!bunny.empty()) return load_mesh(bunny);
     std::fprintf(stderr,

@@ -23,6 +23,9 @@ struct ReadOptions {
     /// URI and in the folder): a link inside the folder that leads out of it is refused unless
     /// this is set (a shared asset must not carry files from the machine that baked it).
     bool allow_outside_links = false;
+    /// Receives what a reader repaired, naming the file (load_mesh: normals that are not finite
+    /// or zero, recomputed from the triangles). Not owned; may be null.
+    std::vector<std::string>* warnings = nullptr;
 };
 
 /// Loads a triangle mesh, choosing the reader by extension (case-insensitive):

@@ -4,6 +4,7 @@
 #include <jade/error.hpp>
 #include <jade/io.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -116,6 +117,25 @@ std::filesystem::path BakeCache::entry_path(uint64_t key) const
     return dir_ / name;
 }
 
+namespace {
+
+/// The first vertex with a non-finite AO, t_m, thickness or scattering-normal value; -1 if none.
+long long first_non_finite(const BakeResult& r)
+{
+    const auto finite3 = [](const glm::vec3& v) {
+        return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+    };
+    for (size_t v = 0; v < r.ao.size(); ++v)
+        if (!std::isfinite(r.ao[v]) || (v < r.tm.size() && !finite3(r.tm[v])) ||
+            (v < r.thickness.size() && !std::isfinite(r.thickness[v])) ||
+            (v < r.scattering_normal.size() && !finite3(r.scattering_normal[v])) ||
+            (v < r.normal_spread.size() && !finite3(r.normal_spread[v])))
+            return (long long)v;
+    return -1;
+}
+
+}  // namespace
+
 std::optional<BakeResult> BakeCache::load(uint64_t key, size_t vertex_count, std::string* why) const
 {
     auto fail = [&](std::string reason) -> std::optional<BakeResult> {
@@ -150,6 +170,10 @@ std::optional<BakeResult> BakeCache::load(uint64_t key, size_t vertex_count, std
         return fail("truncated");
     if (in.peek() != std::char_traits<char>::eof()) return fail("trailing bytes");
     if (payload_checksum(r) != h.checksum) return fail("checksum mismatch");
+    // A valid checksum proves the bytes are as stored, not that the bake was sound: an entry
+    // with a NaN or an Inf (written by an older version, or by hand) is stale, baked again.
+    if (const long long v = first_non_finite(r); v >= 0)
+        return fail("stale: values of vertex " + std::to_string(v) + " are not finite; baked again");
     r.method_used = TmMethod(method);
     if (why) why->clear();
     return r;
@@ -164,6 +188,9 @@ void BakeCache::store(uint64_t key, const BakeResult& r) const
         throw Error(path.string() + ": cannot store a bake with " + std::to_string(r.ao.size()) + " AO, " +
                     std::to_string(r.tm.size()) + " t_m and " + std::to_string(r.thickness.size()) +
                     " thickness values");
+    if (const long long v = first_non_finite(r); v >= 0)
+        throw Error(path.string() + ": cannot store a bake whose values of vertex " + std::to_string(v) +
+                    " are not finite");
     Header h{};
     std::memcpy(h.magic, kMagic, sizeof kMagic);
     h.version = kBakeCacheVersion;

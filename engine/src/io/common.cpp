@@ -3,9 +3,12 @@
 
 #include <jade/io.hpp>
 
+#include <glm/geometric.hpp>
+
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <system_error>
@@ -72,6 +75,43 @@ void append_fan(std::span<const uint32_t> polygon, std::vector<uint32_t>& indice
         indices.push_back(polygon[i]);
         indices.push_back(polygon[i + 1]);
     }
+}
+
+BadNormal first_bad_normal(const TriangleMesh& mesh)
+{
+    for (size_t v = 0; v < mesh.normals.size(); ++v) {
+        const glm::vec3 n = mesh.normals[v];
+        if (!(std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z))) return {(long long)v, "not finite"};
+        if (n == glm::vec3(0.0f)) return {(long long)v, "zero"};
+    }
+    return {};
+}
+
+void repair_normals(TriangleMesh& mesh, std::vector<std::string>* warnings)
+{
+    const BadNormal first = first_bad_normal(mesh);
+    if (first.vertex < 0 || mesh.normals.size() != mesh.positions.size()) return;
+    std::vector<glm::dvec3> sum(mesh.positions.size(), glm::dvec3(0.0));
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        const uint32_t i0 = mesh.indices[t], i1 = mesh.indices[t + 1], i2 = mesh.indices[t + 2];
+        if (i0 >= sum.size() || i1 >= sum.size() || i2 >= sum.size()) return;  // validate_mesh names it
+        const glm::dvec3 p0 = mesh.positions[i0], p1 = mesh.positions[i1], p2 = mesh.positions[i2];
+        const glm::dvec3 area = glm::cross(p1 - p0, p2 - p0);  // twice the area, along the normal
+        for (uint32_t i : {i0, i1, i2}) sum[i] += area;
+    }
+    size_t count = 0;
+    for (size_t v = 0; v < mesh.normals.size(); ++v) {
+        const glm::vec3 n = mesh.normals[v];
+        if (std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z) && n != glm::vec3(0.0f)) continue;
+        const double len = glm::length(sum[v]);
+        mesh.normals[v] = len > 0.0 && std::isfinite(len) ? glm::vec3(sum[v] / len) : glm::vec3(0.0f, 0.0f, 1.0f);
+        ++count;
+    }
+    if (warnings)
+        warnings->push_back(mesh.name + ": " + std::to_string(count) +
+                            " normals are not finite or zero (the first: "
+                            "vertex " +
+                            std::to_string(first.vertex) + ", " + first.what + "); recomputed from the triangles");
 }
 
 void validate_loaded(const TriangleMesh& mesh)

@@ -66,6 +66,19 @@ void check_count(std::string_view file, std::string_view what, uint64_t count, u
 /// OBJ files hold in practice.
 void append_fan(std::span<const uint32_t> polygon, std::vector<uint32_t>& indices);
 
+/// The first vertex whose normal is not finite or is zero, and which ("not finite", "zero");
+/// vertex -1 when every normal is good or there are none.
+struct BadNormal {
+    long long vertex = -1;
+    const char* what = "";
+};
+BadNormal first_bad_normal(const TriangleMesh& mesh);
+
+/// Replaces every normal that is not finite or zero by the area-weighted normal of the
+/// triangles around its vertex (or +z where those have no area), so that none is copied into an
+/// output; says so in `warnings` (naming the file and the first such vertex) when given.
+void repair_normals(TriangleMesh& mesh, std::vector<std::string>* warnings);
+
 /// Checks what every reader must guarantee: jade::validate_mesh, and at least one triangle.
 void validate_loaded(const TriangleMesh& mesh);
 

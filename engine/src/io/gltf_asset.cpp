@@ -96,6 +96,11 @@ void add_targets(GltfAssetImpl& a, int mesh_index, const Placement& placement, s
             fail(a.name, mesh_name + " primitive " + std::to_string(p) + ": material " + std::to_string(prim.material) +
                              " does not exist (" + std::to_string(a.model.materials.size()) + " materials)");
         const TriangleMesh part = io::read_gltf_primitive(a.name, a.model, mesh_index, p, placement.world);
+        // The asset is written back with its own NORMAL accessors: a bad one would go out as read.
+        if (const auto bad = io::first_bad_normal(part); bad.vertex >= 0)
+            fail(a.name, mesh_name + " primitive " + std::to_string(p) + ": NORMAL of vertex " +
+                             std::to_string(bad.vertex) + " is " + bad.what +
+                             " (a normal must be finite and non-zero)");
         if (part.positions.size() > io::kMaxVertices - merged.positions.size())
             fail(a.name, mesh_name + ": more vertices in total than 32-bit indices can address");
         const size_t base = merged.positions.size();

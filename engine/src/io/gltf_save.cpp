@@ -41,6 +41,24 @@ void check_input(const std::string& name, const TriangleMesh& mesh, const BakedA
     check_size(baked.ao.size(), "_AO");
     check_size(baked.tm.size(), "_TM");
     check_size(baked.thickness.size(), "_THICKNESS");
+    // Never a NaN or an Inf in a file: other tools take them for values (a NaN t_m shades black or
+    // poisons a filter). Named by the first vertex at fault.
+    const auto finite3 = [](const glm::vec3& v) {
+        return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+    };
+    for (size_t v = 0; v < n; ++v) {
+        const char* bad = !baked.ao.empty() && !std::isfinite(baked.ao[v])                 ? "_AO"
+                          : !baked.tm.empty() && !finite3(baked.tm[v])                     ? "_TM"
+                          : !baked.thickness.empty() && !std::isfinite(baked.thickness[v]) ? "_THICKNESS"
+                          : !mesh.normals.empty() && !finite3(mesh.normals[v])             ? "NORMAL"
+                          : !mesh.normals.empty() && mesh.normals[v] == glm::vec3(0.0f)    ? "NORMAL*"
+                                                                                           : nullptr;
+        if (!bad) continue;
+        const std::string what = bad[6] == '*'
+                                     ? "NORMAL of vertex " + std::to_string(v) + " is zero"
+                                     : bad + std::string(" of vertex ") + std::to_string(v) + " is not finite";
+        io::fail(name, "cannot save: " + what + " (" + mesh.name + "); nothing was written");
+    }
 }
 
 json parse_extras(const std::string& name, const std::string& text)

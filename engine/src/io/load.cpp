@@ -31,6 +31,7 @@ TriangleMesh load_mesh(const std::filesystem::path& path, const ReadOptions& opt
     const auto name = io::display_name(path);
     return io::naming_file(name, [&] {
         TriangleMesh mesh = read_by_extension(path, name, options);
+        io::repair_normals(mesh, options.warnings);
         io::validate_loaded(mesh);
         return mesh;
     });

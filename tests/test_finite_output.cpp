@@ -1,0 +1,201 @@
+// Never a NaN or an Inf in an output (docs/robustness.md): profiles at extreme scales are
+// refused naming the flag, the writers refuse non-finite values naming the file, attribute and
+// vertex, non-finite or zero input normals are recomputed (OFF, PLY, OBJ) or refused (a glTF
+// asset, written back as read), and EXR pixels saturate at half's largest value.
+#include "test_support.hpp"
+
+#include <jade/io.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+using jade::test::data;
+using jade::test::error_of;
+using jade::test::run_cli;
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+/// A small closed sphere (radius 1, diagonal about 3.5) as OFF.
+fs::path sphere_off(const fs::path& dir)
+{
+    const jade::TriangleMesh m = jade::procedural::sphere(1.0f, 12, 24);
+    fs::create_directories(dir);
+    std::ofstream f(dir / "sphere.off");
+    f << "OFF\n" << m.positions.size() << " " << m.indices.size() / 3 << " 0\n";
+    for (const auto& p : m.positions) f << p.x << " " << p.y << " " << p.z << "\n";
+    for (size_t i = 0; i < m.indices.size(); i += 3)
+        f << "3 " << m.indices[i] << " " << m.indices[i + 1] << " " << m.indices[i + 2] << "\n";
+    return dir / "sphere.off";
+}
+
+bool all_finite(const std::vector<glm::vec3>& v)
+{
+    for (const auto& x : v)
+        if (!(std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z))) return false;
+    return true;
+}
+
+// ------------------------------------------------------------ profiles at extreme scales --
+
+TEST(finite_output, ExtremeMmPerUnitIsRefusedNamingTheFlagAndTheMaterial)
+{
+    const fs::path dir = jade::test::test_folder("finite");
+    const fs::path mesh = sphere_off(dir);
+    // The examples that wrote NaN _TM, and the other side of each material's range.
+    const std::vector<std::pair<std::string, std::string>> refused = {{"apple", "1e15"},  {"apple", "1e-25"},
+                                                                      {"skin", "1e19"},   {"skin", "1e30"},
+                                                                      {"cream", "1e-20"}, {"jade", "1e-12"}};
+    for (const auto& [material, mm] : refused) {
+        const auto r = run_cli({"bake", mesh.string(), "--material", material, "--mm-per-unit", mm, "--out",
+                                (dir / "o.glb").string(), "--quality", "draft"});
+        EXPECT_EQ(r.exit_code, 2) << material << " " << mm << ": " << r.output;
+        EXPECT_NE(r.output.find("--mm-per-unit"), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find("material " + material), std::string::npos) << r.output;
+        EXPECT_EQ(r.output.find("baking"), std::string::npos) << r.output;
+        EXPECT_FALSE(fs::exists(dir / "o.glb"));
+    }
+    // Inside the range, near both ends: every value finite.
+    for (const auto& [material, mm] : std::vector<std::pair<std::string, std::string>>{
+             {"apple", "1e-8"}, {"apple", "1e8"}, {"skin", "1e-8"}, {"cream", "1e-8"}, {"marble", "1e8"}}) {
+        const fs::path out = dir / (material + mm + ".glb");
+        const auto r = run_cli({"bake", mesh.string(), "--material", material, "--mm-per-unit", mm, "--out",
+                                out.string(), "--quality", "draft", "--ao-rays", "4"});
+        ASSERT_EQ(r.exit_code, 0) << material << " " << mm << ": " << r.output;
+        const jade::TriangleMesh baked = jade::load_mesh(out);
+        ASSERT_FALSE(baked.baked_tm.empty());
+        EXPECT_TRUE(all_finite(baked.baked_tm)) << material << " " << mm;
+    }
+}
+
+// ------------------------------------------------------------------------ the writers --
+
+TEST(finite_output, SaveBakedGltfRefusesNonFiniteValuesNamingAttributeAndVertex)
+{
+    const fs::path dir = jade::test::test_folder("finite");
+    fs::create_directories(dir);
+    jade::TriangleMesh mesh = jade::procedural::sphere(1.0f, 4, 6);
+    mesh.name = "sphere";
+    const size_t n = mesh.positions.size();
+    struct Case {
+        const char* expected;
+        std::function<void(jade::BakedAttributes&, jade::TriangleMesh&)> spoil;
+    };
+    const std::vector<Case> cases = {
+        {"_TM of vertex 3 is not finite", [](auto& b, auto&) { b.tm[3].y = kNaN; }},
+        {"_TM of vertex 2 is not finite", [](auto& b, auto&) { b.tm[2].x = kInf; }},
+        {"_AO of vertex 1 is not finite", [](auto& b, auto&) { b.ao[1] = kNaN; }},
+        {"_THICKNESS of vertex 5 is not finite", [](auto& b, auto&) { b.thickness[5] = -kInf; }},
+        {"NORMAL of vertex 4 is not finite", [](auto&, auto& m) { m.normals[4].z = kNaN; }},
+        {"NORMAL of vertex 0 is zero", [](auto&, auto& m) { m.normals[0] = glm::vec3(0.0f); }},
+    };
+    for (const auto& c : cases) {
+        jade::BakedAttributes b;
+        b.ao.assign(n, 0.5f), b.tm.assign(n, glm::vec3(1.0f)), b.thickness.assign(n, 1.0f);
+        jade::TriangleMesh m = mesh;
+        c.spoil(b, m);
+        const std::string e = error_of([&] { jade::save_baked_gltf(dir / "o.glb", m, b); });
+        EXPECT_NE(e.find("o.glb: cannot save: "), std::string::npos) << e;
+        EXPECT_NE(e.find(c.expected), std::string::npos) << e;
+        EXPECT_FALSE(fs::exists(dir / "o.glb"));
+    }
+}
+
+TEST(finite_output, ExrPixelsSaturateAtHalfsLargestValueAndNaNIsRefused)
+{
+    const fs::path dir = jade::test::test_folder("finite");
+    fs::create_directories(dir);
+    std::vector<float> rgba = {1e6f, -1e9f, kInf, 1.0f, 0.5f, 70000.0f, -kInf, 1.0f};
+    jade::save_image(dir / "bright.exr", 2, 1, rgba);
+    const jade::LoadedImage img = jade::load_image(dir / "bright.exr");
+    const std::vector<float> expected = {65504.0f, -65504.0f, 65504.0f, 1.0f, 0.5f, 65504.0f, -65504.0f, 1.0f};
+    EXPECT_EQ(img.rgba, expected);
+
+    rgba[5] = kNaN;
+    for (const char* file : {"nan.exr", "nan.png"}) {
+        const std::string e = error_of([&] { jade::save_image(dir / file, 2, 1, rgba); });
+        EXPECT_NE(e.find(std::string(file) + ": cannot save: pixel (1, 0) channel 1 is NaN"), std::string::npos) << e;
+        EXPECT_FALSE(fs::exists(dir / file));
+    }
+
+    // The example: a render under a huge exposure.
+    const auto r = run_cli({"render", sphere_off(dir).string(), "--exposure", "1e6", "--size", "32x32", "--quality",
+                            "draft", "--ao-rays", "4", "--out", (dir / "render.exr").string()});
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const jade::LoadedImage render = jade::load_image(dir / "render.exr");
+    for (float v : render.rgba) ASSERT_TRUE(std::isfinite(v) && std::abs(v) <= 65504.0f) << v;
+}
+
+// ---------------------------------------------------------------------- input normals --
+
+TEST(finite_output, BadInputNormalsAreRecomputedWithAWarning)
+{
+    const fs::path dir = jade::test::test_folder("finite");
+    fs::create_directories(dir);
+    const std::string ply =
+        "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+        "property float nx\nproperty float ny\nproperty float nz\nelement face 4\nproperty list uchar int "
+        "vertex_indices\nend_header\n1 1 1 0.57 0.57 0.57\n1 -1 -1 nan 0 0\n-1 1 -1 0 0 0\n-1 -1 1 -0.57 -0.57 "
+        "0.57\n3 0 1 2\n3 0 3 1\n3 0 2 3\n3 1 3 2\n";
+    const std::string off = "NOFF\n4 4 6\n1 1 1 0.57 0.57 0.57\n1 -1 -1 0 0 0\n-1 1 -1 1e39 0 0\n"
+                            "-1 -1 1 -0.57 -0.57 0.57\n3 0 1 2\n3 0 3 1\n3 0 2 3\n3 1 3 2\n";
+    const std::string obj = "v 1 1 1\nv 1 -1 -1\nv -1 1 -1\nv -1 -1 1\nvn 0 0 0\nvn 0.57 0.57 0.57\n"
+                            "f 1//2 2//1 3//2\nf 1//2 4//2 2//1\nf 1//2 3//2 4//2\nf 2//1 4//2 3//2\n";
+    for (const auto& [file, text, first] : std::vector<std::tuple<std::string, std::string, std::string>>{
+             {"n.ply", ply, "vertex 1, not finite"}, {"n.off", off, "vertex 1, zero"}, {"n.obj", obj, "zero"}}) {
+        std::ofstream(dir / file) << text;
+        std::vector<std::string> warnings;
+        jade::ReadOptions options;
+        options.warnings = &warnings;
+        jade::TriangleMesh m;
+        try {
+            m = jade::load_mesh(dir / file, options);
+        } catch (const jade::Error& e) {
+            // A reader may refuse the value itself (a number out of float's range): also clean.
+            EXPECT_NE(std::string(e.what()).find(file), std::string::npos) << e.what();
+            continue;
+        }
+        ASSERT_EQ(warnings.size(), 1u) << file;
+        EXPECT_NE(warnings[0].find(file + ": "), std::string::npos) << warnings[0];
+        EXPECT_NE(warnings[0].find(first), std::string::npos) << warnings[0];
+        ASSERT_EQ(m.normals.size(), m.positions.size()) << file;
+        for (const auto& n : m.normals) {
+            EXPECT_TRUE(std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z)) << file;
+            EXPECT_NEAR(glm::length(n), 1.0f, 0.05f) << file;
+        }
+        // Through the CLI: the warning is printed and the output's NORMAL is finite.
+        const auto r = run_cli({"bake", (dir / file).string(), "--out", (dir / (file + ".glb")).string(), "--quality",
+                                "draft", "--ao-rays", "4"});
+        ASSERT_EQ(r.exit_code, 0) << r.output;
+        EXPECT_NE(r.output.find("jade: warning: " + file + ": "), std::string::npos) << r.output;
+        EXPECT_TRUE(all_finite(jade::load_mesh(dir / (file + ".glb")).normals));
+    }
+}
+
+TEST(finite_output, AGltfAssetWithBadNormalsIsRefusedNamingThePrimitiveAndVertex)
+{
+    const fs::path dir = jade::test::test_folder("finite");
+    fs::create_directories(dir);
+    fs::copy_file(data("cube_external.gltf"), dir / "cube_external.gltf");
+    fs::copy_file(data("cube_external.bin"), dir / "cube_external.bin");
+    // bufferView 1 (bytes 288..575) holds the NORMALs: vertex 2 gets a NaN.
+    std::fstream bin(dir / "cube_external.bin", std::ios::in | std::ios::out | std::ios::binary);
+    bin.seekp(288 + 2 * 12 + 4);
+    bin.write(reinterpret_cast<const char*>(&kNaN), 4);
+    bin.close();
+    const std::string e = error_of([&] { jade::GltfAsset::load(dir / "cube_external.gltf"); });
+    EXPECT_NE(e.find("cube_external.gltf: mesh 0"), std::string::npos) << e;
+    EXPECT_NE(e.find("primitive 0: NORMAL of vertex 2 is not finite"), std::string::npos) << e;
+}
+
+}  // namespace
