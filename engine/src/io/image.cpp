@@ -63,7 +63,10 @@ void write_exr(const std::string& name, const std::filesystem::path& tmp, int wi
     // (a bright highlight under a strong exposure saturates instead).
     constexpr float kHalfMax = 65504.0f;
     std::vector<float> clamped(rgba.size());
-    for (size_t i = 0; i < rgba.size(); ++i) clamped[i] = std::clamp(rgba[i], -kHalfMax, kHalfMax);
+    // A NaN pixel is stored as 0, as the PNG writer stores it (a NaN in a file spreads through
+    // every filter that reads it).
+    for (size_t i = 0; i < rgba.size(); ++i)
+        clamped[i] = std::isnan(rgba[i]) ? 0.0f : std::clamp(rgba[i], -kHalfMax, kHalfMax);
     write_oiio(name, "openexr", tmp, spec, OIIO::TypeDesc::FLOAT, clamped.data());
 }
 
@@ -141,12 +144,6 @@ void save_image(const std::filesystem::path& path, int width, int height, const 
     if (rgba.size() != expected)
         io::fail(name, std::to_string(rgba.size()) + " floats for a " + std::to_string(width) + "x" +
                            std::to_string(height) + " RGBA image (expected " + std::to_string(expected) + ")");
-    // A NaN has no meaning as a pixel: it is a bug upstream, to be named, not stored.
-    for (size_t i = 0; i < rgba.size(); ++i)
-        if (std::isnan(rgba[i]))
-            io::fail(name, "cannot save: pixel (" + std::to_string(i / 4 % size_t(width)) + ", " +
-                               std::to_string(i / 4 / size_t(width)) + ") channel " + std::to_string(i % 4) +
-                               " is NaN; nothing was written");
     io::write_atomically(path, [&](const std::filesystem::path& tmp) {
         if (ext == ".png")
             write_png(name, tmp, width, height, rgba);
