@@ -63,15 +63,19 @@ double specular(glm::dvec3 n, glm::dvec3 v, glm::dvec3 l, double n_dot_l, double
 
 // Ballistic (in the forward lobe) and diffused (Lambertian, 1/π) transmittance along t
 // (Material::transmission).
-glm::dvec3 attenuation(const Transmission& tr, double t, double lobe)
+// The ballistic part along the path t, in the lobe with its share `follow`; the diffused part
+// across the slab h = min(t, max(t̄/ln 4, t·(−N·L))) with the far side's irradiance −N·L.
+glm::dvec3 attenuation(const Transmission& tr, double t, double lobe, double follow, double thickness,
+                       double behind)
 {
+    const double h = std::min(t, std::max(thickness / std::log(4.0), t * behind));
     glm::dvec3 out;
     for (int c = 0; c < 3; ++c) {
         const double ballistic = std::exp(-double(tr.sigma_t[c]) * t);
         const double diffused =
-            -std::expm1(-double(tr.sigma_s_reduced[c]) * t) *
-            slab_diffusion_transmittance(t, tr.sigma_tr[c], tr.source_depth[c], tr.extrapolation[c]);
-        out[c] = double(tr.weight) * ballistic * lobe + double(tr.diffusion_weight) * diffused / kPi;
+            -std::expm1(-double(tr.sigma_s_reduced[c]) * h) *
+            slab_diffusion_transmittance(h, tr.sigma_tr[c], tr.source_depth[c], tr.extrapolation[c]);
+        out[c] = double(tr.weight) * ballistic * lobe * follow + double(tr.diffusion_weight) * diffused * behind / kPi;
     }
     return out;
 }
@@ -117,7 +121,10 @@ glm::dvec3 reference_pixel(const ShadingInputs& in, size_t p, const Material& m,
             const double lobe = mu > 0.0 ? (double(tr.lobe) + 1.0) / (2.0 * kPi) * std::pow(mu, double(tr.lobe)) : 0.0;
             const double follow = (1.0 - double(tr.normal_mix)) + double(tr.normal_mix) * std::max(-c, 0.0);
             const double crossings = m.boundary_transmittance ? boundary(std::max(-c, 0.0), f0, alpha) * exit : 1.0;
-            color += crossings * follow * attenuation(tr, double(in.path[k * pixels + p]), lobe) * e;
+            color += crossings *
+                     attenuation(tr, double(in.path[k * pixels + p]), lobe, follow, double(in.normal[p].w),
+                                 std::max(-c, 0.0)) *
+                     e;
         }
     }
     return color;

@@ -110,9 +110,11 @@ const float kSlabPerConeThickness = 0.72134752;  // 1 / ln 4
 
 // Transmitter k's light at `position` with normal n (unit), forward lobe `lobe`, path t along
 // the light and local thickness t̄, short of the crossing out to the eye (the same for every
-// light): in through the far side (this normal standing in for the entry's), the share at this
-// normal, then the two parts. The ballistic light travels the line, e^{−σ_t t}, and leaves in the
-// forward lobe. The diffused light has forgotten its direction: it crosses the slab between where
+// light): in through the far side (this normal standing in for the entry's), then the two parts.
+// The ballistic light travels the line, e^{−σ_t t}, and leaves in the forward lobe, the share at
+// this normal transmitter_follow's. The diffused light enters the slab's far side with the
+// irradiance E·max(−N·L, 0) (none on a surface that faces the light: that light is the diffuse
+// term's), and has forgotten its direction: it crosses the slab between where
 // it entered and here, whose thickness is the path's depth along the normal, t·(−N·L) (exact for
 // a flat slab lit at any angle), and never less than the slab that the local thickness stands
 // for, t̄/ln 4; it leaves as a Lambertian emitter, 1/π of its flux per steradian (the exit flux
@@ -123,9 +125,11 @@ vec3 transmitted_light(uint k, vec3 position, vec3 n, float lobe, float t, float
     transmitter_at(k, position, l, e);
     float n_dot_l = dot(n, l);
     float entry = boundary_crossed() ? boundary_transmittance(-n_dot_l) : 1.0;
-    float slab = max(kSlabPerConeThickness * thickness, t * max(-n_dot_l, 0.0));
-    vec3 a = lobe * attenuation_at(0u, t) + (1.0 / JADE_PI) * attenuation_at(1u, min(slab, t));
-    return (entry * transmitter_follow(n_dot_l)) * a * e;
+    float behind = max(-n_dot_l, 0.0);
+    float slab = max(kSlabPerConeThickness * thickness, t * behind);
+    vec3 a = transmitter_follow(n_dot_l) * lobe * attenuation_at(0u, t) +
+             (behind / JADE_PI) * attenuation_at(1u, min(slab, t));
+    return entry * a * e;
 }
 
 #endif

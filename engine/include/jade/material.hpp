@@ -91,8 +91,8 @@ Medium medium_from_appearance(glm::dvec3 albedo, glm::dvec3 mean_free_path, doub
 /// thickness t̄ (jade/bake.hpp ThicknessSettings) and the light's path inside the medium from
 /// where it enters the object (the first four surfaces along each directional light behind the
 /// object, so parts the body shadows stay dark and the air between two parts does not count):
-///   L_t = [weight · e^{−σ_t·t} · lobe(μ) + diffusion_weight · (1 − e^{−σ_s'·h}) · T_d(h) / π]
-///         · ((1 − normal_mix) + normal_mix·max(−N·L, 0)) · E
+///   L_t = [weight · e^{−σ_t·t} · lobe(μ) · ((1 − normal_mix) + normal_mix·max(−N·L, 0))
+///          + diffusion_weight · (1 − e^{−σ_s'·h}) · T_d(h) · max(−N·L, 0) / π] · E
 ///   lobe(μ) = (n + 1)/(2π) · max(μ, 0)^n,  μ = V·(−L),  n = `lobe`
 ///   h = min(t, max(t̄/ln 4, t·max(−N·L, 0)))
 /// The first part is the forward (low-order) transmittance of σ_t = k·(σ_s + σ_a), k =
@@ -103,9 +103,11 @@ Medium medium_from_appearance(glm::dvec3 albedo, glm::dvec3 mean_free_path, doub
 /// approximation's transmittance of a slab (slab_diffusion_transmittance), falling as 1/h in a
 /// medium without absorption and as e^{−σ_tr·h} in a thick absorbing one, σ_tr =
 /// √(3σ_a(σ_a + σ_s')); it is coloured (red crosses skin furthest). Diffused light has forgotten
-/// its direction, so it leaves as a Lambertian emitter (1/π), and what it crosses is the slab
-/// between where it entered and here: h, the path's depth along the normal (exact for a flat
-/// slab lit at any angle, t̄/ln 4 being the slab that the cone's mean thickness stands for).
+/// its direction, so it leaves as a Lambertian emitter (1/π); it entered the far side with the
+/// irradiance E·max(−N·L, 0) (a surface facing the light gets none: that light is the diffuse
+/// term's), and what it crosses is the slab between where it entered and here: h, the path's
+/// depth along the normal (exact for a flat slab lit at any angle, t̄/ln 4 being the slab that
+/// the cone's mean thickness stands for).
 /// weight = diffusion_weight = 0 turns the term off.
 struct Transmission {
     glm::vec3 sigma_t{0.0f};          ///< extinction σ_s + σ_a, 1/mesh unit
