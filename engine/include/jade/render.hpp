@@ -196,7 +196,7 @@ struct RendererOptions {
     uint32_t curvature_smoothing = 2;
     /// Transmission: texels of one light's depth tile (how far light travels inside the object
     /// before it reaches a point: the depths of the first four surfaces along the light, RGBA32F,
-    /// and two D32 buffers to peel them; 4 directional lights at most, 24·size² bytes each).
+    /// and two D32 buffers to peel them; 4 lights at most, 24·size² bytes each).
     uint32_t light_depth_size = 512;
 };
 
@@ -238,7 +238,7 @@ struct ShadingInputs {
 /// normal, normal spread: floats) and its per-draw constants with 64 lights, in bytes: for
 /// memory plans (jade/scene.hpp).
 inline constexpr uint64_t kRendererVertexBytes = 68;
-inline constexpr uint64_t kRendererFrameDataBytes = 2752;
+inline constexpr uint64_t kRendererFrameDataBytes = 2880;
 
 /// Draws one mesh with one material. Owns its GPU buffers, LUT images and pipelines (created
 /// lazily per mode, sample count and format). Threading and lifetime as in the header comment.

@@ -148,33 +148,37 @@ struct Renderer::Impl {
     }
 
     // The lights drawn with transmission: the first kMaxTransmitters that may shine through the
-    // object towards the eye, each with its depth tile (shading/light_depth.hpp, rendered here for
-    // the directional ones; the atlas is made on the first draw that needs it) in color.w, 0 none.
+    // object towards the eye, each with its depth tile (shading/light_depth.hpp: directional
+    // lights, and point lights outside the bounding sphere; the atlas is made on the first draw
+    // that needs it) in color.w, 0 none.
     struct Transmitting {
         std::vector<GpuLight> lights;
         std::vector<uint32_t> index;  // of each in the draw's lights
+        std::vector<uint32_t> tile;   // per light of the draw: its depth tile + 1, 0 none
         bool tiles = false;           // some light has a depth tile
     };
     Transmitting record_transmission(VkCommandBuffer cmd, const Camera& cam, std::span<const Light> lights,
                                      const RenderSettings& s)
     {
         Transmitting out;
+        out.tile.assign(lights.size(), 0);
         if (!transmission_reaches_camera(cam, lights, s)) return out;
         const glm::vec3 centre = 0.5f * (bbox_min + bbox_max);
         const float radius = bounding_radius();
         auto transmits = [&](const Light& l) { return shading::LightDepth::may_transmit(cam.eye, l, centre, radius); };
-        std::vector<uint32_t> tiles(lights.size(), 0);
-        if (std::any_of(lights.begin(), lights.end(),
-                        [&](const Light& l) { return l.type == Light::Type::Directional && transmits(l); })) {
+        std::vector<uint8_t> wanted(lights.size(), 0);
+        for (size_t k = 0; k < lights.size(); ++k)
+            wanted[k] = transmits(lights[k]) && shading::LightDepth::can_tile(lights[k], centre, radius);
+        if (std::find(wanted.begin(), wanted.end(), 1) != wanted.end()) {
             if (!light_depth) light_depth.emplace(ctx, options.light_depth_size);
-            tiles = light_depth->record(cmd, cam.eye, lights, vertices.handle(), sizeof(Vertex), indices.handle(),
-                                        index_count, centre, radius, geometry_version);
+            out.tile = light_depth->record(cmd, lights, wanted, vertices.handle(), sizeof(Vertex), indices.handle(),
+                                           index_count, centre, radius, geometry_version);
         }
         for (size_t k = 0; k < lights.size() && out.lights.size() < shading::kMaxTransmitters; ++k)
             if (transmits(lights[k])) {
-                out.lights.push_back(shading::gpu_light(lights[k], float(tiles[k])));
+                out.lights.push_back(shading::gpu_light(lights[k], float(out.tile[k])));
                 out.index.push_back(uint32_t(k));
-                out.tiles = out.tiles || tiles[k] != 0;
+                out.tiles = out.tiles || out.tile[k] != 0;
             }
         return out;
     }
@@ -210,16 +214,15 @@ struct Renderer::Impl {
                       // finite: the shader multiplies (t_m − lo) by it, 0 · Inf would be NaN
                       float(std::min(1.0 / (double(hi) - double(lo)), double(FLT_MAX))));
         if (light_depth) {
-            d.light_depth_map = glm::vec4(float(light_depth->tile_size()), float(shading::LightDepth::kMaxLights),
-                                          light_depth->depth_range(), 0.0f);
-            for (size_t k = 0; k < transmitting.lights.size(); ++k)
-                if (const uint32_t tile = uint32_t(transmitting.lights[k].color.w); tile != 0)
-                    d.light_depth[k] = light_depth->view_projection(tile - 1);
+            d.light_depth_map =
+                glm::vec4(float(light_depth->tile_size()), float(shading::LightDepth::kMaxLights), 0.0f, 0.0f);
+            for (uint32_t t = 0; t < shading::LightDepth::kMaxLights; ++t) d.light_tiles[t] = light_depth->tile(t);
         }
         for (int i = 0; i < 9; ++i) d.color_map[i] = glm::vec4(false_color(float(i) / 8.0f), 1.0f);
         d.transmission_table_map = transmission_table.shader_map();
         std::copy(transmitting.lights.begin(), transmitting.lights.end(), d.transmitters);
-        for (size_t k = 0; k < lights.size(); ++k) d.lights[k] = shading::gpu_light(lights[k], 0.0f);
+        for (size_t k = 0; k < lights.size(); ++k)
+            d.lights[k] = shading::gpu_light(lights[k], float(transmitting.tile.empty() ? 0 : transmitting.tile[k]));
         return d;
     }
 
