@@ -9,6 +9,7 @@
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace jade::shading {
@@ -91,14 +92,26 @@ std::vector<uint32_t> LightDepth::record(VkCommandBuffer cmd, std::span<const Li
 {
     std::vector<uint32_t> tile(lights.size(), 0);
     std::vector<glm::vec4> tiled;
-    for (size_t k = 0; k < lights.size() && tiled.size() < kMaxLights; ++k)
-        if (wanted[k] && can_tile(lights[k], centre, radius)) {
+    // Which lights: by priority; their tiles: in the lights' order, so that draws that want the
+    // same lights for other reasons (a shadow here, a path there) share the atlas.
+    std::vector<uint8_t> chosen(lights.size(), 0);
+    size_t count = 0;
+    for (uint8_t priority : {uint8_t(2), uint8_t(1)})
+        for (size_t k = 0; k < lights.size() && count < kMaxLights; ++k)
+            if (wanted[k] == priority && can_tile(lights[k], centre, radius)) chosen[k] = 1, ++count;
+    // Shadows read layers 0 and 1 only: without a transmitter two passes, the other two layers
+    // left at 1 (no surface).
+    const uint32_t layers = std::any_of(wanted.begin(), wanted.end(), [](uint8_t w) { return w == 2; }) ? kLayers : 2;
+    for (size_t k = 0; k < lights.size(); ++k)
+        if (chosen[k]) {
             tiled.push_back(glm::vec4(lights[k].vector, float(lights[k].type)));
             tile[k] = uint32_t(tiled.size());
         }
     if (tiled.empty()) return tile;
-    Contents wanted_contents{geometry_version, tiled, centre, radius};
+    // Four layers serve a draw that needs two (a shadowed draw after a transmitting one).
+    Contents wanted_contents{geometry_version, tiled, centre, radius, std::max(layers, contents_.layers)};
     if (wanted_contents == contents_) return tile;
+    wanted_contents.layers = layers;
     contents_ = std::move(wanted_contents);
     for (uint32_t layer = 0; layer < kLayers; ++layer)
         if (!pipelines_[layer]) {
@@ -126,7 +139,7 @@ std::vector<uint32_t> LightDepth::record(VkCommandBuffer cmd, std::span<const Li
     // Layer i: the nearest surface beyond layer i − 1, which the previous pass left in the other
     // depth buffer. The layers atlas starts as 1 (no surface) and takes one channel a pass.
     atlas_.transition(cmd, gpu::use::kColorAttachment, true);
-    for (uint32_t layer = 0; layer < kLayers; ++layer) {
+    for (uint32_t layer = 0; layer < layers; ++layer) {
         gpu::Image& depth_buffer = peel_[layer % 2];
         gpu::Image& previous = peel_[(layer + 1) % 2];
         depth_buffer.transition(cmd, gpu::use::kDepthAttachment, true);
@@ -167,7 +180,7 @@ std::vector<uint32_t> LightDepth::record(VkCommandBuffer cmd, std::span<const Li
             vkCmdDrawIndexed(cmd, index_count, 1, 0, 0, 0);
         }
         vkCmdEndRendering(cmd);
-        if (layer + 1 < kLayers)
+        if (layer + 1 < layers)
             gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                                 VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                                 VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);

@@ -51,8 +51,9 @@ public:
     /// every directional light; a point light from kPointMinDistance radii or farther.
     static bool can_tile(const Light& light, glm::vec3 centre, float radius);
 
-    /// The tiles of the lights with `wanted[k]` that can have one (the first kMaxLights of them),
-    /// rendered from the mesh into the atlas; returns each light's tile + 1, 0 for none (and
+    /// The tiles of the lights with `wanted[k]` > 0 that can have one, rendered from the mesh into
+    /// the atlas: the first kMaxLights of them in order of `wanted` (2: the transmission term's
+    /// path needs it, 1: only a shadow), then of the lights, numbered in the lights' order; returns each light's tile + 1, 0 for none (and
     /// records nothing when every entry is 0). `geometry_version` changes whenever the vertices
     /// may have: with the same version, lights and bounds as the last call the atlas still holds
     /// the right depths and nothing is recorded (a still mesh under still lights costs no pass).
@@ -83,6 +84,7 @@ private:
         std::vector<glm::vec4> lights;  // xyz: Light::vector, w: Light::type
         glm::vec3 centre{0.0f};
         float radius = -1.0f;
+        uint32_t layers = 0;  // peeled: kLayers, or 2 for shadows alone
         bool operator==(const Contents&) const = default;
     } contents_;
 };
