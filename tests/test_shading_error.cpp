@@ -61,16 +61,16 @@ double specular(glm::dvec3 n, glm::dvec3 v, glm::dvec3 l, double n_dot_l, double
     return d * vis * (f0 + (1.0 - f0) * std::pow(1.0 - v_dot_h, 5.0)) * n_dot_l;
 }
 
-// Ballistic (in the forward lobe) and diffused (Lambertian, 1/π) transmittance along t
-// (Material::transmission).
-glm::dvec3 attenuation(const Transmission& tr, double t, double lobe)
+// Ballistic (in the forward lobe) transmittance along t and diffused (Lambertian, 1/π) one
+// across the slab h (Material::transmission; docs/fidelity.md).
+glm::dvec3 attenuation(const Transmission& tr, double t, double h, double lobe)
 {
     glm::dvec3 out;
     for (int c = 0; c < 3; ++c) {
         const double ballistic = std::exp(-double(tr.sigma_t[c]) * t);
         const double diffused =
-            -std::expm1(-double(tr.sigma_s_reduced[c]) * t) *
-            slab_diffusion_transmittance(t, tr.sigma_tr[c], tr.source_depth[c], tr.extrapolation[c]);
+            -std::expm1(-double(tr.sigma_s_reduced[c]) * h) *
+            slab_diffusion_transmittance(h, tr.sigma_tr[c], tr.source_depth[c], tr.extrapolation[c]);
         out[c] = double(tr.weight) * ballistic * lobe + double(tr.diffusion_weight) * diffused / kPi;
     }
     return out;
@@ -117,7 +117,10 @@ glm::dvec3 reference_pixel(const ShadingInputs& in, size_t p, const Material& m,
             const double lobe = mu > 0.0 ? (double(tr.lobe) + 1.0) / (2.0 * kPi) * std::pow(mu, double(tr.lobe)) : 0.0;
             const double follow = (1.0 - double(tr.normal_mix)) + double(tr.normal_mix) * std::max(-c, 0.0);
             const double crossings = m.boundary_transmittance ? boundary(std::max(-c, 0.0), f0, alpha) * exit : 1.0;
-            color += crossings * follow * attenuation(tr, double(in.path[k * pixels + p]), lobe) * e;
+            // The diffused light crosses the slab h = min(t, max(t̄ / ln 4, t · max(−N·L, 0))).
+            const double path = double(in.path[k * pixels + p]), thickness = double(in.normal[p].w);
+            const double h = std::min(path, std::max(thickness / std::log(4.0), path * std::max(-c, 0.0)));
+            color += crossings * follow * attenuation(tr, path, h, lobe) * e;
         }
     }
     return color;
