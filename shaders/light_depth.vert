@@ -1,6 +1,15 @@
 #version 460
-// light_depth.vert - the mesh seen from a directional light (orthographic), for the depths of the
-// first surfaces along it (shading/light_depth.hpp). Vertex layout: shading/renderer.cpp.
-layout(push_constant) uniform Push { mat4 light_view_proj; } pc;
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_scalar_block_layout : require
+// light_depth.vert - the mesh seen from a light (orthographic along a directional light, in
+// perspective from a point light), for the depths of the first surfaces along it
+// (shading/light_depth.hpp). Vertex layout: shading/renderer.cpp.
+#include "shading_interface.h"  // LightTile
+layout(push_constant, scalar) uniform Push { LightTile tile; } pc;
 layout(location = 0) in vec3 in_position;  // mesh units
-void main() { gl_Position = pc.light_view_proj * vec4(in_position, 1.0); }
+layout(location = 0) out vec3 out_position;
+void main()
+{
+    out_position = in_position;
+    gl_Position = pc.tile.view_proj * vec4(in_position, 1.0);
+}

@@ -1,13 +1,15 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // mesh.frag - diffuse from the translucency magnitude (or Lambert, or the curvature LUT) plus a
-// GGX specular lobe, summed over the lights, and the light transmitted through thin parts.
-// Mode, channel count, evaluation path and transmission slots are specialisation constants:
+// GGX specular lobe, summed over the lights and shadowed by the mesh, and the light transmitted
+// through thin parts. Mode, channel count, evaluation path, transmission slots and shadows are
+// specialisation constants:
 // each pipeline holds only its path. Lavapipe runs both sides of every branch (docs/lavapipe.md),
 // so what a light does not need sits in a loop of its own, not behind an if.
 #include "shading.glsl"
 #include "translucency.glsl"
 #include "transmission.glsl"
+#include "shadow.glsl"
 
 layout(constant_id = 0) const uint MODE = 2;      // kLambert, kCurvature, kTm, kFalseColor (shading.glsl), kInputs + k
 layout(constant_id = 1) const uint CHANNELS = 3;  // 1: grey material, one evaluation per light
@@ -129,6 +131,9 @@ void main()
         vec3 l, e;
         light_at(data.lights[k], l, e);
         float c = dot(n, l), c_diffuse = dot(n_diffuse, l);
+        // The mesh's shadow (shadow.glsl) dims this light's diffuse and specular light alike.
+        uint tile = uint(data.lights[k].color.w);
+        if (SHADOWS == 1u && tile != 0u) e *= shadow_visibility(tile, in_position, n, l);
         vec3 diffuse = albedo * (1.0 / JADE_PI) * diffuse_response(c_diffuse, tr, kappa_scaled) * e;
         if (boundary) diffuse *= boundary_transmittance(c_diffuse) * exit_transmittance;
         color += diffuse;

@@ -61,8 +61,6 @@ double specular(glm::dvec3 n, glm::dvec3 v, glm::dvec3 l, double n_dot_l, double
     return d * vis * (f0 + (1.0 - f0) * std::pow(1.0 - v_dot_h, 5.0)) * n_dot_l;
 }
 
-// Ballistic (in the forward lobe) and diffused (Lambertian, 1/π) transmittance along t
-// (Material::transmission).
 // The ballistic part along the path t, in the lobe with its share `follow`; the diffused part
 // across the slab h = min(t, max(t̄/ln 4, t·(−N·L))) with the far side's irradiance −N·L.
 glm::dvec3 attenuation(const Transmission& tr, double t, double lobe, double follow, double thickness, double behind)
@@ -216,6 +214,7 @@ TEST_F(ShadingError, EveryEvaluationPathKeepsTheFinal8BitImageWithinHalfALevel)
                 s.width = s.height = kSize;
                 s.samples = 1;  // one shading per pixel, the pixel the inputs were rasterised at
                 s.transparent_background = true;
+                s.shadows = false;  // the reference shades the inputs, which carry no visibility
                 // The inputs as each light-path sampling rasterises them.
                 std::map<LightPathSampling, ShadingInputs> inputs;
                 for (auto& r : renderers) {
@@ -266,6 +265,7 @@ TEST_F(ShadingError, ACoarseLutFailsTheBudget)
     s.width = s.height = kSize;
     s.samples = 1;
     s.transparent_background = true;
+    s.shadows = false;
     const ImageError err = compare(r.render(cam, lights, s), r.shading_inputs(cam, lights, s), material, cam, lights);
     std::printf("65x9 LUT: p99 %.3f, max %.3f 8-bit levels\n", err.p99, err.max);
     EXPECT_GT(err.max, 1.0);

@@ -187,10 +187,14 @@ TEST_F(Thickness, BackLitSlabShowsTheBallisticTransmittance)
         const double expected = 0.5 / std::numbers::pi * (1.0 - std::exp(-s * t)) * slab * 2.0 * crossings;
         EXPECT_NEAR(diffused.pixel(16, 16)[c], expected, 0.01 * expected) << "diffused, channel " << c;
     }
-    // Off when no light is behind the object, and with RenderSettings::transmission = false.
+    // Off with RenderSettings::transmission = false; and a light in front gives no forward lobe
+    // (the eye is inside the slab's bounding sphere, so the term is drawn: the diffused part,
+    // a Lambertian emitter, would light the front face, so it is off here).
     rs.transmission = false;
     EXPECT_LT(renderer.render(cam, lights, rs).pixel(16, 16)[0], 1e-4f);
     rs.transmission = true;
+    m.transmission.weight = 0.7f, m.transmission.diffusion_weight = 0.0f;
+    renderer.set_material(m);
     const std::vector<Light> front = {Light::directional({0.0f, 0.0f, 1.0f}, glm::vec3(2.0f))};
     EXPECT_EQ(renderer.render(cam, front, rs).pixel(16, 16)[0], 0.0f);
 }
@@ -200,7 +204,8 @@ TEST_F(Thickness, LightPathCountsTheMediumAndNotTheAirBetweenParts)
     // Slabs stacked along z with air between them, lit from straight behind (−z) and seen from
     // +z: the front slab's path (Renderer::shading_inputs) is the medium along the light's line, slab by slab, with the gaps
     // left out, for up to two parts (four surfaces); from a third part on, the rest of the line
-    // counts as medium.
+    // counts as medium. The same for a point light on the axis behind the slabs (a perspective
+    // tile: its layers hold distances from the light, and on the axis the ray is the line).
     auto stack = [](std::initializer_list<std::pair<float, float>> slabs) {
         TriangleMesh mesh;
         mesh.name = "slab stack";
@@ -215,35 +220,38 @@ TEST_F(Thickness, LightPathCountsTheMediumAndNotTheAirBetweenParts)
     Baker baker(context());
     const Material m = translucent();
     // Both samplings of the path: the slabs are flat where the camera looks, so they agree.
-    for (LightPathSampling sampling : {LightPathSampling::PerFragment, LightPathSampling::PerVertex}) {
-        SCOPED_TRACE(std::string(light_path_sampling_name(sampling)));
-        Renderer renderer(context(), RendererOptions{.light_path = sampling});
-        renderer.set_material(m);
-        Camera cam;
-        cam.eye = {0.0f, 0.0f, 3.0f}, cam.target = {0.0f, 0.0f, 0.0f}, cam.fov_y_degrees = 10.0f;
-        const std::vector<Light> lights = {Light::directional({0.0f, 0.0f, -1.0f}, glm::vec3(1.0f))};
-        RenderSettings rs;
-        rs.width = rs.height = 33;
-        auto centre_path = [&](const PreparedMesh& mesh) {
-            const BakeResult r = baker.bake(mesh, m, settings(16));
-            renderer.set_mesh(mesh, r.tm, r.thickness);
-            const ShadingInputs in = renderer.shading_inputs(cam, lights, rs);
-            EXPECT_EQ(in.transmits.at(0), 1);
-            return double(in.path.at(16 * in.width + 16));
-        };
-        // Depth is stored as float32 over the light's box (twice the bounding sphere's radius).
-        // One part: the light's 0.1 is below the local thickness t̄, which the path never goes under.
-        const double one_part = centre_path(stack({{0.0f, 0.1f}}));
-        EXPECT_NEAR(one_part, slab_mean(0.1, 60.0), 3e-3);
-        // 0.1 in front, 0.3 of air, 0.2 behind: 0.3 of medium (the depth from the entry is 0.6).
-        const double two_parts = centre_path(stack({{0.0f, 0.1f}, {-0.5f, -0.3f}}));
-        EXPECT_NEAR(two_parts, 0.3, 1e-3);
-        // A third part, nearest to the light: 0.05 and 0.2 of medium in the first two parts the light
-        // meets; after them, the 0.3 of air and the 0.1 of the front slab count.
-        const double three_parts = centre_path(stack({{0.0f, 0.1f}, {-0.5f, -0.3f}, {-0.75f, -0.7f}}));
-        EXPECT_NEAR(three_parts, 0.05 + 0.2 + 0.3 + 0.1, 1e-3);
-        EXPECT_EQ(renderer.light_path(), sampling);
-    }
+    for (LightPathSampling sampling : {LightPathSampling::PerFragment, LightPathSampling::PerVertex})
+        for (const Light& light : {Light::directional({0.0f, 0.0f, -1.0f}, glm::vec3(1.0f)),
+                                   Light::point({0.0f, 0.0f, -12.0f}, glm::vec3(150.0f))}) {
+            SCOPED_TRACE(std::string(light_path_sampling_name(sampling)) +
+                         (light.type == Light::Type::Point ? ", point light" : ", directional light"));
+            Renderer renderer(context(), RendererOptions{.light_path = sampling});
+            renderer.set_material(m);
+            Camera cam;
+            cam.eye = {0.0f, 0.0f, 3.0f}, cam.target = {0.0f, 0.0f, 0.0f}, cam.fov_y_degrees = 10.0f;
+            const std::vector<Light> lights = {light};
+            RenderSettings rs;
+            rs.width = rs.height = 33;
+            auto centre_path = [&](const PreparedMesh& mesh) {
+                const BakeResult r = baker.bake(mesh, m, settings(16));
+                renderer.set_mesh(mesh, r.tm, r.thickness);
+                const ShadingInputs in = renderer.shading_inputs(cam, lights, rs);
+                EXPECT_EQ(in.transmits.at(0), 1);
+                return double(in.path.at(16 * in.width + 16));
+            };
+            // Depth is stored as float32 over the light's box (twice the bounding sphere's radius).
+            // One part: the light's 0.1 is below the local thickness t̄, which the path never goes under.
+            const double one_part = centre_path(stack({{0.0f, 0.1f}}));
+            EXPECT_NEAR(one_part, slab_mean(0.1, 60.0), 3e-3);
+            // 0.1 in front, 0.3 of air, 0.2 behind: 0.3 of medium (the depth from the entry is 0.6).
+            const double two_parts = centre_path(stack({{0.0f, 0.1f}, {-0.5f, -0.3f}}));
+            EXPECT_NEAR(two_parts, 0.3, 1e-3);
+            // A third part, nearest to the light: 0.05 and 0.2 of medium in the first two parts the light
+            // meets; after them, the 0.3 of air and the 0.1 of the front slab count.
+            const double three_parts = centre_path(stack({{0.0f, 0.1f}, {-0.5f, -0.3f}, {-0.75f, -0.7f}}));
+            EXPECT_NEAR(three_parts, 0.05 + 0.2 + 0.3 + 0.1, 1e-3);
+            EXPECT_EQ(renderer.light_path(), sampling);
+        }
 }
 
 TEST_F(Thickness, LightPathAutoFollowsTheMeshResolution)

@@ -202,6 +202,7 @@ int cmd_fidelity(int argc, char** argv)
         o.push_back(
             {"set", "S", "train | validation | regimes (held out: physical media, point lights) | all (default all)"});
         o.push_back({"scene", "TEXT", "only scenes whose name contains TEXT"});
+        o.push_back({"no-shadows", "", "the lights are not shadowed by the mesh (default: shadowed)"});
         o.push_back({"fit", "FILE", "JSON of MediumFit values instead of the built-in defaults"});
         o.push_back({"json", "FILE", "write every number as JSON"});
         o.push_back({"markdown", "FILE", "write the tables as Markdown (docs/fidelity.md's)"});
@@ -291,6 +292,7 @@ int cmd_fidelity(int argc, char** argv)
         RenderSettings rs;
         rs.width = uint32_t(ref.image.width), rs.height = uint32_t(ref.image.height);
         rs.float32 = true;
+        rs.shadows = !args.flag("no-shadows");
         json row = {{"scene", ref.name},
                     {"set", ref.set},
                     {"mesh", ref.mesh},

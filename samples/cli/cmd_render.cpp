@@ -52,6 +52,7 @@ std::vector<OptionSpec> render_options()
             {"tonemap-curve", "C", "aces | reinhard (with --tonemap)"},
             {"exposure", "X", "scale the linear colour before tone mapping (default 1)"},
             {"samples", "N", "MSAA samples 1, 2, 4, 8 (default 4)"},
+            {"no-shadows", "", "the lights are not shadowed by the mesh (default: shadowed, in every lit mode)"},
             eval_option(),
             light_path_option()};
 }
@@ -217,6 +218,7 @@ int cmd_render(int argc, char** argv)
     }
     settings.exposure = float(args.number("exposure", 1.0, 0.0, 1e6));
     settings.samples = args.count("samples", 4, 1, 8);
+    settings.shadows = !args.flag("no-shadows");
     const std::string out = args.get_or("out", "render.png");
     check_output_file(args, "out", out, {".png", ".exr"});
 
@@ -318,6 +320,8 @@ int cmd_bench_render(int argc, char** argv)
          "fill) | back (front key + back light): with a back light tm "
          "draws the transmission term too"},
         {"sizes", "N,N", "square image sizes (default 512,1024)"},
+        {"no-shadows", "", "both modes without shadows"},
+        {"shadow-cost", "MODE", "instead of lambert against tm: MODE without shadows against MODE with them"},
         eval_option(),
         light_path_option()};
     const char* const usage =
@@ -339,6 +343,19 @@ int cmd_bench_render(int argc, char** argv)
             sizes.push_back(uint32_t(n));
         }
     }
+    // The two configurations timed against each other: (mode, shadows).
+    std::pair<ShadingMode, bool> config[2] = {{ShadingMode::Lambert, !args.flag("no-shadows")},
+                                              {ShadingMode::Tm, !args.flag("no-shadows")}};
+    if (const auto mode = args.get("shadow-cost")) {
+        try {
+            config[0] = {parse_shading_mode(*mode), false}, config[1] = {parse_shading_mode(*mode), true};
+        } catch (const Error& e) {
+            args.fail(std::string("--shadow-cost: ") + e.what());
+        }
+    }
+    const std::string names[2] = {
+        std::string(shading_mode_name(config[0].first)) + (config[0].second ? "" : "/noshadow"),
+        std::string(shading_mode_name(config[1].first)) + (config[1].second ? "" : "/noshadow")};
     auto ctx = make_context(args);
     Scene scene = load_scene(args, *ctx, args.positional().empty() ? "bunny" : args.positional()[0], true);
     Camera camera = Camera::framing(scene.prepared.bbox_min, scene.prepared.bbox_max);
@@ -372,12 +389,11 @@ int cmd_bench_render(int argc, char** argv)
         s.samples = samples;
         std::vector<double> gpu[2], wall[2], cpu[2], gpu_ratio, wall_ratio, cpu_ratio;
         for (int warm = 0; warm < 2; ++warm)  // pipelines, targets, caches
-            for (ShadingMode m : {ShadingMode::Lambert, ShadingMode::Tm})
-                s.mode = m, renderer.render(camera, lights, s);
+            for (const auto& [m, shadows] : config) s.mode = m, s.shadows = shadows, renderer.render(camera, lights, s);
         for (uint32_t i = 0; i < repeat; ++i) {
             for (int n = 0; n < 2; ++n) {
                 const int k = (i % 2 == 0) ? n : 1 - n;
-                s.mode = k == 0 ? ShadingMode::Lambert : ShadingMode::Tm;
+                s.mode = config[k].first, s.shadows = config[k].second;
                 const double cpu0 = process_cpu_ms();
                 RenderedImage img = renderer.render(camera, lights, s);
                 cpu[k].push_back(process_cpu_ms() - cpu0);
@@ -389,18 +405,19 @@ int cmd_bench_render(int argc, char** argv)
             cpu_ratio.push_back(cpu[1].back() / cpu[0].back());
         }
         for (int k = 0; k < 2; ++k)
-            std::printf("%4ux%-5u %-8s %12s %12s %12s %12s\n", size, size, k == 0 ? "lambert" : "tm",
+            std::printf("%4ux%-5u %-8s %12s %12s %12s %12s\n", size, size, names[k].c_str(),
                         format_ms(quantile(gpu[k], 0.5)).c_str(), format_ms(quantile(gpu[k], 0.0)).c_str(),
                         format_ms(quantile(wall[k], 0.5)).c_str(), format_ms(quantile(wall[k], 0.0)).c_str());
-        std::printf("%4ux%-5u tm / lambert: GPU %.3fx (median of %u pairs; quartiles %.3f-%.3f; ratio of mins %.3fx), "
+        std::printf("%4ux%-5u %s / %s: GPU %.3fx (median of %u pairs; quartiles %.3f-%.3f; ratio of mins %.3fx), "
                     "wall %.3fx (quartiles %.3f-%.3f)\n",
-                    size, size, quantile(gpu_ratio, 0.5), repeat, quantile(gpu_ratio, 0.25), quantile(gpu_ratio, 0.75),
-                    quantile(gpu[1], 0.0) / quantile(gpu[0], 0.0), quantile(wall_ratio, 0.5),
-                    quantile(wall_ratio, 0.25), quantile(wall_ratio, 0.75));
-        std::printf("%4ux%-5u tm / lambert: CPU time of this process (lavapipe's threads) %.3fx (quartiles %.3f-%.3f; "
-                    "lambert %s, tm %s median)\n",
-                    size, size, quantile(cpu_ratio, 0.5), quantile(cpu_ratio, 0.25), quantile(cpu_ratio, 0.75),
-                    format_ms(quantile(cpu[0], 0.5)).c_str(), format_ms(quantile(cpu[1], 0.5)).c_str());
+                    size, size, names[1].c_str(), names[0].c_str(), quantile(gpu_ratio, 0.5), repeat,
+                    quantile(gpu_ratio, 0.25), quantile(gpu_ratio, 0.75), quantile(gpu[1], 0.0) / quantile(gpu[0], 0.0),
+                    quantile(wall_ratio, 0.5), quantile(wall_ratio, 0.25), quantile(wall_ratio, 0.75));
+        std::printf("%4ux%-5u %s / %s: CPU time of this process (lavapipe's threads) %.3fx (quartiles %.3f-%.3f; "
+                    "%s %s, %s %s median)\n",
+                    size, size, names[1].c_str(), names[0].c_str(), quantile(cpu_ratio, 0.5), quantile(cpu_ratio, 0.25),
+                    quantile(cpu_ratio, 0.75), names[0].c_str(), format_ms(quantile(cpu[0], 0.5)).c_str(),
+                    names[1].c_str(), format_ms(quantile(cpu[1], 0.5)).c_str());
     }
     return 0;
 }

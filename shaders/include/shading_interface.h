@@ -12,7 +12,7 @@
 
 #define JADE_MAX_LIGHTS 64            // lights per draw
 #define JADE_MAX_TRANSMITTERS 4       // lights drawn with transmission per draw (transmission.glsl)
-#define JADE_MAX_LIGHT_DEPTH_TILES 4  // transmitters with a depth tile (shading/light_depth.hpp)
+#define JADE_MAX_LIGHT_DEPTH_TILES 4  // lights with a depth tile (shading/light_depth.hpp)
 #define JADE_COLOR_MAP_STOPS 9        // false-colour stops
 
 #ifdef __cplusplus
@@ -40,7 +40,18 @@ struct FramePush {
 
 struct GpuLight {
     vec4 vector;  // xyz: towards the light (w = 0) or its position (w = 1)
-    vec4 color;   // rgb: irradiance (directional) or intensity (point); w: transmitters' depth tile, 0 none
+    vec4 color;   // rgb: irradiance (directional) or intensity (point); w: the light's depth tile + 1, 0 none
+};
+
+// One light's depth tile (shading/light_depth.hpp): where its layers are and how to read them.
+// A directional light's tile is orthographic and stores the depth in clip space (linear along the
+// light); a point light's is perspective and stores the distance from the light along its ray,
+// (|x − origin| − near) / range: both are lengths along the light's own rays, in units of range.
+struct LightTile {
+    mat4 view_proj;  // world → light clip space (x, y ∈ [−1, 1] over the tile after the divide by w)
+    vec4 origin;     // xyz: the point light's position; w: 1 perspective (point), 0 orthographic
+    vec4 depth;      // near (mesh units, perspective), range (mesh units per stored unit), texel (mesh units across
+                     // one texel; perspective: per unit of distance from the light), w: unused
 };
 
 struct FrameData {
@@ -54,9 +65,9 @@ struct FrameData {
     vec4 transmission_diffusion;  // σ_tr (1/mesh unit), diffusion weight
     vec4 transmission_scatter;    // σ_s' (1/mesh unit), unused
     vec4 transmission_shape;      // lobe exponent n, (n + 1)/(2π), normal_mix, 1: diffuse × boundary transmittance
-    vec4 light_depth_map;         // light-depth tile size (texels), tiles in the atlas, depth range (mesh units)
-    mat4 light_depth[JADE_MAX_LIGHT_DEPTH_TILES];  // world → light clip space of each transmitter's tile
-    vec4 color_map[JADE_COLOR_MAP_STOPS];          // false-colour stops, linear RGB
+    vec4 light_depth_map;         // light-depth tile size (texels), tiles in the atlas, unused, unused
+    LightTile light_tiles[JADE_MAX_LIGHT_DEPTH_TILES];  // per tile of the atlas (GpuLight::color.w − 1)
+    vec4 color_map[JADE_COLOR_MAP_STOPS];               // false-colour stops, linear RGB
     vec4
         transmission_table_map;  // 1 / step of the attenuation table (mesh units), last texel, last interval, texels a part
     GpuLight transmitters[JADE_MAX_TRANSMITTERS];  // the lights drawn with transmission (transmission.glsl)
@@ -64,8 +75,8 @@ struct FrameData {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(FramePush) == 80 && sizeof(GpuLight) == 32);
-static_assert(sizeof(FrameData) == 10 * 16 + JADE_MAX_LIGHT_DEPTH_TILES * 64 + JADE_COLOR_MAP_STOPS * 16 + 16 +
+static_assert(sizeof(FramePush) == 80 && sizeof(GpuLight) == 32 && sizeof(LightTile) == 96);
+static_assert(sizeof(FrameData) == 10 * 16 + JADE_MAX_LIGHT_DEPTH_TILES * 96 + JADE_COLOR_MAP_STOPS * 16 + 16 +
                                        (JADE_MAX_TRANSMITTERS + JADE_MAX_LIGHTS) * 32,
               "FrameData must have no padding: scalar layout packs it so");
 }  // namespace jade::shading

@@ -12,6 +12,7 @@
 #define JADE_TRANSMISSION_GLSL
 
 #include "attenuation.glsl"
+#include "light_tile.glsl"
 #include "shading.glsl"  // boundary_transmittance
 
 // Lights drawn with transmission (data.transmitters[0 … TRANSMISSION − 1]); 0: none.
@@ -20,7 +21,6 @@ layout(constant_id = 2) const uint TRANSMISSION = 0;
 layout(constant_id = 7) const uint PATH_PER_VERTEX = 0;
 const uint kMaxTransmitters = JADE_MAX_TRANSMITTERS;  // shading_interface.h
 
-layout(binding = 3) uniform sampler2D light_depth_atlas;  // RGBA32F: the depths of 4 surfaces along each light, one tile a light
 layout(binding = 5) uniform usamplerBuffer transmission_table;  // A(t_i), A(t_{i+1}) as halves
 
 // The path inside the medium up to depth z along the light, from the depths of the first four
@@ -37,21 +37,22 @@ float medium_path(vec4 layers, float z)
 // units: the medium's share of the light's line from where it enters (medium_path), per texel
 // of its tile (atlas column `tile` − 1) and bilinear between the four nearest (per texel: a
 // texel beside a part's edge as the light sees it must not lend its layers to the next). The
-// matrix is the transmitter's own (data.light_depth[k]): a constant index, which lavapipe reads
-// once, not once per lane.
-float light_path(uint k, uint tile, vec3 position)
+// tile's own matrix and depth mapping (perspective for a point light: the layers and the
+// fragment's depth are distances from the light, so the path is a length along its ray).
+float light_path(uint tile, vec3 position)
 {
-    vec4 p = data.light_depth[k] * vec4(position, 1.0);
+    uint t = max(tile, 1u) - 1u;
+    vec3 p = light_tile_coords(t, position);
     float size = data.light_depth_map.x;
-    vec2 xy = clamp(p.xy * 0.5 + 0.5, 0.0, 1.0) * size - 0.5;
+    vec2 xy = clamp(p.xy, 0.0, 1.0) * size - 0.5;
     vec2 f = fract(xy);
     ivec2 base = ivec2(floor(xy)), lo = ivec2(0), hi = ivec2(int(size) - 1);
-    int x0 = int(max(tile, 1u) - 1u) * int(size);
+    int x0 = int(t) * int(size);
     float t00 = medium_path(texelFetch(light_depth_atlas, ivec2(x0, 0) + clamp(base, lo, hi), 0), p.z);
     float t10 = medium_path(texelFetch(light_depth_atlas, ivec2(x0, 0) + clamp(base + ivec2(1, 0), lo, hi), 0), p.z);
     float t01 = medium_path(texelFetch(light_depth_atlas, ivec2(x0, 0) + clamp(base + ivec2(0, 1), lo, hi), 0), p.z);
     float t11 = medium_path(texelFetch(light_depth_atlas, ivec2(x0, 0) + clamp(base + ivec2(1, 1), lo, hi), 0), p.z);
-    return mix(mix(t00, t10, f.x), mix(t01, t11, f.x), f.y) * data.light_depth_map.z;
+    return mix(mix(t00, t10, f.x), mix(t01, t11, f.x), f.y) * data.light_tiles[t].depth.y;
 }
 
 // Transmitter k's path t at `position`: the longer of the local thickness and the path from
@@ -59,7 +60,7 @@ float light_path(uint k, uint tile, vec3 position)
 float transmitter_path(uint k, vec3 position, float thickness)
 {
     uint tile = uint(data.transmitters[k].color.w);
-    return tile != 0u ? max(thickness, light_path(k, tile, position)) : thickness;
+    return tile != 0u ? max(thickness, light_path(tile, position)) : thickness;
 }
 
 // Towards transmitter k from `position`, unit, and its irradiance there (e: the colour, times

@@ -138,6 +138,12 @@ struct RenderSettings {
     /// has one, the mesh has a thickness, and a light is behind the object as the camera sees
     /// it; otherwise the pipeline without it is drawn (no cost). false: the poster's model alone.
     bool transmission = true;
+    /// Lambert, Curvature, Tm: each light's diffuse and specular light is shadowed by the mesh
+    /// (the light's depth tile, filtered; Tm widens the filter by the material's reach). At most
+    /// 4 lights cast shadows (the first 4 that can; a point light inside or near the bounding
+    /// sphere cannot), the rest are unshadowed; the mesh shadows itself only (not other objects
+    /// of a scene). false, or no light that can: the pipeline without shadows (no cost).
+    bool shadows = true;
 };
 
 /// The translucency LUT's parameterisation (texel i, j of a W × H R32_SFLOAT texture):
@@ -194,9 +200,10 @@ struct RendererOptions {
     uint32_t curvature_lut_width = 129, curvature_lut_height = 64;
     /// Mean curvature smoothing: iterations of 1-ring averaging after the cotangent Laplacian.
     uint32_t curvature_smoothing = 2;
-    /// Transmission: texels of one light's depth tile (how far light travels inside the object
-    /// before it reaches a point: the depths of the first four surfaces along the light, RGBA32F,
-    /// and two D32 buffers to peel them; 4 directional lights at most, 24·size² bytes each).
+    /// Transmission and shadows: texels of one light's depth tile (how far light travels inside
+    /// the object before it reaches a point, and what shadows it: the depths of the first four
+    /// surfaces along the light, RGBA32F, and two D32 buffers to peel them; 4 lights at most,
+    /// 24·size² bytes each).
     uint32_t light_depth_size = 512;
 };
 
@@ -238,7 +245,7 @@ struct ShadingInputs {
 /// normal, normal spread: floats) and its per-draw constants with 64 lights, in bytes: for
 /// memory plans (jade/scene.hpp).
 inline constexpr uint64_t kRendererVertexBytes = 68;
-inline constexpr uint64_t kRendererFrameDataBytes = 2752;
+inline constexpr uint64_t kRendererFrameDataBytes = 2880;
 
 /// Draws one mesh with one material. Owns its GPU buffers, LUT images and pipelines (created
 /// lazily per mode, sample count and format). Threading and lifetime as in the header comment.

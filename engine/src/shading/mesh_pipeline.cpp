@@ -60,7 +60,7 @@ uint64_t MeshVariant::key(VkFormat format, uint32_t samples) const
 {
     return uint64_t(mode) | uint64_t(channels) << 4 | uint64_t(transmission) << 6 | uint64_t(evaluation) << 11 |
            uint64_t(terms) << 14 | uint64_t(small_t) << 18 | uint64_t(path_per_vertex) << 19 | uint64_t(samples) << 20 |
-           uint64_t(format) << 32;
+           uint64_t(shadows) << 28 | uint64_t(format) << 32;
 }
 
 void choose_terms(double t_min, MeshVariant& variant)
@@ -126,7 +126,8 @@ const gpu::GraphicsPipeline& MeshPipelines::get(const MeshVariant& v, VkFormat f
                       VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                       VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER};
         d.push_size = sizeof(FramePush);
-        // constant_id 0 … 7 of mesh.vert/mesh.frag (shading.glsl, transmission.glsl, translucency.glsl).
+        // constant_id 0 … 8 of mesh.vert/mesh.frag (shading.glsl, transmission.glsl, translucency.glsl,
+        // shadow.glsl).
         d.constants = {v.mode,
                        v.channels,
                        v.transmission,
@@ -134,7 +135,8 @@ const gpu::GraphicsPipeline& MeshPipelines::get(const MeshVariant& v, VkFormat f
                        v.terms,
                        v.small_t ? 1u : 0u,
                        std::bit_cast<uint32_t>(kSmallSigma),
-                       v.path_per_vertex ? 1u : 0u};
+                       v.path_per_vertex ? 1u : 0u,
+                       v.shadows ? 1u : 0u};
         it->second = gpu::GraphicsPipeline(ctx_, d);
     } catch (...) {
         pipelines_.erase(it);

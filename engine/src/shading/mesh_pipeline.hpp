@@ -44,6 +44,7 @@ struct MeshVariant {
     uint32_t terms = 5;            ///< Alu: Fourier terms
     bool small_t = true;           ///< Alu: the closed form for √t < kSmallSigma is needed
     bool path_per_vertex = false;  ///< transmission: the light's path in mesh.vert (LightPathSampling)
+    bool shadows = false;          ///< the lights' diffuse and specular light is shadowed (shadow.glsl)
     uint64_t key(VkFormat format, uint32_t samples) const;
 };
 

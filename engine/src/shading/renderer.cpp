@@ -78,8 +78,9 @@ struct Renderer::Impl {
     LightPathSampling light_path = LightPathSampling::PerFragment;  // resolved for this mesh
     uint64_t geometry_version = 0;  // changes with set_mesh and record_vertex_update (light-depth reuse)
 
-    std::optional<shading::LightDepth> light_depth;  // made on the first draw with transmission
+    std::optional<shading::LightDepth> light_depth;  // made on the first draw with transmission or shadows
     std::optional<Material> material;
+    float reach = 0.0f;  // the material's profile's median radius, mean of the channels (mesh units)
     gpu::Buffer frame_data;
     TmEvaluation evaluation;
     shading::MeshPipelines pipelines;
@@ -107,10 +108,11 @@ struct Renderer::Impl {
 
     // The pipeline variant of a draw: only the t_m mode reads the channels, the evaluation path
     // and the transmitting lights; the Fourier terms follow the smallest t of the mesh.
-    shading::MeshVariant variant(uint32_t mode, uint32_t transmitters) const
+    shading::MeshVariant variant(uint32_t mode, uint32_t transmitters, bool shadows) const
     {
         shading::MeshVariant v;
         v.mode = mode;
+        v.shadows = shadows;
         if (mode != uint32_t(ShadingMode::Tm) && mode < shading::kInputsMode) return v;
         v.channels = material->grey() ? 1 : 3;
         v.transmission = transmitters;
@@ -147,36 +149,67 @@ struct Renderer::Impl {
         });
     }
 
-    // The lights drawn with transmission: the first kMaxTransmitters that may shine through the
-    // object towards the eye, each with its depth tile (shading/light_depth.hpp, rendered here for
-    // the directional ones; the atlas is made on the first draw that needs it) in color.w, 0 none.
+    // Whether this draw shadows its lights: the lit modes (not the false colour, not the inputs pass).
+    static bool shadowed(const RenderSettings& s, uint32_t mode)
+    {
+        return s.shadows && (mode == uint32_t(ShadingMode::Lambert) || mode == uint32_t(ShadingMode::Curvature) ||
+                             mode == uint32_t(ShadingMode::Tm));
+    }
+
+    // The lights' depth tiles (shading/light_depth.hpp: directional lights, and point lights
+    // outside the bounding sphere; the atlas is made on the first draw that needs it), for the
+    // transmission term's path and for the shadows; and the lights drawn with transmission: the
+    // first kMaxTransmitters that may shine through the object towards the eye, each with its
+    // tile + 1 in color.w, 0 none. The transmitters take tiles first (their path needs one).
     struct Transmitting {
         std::vector<GpuLight> lights;
         std::vector<uint32_t> index;  // of each in the draw's lights
-        bool tiles = false;           // some light has a depth tile
+        std::vector<uint32_t> tile;   // per light of the draw: its depth tile + 1, 0 none
+        bool tiles = false;           // some transmitter has a depth tile
+        bool shadows = false;         // the draw shadows its lights, and some light has a tile
     };
     Transmitting record_transmission(VkCommandBuffer cmd, const Camera& cam, std::span<const Light> lights,
-                                     const RenderSettings& s)
+                                     const RenderSettings& s, uint32_t mode)
     {
         Transmitting out;
-        if (!transmission_reaches_camera(cam, lights, s)) return out;
+        out.tile.assign(lights.size(), 0);
+        const bool transmission = transmission_reaches_camera(cam, lights, s), shadows = shadowed(s, mode);
+        if (!transmission && !shadows) return out;
         const glm::vec3 centre = 0.5f * (bbox_min + bbox_max);
         const float radius = bounding_radius();
-        auto transmits = [&](const Light& l) { return shading::LightDepth::may_transmit(cam.eye, l, centre, radius); };
-        std::vector<uint32_t> tiles(lights.size(), 0);
-        if (std::any_of(lights.begin(), lights.end(),
-                        [&](const Light& l) { return l.type == Light::Type::Directional && transmits(l); })) {
+        auto transmits = [&](const Light& l) {
+            return transmission && shading::LightDepth::may_transmit(cam.eye, l, centre, radius);
+        };
+        std::vector<uint8_t> wanted(lights.size(), 0);
+        for (size_t k = 0; k < lights.size(); ++k)
+            if (shading::LightDepth::can_tile(lights[k], centre, radius))
+                wanted[k] = transmits(lights[k]) ? 2 : shadows ? 1 : 0;
+        if (std::any_of(wanted.begin(), wanted.end(), [](uint8_t w) { return w != 0; })) {
             if (!light_depth) light_depth.emplace(ctx, options.light_depth_size);
-            tiles = light_depth->record(cmd, cam.eye, lights, vertices.handle(), sizeof(Vertex), indices.handle(),
-                                        index_count, centre, radius, geometry_version);
+            out.tile = light_depth->record(cmd, lights, wanted, vertices.handle(), sizeof(Vertex), indices.handle(),
+                                           index_count, centre, radius, geometry_version);
         }
         for (size_t k = 0; k < lights.size() && out.lights.size() < shading::kMaxTransmitters; ++k)
             if (transmits(lights[k])) {
-                out.lights.push_back(shading::gpu_light(lights[k], float(tiles[k])));
+                out.lights.push_back(shading::gpu_light(lights[k], float(out.tile[k])));
                 out.index.push_back(uint32_t(k));
-                out.tiles = out.tiles || tiles[k] != 0;
+                out.tiles = out.tiles || out.tile[k] != 0;
             }
+        out.shadows = shadows && std::any_of(out.tile.begin(), out.tile.end(), [](uint32_t t) { return t != 0; });
         return out;
+    }
+
+    // The shadow filter's tap spacing in texels of the light's tile (shadow.glsl): 1 (a 3×3
+    // bilinear PCF); in the Tm mode widened to the material's reach, so that light bleeds into a
+    // shadow's edge as far as it travels under the surface, at most kMaxShadowSpacing texels (the
+    // 16 taps stay 16: wider, they would skip over thin occluders).
+    static constexpr float kMaxShadowSpacing = 4.0f;
+    float shadow_spacing(const Light& light, const shading::LightTile& tile, uint32_t mode) const
+    {
+        if (mode != uint32_t(ShadingMode::Tm)) return 1.0f;
+        const float distance = tile.origin.w > 0.5f ? glm::length(light.vector - 0.5f * (bbox_min + bbox_max)) : 1.0f;
+        const float texel = tile.depth.z * distance;  // mesh units across a texel at the object
+        return std::clamp(reach / std::max(texel, 1e-30f), 1.0f, kMaxShadowSpacing);
     }
 
     std::pair<float, float> false_color_range(const RenderSettings& s) const
@@ -198,8 +231,8 @@ struct Renderer::Impl {
         return curvature_lut ? curvature_lut->image() : placeholder;
     }
 
-    FrameData frame_constants(std::span<const Light> lights, const RenderSettings& s,
-                              const Transmitting& transmitting) const
+    FrameData frame_constants(std::span<const Light> lights, const RenderSettings& s, const Transmitting& transmitting,
+                              uint32_t mode) const
     {
         FrameData d = shading::material_constants(*material);
         d.lut_map = lut->shader_map();
@@ -210,16 +243,18 @@ struct Renderer::Impl {
                       // finite: the shader multiplies (t_m − lo) by it, 0 · Inf would be NaN
                       float(std::min(1.0 / (double(hi) - double(lo)), double(FLT_MAX))));
         if (light_depth) {
-            d.light_depth_map = glm::vec4(float(light_depth->tile_size()), float(shading::LightDepth::kMaxLights),
-                                          light_depth->depth_range(), 0.0f);
-            for (size_t k = 0; k < transmitting.lights.size(); ++k)
-                if (const uint32_t tile = uint32_t(transmitting.lights[k].color.w); tile != 0)
-                    d.light_depth[k] = light_depth->view_projection(tile - 1);
+            d.light_depth_map =
+                glm::vec4(float(light_depth->tile_size()), float(shading::LightDepth::kMaxLights), 0.0f, 0.0f);
+            for (uint32_t t = 0; t < shading::LightDepth::kMaxLights; ++t) d.light_tiles[t] = light_depth->tile(t);
+            for (size_t k = 0; k < lights.size(); ++k)
+                if (const uint32_t tile = transmitting.tile[k]; tile != 0)
+                    d.light_tiles[tile - 1].depth.w = shadow_spacing(lights[k], d.light_tiles[tile - 1], mode);
         }
         for (int i = 0; i < 9; ++i) d.color_map[i] = glm::vec4(false_color(float(i) / 8.0f), 1.0f);
         d.transmission_table_map = transmission_table.shader_map();
         std::copy(transmitting.lights.begin(), transmitting.lights.end(), d.transmitters);
-        for (size_t k = 0; k < lights.size(); ++k) d.lights[k] = shading::gpu_light(lights[k], 0.0f);
+        for (size_t k = 0; k < lights.size(); ++k)
+            d.lights[k] = shading::gpu_light(lights[k], float(transmitting.tile.empty() ? 0 : transmitting.tile[k]));
         return d;
     }
 
@@ -233,11 +268,12 @@ struct Renderer::Impl {
         const gpu::Image& curvature = s.mode == ShadingMode::Curvature ? curvature_image()
                                       : curvature_lut                  ? curvature_lut->image()
                                                                        : placeholder;
-        const Transmitting transmitting = record_transmission(cmd, cam, lights, s);
-        const FrameData data = frame_constants(lights, s, transmitting);
-        const auto& pipe =
-            pipelines.get(variant(mode, uint32_t(transmitting.lights.size())), color_format(s), s.samples);
-        const gpu::Image& light_depth_image = transmitting.tiles ? light_depth->atlas() : placeholder;
+        const Transmitting transmitting = record_transmission(cmd, cam, lights, s, mode);
+        const FrameData data = frame_constants(lights, s, transmitting, mode);
+        const auto& pipe = pipelines.get(variant(mode, uint32_t(transmitting.lights.size()), transmitting.shadows),
+                                         color_format(s), s.samples);
+        const gpu::Image& light_depth_image =
+            transmitting.tiles || transmitting.shadows ? light_depth->atlas() : placeholder;
 
         // The frame constants are rewritten in the command stream: wait for the previous draw's
         // shader reads (write-after-read), then make the new values visible to this draw.
@@ -308,7 +344,9 @@ struct Renderer::Impl {
         }
         // The same selection as record()'s.
         Transmitting transmitting;
-        ctx.submit_and_wait([&](VkCommandBuffer cmd) { transmitting = record_transmission(cmd, cam, lights, s); });
+        ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+            transmitting = record_transmission(cmd, cam, lights, s, shading::kInputsMode);
+        });
         in.transmits.assign(lights.size(), 0);
         in.path.assign(lights.size() * pixels, 0.0f);
         for (size_t i = 0; i < transmitting.index.size(); ++i) {
@@ -425,6 +463,7 @@ void Renderer::set_material(const Material& material)
     }
     if (material.transmission.enabled()) m.transmission_table.update(material.transmission);
     m.material = material;
+    m.reach = float(shading::CurvatureLut::length_scale(material));
 }
 
 RenderedImage Renderer::render(const Camera& camera, std::span<const Light> lights, const RenderSettings& settings)
