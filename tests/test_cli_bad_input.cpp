@@ -142,6 +142,7 @@ TEST_P(cli_bad_flags, AreUsageErrorsNamingTheFlag)
     for (auto& a : args) {
         if (a == "MESH") a = tiny_mesh().string();
         if (a == "OUT") a = output.string();
+        if (a == "PNG") a = (output.parent_path() / "out.png").string();
     }
     const auto r = run_cli(args);
     expect_no_crash(args, r);
@@ -149,6 +150,7 @@ TEST_P(cli_bad_flags, AreUsageErrorsNamingTheFlag)
     EXPECT_NE(r.output.find(GetParam().expected), std::string::npos)
         << "expected '" << GetParam().expected << "': " << describe(args, r);
     EXPECT_FALSE(fs::exists(output)) << describe(args, r);
+    EXPECT_FALSE(fs::exists(output.parent_path() / "out.png")) << describe(args, r);
     EXPECT_EQ(temporaries(output.parent_path()), std::vector<std::string>{}) << describe(args, r);
 }
 
@@ -180,6 +182,30 @@ INSTANTIATE_TEST_SUITE_P(
         BadCommandLine{{"bake", "--out", "OUT"}, "expects exactly one MESH"},
         BadCommandLine{{"bake", "MESH", "MESH", "--out", "OUT"}, "expects exactly one MESH"},
         BadCommandLine{{"bake"}, "expects exactly one MESH"}),
+    [](const auto& info) { return "case" + std::to_string(info.index); });
+
+// Numbers and lists are parsed whole: no wrap-around, no trailing or doubled separator, and the
+// camera's degenerate cases named as what they are.
+INSTANTIATE_TEST_SUITE_P(
+    Render, cli_bad_flags,
+    ::testing::Values(
+        BadCommandLine{{"render", "MESH", "--out", "PNG", "--size", "4294967360x64"}, "--size: expected WxH"},
+        BadCommandLine{{"render", "MESH", "--out", "PNG", "--size", "64x64x"}, "--size: expected WxH"},
+        BadCommandLine{{"render", "MESH", "--out", "PNG", "--size", "0x64"}, "--size: expected WxH"},
+        BadCommandLine{{"render", "MESH", "--out", "PNG", "--light", "dir:0,0,1:1,1,1,"}, "--light: expected dir:"},
+        BadCommandLine{{"render", "MESH", "--out", "PNG", "--light", "dir:0,0,1:1,1,1:"}, "--light: expected dir:"},
+        BadCommandLine{{"render", "MESH", "--out", "PNG", "--light", "dir:0,,1:1,1,1"}, "--light: expected dir:"},
+        BadCommandLine{{"render", "MESH", "--out", "PNG", "--eye", "0,0,5,"}, "--eye: expected x,y,z"},
+        BadCommandLine{{"render", "MESH", "--out", "PNG", "--eye", "1,2,3", "--target", "1,2,3"},
+                       "--eye equals --target"},
+        BadCommandLine{{"render", "MESH", "--out", "PNG", "--up", "0,0,0"}, "--up: the up vector is zero"},
+        BadCommandLine{{"render", "MESH", "--out", "PNG", "--eye", "0,5,0", "--target", "0,0,0", "--up", "0,1,0"},
+                       "--up is parallel to the view direction"},
+        BadCommandLine{{"render", "MESH", "--out", "PNG", "--medium", "1,1,1,:1,1,1"}, "sigma_s '1,1,1,' is not three"},
+        BadCommandLine{{"render", "MESH", "--out", "PNG", "--medium", "1,1,1:1,1,1:"}, "--medium 1,1,1:1,1,1:: need"},
+        BadCommandLine{{"render", "MESH", "--out", "PNG", "--medium", "1,1,1:1,1,1", "--ior", "0.2"},
+                       "--ior: 0.2 is out of range (0.2, 5)"},
+        BadCommandLine{{"deform", "MESH", "--out", "OUT", "--size", "18446744073709551680x8"}, "--size: expected WxH"}),
     [](const auto& info) { return "case" + std::to_string(info.index); });
 
 INSTANTIATE_TEST_SUITE_P(

@@ -7,8 +7,11 @@
 #include <jade/io.hpp>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -193,6 +196,59 @@ TEST(finite_output, AGltfAssetWithBadNormalsIsRefusedNamingThePrimitiveAndVertex
     const std::string e = error_of([&] { jade::GltfAsset::load(dir / "cube_external.gltf"); });
     EXPECT_NE(e.find("cube_external.gltf: mesh 0"), std::string::npos) << e;
     EXPECT_NE(e.find("primitive 0: NORMAL of vertex 2 is not finite"), std::string::npos) << e;
+}
+
+/// Bakes a small sphere into DIR/sphere.glb and overwrites the R channel of _TM at vertices 0
+/// and 1 with `value`, as a hand-made file would carry it.
+fs::path baked_sphere_with_tm(const fs::path& dir, float value)
+{
+    const fs::path baked = dir / "sphere.glb";
+    const auto r = run_cli({"bake", sphere_off(dir).string(), "--quality", "draft", "--out", baked.string()});
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    std::fstream f(baked, std::ios::in | std::ios::out | std::ios::binary);
+    uint32_t header[5];
+    f.read(reinterpret_cast<char*>(header), sizeof header);  // magic, version, length, JSON length, type
+    std::string text(header[3], ' ');
+    f.read(text.data(), std::streamsize(text.size()));
+    const auto gltf = nlohmann::json::parse(text);
+    const auto& accessor = gltf["accessors"][gltf["meshes"][0]["primitives"][0]["attributes"]["_TM"].get<int>()];
+    const auto& view = gltf["bufferViews"][accessor["bufferView"].get<int>()];
+    const size_t bin = 20 + header[3] + 8;  // the BIN chunk's data
+    const size_t at = bin + view.value("byteOffset", size_t(0)) + accessor.value("byteOffset", size_t(0));
+    for (int i = 0; i < 2; ++i) {
+        f.seekp(std::streamoff(at + size_t(i) * 12));
+        f.write(reinterpret_cast<const char*>(&value), 4);
+    }
+    return baked;
+}
+
+TEST(finite_output, InfoCountsTheNonFiniteValuesOfABakedAttribute)
+{
+    // NaN written by hand (Jade's writer refuses it): `jade info` gives the range of the finite
+    // values and counts the others.
+    const fs::path baked = baked_sphere_with_tm(jade::test::test_folder("finite_info"), kNaN);
+    const auto info = run_cli({"info", baked.string()});
+    ASSERT_EQ(info.exit_code, 0) << info.output;
+    EXPECT_NE(info.output.find("R "), std::string::npos) << info.output;
+    EXPECT_NE(info.output.find("(2 of "), std::string::npos) << info.output;
+    EXPECT_NE(info.output.find(" not finite)"), std::string::npos) << info.output;
+}
+
+TEST(finite_output, AHugeFiniteTmRendersFiniteNonNegativePixels)
+{
+    // t_m = 1e38 is finite, so set_mesh takes it; the blur's variance saturates at the LUT's flat
+    // limit instead of overflowing (and the MSAA samples outside a triangle cannot extrapolate it
+    // below 0).
+    const fs::path dir = jade::test::test_folder("finite_huge_tm");
+    const fs::path baked = baked_sphere_with_tm(dir, 1e38f);
+    const auto r = run_cli({"render", baked.string(), "--size", "64x64", "--out", (dir / "huge.exr").string()});
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const jade::LoadedImage img = jade::load_image(dir / "huge.exr");
+    float lo = INFINITY, hi = -INFINITY;
+    for (float v : img.rgba) lo = std::min(lo, v), hi = std::max(hi, v);
+    EXPECT_GE(lo, 0.0f);
+    EXPECT_LT(hi, 100.0f) << "a light of irradiance ~3 on a sphere";
+    EXPECT_GT(hi, 0.01f);
 }
 
 }  // namespace

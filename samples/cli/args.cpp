@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
+#include <string_view>
 
 namespace jade::cli {
 
@@ -88,20 +89,47 @@ uint32_t Args::count(const std::string& name, uint32_t fallback, uint32_t lo, ui
     return uint32_t(x);
 }
 
+std::optional<std::array<double, 3>> Args::triple(const std::string& text)
+{
+    // Split on every comma, so that an empty part (a trailing or doubled separator) is refused.
+    std::array<double, 3> out{};
+    size_t begin = 0;
+    for (int n = 0; n < 3; ++n) {
+        const size_t end = n < 2 ? text.find(',', begin) : text.size();
+        if (end == std::string::npos || !parse_double(text.substr(begin, end - begin), out[n])) return std::nullopt;
+        begin = end + 1;
+    }
+    return out;  // the third part runs to the end: "1,2,3," and "1,2,3,4" fail to parse there
+}
+
 std::optional<std::array<double, 3>> Args::vec3(const std::string& name) const
 {
     auto v = get(name);
     if (!v) return std::nullopt;
-    std::array<double, 3> out{};
-    std::stringstream ss(*v);
-    std::string part;
-    int n = 0;
-    while (std::getline(ss, part, ',')) {
-        if (n == 3 || !parse_double(part, out[n])) fail("--" + name + ": expected x,y,z, got '" + *v + "'");
-        ++n;
-    }
-    if (n != 3) fail("--" + name + ": expected x,y,z, got '" + *v + "'");
+    auto out = triple(*v);
+    if (!out) fail("--" + name + ": expected x,y,z (three finite numbers), got '" + *v + "'");
     return out;
+}
+
+std::pair<uint32_t, uint32_t> Args::size(const std::string& name, const std::string& fallback, uint32_t max) const
+{
+    const std::string s = get_or(name, fallback);
+    // Parsed as 64-bit digits, so that 4294967360 is out of range rather than wrapped to 64.
+    auto whole = [&](std::string_view t, uint64_t& out) {
+        if (t.empty() || t.size() > 18) return false;
+        out = 0;
+        for (char c : t) {
+            if (c < '0' || c > '9') return false;
+            out = out * 10 + uint64_t(c - '0');
+        }
+        return true;
+    };
+    const size_t x = s.find('x');
+    uint64_t w = 0, h = 0;
+    if (x == std::string::npos || !whole(std::string_view(s).substr(0, x), w) ||
+        !whole(std::string_view(s).substr(x + 1), h) || w == 0 || h == 0 || w > max || h > max)
+        fail("--" + name + ": expected WxH with 1.." + std::to_string(max) + " pixels each, got '" + s + "'");
+    return {uint32_t(w), uint32_t(h)};
 }
 
 std::string Args::help() const

@@ -4,9 +4,12 @@
 
 #include <jade/error.hpp>
 
+#include <array>
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace jade::cli {
@@ -32,6 +35,10 @@ public:
     uint32_t count(const std::string& name, uint32_t fallback, uint32_t lo, uint32_t hi) const;
     /// "x,y,z" → three numbers.
     std::optional<std::array<double, 3>> vec3(const std::string& name) const;
+    /// "WxH" → two whole numbers in [1, max], or `fallback`'s.
+    std::pair<uint32_t, uint32_t> size(const std::string& name, const std::string& fallback, uint32_t max) const;
+    /// Exactly three finite comma-separated numbers ("1,2,3"; not "1,2,3," nor "1,,3"), or none.
+    static std::optional<std::array<double, 3>> triple(const std::string& text);
     std::string help() const;
     [[noreturn]] void fail(const std::string& message) const;
 

@@ -95,14 +95,7 @@ int cmd_deform(int argc, char** argv)
     const uint32_t frames = args.count("frames", 8, 1, 10000);
     const std::filesystem::path out_dir = args.get_or("out", "deform_out");
     const std::string anim_name = args.get_or("anim", "deform.gif");
-    unsigned width = 256, height = 256;
-    {
-        const std::string s = args.get_or("size", "256x256");
-        char x = 0, extra = 0;
-        if (std::sscanf(s.c_str(), "%u%c%u%c", &width, &x, &height, &extra) != 3 || x != 'x' || width == 0 ||
-            height == 0 || width > 8192 || height > 8192)
-            args.fail("--size: expected WxH with 1..8192 pixels each, got '" + s + "'");
-    }
+    const auto [width, height] = args.size("size", "256x256", 8192);
     const std::string axis_name = args.get_or("axis", "y");
     if (axis_name != "x" && axis_name != "y" && axis_name != "z")
         args.fail("--axis: '" + axis_name + "' is not x, y or z");

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cctype>
 #include <chrono>
 #include <cstdio>
@@ -102,19 +103,33 @@ static void print_mesh(const std::string& path, const ReadOptions& options)
                 p.bbox_max.x, p.bbox_max.y, p.bbox_max.z);
     std::printf("diagonal          %g mesh units\n", p.diagonal);
     std::printf("surface area      %g units^2\n", p.total_area());
-    if (!mesh.baked_ao.empty()) {
-        auto [lo, hi] = std::minmax_element(mesh.baked_ao.begin(), mesh.baked_ao.end());
-        std::printf("baked AO          %.4f .. %.4f\n", *lo, *hi);
-    }
-    if (!mesh.baked_tm.empty()) {
-        glm::vec3 lo(1e30f), hi(-1e30f);
-        for (auto& t : mesh.baked_tm) lo = glm::min(lo, t), hi = glm::max(hi, t);
-        std::printf("baked t_m         R %.4f..%.4f  G %.4f..%.4f  B %.4f..%.4f\n", lo.x, hi.x, lo.y, hi.y, lo.z, hi.z);
-    }
-    if (!mesh.baked_thickness.empty()) {
-        auto [lo, hi] = std::minmax_element(mesh.baked_thickness.begin(), mesh.baked_thickness.end());
-        std::printf("baked thickness   %.4g .. %.4g mesh units\n", *lo, *hi);
-    }
+    // The range of the finite values, and how many are not finite (NaN or Inf), so that an
+    // attribute full of NaN shows as such and a partial one is not hidden.
+    auto range = [](const char* label, const float* v, size_t n, size_t stride, const char* unit) {
+        for (size_t c = 0; c < stride; ++c) {
+            float lo = INFINITY, hi = -INFINITY;
+            size_t bad = 0;
+            for (size_t i = c; i < n * stride; i += stride) {
+                if (!std::isfinite(v[i])) {
+                    ++bad;
+                    continue;
+                }
+                lo = std::min(lo, v[i]), hi = std::max(hi, v[i]);
+            }
+            std::printf(c == 0 ? "%-18s" : "  ", c == 0 ? label : "");
+            if (stride == 3) std::printf("%c ", "RGB"[c]);
+            if (bad < n)
+                std::printf("%.4g .. %.4g", lo, hi);
+            else
+                std::printf("none finite");
+            if (bad) std::printf(" (%zu of %zu not finite)", bad, n);
+        }
+        std::printf("%s\n", unit);
+    };
+    if (!mesh.baked_ao.empty()) range("baked AO", mesh.baked_ao.data(), mesh.baked_ao.size(), 1, "");
+    if (!mesh.baked_tm.empty()) range("baked t_m", &mesh.baked_tm[0].x, mesh.baked_tm.size(), 3, "");
+    if (!mesh.baked_thickness.empty())
+        range("baked thickness", mesh.baked_thickness.data(), mesh.baked_thickness.size(), 1, " mesh units");
     print_bake_record(path, options);
     std::printf("timings           load %s, prepare %s\n", format_ms(ms(t0, t1)).c_str(),
                 format_ms(ms(t1, t2)).c_str());

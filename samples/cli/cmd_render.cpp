@@ -75,13 +75,7 @@ RendererOptions renderer_options(const Args& args)
 
 std::pair<uint32_t, uint32_t> parse_size(const Args& args, const std::string& fallback)
 {
-    std::string s = args.get_or("size", fallback);
-    unsigned w = 0, h = 0;
-    char x = 0, extra = 0;
-    if (std::sscanf(s.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || x != 'x' || w == 0 || h == 0 || w > 16384 ||
-        h > 16384)
-        args.fail("--size: expected WxH with 1..16384 pixels each, got '" + s + "'");
-    return {w, h};
+    return args.size("size", fallback, 16384);
 }
 
 glm::vec3 to_vec3(const std::array<double, 3>& a) { return glm::vec3(float(a[0]), float(a[1]), float(a[2])); }
@@ -92,18 +86,13 @@ Light parse_light(const Args& args, const std::string& spec)
     std::vector<std::string> parts;
     std::stringstream ss(spec);
     for (std::string p; std::getline(ss, p, ':');) parts.push_back(p);
-    if (parts.size() != 3 || (parts[0] != "dir" && parts[0] != "point")) fail();
+    if (parts.size() != 3 || spec.back() == ':' || (parts[0] != "dir" && parts[0] != "point")) fail();
     glm::vec3 v[2];
     for (int k = 0; k < 2; ++k) {
-        std::stringstream cs(parts[k + 1]);
-        std::string n;
-        int i = 0;
-        for (; i < 3 && std::getline(cs, n, ','); ++i) {
-            char* end = nullptr;
-            v[k][i] = std::strtof(n.c_str(), &end);
-            if (n.empty() || *end || !std::isfinite(v[k][i])) fail();
-        }
-        if (i != 3 || std::getline(cs, n, ',')) fail();
+        const auto t = Args::triple(parts[k + 1]);
+        if (!t) fail();
+        v[k] = to_vec3(*t);
+        if (!std::isfinite(v[k].x) || !std::isfinite(v[k].y) || !std::isfinite(v[k].z)) fail();  // beyond float
     }
     if (parts[0] == "dir" && v[0] == glm::vec3(0.0f)) args.fail("--light " + spec + ": the direction is zero");
     return parts[0] == "dir" ? Light::directional(v[0], v[1]) : Light::point(v[0], v[1]);
@@ -116,7 +105,14 @@ Camera camera_from_args(const Args& args, const PreparedMesh& mesh, float aspect
     const glm::vec3 up = args.vec3("up") ? to_vec3(*args.vec3("up")) : glm::vec3(0, 1, 0);
     const float fov = float(args.number("fov", 30.0, 1e-3, 179.0));
     const auto eye = args.vec3("eye");
-    if (eye && !args.flag("frame")) return Camera{to_vec3(*eye), target, up, fov};
+    if (glm::length(up) == 0.0f) args.fail("--up: the up vector is zero");
+    if (eye && !args.flag("frame")) {
+        const glm::vec3 view = target - to_vec3(*eye);
+        if (glm::length(view) == 0.0f) args.fail("--eye equals --target: no direction to look in");
+        if (glm::length(glm::cross(view, up)) <= 1e-6f * glm::length(view) * glm::length(up))
+            args.fail("--up is parallel to the view direction (--target - --eye)");
+        return Camera{to_vec3(*eye), target, up, fov};
+    }
     glm::vec3 direction = eye ? to_vec3(*eye) - target : glm::vec3(0, 0, 1);
     if (glm::length(direction) == 0.0f) args.fail("--frame: --eye equals --target, no direction to frame from");
     // Frame the bounds as seen from the direction, around --target when given.

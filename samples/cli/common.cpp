@@ -99,7 +99,7 @@ Medium medium_from_args(const Args& args)
     std::vector<std::string> parts;
     std::stringstream ss(spec);
     for (std::string p; std::getline(ss, p, ':');) parts.push_back(p);
-    if (parts.size() != 2 && parts.size() != 3) fail("need two or three ':'-separated parts");
+    if ((parts.size() != 2 && parts.size() != 3) || spec.back() == ':') fail("need two or three ':'-separated parts");
     auto number = [&](const std::string& text, const char* what) {
         char* end = nullptr;
         const double v = std::strtod(text.c_str(), &end);
@@ -108,19 +108,17 @@ Medium medium_from_args(const Args& args)
         return v;
     };
     auto rgb = [&](const std::string& text, const char* what) {
-        glm::dvec3 v;
-        std::stringstream cs(text);
-        std::string n;
-        int i = 0;
-        for (; i < 3 && std::getline(cs, n, ','); ++i) v[i] = number(n, what);
-        if (i != 3 || std::getline(cs, n, ',')) fail(std::string(what) + " needs three comma-separated values");
-        return v;
+        const auto v = Args::triple(text);
+        if (!v) fail(std::string(what) + " '" + text + "' is not three finite comma-separated numbers");
+        return glm::dvec3((*v)[0], (*v)[1], (*v)[2]);
     };
     Medium m;
     m.sigma_s = rgb(parts[0], "sigma_s");
     m.sigma_a = rgb(parts[1], "sigma_a");
     if (parts.size() == 3) m.g = number(parts[2], "g");
+    // The boundary's relative index of refraction, as Material::from_medium takes it: (0.2, 5).
     m.ior = args.number("ior", m.ior, 0.2, 5.0);
+    if (m.ior == 0.2 || m.ior == 5.0) args.fail("--ior: " + args.get_or("ior", "") + " is out of range (0.2, 5)");
     m.roughness = args.number("roughness", m.roughness, 0.0, 1.0);
     return m;
 }
@@ -178,6 +176,8 @@ Material material_from_args(const Args& args, double diagonal)
             m = Material::from_medium(medium_from_args(args), {}, "medium");
         else
             m = material_preset(args.get_or("material", "jade"), mm_per_unit);
+    } catch (const UsageError&) {
+        throw;  // already names its flag
     } catch (const Error& e) {
         // An unknown --material or a bad medium is a command-line mistake: exit code 2, naming the flag.
         args.fail(std::string(args.get("medium") ? "--medium: " : "--material: ") + e.what());
