@@ -526,6 +526,21 @@ TEST(SceneCli, BadScenesFailWithTheFileNamed)
     EXPECT_EQ(r.exit_code, 2) << r.output;
 }
 
+TEST(SceneCli, AScenePastTheMemoryBudgetIsRefusedBeforeAnythingIsAllocated)
+{
+    // The mixed scene's plan needs about 6.5 MiB (jade plan); a budget of 1 MiB refuses it with
+    // the plan's figure, writes nothing and creates no GPU object of the scene.
+    const auto png = test::out("scene_cli/over_budget.png");
+    std::filesystem::remove(png);
+    const auto r = test::run_cli(
+        {"scene", test::data("scene_mixed.gltf").string(), "--max-memory", "1", "--out", png.string(), "--verbose"});
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    EXPECT_NE(r.output.find("scene_mixed.gltf: the scene's plan needs"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("over --max-memory 1.0 MiB"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("passes run"), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(png));
+}
+
 TEST(SceneCli, BenchRenderSceneComparesCachedWithNeverBaked)
 {
     const auto cache = test::out("scene_cli/bench_cache/x").parent_path();

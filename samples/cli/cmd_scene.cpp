@@ -77,7 +77,10 @@ int cmd_scene(int argc, char** argv)
     const std::vector<OptionSpec> own = {{"out", "FILE", "output .png or .exr (default scene.png)"},
                                          {"size", "N", "square image size in pixels (default 512)"},
                                          {"time", "T", "seconds: the deformers' time (default 0.5)"},
-                                         {"samples", "N", "MSAA samples 1, 2, 4, 8 (default 4)"}};
+                                         {"samples", "N", "MSAA samples 1, 2, 4, 8 (default 4)"},
+                                         {"max-memory", "MIB",
+                                          "refuse a scene whose plan needs more than this (default 8192; the "
+                                          "host keeps the objects' meshes as well)"}};
     Args args("scene", all_options({scene_options(), device_options(), bake_options(), input_options(), own}), argc,
               argv, 2);
     if (print_help(args,
@@ -94,8 +97,31 @@ int cmd_scene(int argc, char** argv)
     rs.samples = args.count("samples", 4, 1, 8);
     rs.tone_map = ToneMap::AcesFitted;
     const double t = args.number("time", 0.5, -1e6, 1e6);
+    const double budget_mib = args.number("max-memory", 8192.0, 1.0, 1e9);
     auto ctx = make_context(args);
-    SceneRenderer renderer(*ctx, scene, settings, cache ? cached_bakes(*cache) : StaticBakeSource{});
+    // Checked against the plan before anything of the scene is allocated: a scene that instances
+    // a deforming mesh 100,000 times would otherwise run the machine out of memory.
+    const StaticBakeSource source = cache ? cached_bakes(*cache) : StaticBakeSource{};
+    const ScenePlan plan = plan_scene(scene, settings, source);
+    const uint64_t need = plan.resident_bytes() + plan.transient_peak_bytes();
+    const uint64_t heap = ctx->device_info().device_local_heap_bytes;
+    auto mib = [](double bytes) {
+        char b[48];
+        if (bytes >= double(1ull << 30))
+            std::snprintf(b, sizeof b, "%.1f GiB", bytes / double(1ull << 30));
+        else
+            std::snprintf(b, sizeof b, "%.1f MiB", bytes / double(1u << 20));
+        return std::string(b);
+    };
+    if (heap > 0 && need > heap)
+        throw Error(args.positional()[0] + ": the scene's plan needs " + mib(double(need)) + " (" +
+                    mib(double(plan.resident_bytes())) + " while drawing, " + mib(double(plan.transient_peak_bytes())) +
+                    " at the largest once-only pass; see jade plan) but " + "the device's largest memory heap holds " +
+                    mib(double(heap)));
+    if (double(need) > budget_mib * double(1u << 20))
+        throw Error(args.positional()[0] + ": the scene's plan needs " + mib(double(need)) +
+                    " (see jade plan), over --max-memory " + mib(budget_mib * double(1u << 20)));
+    SceneRenderer renderer(*ctx, scene, settings, source);
     const Camera camera = scene_camera(renderer.bbox_min(), renderer.bbox_max(), 1.0f);
     const auto lights = default_lights(camera);
     RenderedImage img = renderer.render(t, camera, lights, rs);
