@@ -232,6 +232,12 @@ TEST(finite_output, InfoCountsTheNonFiniteValuesOfABakedAttribute)
     EXPECT_NE(info.output.find("R "), std::string::npos) << info.output;
     EXPECT_NE(info.output.find("(2 of "), std::string::npos) << info.output;
     EXPECT_NE(info.output.find(" not finite)"), std::string::npos) << info.output;
+    // Rendering it is refused naming the file, the attribute and the vertex.
+    const auto render =
+        run_cli({"render", baked.string(), "--size", "16x16", "--out", (baked.parent_path() / "nan.png").string()});
+    EXPECT_EQ(render.exit_code, 1) << render.output;
+    EXPECT_NE(render.output.find("sphere.glb: _TM of vertex 0 is negative or not finite"), std::string::npos)
+        << render.output;
 }
 
 TEST(finite_output, AHugeFiniteTmRendersFiniteNonNegativePixels)

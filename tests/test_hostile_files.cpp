@@ -272,4 +272,43 @@ TEST(hostile_outputs, MissingInputsAndFilesInTheWayAreCleanErrors)
     EXPECT_EQ(read_all(dir / "a_file"), "x");
 }
 
+TEST(hostile_outputs, AnInputWhoseImageFieldsHaveTheWrongTypeIsBlamedNotTheOutput)
+{
+    // The writer reads the input's own image entries back; a number where the schema has a
+    // string is the input's fault, named before anything is baked.
+    const fs::path dir = jade::test::test_folder("hostile");
+    const fs::path gltf = box(dir, "CesiumLogoFlat.png", "BoxTextured0.bin");
+    std::string json = read_all(gltf);
+    const std::string uri = "\"uri\"";
+    const size_t at = json.find(uri, json.find("\"images\""));
+    ASSERT_NE(at, std::string::npos);
+    json.insert(at, "\"mimeType\": 5, ");
+    write(gltf, json);
+    const auto r = run_cli({"bake", gltf.string(), "--quality", "draft", "--out", (dir / "out.glb").string()});
+    EXPECT_EQ(r.exit_code, kError) << r.output;
+    EXPECT_NE(r.output.find("box.gltf: image 0: mimeType is not a string"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "out.glb"));
+
+    // What the schema calls invalid is refused naming the element, not written back.
+    const std::string good = read_all(box(dir, "CesiumLogoFlat.png", "BoxTextured0.bin"));
+    struct Case {
+        std::string from, to, expected;
+    };
+    for (const Case& c : std::vector<Case>{
+             {"\"mesh\"", "\"mesh\": 2147483648, \"x_mesh\"", "node 1: mesh 2147483648 is not an index into meshes"},
+             {"\"mesh\"", "\"skin\": 3, \"mesh\"", "node 1: skin 3 is not an index into skins"},
+             {"\"mode\"", "\"mode\": -5, \"x_mode\"", "mesh 0 primitive 0: mode -5 is not 0 to 6"},
+             {"\"2.0\"", "\"3.0\"", "asset.version is not \"2.x\""}}) {
+        std::string json = good;
+        const size_t at = json.find(c.from);
+        ASSERT_NE(at, std::string::npos) << c.from;
+        json.replace(at, c.from.size(), c.to);
+        write(gltf, json);
+        const auto bad = run_cli({"bake", gltf.string(), "--quality", "draft", "--out", (dir / "out.glb").string()});
+        EXPECT_EQ(bad.exit_code, kError) << bad.output;
+        EXPECT_NE(bad.output.find("box.gltf: " + c.expected), std::string::npos) << c.expected << ": " << bad.output;
+        EXPECT_FALSE(fs::exists(dir / "out.glb"));
+    }
+}
+
 }  // namespace

@@ -206,6 +206,11 @@ TEST(SceneMaterials, BadValuesWarnNamingFileMaterialAndValueAndFallBack)
     EXPECT_TRUE(contains(w, "diffuseTransmissionFactor 1.5 is outside [0, 1]", "1 used"));
     EXPECT_TRUE(contains(w, "diffuseTransmissionColorFactor[1] 0 is below 0.001"));
     EXPECT_TRUE(contains(w, "extras.jade.strength -2 is negative"));
+    w.clear();
+    const Scene huge = one_material("huge", R"({"extras":{"jade":{"preset":"marble","strength":1e300}}})", &w);
+    EXPECT_TRUE(contains(w, "extras.jade.strength 1e+300 is above 1e6; 1e6 used")) << (w.empty() ? "" : w[0]);
+    EXPECT_TRUE(std::isfinite(huge.objects[0].material.spread_strength));
+    w.clear();
     // The fallback multiplier 1 leaves the medium's blur as from_medium derives it.
     EXPECT_FLOAT_EQ(range.objects[0].material.spread_strength, float(MediumFit{}.spread_strength));
     EXPECT_NEAR(range.objects[0].material.profile[1].d, 0.01 * 1e-3 / burley_s(1.0), 1e-15);

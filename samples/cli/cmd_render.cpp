@@ -164,6 +164,15 @@ Scene load_scene(const Args& args, Context& ctx, const std::string& path, bool n
     s.prepared = prepare_mesh(s.mesh);
     s.material = material_from_args(args, s.prepared);
     if (!s.mesh.baked_tm.empty()) {
+        // What the renderer refuses, named as the file has it (attribute and vertex).
+        for (size_t i = 0; i < s.mesh.baked_tm.size(); ++i) {
+            const glm::vec3 t = s.mesh.baked_tm[i];
+            if (!(t.x >= 0.0f && t.y >= 0.0f && t.z >= 0.0f && std::isfinite(t.x + t.y + t.z)))
+                throw Error(path + ": _TM of vertex " + std::to_string(i) + " is negative or not finite");
+        }
+        for (size_t i = 0; i < s.mesh.baked_thickness.size(); ++i)
+            if (!(s.mesh.baked_thickness[i] >= 0.0f && std::isfinite(s.mesh.baked_thickness[i])))
+                throw Error(path + ": _THICKNESS of vertex " + std::to_string(i) + " is negative or not finite");
         std::fprintf(stderr, "jade: t_m read from %s\n", s.mesh.name.c_str());
     } else if (need_tm && !s.material.opaque) {
         BakeSettings settings = bake_settings_from_args(args);

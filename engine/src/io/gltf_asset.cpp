@@ -44,6 +44,58 @@ void check_images(const GltfAssetImpl& a)
     }
 }
 
+/// What the writer reads back from the input's own JSON must have the type the glTF schema gives
+/// it, so that a bad input is refused naming the input, not the output.
+void check_written_back_types(const GltfAssetImpl& a)
+{
+    const auto& doc = a.doc;
+    // asset.version: this reader and writer are glTF 2.x.
+    const auto asset = doc.find("asset");
+    if (asset == doc.end() || !asset->is_object() || !asset->contains("version") || !(*asset)["version"].is_string() ||
+        (*asset)["version"].get<std::string>().rfind("2.", 0) != 0)
+        fail(a.name, "asset.version is not \"2.x\" (only glTF 2 is read)");
+    auto count = [&](const char* array) {
+        const auto it = doc.find(array);
+        return it != doc.end() && it->is_array() ? it->size() : size_t(0);
+    };
+    // Indices that nodes and primitives carry, in range even where no scene reaches them: the
+    // output writes every node and mesh back.
+    if (const auto nodes = doc.find("nodes"); nodes != doc.end() && nodes->is_array())
+        for (size_t n = 0; n < nodes->size(); ++n)
+            for (const auto& [key, array] :
+                 {std::pair<const char*, const char*>{"mesh", "meshes"}, {"skin", "skins"}, {"camera", "cameras"}}) {
+                const auto& node = (*nodes)[n];
+                if (!node.is_object() || !node.contains(key)) continue;
+                const auto& v = node[key];
+                if (!v.is_number_integer() || v.get<int64_t>() < 0 || uint64_t(v.get<int64_t>()) >= count(array))
+                    fail(a.name, "node " + std::to_string(n) + ": " + key + " " + io::printable(v.dump(), 32) +
+                                     " is not an index into " + array);
+            }
+    if (const auto meshes = doc.find("meshes"); meshes != doc.end() && meshes->is_array())
+        for (size_t m = 0; m < meshes->size(); ++m) {
+            const auto& mesh = (*meshes)[m];
+            if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
+            for (size_t p = 0; p < mesh["primitives"].size(); ++p) {
+                const auto& prim = mesh["primitives"][p];
+                if (!prim.is_object() || !prim.contains("mode")) continue;
+                const auto& v = prim["mode"];
+                if (!v.is_number_integer() || v.get<int64_t>() < 0 || v.get<int64_t>() > 6)
+                    fail(a.name, "mesh " + std::to_string(m) + " primitive " + std::to_string(p) + ": mode " +
+                                     io::printable(v.dump(), 32) + " is not 0 to 6");
+            }
+        }
+    const auto images = doc.find("images");
+    if (images == doc.end()) return;
+    if (!images->is_array()) fail(a.name, "images is not an array");
+    for (size_t i = 0; i < images->size(); ++i) {
+        const auto& image = (*images)[i];
+        if (!image.is_object()) fail(a.name, "image " + std::to_string(i) + " is not an object");
+        for (const char* key : {"mimeType", "uri", "name"})
+            if (image.contains(key) && !image[key].is_string())
+                fail(a.name, "image " + std::to_string(i) + ": " + key + " is not a string");
+    }
+}
+
 /// The space a mesh is baked in, from its first instance (see GltfAsset).
 struct Placement {
     glm::dmat4 world{1.0};
@@ -185,6 +237,7 @@ GltfAsset GltfAsset::load(const std::filesystem::path& path, std::vector<std::st
         }
         if (!a->doc.is_object()) fail(name, "the glTF JSON is not an object");
         check_images(*a);
+        check_written_back_types(*a);
 
         io::MaterialMapper mapper(name, a->model, warnings);
         a->translucent.resize(a->model.materials.size());

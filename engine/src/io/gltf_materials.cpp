@@ -65,6 +65,10 @@ Material MaterialMapper::map(int index)
                     strength = number("extras.jade.strength", v, 1.0);
                     if (strength < 0)
                         warn("extras.jade.strength " + num(strength) + " is negative; 1 used"), strength = 1.0;
+                    // Beyond this the blur is flat anyway, and the product with the material's
+                    // blur would overflow single precision.
+                    if (strength > 1e6)
+                        warn("extras.jade.strength " + num(strength) + " is above 1e6; 1e6 used"), strength = 1e6;
                 } else if (key == "opaque") {
                     if (!v.IsBool())
                         warn("extras.jade.opaque is not true or false; ignored");
