@@ -164,7 +164,7 @@ TEST_F(BakeCacheTest, AnEntryWithNonFiniteValuesUnderAValidChecksumIsStaleAndReb
 
     std::string why;
     EXPECT_FALSE(cache.load(key, sphere.vertex_count(), &why));
-    EXPECT_EQ(why, "stale: values of vertex 1 are not finite; baked again");
+    EXPECT_EQ(why, "stale: values of vertex 1 are not finite");
     const CachedBake rebaked = bake_with_cache(context(), cache, sphere, material, settings);
     EXPECT_EQ(rebaked.source, BakeSource::Baked);
     EXPECT_EQ(rebaked.note, why);

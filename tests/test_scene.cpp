@@ -516,6 +516,18 @@ TEST(SceneCli, PlanPrintsPassesVariantsMemoryAndCacheState)
         {"scene", scene, "--cache", cache.string(), "--quality", "draft", "--size", "48", "--out", png, "--verbose"});
     EXPECT_NE(r.output.find("grey_sphere/0            cache read"), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("static bake"), std::string::npos) << r.output;
+
+    // An entry damaged on disk is baked again and said so, without --verbose.
+    for (const auto& entry : std::filesystem::directory_iterator(cache)) {
+        std::fstream f(entry.path(), std::ios::in | std::ios::out | std::ios::binary);
+        f.seekp(-1, std::ios::end);
+        f.put('\x7f');
+    }
+    r = test::run_cli({"scene", scene, "--cache", cache.string(), "--quality", "draft", "--size", "48", "--out", png});
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("grey_sphere/0: cache entry not used (checksum mismatch); baked again and stored"),
+              std::string::npos)
+        << r.output;
 }
 
 TEST(SceneCli, BadScenesFailWithTheFileNamed)

@@ -65,28 +65,39 @@ namespace fs = std::filesystem;
 using namespace report;
 using Clock = std::chrono::steady_clock;
 
+/// `relative` (a file or folder of the source tree) in the nearest folder above the executable's
+/// (a build folder inside the tree) or above the working folder that holds it; empty if none.
+fs::path find_in_tree(const fs::path& relative)
+{
+    std::error_code ec;
+    for (fs::path start : {fs::read_symlink("/proc/self/exe", ec).parent_path(), fs::current_path(ec)})
+        for (fs::path dir = start; !dir.empty(); dir = dir.parent_path()) {
+            if (fs::exists(dir / relative, ec)) return dir / relative;
+            if (dir == dir.parent_path()) break;
+        }
+    return {};
+}
+
 std::vector<std::string> default_meshes()
 {
     std::vector<std::string> out{"bunny"};
     const char* assets = std::getenv("JADE_ASSETS");
-    fs::path dragon = fs::path(assets ? assets : "assets") / "ChineseDragon-10kv.off";
-    if (fs::exists(dragon)) out.push_back(dragon.string());
+    const fs::path name = "ChineseDragon-10kv.off";
+    const fs::path dragon = assets && *assets ? fs::path(assets) / name : find_in_tree(fs::path("assets") / name);
+    if (!dragon.empty() && fs::exists(dragon))
+        out.push_back(dragon.string());
+    else
+        std::fprintf(stderr, "jade report: the dragon is left out: no %s in $JADE_ASSETS or in an assets/ folder above "
+                             "the executable or the working folder (third_party/fetch_assets.sh puts it there)\n",
+                     name.string().c_str());
     return out;
 }
 
-/// samples/report/plot_report.py: $JADE_REPORT_PLOT, else searched upwards from the
-/// executable's folder (a build folder inside the source tree) and from the working folder.
+/// samples/report/plot_report.py: $JADE_REPORT_PLOT, else find_in_tree.
 fs::path find_plot_script()
 {
     if (const char* env = std::getenv("JADE_REPORT_PLOT"); env && *env) return env;
-    std::error_code ec;
-    for (fs::path start : {fs::read_symlink("/proc/self/exe", ec).parent_path(), fs::current_path(ec)})
-        for (fs::path dir = start; !dir.empty(); dir = dir.parent_path()) {
-            fs::path candidate = dir / "samples" / "report" / "plot_report.py";
-            if (fs::exists(candidate, ec)) return candidate;
-            if (dir == dir.parent_path()) break;
-        }
-    return {};
+    return find_in_tree(fs::path("samples") / "report" / "plot_report.py");
 }
 
 std::string shell_quote(const std::string& s)
@@ -216,9 +227,14 @@ int cmd_report(int argc, char** argv)
     if (!args.flag("no-plot")) run_plots(dir);
     // How close the shading modes come to the committed path-traced references (when this runs
     // from the repository, where they are).
-    if (fs::is_directory("tools/groundtruth/references", ec)) {
+    const fs::path references = find_in_tree(fs::path("tools") / "groundtruth" / "references");
+    if (references.empty()) {
+        std::fprintf(stderr, "jade report: the fidelity section is left out: no tools/groundtruth/references above the "
+                             "executable or the working folder (run from a checkout of Jade)\n");
+    } else {
         const std::string md = (dir / "fidelity.md").string(), json = (dir / "fidelity.json").string();
-        std::vector<std::string> words = {"jade", "fidelity", "--markdown", md, "--json", json};
+        std::vector<std::string> words = {"jade", "fidelity", "--markdown", md, "--json", json, "--references",
+                                          references.string()};
         if (args.get("device")) words.insert(words.end(), {"--device", *args.get("device")});
         std::vector<char*> argv2;
         for (auto& w : words) argv2.push_back(w.data());

@@ -126,6 +126,12 @@ int cmd_scene(int argc, char** argv)
     const auto lights = default_lights(camera);
     RenderedImage img = renderer.render(t, camera, lights, rs);
     save_image(out, int(img.width), int(img.height), img.rgba);
+    // A cache entry that was there but could not be used (stale, corrupt) is said even without
+    // --verbose: the next run will read the entry just stored.
+    for (const PassRecord& p : renderer.passes_run())
+        if (cache && p.kind == PassKind::StaticBake && !p.note.empty() && p.note != "missing")
+            std::fprintf(stderr, "jade scene: %s: cache entry not used (%s); baked again and stored\n",
+                         p.object.c_str(), p.note.c_str());
     if (args.flag("verbose")) {
         std::printf("passes run:\n");
         for (const PassRecord& p : renderer.passes_run())

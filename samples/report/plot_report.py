@@ -164,6 +164,27 @@ class Plotter:
                 if not math.isnan(y):
                     ax.annotate(annotate(r), (x, y), textcoords="offset points", xytext=(4, 3), fontsize=7, color=color)
 
+    @staticmethod
+    def log_axes(ax, **labels):
+        """Log-log axes with `labels` (title, xlabel, ylabel), or linear ones that say why when
+        nothing drawn on them is positive (log scaling would raise): every error 0, say."""
+        def positive_on(axis):
+            for line in ax.get_lines():
+                values = line.get_xdata() if axis == "x" else line.get_ydata()
+                for v in values:
+                    try:
+                        if math.isfinite(float(v)) and float(v) > 0:
+                            return True
+                    except (TypeError, ValueError):
+                        pass
+            return False
+        ax.set(**labels)
+        if positive_on("x") and positive_on("y"):
+            ax.set(xscale="log", yscale="log")
+        else:
+            ax.text(0.5, 0.5, "nothing to plot on log axes:\nno positive value", transform=ax.transAxes,
+                    ha="center", va="center", fontsize=9, color="grey")
+
     def pareto_legend(self, ax, pareto=True, below=False):
         from matplotlib.ticker import FuncFormatter
         if pareto:
@@ -178,6 +199,8 @@ class Plotter:
 
         def minor(v, _):  # every minor tick on a short axis, 2 and 5 on a medium one, none on a long one
             lo, hi = ax.get_xlim()
+            if not (lo > 0 and hi > lo):  # linear axes (log_axes found nothing positive)
+                return ""
             span = math.log10(hi / lo)
             return "%g" % v if span < 1.2 or (span < 2.5 and ("%g" % v)[0] in "25") else ""
         ax.xaxis.set_minor_formatter(FuncFormatter(minor))
@@ -209,7 +232,7 @@ class Plotter:
                 ld = algorithm.startswith("low")
                 self.series(ax, pts, "%s, %s" % (algorithm, case.replace("d=", "max dist ")), color, "o" if ld else "x",
                             x_scale=1e-3, annotate=(lambda r: r["value"]) if ld else None)
-            ax.set(xscale="log", yscale="log", title=mesh, xlabel="GPU time (s)",
+            self.log_axes(ax, title=mesh, xlabel="GPU time (s)",
                    ylabel="AO error, RMS over vertices (absolute, AO in [0,1])")
             self.pareto_legend(ax)
         self.save(fig, "ao.png")
@@ -234,7 +257,7 @@ class Plotter:
                 self.series(ax, auto, None, color, "^", x_scale=1e-3, line=False)
             ax.plot([], [], "*", color="grey", markersize=10, label="exact (all pairs, float32)")
             ax.plot([], [], "^", color="grey", label="auto with the quality presets")
-            ax.set(xscale="log", yscale="log", title=mesh, xlabel="GPU time (s)",
+            self.log_axes(ax, title=mesh, xlabel="GPU time (s)",
                    ylabel="t_m error, max over sampled vertices (relative)")
             self.pareto_legend(ax, below=True)
         self.save(fig, "tm.png")
@@ -248,9 +271,9 @@ class Plotter:
                 for r in pts:
                     r["_x"], r["_y"] = r["gpu_ms"], r[y]
                 self.series(ax, pts, mesh, color, "o", x_scale=1e-3, annotate=lambda r: r["value"])
-        axes[0].set(xscale="log", yscale="log", xlabel="bake GPU time (s)",
+        self.log_axes(axes[0], xlabel="bake GPU time (s)",
                     ylabel="t_m error, max over sampled vertices (relative)", title="t_m vs float64 (own AO + t_m)")
-        axes[1].set(xscale="log", yscale="log", xlabel="bake GPU time (s)",
+        self.log_axes(axes[1], xlabel="bake GPU time (s)",
                     ylabel="image error, 99th percentile (8-bit sRGB levels)", title="final image vs reference image")
         self.pareto_legend(axes[0])
         self.pareto_legend(axes[1], pareto=False)  # the image error has no front of its own: same points
@@ -271,7 +294,7 @@ class Plotter:
                 self.series(ax, square, label + ": (N+1) x N", "C%d" % k, "o", x_scale=4.0 / 1024, annotate=note)
                 self.series(ax, other, label + ": default size", "C%d" % k, "*", x_scale=4.0 / 1024, line=False,
                             annotate=note)
-            ax.set(xscale="log", yscale="log", xlabel="LUT memory (KB)", ylabel=ylabel)
+            self.log_axes(ax, xlabel="LUT memory (KB)", ylabel=ylabel)
             self.pareto_legend(ax)
         self.save(fig, "lut.png")
 
@@ -286,7 +309,7 @@ class Plotter:
                 for r in pts:
                     r["_x"], r["_y"] = r["gpu_ms"], max(r["err_rms"], 1e-6)
                 self.series(ax, pts, mesh, "C%d" % k, "o", x_scale=1e-3, annotate=lambda r: r["value"])
-            ax.set(xscale="log", yscale="log", xlabel="re-bake GPU time per frame (s)", ylabel=ylabel)
+            self.log_axes(ax, xlabel="re-bake GPU time per frame (s)", ylabel=ylabel)
             self.pareto_legend(ax)
         self.save(fig, "deform.png")
 
@@ -304,11 +327,16 @@ def main():
     rows = load(path)
     mark_pareto(rows)
     p = Plotter(rows, out)
+    failed = False
     for knob, draw in (("ao_rays", p.ao), ("tm_epsilon", p.tm), ("quality", p.presets), ("lut_size", p.lut),
                        ("deform_ao", p.deform)):
         if p.select(knob=knob):
-            draw()
-    return 0
+            try:
+                draw()
+            except Exception as e:  # one plot's failure must not cost the others
+                print("plot_report: %s plot skipped: %s: %s" % (knob, type(e).__name__, e), file=sys.stderr)
+                failed = True
+    return 1 if failed else 0
 
 
 if __name__ == "__main__":

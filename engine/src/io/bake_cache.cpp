@@ -173,7 +173,7 @@ std::optional<BakeResult> BakeCache::load(uint64_t key, size_t vertex_count, std
     // A valid checksum proves the bytes are as stored, not that the bake was sound: an entry
     // with a NaN or an Inf (written by an older version, or by hand) is stale, baked again.
     if (const long long v = first_non_finite(r); v >= 0)
-        return fail("stale: values of vertex " + std::to_string(v) + " are not finite; baked again");
+        return fail("stale: values of vertex " + std::to_string(v) + " are not finite");
     r.method_used = TmMethod(method);
     if (why) why->clear();
     return r;
