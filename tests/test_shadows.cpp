@@ -65,6 +65,21 @@ glm::vec3 on_plane(uint32_t x, uint32_t y)
     return p + (q - p) * (-p.z / (q.z - p.z));
 }
 
+// The plane and box, lit as a matte grey surface (no specular): only the diffuse term is drawn.
+void set_matte_plane_and_box(Renderer& r)
+{
+    r.set_mesh(plane_and_box());
+    Material m = burley_material(glm::dvec3(0.01), glm::vec3(kAlbedo), "matte");
+    m.specular = 0.0f;
+    r.set_material(m);
+}
+
+// The red channel of the pixel nearest to `px`.
+float red_at(const RenderedImage& img, glm::vec2 px)
+{
+    return img.pixel(uint32_t(std::lround(px.x)), uint32_t(std::lround(px.y)))[0];
+}
+
 RenderSettings lambert(bool shadows)
 {
     RenderSettings s;
@@ -107,10 +122,7 @@ class RenderShadows : public GpuTest {};
 TEST_F(RenderShadows, ABoxShadowsThePlaneUnderADirectionalLight)
 {
     Renderer r(context());
-    r.set_mesh(plane_and_box());
-    Material m = burley_material(glm::dvec3(0.01), glm::vec3(kAlbedo), "matte");
-    m.specular = 0.0f;
-    r.set_material(m);
+    set_matte_plane_and_box(r);
     const Light light = Light::directional({0.0f, 0.0f, 1.0f}, glm::vec3(1.0f));
     const RenderedImage img = r.render(camera(), {&light, 1}, lambert(true));
     const RenderedImage bare = r.render(camera(), {&light, 1}, lambert(false));
@@ -118,16 +130,15 @@ TEST_F(RenderShadows, ABoxShadowsThePlaneUnderADirectionalLight)
     // Far from the shadow: the plane's analytic Lambert value, with shadows as without.
     for (glm::vec3 p : {glm::vec3(2.0f, -2.0f, 0.0f), glm::vec3(-2.2f, -1.0f, 0.0f), glm::vec3(2.3f, 0.5f, 0.0f)}) {
         const glm::vec2 px = project(p);
-        const float* v = img.pixel(uint32_t(std::lround(px.x)), uint32_t(std::lround(px.y)));
-        EXPECT_NEAR(v[0], lit, 1e-3 * lit) << "at " << p.x << ", " << p.y;
-        EXPECT_EQ(v[0], bare.pixel(uint32_t(std::lround(px.x)), uint32_t(std::lround(px.y)))[0]);
+        EXPECT_NEAR(red_at(img, px), lit, 1e-3 * lit) << "at " << p.x << ", " << p.y;
+        EXPECT_EQ(red_at(img, px), red_at(bare, px));
     }
     // The umbra: the box's footprint, [−0.5, 0.5]² on the plane; its centre black.
     const glm::vec2 centre = project({0.0f, 0.0f, 0.0f});
-    EXPECT_LT(img.pixel(uint32_t(std::lround(centre.x)), uint32_t(std::lround(centre.y)))[0], 1e-4 * lit);
+    EXPECT_LT(red_at(img, centre), 1e-4 * lit);
     for (glm::vec3 p : {glm::vec3(0.3f, 0.3f, 0.0f), glm::vec3(-0.3f, -0.3f, 0.0f)}) {
         const glm::vec2 px = project(p);
-        EXPECT_LT(img.pixel(uint32_t(std::lround(px.x)), uint32_t(std::lround(px.y)))[0], 1e-4 * lit);
+        EXPECT_LT(red_at(img, px), 1e-4 * lit);
     }
     // Its centre and width where the geometry puts them (±2 px; a texel of the tile is 0.45 px).
     const Measured s = measure(img, centre, lit);
@@ -141,13 +152,13 @@ TEST_F(RenderShadows, ABoxShadowsThePlaneUnderADirectionalLight)
                 "%.2f x %.2f\n",
                 s.centre.x, s.centre.y, centre.x, centre.y, s.size.x, s.size.y, width, depth);
     // Without shadows the plane is lit there.
-    EXPECT_NEAR(bare.pixel(uint32_t(std::lround(centre.x)), uint32_t(std::lround(centre.y)))[0], lit, 1e-3 * lit);
+    EXPECT_NEAR(red_at(bare, centre), lit, 1e-3 * lit);
     // Every lit mode shadows; the false colour does not.
     for (ShadingMode mode : {ShadingMode::Curvature, ShadingMode::Tm}) {
         RenderSettings rs = lambert(true);
         rs.mode = mode;
         const RenderedImage shaded = r.render(camera(), {&light, 1}, rs);
-        EXPECT_LT(shaded.pixel(uint32_t(std::lround(centre.x)), uint32_t(std::lround(centre.y)))[0], 1e-3 * lit)
+        EXPECT_LT(red_at(shaded, centre), 1e-3 * lit)
             << shading_mode_name(mode);
     }
 }
@@ -157,10 +168,7 @@ TEST_F(RenderShadows, APointLightsShadowGrowsByThePerspectiveRatio)
     // A point light on the axis at height H: the box's top corners (z = 3, half-width 0.5) cast the
     // shadow's edge at 0.5 · H / (H − 3) from the axis.
     Renderer r(context());
-    r.set_mesh(plane_and_box());
-    Material m = burley_material(glm::dvec3(0.01), glm::vec3(kAlbedo), "matte");
-    m.specular = 0.0f;
-    r.set_material(m);
+    set_matte_plane_and_box(r);
     const float height = 8.0f, intensity = 64.0f;
     const Light light = Light::point({0.0f, 0.0f, height}, glm::vec3(intensity));
     const RenderedImage img = r.render(camera(), {&light, 1}, lambert(true));
@@ -175,7 +183,7 @@ TEST_F(RenderShadows, APointLightsShadowGrowsByThePerspectiveRatio)
     }
     const glm::vec2 centre = project({0.0f, 0.0f, 0.0f});
     const double lit = kAlbedo / std::numbers::pi * intensity / (height * height);
-    EXPECT_LT(img.pixel(uint32_t(std::lround(centre.x)), uint32_t(std::lround(centre.y)))[0], 1e-4 * lit);
+    EXPECT_LT(red_at(img, centre), 1e-4 * lit);
     const Measured s = measure(img, centre, lit);
     const float half = 0.5f * height / (height - 3.0f);  // 0.8: 1.6 times the box
     const double width = project({half, 0.0f, 0.0f}).x - project({-half, 0.0f, 0.0f}).x;

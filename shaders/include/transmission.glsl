@@ -1,7 +1,7 @@
 // transmission.glsl - light from behind through the object (jade/material.hpp Transmission):
-//   [A_b(t) · (n+1)/(2π) max(V·(−L), 0)^n + A_d(t)/π] · ((1 − m) + m max(−N·L, 0)) · E
-// with A_b, A_d the ballistic and diffused attenuation along the path t inside the object
-// (attenuation.glsl). The lobe is smooth
+//   [A_b(t) · (n+1)/(2π) max(V·(−L), 0)^n · ((1 − m) + m max(−N·L, 0)) + A_d(h) · max(−N·L, 0)/π] · E
+// with A_b the ballistic attenuation along the path t inside the object and A_d the diffused
+// attenuation across the slab h (attenuation.glsl; h in transmitted_light). The lobe is smooth
 // over the surface and per vertex (mesh.vert). The path t (the longer of the local thickness and
 // the path inside the medium from where the light enters, from the light's depth layers) is per
 // vertex on a fine mesh and per fragment on a coarse one (PATH_PER_VERTEX): it is not smooth where
@@ -21,7 +21,7 @@ layout(constant_id = 2) const uint TRANSMISSION = 0;
 layout(constant_id = 7) const uint PATH_PER_VERTEX = 0;
 const uint kMaxTransmitters = JADE_MAX_TRANSMITTERS;  // shading_interface.h
 
-layout(binding = 5) uniform usamplerBuffer transmission_table;  // A(t_i), A(t_{i+1}) as halves
+layout(binding = 5) uniform usamplerBuffer transmission_table;  // per part (ballistic, then diffused): A(t_i), A(t_{i+1}) as halves
 
 // The path inside the medium up to depth z along the light, from the depths of the first four
 // surfaces at one texel (1 where there is none): [layer 0, layer 1] and [layer 2, layer 3] are
@@ -127,9 +127,9 @@ vec3 transmitted_light(uint k, vec3 position, vec3 n, float lobe, float t, float
     float n_dot_l = dot(n, l);
     float entry = boundary_crossed() ? boundary_transmittance(-n_dot_l) : 1.0;
     float behind = max(-n_dot_l, 0.0);
-    float slab = max(kSlabPerConeThickness * thickness, t * behind);
+    float slab = min(max(kSlabPerConeThickness * thickness, t * behind), t);
     vec3 a = transmitter_follow(n_dot_l) * lobe * attenuation_at(0u, t) +
-             (behind / JADE_PI) * attenuation_at(1u, min(slab, t));
+             (behind / JADE_PI) * attenuation_at(1u, slab);
     return entry * a * e;
 }
 
