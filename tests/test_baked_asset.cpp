@@ -328,7 +328,18 @@ TEST(BakedAsset, ThicknessMapHoldsTheInterpolatedThickness)
         }
     EXPECT_GT(grown, 0u);
     EXPECT_GT(empty, 0u);
-    expect_valid({out});
+
+    // Baked again in place: the map replaces its predecessor (same image, texture, sampler) and
+    // the binary data do not grow.
+    const auto again = dir / "uv_slab_again.glb";
+    std::filesystem::copy_file(out, again);
+    run_ok({"bake", again.string(), "--in-place", "--quality", "draft"});
+    const jade::test::GltfFile twice = jade::test::read_gltf_file(again);
+    for (const char* key : {"images", "textures", "samplers", "bufferViews", "accessors"})
+        EXPECT_EQ(twice.doc[key].size(), file.doc[key].size()) << key;
+    ASSERT_EQ(twice.buffers.size(), 1u);
+    EXPECT_EQ(twice.buffers[0].size(), file.buffers[0].size());  // the JSON's record holds timings
+    expect_valid({out, again});
 }
 
 }  // namespace

@@ -360,8 +360,9 @@ TEST(GltfBakeInPlace, OutEqualToTheInputNeedsInPlace)
     const GltfFile in = jade::test::read_gltf_file(jade::test::data("gltf_samples/BoxTextured.glb"));
     expect_asset_kept(in, once);
     expect_baked_attributes(once);
-    EXPECT_EQ(once.doc["accessors"].size(), in.doc["accessors"].size() + 3);  // _AO, _TM, _THICKNESS
-    EXPECT_EQ(once.doc["bufferViews"].size(), in.doc["bufferViews"].size() + 3);
+    // _AO, _TM, _THICKNESS, _SCATTERING_NORMAL, _NORMAL_SPREAD
+    EXPECT_EQ(once.doc["accessors"].size(), in.doc["accessors"].size() + 5);
+    EXPECT_EQ(once.doc["bufferViews"].size(), in.doc["bufferViews"].size() + 5);
     for (const auto& entry : std::filesystem::directory_iterator(asset.parent_path()))
         EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
 }

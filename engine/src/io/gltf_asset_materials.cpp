@@ -53,6 +53,37 @@ std::vector<glm::vec2> texcoords(const MaterialEdits& e, size_t t, size_t p)
     return uv;
 }
 
+/// j[key], or null when j is no object or lacks it (no copy, no key added).
+const json& at(const json& j, const char* key)
+{
+    static const json none;
+    if (!j.is_object()) return none;
+    const auto it = j.find(key);
+    return it == j.end() ? none : *it;
+}
+
+/// j[key] as an int, or -1 when j is no object, lacks it or it is no integer.
+int as_int(const json& j, const char* key)
+{
+    const json& v = at(j, key);
+    return v.is_number_integer() ? v.get<int>() : -1;
+}
+
+/// The texture of material m's thickness map from an earlier bake (its KHR_materials_volume
+/// thicknessTexture, whose image is named kThicknessMapName), or -1.
+int earlier_map(const MaterialEdits& e, int m)
+{
+    const json& doc = e.doc;
+    const json& volume = at(at(doc["materials"][size_t(m)], "extensions"), "KHR_materials_volume");
+    const int texture = as_int(at(volume, "thicknessTexture"), "index");
+    const json &textures = at(doc, "textures"), &images = at(doc, "images");
+    if (texture < 0 || size_t(texture) >= textures.size()) return -1;
+    const int image = as_int(textures[size_t(texture)], "source");
+    if (image < 0 || size_t(image) >= images.size()) return -1;
+    const json& name = at(images[size_t(image)], "name");
+    return name.is_string() && name.get<std::string>().rfind(kThicknessMapName, 0) == 0 ? texture : -1;
+}
+
 }  // namespace
 
 void use_extension(json& doc, const char* name)
@@ -160,20 +191,33 @@ void add_thickness_maps(const MaterialEdits& e)
         if (size == 0) continue;  // a UV layout without area
         const ThicknessMap map = bake_thickness_map(triangles, size);
         if (!(map.factor > 0.0)) continue;  // thicknessFactor 0 would mean thin-walled
-        json image = e.embed(encode_thickness_png(e.asset.name, map), "image/png");
-        image["name"] = "jade thickness map, material " + std::to_string(m);
-        if (!e.doc["images"].is_array()) e.doc["images"] = json::array();
-        e.doc["images"].push_back(std::move(image));
+        // An earlier bake's map of this material is replaced where it is; else one is appended.
+        const int previous = earlier_map(e, m);
+        const int image_index = previous >= 0 ? e.doc["textures"][size_t(previous)]["source"].get<int>() : -1;
+        json image = e.embed(encode_thickness_png(e.asset.name, map), "image/png", image_index);
+        image["name"] = std::string(kThicknessMapName) + ", material " + std::to_string(m);
         // Linear filtering without mipmaps: the map is dilated a few texels only.
-        if (!e.doc["samplers"].is_array()) e.doc["samplers"] = json::array();
-        e.doc["samplers"].push_back({{"magFilter", 9729}, {"minFilter", 9729}});
-        if (!e.doc["textures"].is_array()) e.doc["textures"] = json::array();
-        e.doc["textures"].push_back(
-            {{"source", e.doc["images"].size() - 1}, {"sampler", e.doc["samplers"].size() - 1}});
+        const json sampler = {{"magFilter", 9729}, {"minFilter", 9729}};
+        size_t texture_index = 0;
+        if (previous >= 0) {
+            e.doc["images"][size_t(image_index)] = std::move(image);
+            texture_index = size_t(previous);
+            const int s = as_int(std::as_const(e.doc)["textures"][texture_index], "sampler");
+            if (s >= 0) e.doc["samplers"][size_t(s)] = sampler;
+        } else {
+            if (!e.doc["images"].is_array()) e.doc["images"] = json::array();
+            e.doc["images"].push_back(std::move(image));
+            if (!e.doc["samplers"].is_array()) e.doc["samplers"] = json::array();
+            e.doc["samplers"].push_back(sampler);
+            if (!e.doc["textures"].is_array()) e.doc["textures"] = json::array();
+            e.doc["textures"].push_back(
+                {{"source", e.doc["images"].size() - 1}, {"sampler", e.doc["samplers"].size() - 1}});
+            texture_index = e.doc["textures"].size() - 1;
+        }
         json& volume = e.doc["materials"][size_t(m)]["extensions"]["KHR_materials_volume"];
         if (!volume.is_object()) volume = json::object();
         volume["thicknessFactor"] = map.factor;
-        volume["thicknessTexture"] = {{"index", e.doc["textures"].size() - 1}};
+        volume["thicknessTexture"] = {{"index", texture_index}};
         use_extension(e.doc, "KHR_materials_volume");
     }
 }

@@ -18,8 +18,11 @@ struct MaterialEdits {
     const GltfAssetImpl& asset;
     nlohmann::ordered_json& doc;
     const std::vector<BakedAttributes>& baked;
-    /// The members of an image object holding the bytes (a bufferView in .glb, a data URI in .gltf).
-    std::function<nlohmann::ordered_json(const std::vector<unsigned char>& bytes, const std::string& mime)> embed;
+    /// The members of an image object holding the bytes (a bufferView in .glb, a data URI in .gltf);
+    /// `replacing`: the index of an earlier thickness map's image whose view is reused, or -1.
+    std::function<nlohmann::ordered_json(const std::vector<unsigned char>& bytes, const std::string& mime,
+                                         int replacing)>
+        embed;
 };
 
 /// Adds `name` to extensionsUsed (not Required: every extension here may be ignored). Adding the
@@ -40,10 +43,15 @@ void mark_translucent(const MaterialEdits& e);
 /// too). A primitive without a material gets none (glTF's default material has nowhere to hold it).
 void add_translucency_extensions(const MaterialEdits& e);
 
+/// The name of every thickness map's image: how a re-bake finds its own (and replaces it).
+inline constexpr const char* kThicknessMapName = "jade thickness map";
+
 /// A thickness map per glTF material whose baked primitives have TEXCOORD_0 and a thickness, in
 /// its KHR_materials_volume (thicknessTexture, thicknessFactor), when the material transmits
 /// light for other viewers (KHR_materials_transmission or KHR_materials_diffuse_transmission, as
 /// KHR_materials_volume requires). Primitives without UVs keep the `_THICKNESS` attribute alone.
+/// A map of an earlier bake (the material's thicknessTexture, an image named kThicknessMapName)
+/// is replaced in place: its image, texture and sampler keep their indices.
 void add_thickness_maps(const MaterialEdits& e);
 
 }  // namespace jade::io

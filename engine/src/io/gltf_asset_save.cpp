@@ -132,12 +132,12 @@ public:
         add_bounds();
         embed_images();
         io::MaterialEdits edits{a_, doc_, baked,
-                                [this](const std::vector<unsigned char>& bytes, const std::string& mime) {
-            return embedded(bytes, mime);
-                                }};
+                                [this](const std::vector<unsigned char>& bytes, const std::string& mime,
+                                       int replacing) { return embedded(bytes, mime, replacing); }};
         io::mark_translucent(edits);
         io::add_translucency_extensions(edits);
         io::add_thickness_maps(edits);
+        restore_maps();
         merge_extras(extras);
         return finish();
     }
@@ -168,6 +168,31 @@ private:
                     reuse_[{t, p, std::string(name)}] = {acc, view};
                 }
             }
+        // An earlier bake's thickness maps: their views are refilled by the new maps (or, where
+        // none is made, with their own bytes by restore_maps), so that re-baking does not grow the file.
+        const json& images = member(doc_, "images");
+        for (size_t i = 0; i < images.size(); ++i) {
+            const json& name = member(images[i], "name");
+            const int view = as_index(member(images[i], "bufferView"));
+            if (name.is_string() && name.get<std::string>().rfind(io::kThicknessMapName, 0) == 0 && view >= 0 &&
+                size_t(view) < refs_.views.size() && refs_.views[size_t(view)] == 1)
+                recycled_[size_t(view)] = true, map_views_[int(i)] = view;
+        }
+    }
+
+    /// The views of earlier thickness maps that no new map took: their own bytes again.
+    void restore_maps()
+    {
+        for (const auto& [image, view] : map_views_) {
+            const auto& bv = a_.model.bufferViews[size_t(view)];
+            const auto& data = a_.model.buffers[size_t(bv.buffer)].data;
+            if (bv.byteOffset > data.size() || bv.byteLength > data.size() - bv.byteOffset)
+                fail(a_.name, "bufferView " + std::to_string(view) + " runs past the end of its buffer");
+            json& v = doc_["bufferViews"][size_t(view)];
+            v["buffer"] = 0;
+            v["byteOffset"] = append(data.data() + bv.byteOffset, bv.byteLength);
+        }
+        map_views_.clear();
     }
 
     size_t append(const void* data, size_t size)
@@ -306,11 +331,18 @@ private:
     }
 
     /// An image object holding `bytes`: a bufferView in .glb, a data URI in .gltf.
-    json embedded(const std::vector<unsigned char>& bytes, const std::string& mime)
+    /// `replacing`: the image whose view an earlier thickness map had (plan_reuse), or -1.
+    json embedded(const std::vector<unsigned char>& bytes, const std::string& mime, int replacing = -1)
     {
         if (!glb_) return {{"uri", "data:" + mime + ";base64," + io::base64(bytes)}};
-        doc_["bufferViews"].push_back(
-            {{"buffer", 0}, {"byteOffset", append(bytes.data(), bytes.size())}, {"byteLength", bytes.size()}});
+        json view = {{"buffer", 0}, {"byteOffset", append(bytes.data(), bytes.size())}, {"byteLength", bytes.size()}};
+        if (const auto it = map_views_.find(replacing); it != map_views_.end()) {
+            const int index = it->second;
+            map_views_.erase(it);
+            doc_["bufferViews"][size_t(index)] = std::move(view);
+            return {{"bufferView", index}, {"mimeType", mime}};
+        }
+        doc_["bufferViews"].push_back(std::move(view));
         return {{"bufferView", doc_["bufferViews"].size() - 1}, {"mimeType", mime}};
     }
 
@@ -357,6 +389,7 @@ private:
     std::vector<unsigned char> bin_;
     std::vector<bool> recycled_;
     std::map<std::tuple<size_t, size_t, std::string>, std::pair<int, int>> reuse_;
+    std::map<int, int> map_views_;  ///< image → bufferView of an earlier thickness map, until refilled
 };
 
 /// Sizes and finiteness of what is to be written, naming the element at fault.
