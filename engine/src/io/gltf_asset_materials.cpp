@@ -95,15 +95,14 @@ void use_extension(json& doc, const char* name)
 
 void mark_translucent(const MaterialEdits& e)
 {
-    const GltfAssetImpl& a_ = e.asset;
+    const GltfAssetImpl& a = e.asset;
     const auto& baked = e.baked;
-    json& doc_ = e.doc;
-    for (size_t m = 0; m < a_.translucent.size(); ++m) {
-        json& material = doc_["materials"][m];
-        if (!a_.translucent[m] ||
+    for (size_t m = 0; m < a.translucent.size(); ++m) {
+        json& material = e.doc["materials"][m];
+        if (!a.translucent[m] ||
             (material.contains("extensions") && material["extensions"].contains("KHR_materials_diffuse_transmission")))
             continue;
-        const Material& jade = *a_.translucent[m];
+        const Material& jade = *a.translucent[m];
         glm::dvec3 mfp;
         for (int c = 0; c < 3; ++c)
             mfp[c] = jade.transmission.sigma_t[c] > 0.0f ? 1.0 / double(jade.transmission.sigma_t[c])
@@ -112,17 +111,17 @@ void mark_translucent(const MaterialEdits& e)
         double sum = 0.0;
         size_t n = 0;
         for (size_t t = 0; t < baked.size(); ++t)
-            for (size_t p = 0; p < a_.spans[t].size(); ++p)
-                if (a_.spans[t][p].baked && !baked[t].thickness.empty() &&
-                    a_.model.meshes[size_t(a_.targets[t].mesh_index)].primitives[p].material == int(m))
-                    for (size_t v = 0; v < a_.spans[t][p].count; ++v)
-                        sum += baked[t].thickness[a_.spans[t][p].first + v], ++n;
+            for (size_t p = 0; p < a.spans[t].size(); ++p)
+                if (a.spans[t][p].baked && !baked[t].thickness.empty() &&
+                    a.model.meshes[size_t(a.targets[t].mesh_index)].primitives[p].material == int(m))
+                    for (size_t v = 0; v < a.spans[t][p].count; ++v)
+                        sum += baked[t].thickness[a.spans[t][p].first + v], ++n;
         const double thickness = n && sum > 0.0 ? sum / double(n) : distance;
         json color = json::array();
         for (int c = 0; c < 3; ++c) color.push_back(std::exp(1.0 - distance / mfp[c]));
         if (!(std::isfinite(distance) && distance > 0.0 && std::isfinite(thickness)))
-            fail(a_.name, "material " + std::to_string(m) + ": the preset's mean free path " +
-                              std::to_string(distance) + " cannot be written as KHR_materials_volume");
+            fail(a.name, "material " + std::to_string(m) + ": the preset's mean free path " + std::to_string(distance) +
+                             " cannot be written as KHR_materials_volume");
         json& extensions = material["extensions"];
         if (!extensions.is_object()) extensions = json::object();
         extensions["KHR_materials_diffuse_transmission"] = {{"diffuseTransmissionFactor", 1.0}};
@@ -130,8 +129,8 @@ void mark_translucent(const MaterialEdits& e)
             extensions["KHR_materials_volume"] = {
                 {"thicknessFactor", thickness}, {"attenuationDistance", distance}, {"attenuationColor", color}};
         // Last: adding extensionsUsed to the document moves its members (references above dangle).
-        use_extension(doc_, "KHR_materials_diffuse_transmission");
-        use_extension(doc_, "KHR_materials_volume");
+        use_extension(e.doc, "KHR_materials_diffuse_transmission");
+        use_extension(e.doc, "KHR_materials_volume");
     }
 }
 
