@@ -137,12 +137,26 @@ void mark_translucent(const MaterialEdits& e)
 void add_translucency_extensions(const MaterialEdits& e)
 {
     std::vector<bool> written(e.asset.model.materials.size(), false);
+    int added = -1;  // the material made for the baked primitives without one
     for (size_t t = 0; t < e.baked.size(); ++t) {
         const auto& material = e.baked[t].material;
         if (!material || material->opaque || e.baked[t].ao.empty()) continue;
         for (size_t p = 0; p < e.asset.spans[t].size(); ++p) {
             const int m = material_of(e, t, p);
-            if (!e.asset.spans[t][p].baked || m < 0 || written[size_t(m)]) continue;
+            if (!e.asset.spans[t][p].baked) continue;
+            if (m < 0) {
+                if (added < 0) {
+                    if (!e.doc["materials"].is_array()) e.doc["materials"] = json::array();
+                    e.doc["materials"].push_back(
+                        {{"name", kBakeMaterialName},
+                         {"extensions", {{kTranslucencyExtension, translucency_extension(e.asset.name, *material)}}}});
+                    added = int(e.doc["materials"].size() - 1);
+                    use_extension(e.doc, kTranslucencyExtension);
+                }
+                e.doc["meshes"][size_t(e.asset.targets[t].mesh_index)]["primitives"][p]["material"] = added;
+                continue;
+            }
+            if (written[size_t(m)]) continue;
             json& extensions = e.doc["materials"][size_t(m)]["extensions"];
             if (!extensions.is_object()) extensions = json::object();
             extensions[kTranslucencyExtension] = translucency_extension(e.asset.name, *material);

@@ -37,10 +37,14 @@ void use_extension(nlohmann::ordered_json& doc, const char* name);
 /// thickness of the material's vertices (else L).
 void mark_translucent(const MaterialEdits& e);
 
+/// The name of the material made for baked primitives without one.
+inline constexpr const char* kBakeMaterialName = "jade bake";
+
 /// JADE_materials_translucency on the glTF material of every baked primitive: the Jade material
 /// the primitive was baked with (the first target's where several targets share a glTF material;
 /// the command line's material is the same for all of them, a translucent glTF material's own is
-/// too). A primitive without a material gets none (glTF's default material has nowhere to hold it).
+/// too). Baked primitives without a material get one of their own, named kBakeMaterialName, with
+/// no property but the extension: other viewers draw it as glTF's default material, as before.
 void add_translucency_extensions(const MaterialEdits& e);
 
 /// The name of every thickness map's image: how a re-bake finds its own (and replaces it).
