@@ -13,6 +13,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -285,6 +286,30 @@ TEST(BakedAsset, ThicknessMapHoldsTheInterpolatedThickness)
         uint16_t v;
         std::memcpy(&v, e.data(), sizeof v);
         indices.push_back(v);
+    }
+    // The size rule (docs/gltf.md): the smallest power of two N >= 4 sqrt(A3 / Auv) / median edge,
+    // in [16, 1024]; the ratio does not depend on the node's scale.
+    {
+        const std::vector<float> pos = file.floats(prim["attributes"]["POSITION"].get<int>());
+        double area3 = 0.0, area_uv = 0.0;
+        std::vector<double> edges;
+        for (size_t k = 0; k + 2 < indices.size(); k += 3) {
+            glm::dvec3 p[3];
+            glm::dvec2 q[3];
+            for (int c = 0; c < 3; ++c) {
+                const uint32_t v = indices[k + size_t(c)];
+                p[c] = glm::dvec3(pos[3 * v], pos[3 * v + 1], pos[3 * v + 2]);
+                q[c] = glm::dvec2(uv[2 * v], uv[2 * v + 1]);
+                edges.push_back(glm::length(p[c] - p[(c + 2) % 3]));
+            }
+            area3 += 0.5 * glm::length(glm::cross(p[1] - p[0], p[2] - p[0]));
+            area_uv += 0.5 * std::abs(cross2(q[0], q[1], q[2]));
+        }
+        std::sort(edges.begin(), edges.end());
+        const double texels = 4.0 * std::sqrt(area3 / area_uv) / edges[edges.size() / 2];
+        int expected = 16;
+        while (expected < 1024 && expected < texels) expected *= 2;
+        EXPECT_EQ(size, expected) << texels << " texels per UV unit wanted";
     }
     float largest = 0.0f;
     for (float t : thickness) largest = std::max(largest, t);
