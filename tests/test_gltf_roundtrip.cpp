@@ -29,7 +29,7 @@ using jade::test::GltfFile;
 using nlohmann::json;
 
 /// Attributes the bake owns: an input's earlier ones are replaced.
-const std::set<std::string> kBaked = {"_AO", "_TM", "_THICKNESS"};
+const std::set<std::string> kBaked = {"_AO", "_TM", "_THICKNESS", "_SCATTERING_NORMAL", "_NORMAL_SPREAD"};
 
 struct Baked {
     std::filesystem::path input, output;
@@ -105,8 +105,13 @@ void expect_asset_kept(const GltfFile& in, const GltfFile& out)
     // extensions and extras, and any property Jade does not know: identical JSON.
     expect_same_except(a, b,
                        {"asset", "buffers", "bufferViews", "accessors", "images", "meshes", "skins", "animations",
-                        "materials", "extensionsUsed"},
+                        "materials", "extensionsUsed", "textures", "samplers"},
                        "document");
+    // Textures and samplers as read; a thickness map adds one of each after them.
+    for (const char* key : {"textures", "samplers"}) {
+        ASSERT_GE(member(b, key).size(), member(a, key).size()) << key;
+        for (size_t i = 0; i < member(a, key).size(); ++i) EXPECT_EQ(a[key][i], b[key][i]) << key << " " << i;
+    }
     EXPECT_EQ(a["asset"]["version"], b["asset"]["version"]);
     expect_same_except(a["asset"], b["asset"], {"extras"}, "asset");
     for (const auto& [key, value] : member(a["asset"], "extras").items())
@@ -125,7 +130,12 @@ void expect_asset_kept(const GltfFile& in, const GltfFile& out)
             const std::string where = "mesh " + std::to_string(m) + " primitive " + std::to_string(p);
             const json& pa = ma["primitives"][p];
             const json& pb = mb["primitives"][p];
-            expect_same_except(pa, pb, {"attributes", "indices", "targets"}, where);
+            expect_same_except(pa, pb, {"attributes", "indices", "targets", "material"}, where);
+            // A primitive without a material may get the one made for the bake's material.
+            if (pa.contains("material"))
+                EXPECT_EQ(pa["material"], member(pb, "material")) << where;
+            else if (pb.contains("material"))
+                EXPECT_EQ(b["materials"][pb["material"].get<size_t>()]["name"], "jade bake") << where;
             for (const auto& [name, index] : pa["attributes"].items())
                 if (!kBaked.count(name))
                     expect_same_accessor(in, index, out, member(pb["attributes"], name.c_str()), where + " " + name);
@@ -158,14 +168,25 @@ void expect_asset_kept(const GltfFile& in, const GltfFile& out)
             expect_same_accessor(in, aa["samplers"][s]["output"], out, ab["samplers"][s]["output"], where + " output");
         }
     }
-    ASSERT_EQ(member(a, "images").size(), member(b, "images").size());
+    // The input's images, then the thickness maps Jade added (docs/gltf.md).
+    ASSERT_GE(member(b, "images").size(), member(a, "images").size());
+    for (size_t i = member(a, "images").size(); i < member(b, "images").size(); ++i)
+        EXPECT_EQ(b["images"][i]["name"].get<std::string>().rfind("jade thickness map", 0), 0u) << "image " << i;
     for (size_t i = 0; i < member(a, "images").size(); ++i) {
         expect_same_except(a["images"][i], b["images"][i], {"uri", "bufferView"}, "image " + std::to_string(i));
         EXPECT_TRUE(in.image(int(i)) == out.image(int(i))) << "image " << i << ": bytes differ";
         EXPECT_FALSE(b["images"][i].contains("uri") && b["images"][i]["uri"].get<std::string>().rfind("data:", 0) != 0)
             << "image " << i << " still refers to an external file";
     }
-    ASSERT_EQ(member(a, "materials").size(), member(b, "materials").size());
+    // The input's materials, then at most one for baked primitives that had none.
+    ASSERT_GE(member(b, "materials").size(), member(a, "materials").size());
+    ASSERT_LE(member(b, "materials").size(), member(a, "materials").size() + 1);
+    if (member(b, "materials").size() > member(a, "materials").size()) {
+        const json& made = b["materials"][member(a, "materials").size()];
+        EXPECT_EQ(made["name"], "jade bake");
+        EXPECT_EQ(made.size(), 2u) << made.dump();  // the name and the extension alone
+        EXPECT_TRUE(made["extensions"].contains("JADE_materials_translucency")) << made.dump();
+    }
     for (size_t m = 0; m < member(a, "materials").size(); ++m) {
         json ma = a["materials"][m], mb = b["materials"][m];
         // The extensions a preset-only translucent material gets (jade/io.hpp save_baked_asset).
@@ -174,7 +195,22 @@ void expect_asset_kept(const GltfFile& in, const GltfFile& out)
             EXPECT_TRUE(mb["extensions"].contains("KHR_materials_diffuse_transmission")) << "material " << m;
             for (const char* ext : {"KHR_materials_diffuse_transmission", "KHR_materials_volume"})
                 if (!member(ma, "extensions").contains(ext)) mb["extensions"].erase(ext);
-            if (!ma.contains("extensions") && mb["extensions"].empty()) mb.erase("extensions");
+        }
+        // What every baked material gets: Jade's own record of the material, and, with a
+        // thickness map, the map in KHR_materials_volume (checked in test_baked_asset).
+        if (mb.contains("extensions")) {
+            json& ext = mb["extensions"];
+            if (ext.contains("JADE_materials_translucency")) {
+                EXPECT_TRUE(ext["JADE_materials_translucency"].contains("albedo")) << "material " << m;
+                ext.erase("JADE_materials_translucency");
+            }
+            if (ext.contains("KHR_materials_volume") && ext["KHR_materials_volume"].contains("thicknessTexture")) {
+                const json& before = member(member(ma, "extensions"), "KHR_materials_volume");
+                ext["KHR_materials_volume"].erase("thicknessTexture");
+                if (before.contains("thicknessFactor"))
+                    ext["KHR_materials_volume"]["thicknessFactor"] = before["thicknessFactor"];
+            }
+            if (!ma.contains("extensions") && ext.empty()) mb.erase("extensions");
         }
         EXPECT_EQ(ma, mb) << "material " << m;
     }
@@ -189,8 +225,11 @@ void expect_baked_attributes(const GltfFile& out)
             if (mode < 4) continue;  // points and lines are not baked
             const std::string where = "mesh " + std::to_string(m) + " primitive " + std::to_string(p);
             const size_t n = out.doc["accessors"][prim["attributes"]["POSITION"].get<size_t>()]["count"].get<size_t>();
-            for (const auto& [name, type] :
-                 std::map<std::string, std::string>{{"_AO", "SCALAR"}, {"_TM", "VEC3"}, {"_THICKNESS", "SCALAR"}}) {
+            for (const auto& [name, type] : std::map<std::string, std::string>{{"_AO", "SCALAR"},
+                                                                               {"_TM", "VEC3"},
+                                                                               {"_THICKNESS", "SCALAR"},
+                                                                               {"_SCATTERING_NORMAL", "VEC3"},
+                                                                               {"_NORMAL_SPREAD", "VEC3"}}) {
                 if (name == "_THICKNESS" && !prim["attributes"].contains(name)) continue;
                 ASSERT_TRUE(prim["attributes"].contains(name)) << where << " has no " << name;
                 const int index = prim["attributes"][name].get<int>();
@@ -198,13 +237,17 @@ void expect_baked_attributes(const GltfFile& out)
                 EXPECT_EQ(a["count"].get<size_t>(), n) << where << " " << name;
                 EXPECT_EQ(a["type"], type) << where << " " << name;
                 EXPECT_EQ(a["componentType"], 5126) << where << " " << name;
-                for (float v : out.floats(index)) {
+                const std::vector<float> values = out.floats(index);
+                for (float v : values) {
                     ASSERT_TRUE(std::isfinite(v)) << where << " " << name;
-                    if (name == "_AO")
-                        ASSERT_TRUE(v >= 0.0f && v <= 1.0f) << where << " _AO " << v;
-                    else
+                    if (name == "_AO" || name == "_NORMAL_SPREAD")
+                        ASSERT_TRUE(v >= 0.0f && v <= 1.0f) << where << " " << name << " " << v;
+                    else if (name != "_SCATTERING_NORMAL")
                         ASSERT_GE(v, 0.0f) << where << " " << name;
                 }
+                if (name == "_SCATTERING_NORMAL")
+                    for (size_t i = 0; i + 2 < values.size(); i += 3)
+                        ASSERT_NEAR(std::hypot(values[i], values[i + 1], values[i + 2]), 1.0, 1e-5) << where;
             }
         }
 }
@@ -330,8 +373,9 @@ TEST(GltfBakeInPlace, OutEqualToTheInputNeedsInPlace)
     const GltfFile in = jade::test::read_gltf_file(jade::test::data("gltf_samples/BoxTextured.glb"));
     expect_asset_kept(in, once);
     expect_baked_attributes(once);
-    EXPECT_EQ(once.doc["accessors"].size(), in.doc["accessors"].size() + 3);  // _AO, _TM, _THICKNESS
-    EXPECT_EQ(once.doc["bufferViews"].size(), in.doc["bufferViews"].size() + 3);
+    // _AO, _TM, _THICKNESS, _SCATTERING_NORMAL, _NORMAL_SPREAD
+    EXPECT_EQ(once.doc["accessors"].size(), in.doc["accessors"].size() + 5);
+    EXPECT_EQ(once.doc["bufferViews"].size(), in.doc["bufferViews"].size() + 5);
     for (const auto& entry : std::filesystem::directory_iterator(asset.parent_path()))
         EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
 }

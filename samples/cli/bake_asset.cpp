@@ -75,6 +75,11 @@ void bake_asset(const Args& args, const std::filesystem::path& in, const std::fi
         b.ao = to_render_vertices(prepared, r.ao, 0.0f);
         b.tm = to_render_vertices(prepared, r.tm, glm::vec3(0.0f));
         if (!r.thickness.empty()) b.thickness = to_render_vertices(prepared, r.thickness, 0.0f);
+        if (!r.scattering_normal.empty()) {
+            b.scattering_normal = to_render_vertices(prepared, r.scattering_normal, glm::vec3(0.0f, 0.0f, 1.0f));
+            b.normal_spread = to_render_vertices(prepared, r.normal_spread, glm::vec3(0.0f));
+        }
+        b.material = material;
         baked.push_back(std::move(b));
         vertices += target.mesh.positions.size();
 

@@ -38,6 +38,11 @@ void bake_mesh(const Args& args, const std::string& in, const std::filesystem::p
     baked.ao = to_render_vertices(prepared, r.ao, 0.0f);
     baked.tm = to_render_vertices(prepared, r.tm, glm::vec3(0.0f));
     if (!r.thickness.empty()) baked.thickness = to_render_vertices(prepared, r.thickness, 0.0f);
+    if (!r.scattering_normal.empty()) {
+        baked.scattering_normal = to_render_vertices(prepared, r.scattering_normal, glm::vec3(0.0f, 0.0f, 1.0f));
+        baked.normal_spread = to_render_vertices(prepared, r.normal_spread, glm::vec3(0.0f));
+    }
+    baked.material = material;
     std::ostringstream os;
     os << "{\"jade\":{\"version\":1," << record::units() << ",\"material\":" << record::material(material)
        << ",\"settings\":" << record::settings(settings, r) << ",\"timings_ms\":" << record::timings(r) << "}}";

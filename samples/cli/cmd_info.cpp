@@ -7,10 +7,11 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <cmath>
 #include <cctype>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <optional>
 
 namespace jade::cli {
 
@@ -88,7 +89,10 @@ static void print_mesh(const std::string& path, const ReadOptions& options)
 {
     using Clock = std::chrono::steady_clock;
     auto t0 = Clock::now();
-    TriangleMesh mesh = load_mesh_arg(path, options);
+    ReadOptions read = options;
+    std::optional<Material> material;  // a baked file's JADE_materials_translucency
+    read.baked_material = &material;
+    TriangleMesh mesh = load_mesh_arg(path, read);
     auto t1 = Clock::now();
     PreparedMesh p = prepare_mesh(mesh);
     auto t2 = Clock::now();
@@ -130,6 +134,15 @@ static void print_mesh(const std::string& path, const ReadOptions& options)
     if (!mesh.baked_tm.empty()) range("baked t_m", &mesh.baked_tm[0].x, mesh.baked_tm.size(), 3, "");
     if (!mesh.baked_thickness.empty())
         range("baked thickness", mesh.baked_thickness.data(), mesh.baked_thickness.size(), 1, " mesh units");
+    if (!mesh.baked_normal_spread.empty())
+        range("normal spread", &mesh.baked_normal_spread[0].x, mesh.baked_normal_spread.size(), 3, "");
+    if (!mesh.baked_scattering_normal.empty())
+        std::printf("scattering normal %zu vertices\n", mesh.baked_scattering_normal.size());
+    if (material)
+        std::printf("baked material    %s (JADE_materials_translucency): albedo %.4g %.4g %.4g, strength %g + %g x "
+                    "spread, transmission %s\n",
+                    material->name.c_str(), material->albedo.x, material->albedo.y, material->albedo.z,
+                    material->strength, material->spread_strength, material->transmission.enabled() ? "on" : "off");
     print_bake_record(path, options);
     std::printf("timings           load %s, prepare %s\n", format_ms(ms(t0, t1)).c_str(),
                 format_ms(ms(t1, t2)).c_str());

@@ -151,7 +151,8 @@ struct Scene {
 void set_scene(Renderer& renderer, const Scene& s)
 {
     if (!s.mesh.baked_tm.empty())
-        renderer.set_mesh(s.mesh, s.mesh.baked_tm, s.mesh.baked_thickness);  // per render vertex
+        renderer.set_mesh(s.mesh, s.mesh.baked_tm, s.mesh.baked_thickness, s.mesh.baked_scattering_normal,
+                          s.mesh.baked_normal_spread);  // per render vertex
     else
         renderer.set_mesh(s.prepared, s.tm, s.thickness, s.scattering_normal, s.normal_spread);
     renderer.set_material(s.material);
@@ -160,9 +161,12 @@ void set_scene(Renderer& renderer, const Scene& s)
 Scene load_scene(const Args& args, Context& ctx, const std::string& path, bool need_tm)
 {
     Scene s;
-    s.mesh = load_mesh_arg(path, read_options(args));
+    ReadOptions options = read_options(args);
+    std::optional<Material> baked_material;  // what a file written by jade bake was baked with
+    options.baked_material = &baked_material;
+    s.mesh = load_mesh_arg(path, options);
     s.prepared = prepare_mesh(s.mesh);
-    s.material = material_from_args(args, s.prepared);
+    s.material = material_from_args(args, s.prepared, baked_material);
     if (!s.mesh.baked_tm.empty()) {
         // What the renderer refuses, named as the file has it (attribute and vertex).
         for (size_t i = 0; i < s.mesh.baked_tm.size(); ++i) {
@@ -173,6 +177,21 @@ Scene load_scene(const Args& args, Context& ctx, const std::string& path, bool n
         for (size_t i = 0; i < s.mesh.baked_thickness.size(); ++i)
             if (!(s.mesh.baked_thickness[i] >= 0.0f && std::isfinite(s.mesh.baked_thickness[i])))
                 throw Error(path + ": _THICKNESS of vertex " + std::to_string(i) + " is negative or not finite");
+        for (size_t i = 0; i < s.mesh.baked_scattering_normal.size(); ++i) {
+            const float length = glm::length(s.mesh.baked_scattering_normal[i]);
+            if (!(length > 0.0f && std::isfinite(length)))
+                throw Error(path + ": _SCATTERING_NORMAL of vertex " + std::to_string(i) + " is zero or not finite");
+        }
+        for (size_t i = 0; i < s.mesh.baked_normal_spread.size(); ++i) {
+            const glm::vec3 v = s.mesh.baked_normal_spread[i];
+            if (!(v.x >= 0.0f && v.x <= 1.0f && v.y >= 0.0f && v.y <= 1.0f && v.z >= 0.0f && v.z <= 1.0f))
+                throw Error(path + ": _NORMAL_SPREAD of vertex " + std::to_string(i) + " is not in [0, 1]");
+        }
+        if (baked_material)
+            std::fprintf(stderr,
+                         "jade: %s was baked with material %s (JADE_materials_translucency; --material, --medium or "
+                         "--mm-per-unit replace it)\n",
+                         s.mesh.name.c_str(), baked_material->name.c_str());
         std::fprintf(stderr, "jade: t_m read from %s\n", s.mesh.name.c_str());
     } else if (need_tm && !s.material.opaque) {
         BakeSettings settings = bake_settings_from_args(args);

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <initializer_list>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,9 +54,12 @@ bool print_help(const Args& args, const char* usage);
 std::unique_ptr<Context> make_context(const Args& args);
 /// The material named by --material (default "jade") for `mesh`: physical presets use
 /// --mm-per-unit, by default 100 / diagonal (the object is taken to be 10 cm across).
-Material material_from_args(const Args& args, const PreparedMesh& mesh);
+Material material_from_args(const Args& args, const PreparedMesh& mesh, const std::optional<Material>& baked = {});
 /// The same for an object (or a whole asset) whose bounding box has this diagonal (mesh units).
-Material material_from_args(const Args& args, double diagonal);
+/// `baked`, the material a file was baked with (ReadOptions::baked_material), is used instead of
+/// the default when none of --material, --medium and --mm-per-unit is given; --d, --strength and
+/// --no-transmission apply to either.
+Material material_from_args(const Args& args, double diagonal, const std::optional<Material>& baked = {});
 BakeSettings bake_settings_from_args(const Args& args);
 /// The built-in default scene when `path` is empty or "bunny": the Stanford bunny if
 /// assets/ has it, else a procedural sphere.

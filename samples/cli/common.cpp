@@ -123,9 +123,9 @@ Medium medium_from_args(const Args& args)
     return m;
 }
 
-Material material_from_args(const Args& args, const PreparedMesh& mesh)
+Material material_from_args(const Args& args, const PreparedMesh& mesh, const std::optional<Material>& baked)
 {
-    return material_from_args(args, double(mesh.diagonal));
+    return material_from_args(args, double(mesh.diagonal), baked);
 }
 
 namespace {
@@ -163,7 +163,7 @@ void check_profile_scale(const Args& args, const Material& m, double diagonal, d
 
 }  // namespace
 
-Material material_from_args(const Args& args, double diagonal)
+Material material_from_args(const Args& args, double diagonal, const std::optional<Material>& baked)
 {
     double default_mm = diagonal > 0 ? 100.0 / diagonal : 1.0;
     double mm_per_unit = args.number("mm-per-unit", default_mm, 1e-30, 1e30);
@@ -174,6 +174,8 @@ Material material_from_args(const Args& args, double diagonal)
     try {
         if (args.get("medium"))
             m = Material::from_medium(medium_from_args(args), {}, "medium");
+        else if (baked && !args.get("material") && !args.get("mm-per-unit"))
+            m = *baked;
         else
             m = material_preset(args.get_or("material", "jade"), mm_per_unit);
     } catch (const UsageError&) {

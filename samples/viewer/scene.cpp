@@ -105,7 +105,8 @@ void Scene::bake_static(const ViewState& state)
 {
     if (baked_file_ && !material_.opaque) {
         const double t0 = now_ms();
-        renderer_.set_mesh(*baked_file_, baked_file_->baked_tm, baked_file_->baked_thickness);
+        renderer_.set_mesh(*baked_file_, baked_file_->baked_tm, baked_file_->baked_thickness,
+                           baked_file_->baked_scattering_normal, baked_file_->baked_normal_spread);
         times_.stages.emplace_back("t_m from the file: set_mesh (CPU)", now_ms() - t0);
         return;
     }

@@ -122,6 +122,44 @@ def cube_seams():
     return g
 
 
+def uv_slab():
+    """A slab (0.1 x 0.1 x 0.02, shown at scale 2) with a UV atlas: each face is a 6x6 grid of
+    quads in its own tile of a 3x2 layout, with margins between the tiles (seams), and a material
+    that Jade maps translucent (extras.jade.preset): what a thickness map is baked for
+    (tests/test_baked_asset.cpp)."""
+    g = Gltf()
+    positions, normals, uvs, indices = [], [], [], []
+    size, n, margin = (0.05, 0.05, 0.01), 6, 0.15
+    for f, (corners, normal) in enumerate(cube_faces()):
+        c0, c1, c3 = corners[0], corners[1], corners[3]
+        tile_u, tile_v = (f % 3) / 3.0, (f // 3) / 2.0
+        base = len(positions)
+        for j in range(n + 1):
+            for i in range(n + 1):
+                s, t = i / n, j / n
+                p = [c0[k] + s * (c1[k] - c0[k]) + t * (c3[k] - c0[k]) for k in range(3)]
+                positions.append([p[k] * size[k] for k in range(3)])
+                normals.append(normal)
+                uvs.append([tile_u + (margin + s * (1 - 2 * margin)) / 3.0,
+                            tile_v + (margin + t * (1 - 2 * margin)) / 2.0])
+        for j in range(n):
+            for i in range(n):
+                a = base + j * (n + 1) + i
+                indices += [a, a + 1, a + n + 2, a, a + n + 2, a + n + 1]
+    pos = g.vec3(positions, minmax=True)
+    nrm = g.vec3(normals)
+    uv = g.accessor("f", [c for q in uvs for c in q], FLOAT, "VEC2", len(uvs), ARRAY_BUFFER)
+    idx = g.indices(indices, USHORT)
+    g.doc["materials"] = [{"name": "jade slab", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.8, 0.6, 1.0]},
+                           "extras": {"jade": {"preset": "jade"}}}]
+    g.doc["meshes"] = [{"name": "slab", "primitives": [{"attributes": {"POSITION": pos, "NORMAL": nrm,
+                                                                       "TEXCOORD_0": uv},
+                                                        "indices": idx, "material": 0, "mode": 4}]}]
+    g.doc["nodes"] = [{"mesh": 0, "name": "slab", "scale": [2.0, 2.0, 2.0]}]
+    g.doc["scenes"] = [{"nodes": [0]}]
+    return g
+
+
 def sparse_cube():
     """cube_seams with sparse accessors: POSITION moves vertices 3 and 7 to (0, 0, 5) and
     (0, 0, -5); _AO has no bufferView (zeros) and sparse values 0.25 on vertices 0..3."""
@@ -493,6 +531,7 @@ def main():
     write(os.path.join(HERE, "nodes_transforms.gltf"), dump(nodes_transforms().finish()))
     write(os.path.join(HERE, "strip_fan.gltf"), dump(strip_fan().finish()))
     write(os.path.join(HERE, "sparse_cube.gltf"), dump(sparse_cube().finish()))
+    write(os.path.join(HERE, "uv_slab.gltf"), dump(uv_slab().finish()))
     write(os.path.join(HERE, "asset_features.gltf"), dump(asset_features().finish()))
     write(os.path.join(HERE, "skinned_morph_anim.gltf"), dump(skinned_morph_anim().finish()))
     # Not in bad/: those must all fail load_mesh, which ignores animations.

@@ -26,11 +26,18 @@ struct ReadOptions {
     /// Receives what a reader repaired, naming the file (load_mesh: normals that are not finite
     /// or zero, recomputed from the triangles). Not owned; may be null.
     std::vector<std::string>* warnings = nullptr;
+    /// load_mesh of a glTF file written by `jade bake`: receives the material it was baked with
+    /// (the `JADE_materials_translucency` extension of the glTF material of the first triangle
+    /// primitive read, docs/gltf.md), or nullopt when that material has none. Its values are
+    /// checked (finite, in range; an error names the file, the material and the property).
+    /// Not owned; may be null.
+    std::optional<Material>* baked_material = nullptr;
 };
 
 /// Loads a triangle mesh, choosing the reader by extension (case-insensitive):
 ///   .gltf / .glb  glTF 2.0: every triangle primitive of the default scene (or scene 0), node
-///                 transforms applied, indexed or not; reads `_AO`/`_TM`/`_THICKNESS` if present.
+///                 transforms applied, indexed or not; reads `_AO`/`_TM`/`_THICKNESS`/
+///                 `_SCATTERING_NORMAL`/`_NORMAL_SPREAD` if present (docs/gltf.md).
 ///   .off          OFF (polygons are fan-triangulated)
 ///   .ply          PLY, ASCII or binary little-endian (faces fan-triangulated)
 ///   .obj          Wavefront OBJ (via tinyobjloader)
@@ -66,18 +73,28 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view b
 /// a missing permission). Throws jade::Error with the reason.
 void check_writable(const std::filesystem::path& path);
 
-/// What `jade bake` stores next to the mesh.
+/// What `jade bake` stores next to the mesh: every per-vertex input of the default shading and
+/// the material it was baked with (docs/gltf.md).
 struct BakedAttributes {
     std::vector<float> ao;         ///< per render vertex, [0,1]
     std::vector<glm::vec3> tm;     ///< per render vertex, linear RGB, unitless
     std::vector<float> thickness;  ///< per render vertex, mesh units (empty: not written)
-    std::string extras_json;       ///< a JSON object stored as the asset's `extras`
+    /// Per render vertex, unit length, in the space the mesh was baked in (BakeResult::
+    /// scattering_normal); empty: not written.
+    std::vector<glm::vec3> scattering_normal;
+    std::vector<glm::vec3> normal_spread;  ///< per render vertex and channel, [0, 1] (empty: not written)
+    /// The material the values were baked with, lengths in the mesh units of the bake; written
+    /// as the glTF material's `JADE_materials_translucency` extension. Empty (or opaque): none.
+    std::optional<Material> material;
+    std::string extras_json;  ///< a JSON object stored as the asset's `extras`
 };
 
 /// Writes `mesh` as binary glTF (.glb) or glTF with embedded buffer (.gltf) with the extra
-/// vertex attributes `_AO` (SCALAR float), `_TM` (VEC3 float) and `_THICKNESS` (SCALAR float,
-/// mesh units). Written to a temporary file
-/// in the same folder and renamed, so a failure never leaves a half-written file.
+/// vertex attributes `_AO` (SCALAR float), `_TM` (VEC3 float), `_THICKNESS` (SCALAR float,
+/// mesh units), `_SCATTERING_NORMAL` (VEC3 float) and `_NORMAL_SPREAD` (VEC3 float), each where
+/// given, and one material carrying `baked.material` as `JADE_materials_translucency`. Written
+/// to a temporary file in the same folder and renamed, so a failure never leaves a half-written
+/// file.
 void save_baked_gltf(const std::filesystem::path& path, const TriangleMesh& mesh, const BakedAttributes& baked);
 
 /// A glTF 2.0 asset (.gltf or .glb) read whole, to be written back with baked attributes by
@@ -139,8 +156,12 @@ private:
 /// Writes `asset` to `path` (.glb or .gltf, whatever the input was) with `baked[i]` - one
 /// BakedAttributes per asset.targets()[i], over its mesh's render vertices; empty ao and tm:
 /// target not baked; their extras_json is not used - added to the target's primitives as the
-/// vertex attributes `_AO` (SCALAR float), `_TM` (VEC3 float) and `_THICKNESS` (SCALAR float,
-/// mesh units, only where given), replacing earlier ones. `asset_extras_json`, a JSON object, is
+/// vertex attributes `_AO` (SCALAR float), `_TM` (VEC3 float), `_THICKNESS` (SCALAR float,
+/// mesh units), `_SCATTERING_NORMAL` and `_NORMAL_SPREAD` (VEC3 float; the last three only where
+/// given), replacing earlier ones. Each baked primitive's glTF material gets the target's
+/// `material` as `JADE_materials_translucency` (the first target's where several share one glTF
+/// material), and, for primitives with TEXCOORD_0 and a thickness, a thickness map in
+/// `KHR_materials_volume.thicknessTexture` (docs/gltf.md: size rule, seams, what else is added). `asset_extras_json`, a JSON object, is
 /// merged into the asset's `extras` (its keys replace the same keys). Besides: the output is one
 /// self-contained file (external buffers and images embedded; all buffers packed into one, each
 /// bufferView 4-byte aligned); required accessor bounds the input lacks (POSITION, animation key

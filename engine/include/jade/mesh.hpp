@@ -23,10 +23,13 @@ struct TriangleMesh {
     std::vector<uint32_t> indices;     ///< 3 per triangle, each < positions.size()
 
     /// Baked attributes, present when the mesh was read from a file written by `jade bake`
-    /// (glTF attributes `_AO`, `_TM`, `_THICKNESS`), else empty. One per render vertex.
+    /// (glTF attributes `_AO`, `_TM`, `_THICKNESS`, ...), else empty. One per render vertex.
     std::vector<float> baked_ao;
     std::vector<glm::vec3> baked_tm;
     std::vector<float> baked_thickness;  ///< mesh units
+    /// `_SCATTERING_NORMAL` (BakeResult::scattering_normal, in the mesh's space) and
+    /// `_NORMAL_SPREAD` (BakeResult::normal_spread, [0, 1] per channel).
+    std::vector<glm::vec3> baked_scattering_normal, baked_normal_spread;
 
     size_t triangle_count() const { return indices.size() / 3; }
 };

@@ -274,11 +274,14 @@ public:
                   std::span<const glm::vec3> scattering_normal = {}, std::span<const glm::vec3> normal_spread = {});
     /// The same with everything a bake made (t_m, thickness, scattering normals and spreads).
     void set_mesh(const PreparedMesh& mesh, const BakeResult& bake);
-    /// A mesh as loaded, with t_m (and optionally the thickness) per render vertex (e.g.
-    /// TriangleMesh::baked_tm, baked_thickness). It is prepared (welded) and the values are
+    /// A mesh as loaded, with t_m (and optionally the thickness, scattering normal and normal
+    /// spread) per render vertex (e.g. TriangleMesh::baked_tm, baked_thickness,
+    /// baked_scattering_normal, baked_normal_spread). It is prepared (welded) and the values are
     /// averaged over the render vertices of each bake vertex.
     void set_mesh(const TriangleMesh& mesh, std::span<const glm::vec3> tm_per_render_vertex,
-                  std::span<const float> thickness_per_render_vertex = {});
+                  std::span<const float> thickness_per_render_vertex = {},
+                  std::span<const glm::vec3> scattering_normal_per_render_vertex = {},
+                  std::span<const glm::vec3> normal_spread_per_render_vertex = {});
     /// A deforming mesh, kept on the GPU: records a compute pass that copies new positions,
     /// normals and t_m - tightly packed float3 per bake vertex of the mesh given to set_mesh,
     /// in storage buffers such as MeshDeformer::positions_buffer()/normals_buffer() and

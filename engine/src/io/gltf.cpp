@@ -9,6 +9,7 @@
 #include "io/common.hpp"
 #include "io/gltf_accessors.hpp"
 #include "io/gltf_model.hpp"
+#include "io/gltf_translucency.hpp"
 #include "io/loaders.hpp"
 
 #include <glm/gtc/quaternion.hpp>
@@ -126,8 +127,8 @@ const char* mode_name(int mode)
     return mode >= 0 && mode < 7 ? kNames[mode] : "unknown";
 }
 
-/// Collects the world-space triangles of every instance. Normals, _AO and _TM are kept only
-/// when every primitive has them (they must be one per vertex or absent).
+/// Collects the world-space triangles of every instance. Normals and the baked attributes are kept
+/// only when every primitive has them (they must be one per vertex or absent).
 class MeshBuilder {
 public:
     MeshBuilder(const std::string& name, const tinygltf::Model& model)
@@ -168,7 +169,19 @@ public:
         if (!all_ao_) mesh_.baked_ao.clear();
         if (!all_tm_) mesh_.baked_tm.clear();
         if (!all_thickness_) mesh_.baked_thickness.clear();
+        if (!all_scattering_normal_) mesh_.baked_scattering_normal.clear();
+        if (!all_normal_spread_) mesh_.baked_normal_spread.clear();
         return std::move(mesh_);
+    }
+
+    /// The JADE_materials_translucency of the first triangle primitive's material, if any, checked.
+    std::optional<Material> baked_material() const
+    {
+        if (first_material_ < 0 || size_t(first_material_) >= model_.materials.size()) return std::nullopt;
+        const auto& extensions = model_.materials[size_t(first_material_)].extensions;
+        const auto it = extensions.find(kTranslucencyExtension);
+        if (it == extensions.end()) return std::nullopt;
+        return material_from_translucency(name_, "material " + std::to_string(first_material_), to_json(it->second));
     }
 
 private:
@@ -226,6 +239,20 @@ private:
         for (size_t i = 0; i < n; ++i) mesh_.baked_tm.push_back(tm ? tm->vec3(i) : glm::vec3(0.0f));
         const auto thickness = optional_attribute(where, prim, "_THICKNESS", TINYGLTF_TYPE_SCALAR, n, all_thickness_);
         for (size_t i = 0; i < n; ++i) mesh_.baked_thickness.push_back(thickness ? thickness->scalar(i) : 0.0f);
+        // The scattering normal is a normal: transformed as NORMAL is (and kept as stored alike).
+        const auto scattering =
+            optional_attribute(where, prim, "_SCATTERING_NORMAL", TINYGLTF_TYPE_VEC3, n, all_scattering_normal_);
+        for (size_t i = 0; i < n; ++i) {
+            const glm::vec3 stored = scattering ? scattering->vec3(i) : glm::vec3(0.0f);
+            const glm::dvec3 v = normal_matrix * glm::dvec3(stored);
+            const double len = glm::length(v);
+            mesh_.baked_scattering_normal.push_back(keep ? stored : glm::vec3(len > 0.0 ? v / len : v));
+        }
+        const auto spread =
+            optional_attribute(where, prim, "_NORMAL_SPREAD", TINYGLTF_TYPE_VEC3, n, all_normal_spread_);
+        for (size_t i = 0; i < n; ++i) mesh_.baked_normal_spread.push_back(spread ? spread->vec3(i) : glm::vec3(0.0f));
+        if (!invertible) all_scattering_normal_ = false;
+        if (first_material_ == kNotSeen) first_material_ = prim.material;
     }
 
     /// A float attribute with one value per vertex, or nullopt (clearing `all`) when absent.
@@ -302,7 +329,10 @@ private:
     AccessorReader accessors_;
     TriangleMesh mesh_;
     bool all_normals_ = true, all_ao_ = true, all_tm_ = true, all_thickness_ = true;
-    std::string skipped_;  ///< why the first non-triangle primitive was left out
+    bool all_scattering_normal_ = true, all_normal_spread_ = true;
+    static constexpr int kNotSeen = -2;
+    int first_material_ = kNotSeen;  ///< the first triangle primitive's material (-1: none)
+    std::string skipped_;            ///< why the first non-triangle primitive was left out
 };
 
 }  // namespace
@@ -334,7 +364,9 @@ TriangleMesh read_gltf(const std::filesystem::path& path, const std::string& nam
     check_required_extensions(name, model);
     MeshBuilder builder(name, model);
     for (const auto& instance : scene_mesh_instances(name, model)) builder.add(instance);
-    return builder.finish();
+    TriangleMesh mesh = builder.finish();
+    if (options.baked_material) *options.baked_material = builder.baked_material();
+    return mesh;
 }
 
 std::vector<GltfPrimitive> read_gltf_primitives(const std::string& name, const tinygltf::Model& model)

@@ -7,7 +7,11 @@
 #include "io/gltf_materials.hpp"
 #include "io/gltf_model.hpp"
 
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <map>
 
@@ -194,6 +198,9 @@ void add_targets(GltfAssetImpl& a, int mesh_index, const Placement& placement, s
         for (size_t p = 0; p < own.size(); ++p) own[p].baked = own[p].baked && groups[p] == key;
         a.targets.push_back(std::move(t));
         a.spans.push_back(std::move(own));
+        // A length of the bake's space in the mesh's own units: 1 / the instance's mean scale.
+        const double det = std::abs(glm::determinant(glm::dmat3(placement.world)));
+        a.mesh_units_per_bake_unit.push_back(det > 0.0 && std::isfinite(det) ? 1.0 / std::cbrt(det) : 1.0);
     }
 }
 

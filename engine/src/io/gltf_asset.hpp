@@ -39,7 +39,10 @@ struct GltfAsset::Impl {
     std::vector<std::vector<unsigned char>> image_bytes;  ///< per image, as tinygltf read it
     std::vector<std::filesystem::path> files;             ///< the asset, then what it read (GltfAsset::files)
     std::vector<BakeTarget> targets;
-    std::vector<std::vector<Span>> spans;              ///< per target, per primitive of its mesh
+    std::vector<std::vector<Span>> spans;  ///< per target, per primitive of its mesh
+    /// Per target: mesh units (the glTF mesh's own coordinates) per unit of the space it was baked
+    /// in, 1 / the cube root of |det| of its first instance's world matrix (exact for a uniform scale).
+    std::vector<double> mesh_units_per_bake_unit;
     std::vector<std::optional<Material>> translucent;  ///< per glTF material: Jade's, when translucent
 };
 

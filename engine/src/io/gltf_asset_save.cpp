@@ -9,13 +9,14 @@
 // - per baked primitive a new tightly packed float accessor per attribute. An earlier `_AO`,
 //   `_TM` or `_THICKNESS` accessor whose bufferView nothing else uses is overwritten in place, so
 //   that baking a baked file again does not grow it;
-// - required bounds the input lacks, materials without the extensions that say translucent, and
+// - required bounds the input lacks, the materials' extensions (io/gltf_asset_materials.hpp), and
 //   the caller's keys in asset.extras.
 #include <jade/io.hpp>
 
 #include "io/common.hpp"
 #include "io/gltf_accessors.hpp"
 #include "io/gltf_asset.hpp"
+#include "io/gltf_asset_materials.hpp"
 #include "io/gltf_container.hpp"
 
 #include <algorithm>
@@ -34,7 +35,17 @@ using io::fail;
 
 constexpr int kFloat = 5126;
 constexpr int kArrayBuffer = 34962;
-constexpr const char* kAttributes[] = {"_AO", "_TM", "_THICKNESS"};
+constexpr const char* kAttributes[] = {"_AO", "_TM", "_THICKNESS", "_SCATTERING_NORMAL", "_NORMAL_SPREAD"};
+
+/// The attribute `name`'s values in `b` (floats; `size` elements, 0 when not given).
+const void* attribute_data(const BakedAttributes& b, const std::string& name, size_t& size)
+{
+    if (name == "_AO") return size = b.ao.size(), b.ao.data();
+    if (name == "_TM") return size = b.tm.size(), b.tm.data();
+    if (name == "_THICKNESS") return size = b.thickness.size(), b.thickness.data();
+    if (name == "_SCATTERING_NORMAL") return size = b.scattering_normal.size(), b.scattering_normal.data();
+    return size = b.normal_spread.size(), b.normal_spread.data();
+}
 
 int as_index(const json& j) { return j.is_number_integer() ? j.get<int>() : -1; }
 
@@ -120,7 +131,13 @@ public:
         for (size_t t = 0; t < baked.size(); ++t) add_attributes(t, baked[t]);
         add_bounds();
         embed_images();
-        mark_translucent(baked);
+        io::MaterialEdits edits{a_, doc_, baked,
+                                [this](const std::vector<unsigned char>& bytes, const std::string& mime,
+                                       int replacing) { return embedded(bytes, mime, replacing); }};
+        io::mark_translucent(edits);
+        io::add_translucency_extensions(edits);
+        io::add_thickness_maps(edits);
+        restore_maps();
         merge_extras(extras);
         return finish();
     }
@@ -137,8 +154,9 @@ private:
                 if (!a_.spans[t][p].baked || baked[t].ao.empty()) continue;
                 const json& attributes = prim(t, p)["attributes"];
                 for (const char* name : kAttributes) {
-                    if (!attributes.contains(name) || (name == std::string("_THICKNESS") && baked[t].thickness.empty()))
-                        continue;
+                    size_t size = 0;
+                    attribute_data(baked[t], name, size);
+                    if (!attributes.contains(name) || size == 0) continue;
                     const int acc = as_index(attributes[name]);
                     if (acc < 0 || size_t(acc) >= refs_.accessors.size() || refs_.accessors[size_t(acc)] != 1) continue;
                     const json& accessor = doc_["accessors"][size_t(acc)];
@@ -150,6 +168,31 @@ private:
                     reuse_[{t, p, std::string(name)}] = {acc, view};
                 }
             }
+        // An earlier bake's thickness maps: their views are refilled by the new maps (or, where
+        // none is made, with their own bytes by restore_maps), so that re-baking does not grow the file.
+        const json& images = member(doc_, "images");
+        for (size_t i = 0; i < images.size(); ++i) {
+            const json& name = member(images[i], "name");
+            const int view = as_index(member(images[i], "bufferView"));
+            if (name.is_string() && name.get<std::string>().rfind(io::kThicknessMapName, 0) == 0 && view >= 0 &&
+                size_t(view) < refs_.views.size() && refs_.views[size_t(view)] == 1)
+                recycled_[size_t(view)] = true, map_views_[int(i)] = view;
+        }
+    }
+
+    /// The views of earlier thickness maps that no new map took: their own bytes again.
+    void restore_maps()
+    {
+        for (const auto& [image, view] : map_views_) {
+            const auto& bv = a_.model.bufferViews[size_t(view)];
+            const auto& data = a_.model.buffers[size_t(bv.buffer)].data;
+            if (bv.byteOffset > data.size() || bv.byteLength > data.size() - bv.byteOffset)
+                fail(a_.name, "bufferView " + std::to_string(view) + " runs past the end of its buffer");
+            json& v = doc_["bufferViews"][size_t(view)];
+            v["buffer"] = 0;
+            v["byteOffset"] = append(data.data() + bv.byteOffset, bv.byteLength);
+        }
+        map_views_.clear();
     }
 
     size_t append(const void* data, size_t size)
@@ -212,18 +255,16 @@ private:
                 auto it = reuse_.find({t, p, std::string(name)});
                 return it == reuse_.end() ? std::pair<int, int>{-1, -1} : it->second;
             };
-            std::vector<float> ao(b.ao.begin() + std::ptrdiff_t(span.first),
-                                  b.ao.begin() + std::ptrdiff_t(span.first + span.count));
-            attributes["_AO"] = add_floats(ao, span.count, "SCALAR", reuse("_AO"));
-            std::vector<float> tm(3 * span.count);
-            std::memcpy(tm.data(), &b.tm[span.first].x, tm.size() * sizeof(float));
-            attributes["_TM"] = add_floats(tm, span.count, "VEC3", reuse("_TM"));
-            if (b.thickness.empty()) {
-                attributes.erase("_THICKNESS");  // an earlier bake's would no longer match
-            } else {
-                std::vector<float> th(b.thickness.begin() + std::ptrdiff_t(span.first),
-                                      b.thickness.begin() + std::ptrdiff_t(span.first + span.count));
-                attributes["_THICKNESS"] = add_floats(th, span.count, "SCALAR", reuse("_THICKNESS"));
+            for (const std::string name : kAttributes) {
+                size_t size = 0;
+                const auto* data = static_cast<const float*>(attribute_data(b, name, size));
+                if (size == 0) {
+                    attributes.erase(name);  // an earlier bake's would no longer match
+                    continue;
+                }
+                const size_t width = name == "_AO" || name == "_THICKNESS" ? 1 : 3;
+                const std::vector<float> values(data + width * span.first, data + width * (span.first + span.count));
+                attributes[name] = add_floats(values, span.count, width == 1 ? "SCALAR" : "VEC3", reuse(name.c_str()));
             }
         }
     }
@@ -280,67 +321,29 @@ private:
                 fail(a_.name, "image " + std::to_string(i) + ": '" +
                                   io::printable(image["uri"].get<std::string>(), 64) +
                                   "' is not PNG, JPEG, WebP or KTX2 and has no mimeType; it cannot be embedded");
-            image.erase("uri");
-            if (glb_) {
-                doc_["bufferViews"].push_back(
-                    {{"buffer", 0}, {"byteOffset", append(bytes.data(), bytes.size())}, {"byteLength", bytes.size()}});
-                image["bufferView"] = doc_["bufferViews"].size() - 1;
-                image["mimeType"] = mime;
-            } else {
-                image["uri"] = "data:" + mime + ";base64," + io::base64(bytes);
-            }
+            // Before `image` is written again: embedding may add the document's bufferViews, which
+            // moves its members; named, since items() does not keep a temporary alive.
+            const json members = embedded(bytes, mime);
+            json& embedded_image = doc_["images"][i];
+            embedded_image.erase("uri");
+            for (const auto& [key, value] : members.items()) embedded_image[key] = value;
         }
     }
 
-    void use_extension(const char* name)
+    /// An image object holding `bytes`: a bufferView in .glb, a data URI in .gltf.
+    /// `replacing`: the image whose view an earlier thickness map had (plan_reuse), or -1.
+    json embedded(const std::vector<unsigned char>& bytes, const std::string& mime, int replacing = -1)
     {
-        json& used = doc_["extensionsUsed"];
-        if (!used.is_array()) used = json::array();
-        if (std::find(used.begin(), used.end(), name) == used.end()) used.push_back(name);
-    }
-
-    /// KHR_materials_diffuse_transmission (factor 1: Jade's strength is unchanged) and
-    /// KHR_materials_volume for materials translucent through extras.jade.preset alone: the
-    /// volume's attenuation gives back the preset's extinction mean free path ℓ_c = 1/σ_t,c
-    /// through the mapping ℓ_c = L / (1 − ln a_c) of docs/scene.md, L = max ℓ_c; the thickness is
-    /// the mean baked thickness of the material's vertices (else L).
-    void mark_translucent(const std::vector<BakedAttributes>& baked)
-    {
-        for (size_t m = 0; m < a_.translucent.size(); ++m) {
-            json& material = doc_["materials"][m];
-            if (!a_.translucent[m] || (material.contains("extensions") &&
-                                       material["extensions"].contains("KHR_materials_diffuse_transmission")))
-                continue;
-            const Material& jade = *a_.translucent[m];
-            glm::dvec3 mfp;
-            for (int c = 0; c < 3; ++c)
-                mfp[c] = jade.transmission.sigma_t[c] > 0.0f ? 1.0 / double(jade.transmission.sigma_t[c])
-                                                             : jade.profile[size_t(c)].radius_for_tail(std::exp(-1.0));
-            const double distance = std::max({mfp.x, mfp.y, mfp.z});
-            double sum = 0.0;
-            size_t n = 0;
-            for (size_t t = 0; t < baked.size(); ++t)
-                for (size_t p = 0; p < a_.spans[t].size(); ++p)
-                    if (a_.spans[t][p].baked && !baked[t].thickness.empty() &&
-                        a_.model.meshes[size_t(a_.targets[t].mesh_index)].primitives[p].material == int(m))
-                        for (size_t v = 0; v < a_.spans[t][p].count; ++v)
-                            sum += baked[t].thickness[a_.spans[t][p].first + v], ++n;
-            const double thickness = n && sum > 0.0 ? sum / double(n) : distance;
-            json color = json::array();
-            for (int c = 0; c < 3; ++c) color.push_back(std::exp(1.0 - distance / mfp[c]));
-            if (!(std::isfinite(distance) && distance > 0.0 && std::isfinite(thickness)))
-                fail(a_.name, "material " + std::to_string(m) + ": the preset's mean free path " +
-                                  std::to_string(distance) + " cannot be written as KHR_materials_volume");
-            json& extensions = material["extensions"];
-            if (!extensions.is_object()) extensions = json::object();
-            extensions["KHR_materials_diffuse_transmission"] = {{"diffuseTransmissionFactor", 1.0}};
-            use_extension("KHR_materials_diffuse_transmission");
-            if (!extensions.contains("KHR_materials_volume")) {
-                extensions["KHR_materials_volume"] = {
-                    {"thicknessFactor", thickness}, {"attenuationDistance", distance}, {"attenuationColor", color}};
-                use_extension("KHR_materials_volume");
-            }
+        if (!glb_) return {{"uri", "data:" + mime + ";base64," + io::base64(bytes)}};
+        json view = {{"buffer", 0}, {"byteOffset", append(bytes.data(), bytes.size())}, {"byteLength", bytes.size()}};
+        if (const auto it = map_views_.find(replacing); it != map_views_.end()) {
+            const int index = it->second;
+            map_views_.erase(it);
+            doc_["bufferViews"][size_t(index)] = std::move(view);
+            return {{"bufferView", index}, {"mimeType", mime}};
         }
+        doc_["bufferViews"].push_back(std::move(view));
+        return {{"bufferView", doc_["bufferViews"].size() - 1}, {"mimeType", mime}};
     }
 
     void merge_extras(const std::string& text)
@@ -386,6 +389,7 @@ private:
     std::vector<unsigned char> bin_;
     std::vector<bool> recycled_;
     std::map<std::tuple<size_t, size_t, std::string>, std::pair<int, int>> reuse_;
+    std::map<int, int> map_views_;  ///< image → bufferView of an earlier thickness map, until refilled
 };
 
 /// Sizes and finiteness of what is to be written, naming the element at fault.
@@ -399,19 +403,28 @@ void check_baked(const GltfAssetImpl& a, const std::string& out, const std::vect
         const size_t n = a.targets[t].mesh.positions.size();
         const std::string target = a.targets[t].mesh.name.substr(a.name.size() + 2);
         if (b.ao.empty() && b.tm.empty() && b.thickness.empty()) continue;
-        if (b.ao.size() != n || b.tm.size() != n || (!b.thickness.empty() && b.thickness.size() != n))
-            fail(out, target + ": " + std::to_string(b.ao.size()) + " _AO, " + std::to_string(b.tm.size()) +
-                          " _TM and " + std::to_string(b.thickness.size()) + " _THICKNESS values for " +
-                          std::to_string(n) + " vertices");
+        if (b.ao.size() != n || b.tm.size() != n || (!b.thickness.empty() && b.thickness.size() != n) ||
+            (!b.scattering_normal.empty() && b.scattering_normal.size() != n) ||
+            (!b.normal_spread.empty() && b.normal_spread.size() != n))
+            fail(out, target + ": " + std::to_string(b.ao.size()) + " _AO, " + std::to_string(b.tm.size()) + " _TM, " +
+                          std::to_string(b.thickness.size()) + " _THICKNESS, " +
+                          std::to_string(b.scattering_normal.size()) + " _SCATTERING_NORMAL and " +
+                          std::to_string(b.normal_spread.size()) + " _NORMAL_SPREAD values for " + std::to_string(n) +
+                          " vertices");
         for (size_t p = 0; p < a.spans[t].size(); ++p) {
             const auto& span = a.spans[t][p];
             if (!span.baked) continue;
             for (size_t v = span.first; v < span.first + span.count; ++v) {
-                const char* bad = !std::isfinite(b.ao[v]) ? "_AO"
-                                  : !(std::isfinite(b.tm[v].x) && std::isfinite(b.tm[v].y) && std::isfinite(b.tm[v].z))
-                                      ? "_TM"
+                const auto finite3 = [](glm::vec3 x) {
+                    return std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z);
+                };
+                const char* bad = !std::isfinite(b.ao[v])                                  ? "_AO"
+                                  : !finite3(b.tm[v])                                      ? "_TM"
                                   : !b.thickness.empty() && !std::isfinite(b.thickness[v]) ? "_THICKNESS"
-                                                                                           : nullptr;
+                                  : !b.scattering_normal.empty() && !finite3(b.scattering_normal[v])
+                                      ? "_SCATTERING_NORMAL"
+                                  : !b.normal_spread.empty() && !finite3(b.normal_spread[v]) ? "_NORMAL_SPREAD"
+                                                                                             : nullptr;
                 if (bad)
                     fail(a.name, target + " primitive " + std::to_string(p) + " vertex " +
                                      std::to_string(v - span.first) + ": " + bad +

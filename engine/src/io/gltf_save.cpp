@@ -2,13 +2,15 @@
 //
 // The document is written with nlohmann::json rather than tinygltf's serializer so that the
 // caller's `extras` JSON is stored exactly as given (tinygltf's Value drops nulls and narrows
-// integers). One buffer holds, in order: POSITION, NORMAL, _AO, _TM (all float, so every view
-// stays 4-byte aligned) and uint32 indices. .glb puts it in the BIN chunk, .gltf in a base64
-// data URI.
+// integers). One buffer holds, in order: POSITION, NORMAL, _AO, _TM, _THICKNESS,
+// _SCATTERING_NORMAL, _NORMAL_SPREAD (all float, so every view stays 4-byte aligned) and uint32
+// indices. .glb puts it in the BIN chunk, .gltf in a base64 data URI. The one material carries
+// the bake's Jade material (JADE_materials_translucency, io/gltf_translucency.hpp).
 #include <jade/io.hpp>
 
 #include "io/common.hpp"
 #include "io/gltf_container.hpp"
+#include "io/gltf_translucency.hpp"
 
 #include <glm/common.hpp>
 #include <nlohmann/json.hpp>
@@ -20,7 +22,7 @@ namespace jade {
 
 namespace {
 
-using nlohmann::json;
+using json = nlohmann::ordered_json;  // keys in the order written
 
 constexpr int kFloat = 5126, kUnsignedInt = 5125;
 constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
@@ -41,6 +43,8 @@ void check_input(const std::string& name, const TriangleMesh& mesh, const BakedA
     check_size(baked.ao.size(), "_AO");
     check_size(baked.tm.size(), "_TM");
     check_size(baked.thickness.size(), "_THICKNESS");
+    check_size(baked.scattering_normal.size(), "_SCATTERING_NORMAL");
+    check_size(baked.normal_spread.size(), "_NORMAL_SPREAD");
     // Never a NaN or an Inf in a file: other tools take them for values (a NaN t_m shades black or
     // poisons a filter). Named by the first vertex at fault.
     const auto finite3 = [](const glm::vec3& v) {
@@ -50,9 +54,12 @@ void check_input(const std::string& name, const TriangleMesh& mesh, const BakedA
         const char* bad = !baked.ao.empty() && !std::isfinite(baked.ao[v])                 ? "_AO"
                           : !baked.tm.empty() && !finite3(baked.tm[v])                     ? "_TM"
                           : !baked.thickness.empty() && !std::isfinite(baked.thickness[v]) ? "_THICKNESS"
-                          : !mesh.normals.empty() && !finite3(mesh.normals[v])             ? "NORMAL"
-                          : !mesh.normals.empty() && mesh.normals[v] == glm::vec3(0.0f)    ? "NORMAL*"
-                                                                                           : nullptr;
+                          : !baked.scattering_normal.empty() && !finite3(baked.scattering_normal[v])
+                              ? "_SCATTERING_NORMAL"
+                          : !baked.normal_spread.empty() && !finite3(baked.normal_spread[v]) ? "_NORMAL_SPREAD"
+                          : !mesh.normals.empty() && !finite3(mesh.normals[v])               ? "NORMAL"
+                          : !mesh.normals.empty() && mesh.normals[v] == glm::vec3(0.0f)      ? "NORMAL*"
+                                                                                             : nullptr;
         if (!bad) continue;
         const std::string what = bad[6] == '*'
                                      ? "NORMAL of vertex " + std::to_string(v) + " is zero"
@@ -123,7 +130,8 @@ private:
     json accessors_ = json::array();
 };
 
-json build_json(const TriangleMesh& mesh, const BakedAttributes& baked, json extras, Document& doc)
+json build_json(const std::string& name, const TriangleMesh& mesh, const BakedAttributes& baked, json extras,
+                Document& doc)
 {
     json attributes;
     attributes["POSITION"] = doc.add_positions(mesh.positions);
@@ -132,12 +140,17 @@ json build_json(const TriangleMesh& mesh, const BakedAttributes& baked, json ext
     if (!baked.tm.empty()) attributes["_TM"] = doc.add_floats(&baked.tm[0].x, baked.tm.size(), 3);
     if (!baked.thickness.empty())
         attributes["_THICKNESS"] = doc.add_floats(baked.thickness.data(), baked.thickness.size(), 1);
+    if (!baked.scattering_normal.empty())
+        attributes["_SCATTERING_NORMAL"] =
+            doc.add_floats(&baked.scattering_normal[0].x, baked.scattering_normal.size(), 3);
+    if (!baked.normal_spread.empty())
+        attributes["_NORMAL_SPREAD"] = doc.add_floats(&baked.normal_spread[0].x, baked.normal_spread.size(), 3);
     const int indices = doc.add_indices(mesh.indices);
 
     json asset = {{"version", "2.0"}, {"generator", "Jade"}};
     if (!extras.is_null()) asset["extras"] = std::move(extras);
     json primitive = {{"attributes", attributes}, {"indices", indices}, {"mode", 4}};
-    return {
+    json document = {
         {"asset", asset},
         {"scene", 0},
         {"scenes", json::array({{{"nodes", {0}}}})},
@@ -146,6 +159,15 @@ json build_json(const TriangleMesh& mesh, const BakedAttributes& baked, json ext
         {"bufferViews", doc.views()},
         {"accessors", doc.accessors()},
     };
+    if (baked.material && !baked.material->opaque) {
+        // A vendor extension other viewers ignore: used, not required.
+        document["meshes"][0]["primitives"][0]["material"] = 0;
+        document["materials"] = json::array(
+            {{{"name", baked.material->name},
+              {"extensions", {{io::kTranslucencyExtension, io::translucency_extension(name, *baked.material)}}}}});
+        document["extensionsUsed"] = json::array({io::kTranslucencyExtension});
+    }
+    return document;
 }
 
 std::string dump(const json& j)
@@ -177,7 +199,7 @@ void save_baked_gltf(const std::filesystem::path& path, const TriangleMesh& mesh
         io::fail(name, "unsupported glTF extension '" + ext + "' (supported: .glb, .gltf)");
     check_input(name, mesh, baked);
     Document doc;
-    const json document = build_json(mesh, baked, parse_extras(name, baked.extras_json), doc);
+    const json document = build_json(name, mesh, baked, parse_extras(name, baked.extras_json), doc);
     const std::string bytes = ext == ".glb" ? to_glb(name, document, doc.buffer()) : to_gltf(document, doc.buffer());
     write_file_atomically(path, bytes);
 }

@@ -2,6 +2,9 @@
 #include <jade/io.hpp>
 
 #include "io/common.hpp"
+#include "io/gltf_thickness_map.hpp"
+
+#include <OpenImageIO/filesystem.h>
 
 #include <OpenImageIO/imageio.h>
 
@@ -112,6 +115,28 @@ void write_frames(const std::string& name, const char* format, const std::filesy
 }
 
 }  // namespace
+
+namespace io {
+
+std::vector<unsigned char> encode_thickness_png(const std::string& file, const ThicknessMap& map)
+{
+    std::vector<uint8_t> rgb(map.texels.size() * 3, 0);
+    for (size_t i = 0; i < map.texels.size(); ++i) rgb[3 * i + 1] = map.texels[i];
+    OIIO::ImageSpec spec(int(map.size), int(map.size), 3, OIIO::TypeDesc::UINT8);
+    // Data, not colour: no colour space is named, so the file has no gAMA or sRGB chunk for a
+    // decoder to apply (glTF reads the bytes as they are).
+    std::vector<unsigned char> bytes;
+    OIIO::Filesystem::IOVecOutput memory(bytes);
+    auto out = OIIO::ImageOutput::create("png");
+    if (!out || !out->supports("ioproxy"))
+        io::fail(file, std::string("OpenImageIO cannot write a PNG into memory: ") + OIIO::geterror());
+    if (!out->set_ioproxy(&memory) || !out->open("thickness.png", spec) ||
+        !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) || !out->close())
+        io::fail(file, "cannot encode the thickness map as PNG: " + out->geterror());
+    return bytes;
+}
+
+}  // namespace io
 
 void save_animation(const std::filesystem::path& path, int width, int height,
                     const std::vector<std::vector<float>>& frames, double fps)

@@ -4,6 +4,7 @@
 #include <jade/io.hpp>
 
 #include "io/common.hpp"
+#include "io/gltf_thickness_map.hpp"
 
 namespace jade {
 
@@ -20,5 +21,10 @@ void save_animation(const std::filesystem::path& path, int, int, const std::vect
 }
 void save_image(const std::filesystem::path& path, int, int, const std::vector<float>&) { no_images(path); }
 LoadedImage load_image(const std::filesystem::path& path) { no_images(path); }
+
+std::vector<unsigned char> io::encode_thickness_png(const std::string& file, const io::ThicknessMap&)
+{
+    no_images(file);
+}
 
 }  // namespace jade

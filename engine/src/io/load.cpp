@@ -29,6 +29,7 @@ TriangleMesh read_by_extension(const std::filesystem::path& path, const std::str
 TriangleMesh load_mesh(const std::filesystem::path& path, const ReadOptions& options)
 {
     const auto name = io::display_name(path);
+    if (options.baked_material) options.baked_material->reset();  // only a baked glTF has one
     return io::naming_file(name, [&] {
         TriangleMesh mesh = read_by_extension(path, name, options);
         io::repair_normals(mesh, options.warnings);

@@ -1,5 +1,5 @@
 // shading/mesh_input.cpp - Renderer::set_mesh for a mesh as loaded: it is prepared (welded) and
-// the baked values per render vertex (TriangleMesh::baked_tm, baked_thickness) are averaged over
+// the baked values per render vertex (TriangleMesh::baked_tm, baked_thickness, ...) are averaged over
 // the render vertices of each bake vertex.
 #include <jade/error.hpp>
 #include <jade/render.hpp>
@@ -33,12 +33,20 @@ std::vector<T> average_per_bake_vertex(const TriangleMesh& mesh, const PreparedM
 }  // namespace
 
 void Renderer::set_mesh(const TriangleMesh& mesh, std::span<const glm::vec3> tm_per_render_vertex,
-                        std::span<const float> thickness_per_render_vertex)
+                        std::span<const float> thickness_per_render_vertex,
+                        std::span<const glm::vec3> scattering_normal_per_render_vertex,
+                        std::span<const glm::vec3> normal_spread_per_render_vertex)
 {
     PreparedMesh prepared = prepare_mesh(mesh);
     const auto tm = average_per_bake_vertex(mesh, prepared, tm_per_render_vertex, "t_m");
     const auto thickness = average_per_bake_vertex(mesh, prepared, thickness_per_render_vertex, "thickness");
-    set_mesh(prepared, tm, thickness);
+    // Welded vertices share one bake vertex's normal, so the mean is that normal (set_mesh
+    // renormalises it); a mean that cancels is refused there, naming the vertex.
+    const auto scattering_normal =
+        average_per_bake_vertex(mesh, prepared, scattering_normal_per_render_vertex, "scattering normal");
+    const auto normal_spread =
+        average_per_bake_vertex(mesh, prepared, normal_spread_per_render_vertex, "normal spread");
+    set_mesh(prepared, tm, thickness, scattering_normal, normal_spread);
 }
 
 }  // namespace jade
