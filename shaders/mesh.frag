@@ -10,8 +10,9 @@
 #include "translucency.glsl"
 #include "transmission.glsl"
 #include "shadow.glsl"
+#include "filament.glsl"
 
-layout(constant_id = 0) const uint MODE = 2;      // kLambert, kCurvature, kTm, kFalseColor (shading.glsl), kInputs + k
+layout(constant_id = 0) const uint MODE = 2;      // kLambert, kCurvature, kTm, kFalseColor, kFilament (shading.glsl), kInputs + k
 layout(constant_id = 1) const uint CHANNELS = 3;  // 1: grey material, one evaluation per light
 
 layout(binding = 2) uniform sampler2D curvature_lut;  // RGBA32F, D_c(cos θ, κ) per channel
@@ -125,6 +126,7 @@ void main()
     Translucency tr;
     if (MODE == kTm) tr = translucency_setup(CHANNELS == 1 ? in_variance.rrr : in_variance);
     float kappa_scaled = max(in_curvature, 0.0) * data.params.y;  // concave: treated as flat
+    float thickness = MODE == kFilament ? filament_thickness(in_thickness) : 0.0;
 
     vec3 color = vec3(0.0);
     for (uint k = 0; k < frame.light_count; ++k) {
@@ -133,6 +135,8 @@ void main()
         float c = dot(n, l), c_diffuse = dot(n_diffuse, l);
         // The mesh's shadow (shadow.glsl) dims this light's diffuse and specular light alike.
         uint tile = uint(data.lights[k].color.w);
+        // Filament's BTDF is not shadowed (filament.glsl): it takes the light before the shadow.
+        if (MODE == kFilament) color += filament_subsurface(n, v, l, thickness) * e;
         if (SHADOWS == 1u && tile != 0u) e *= shadow_visibility(tile, in_position, n, l);
         vec3 diffuse = albedo * (1.0 / JADE_PI) * diffuse_response(c_diffuse, tr, kappa_scaled) * e;
         if (boundary) diffuse *= boundary_transmittance(c_diffuse) * exit_transmittance;

@@ -1,0 +1,176 @@
+// The peers' shading modes (docs/peers.md) against independent references. Filament's
+// subsurface model: the rendered pixels against a float64 evaluation of the published formula
+// (google/filament shading_model_subsurface.fs) on the same rasterised inputs, its thick limit
+// against Lambert, and the inputs Jade derives from a medium against the rule written by hand.
+#include "gpu_fixture.hpp"
+#include "test_support.hpp"
+
+#include <jade/bake.hpp>
+#include <jade/material.hpp>
+#include <jade/render.hpp>
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+using namespace jade;
+using jade::test::GpuTest;
+
+namespace {
+
+class Peers : public GpuTest {};
+
+constexpr double kPi = std::numbers::pi;
+
+const PreparedMesh& unit_sphere()
+{
+    static PreparedMesh m = prepare_mesh(procedural::sphere(1.0f, 48, 96));
+    return m;
+}
+
+// A matte material whose medium has σ_tr = (1, 2, 4) per mesh unit: by the rule of docs/peers.md
+// subsurfaceColor = σ_min/σ_tr = (1, 1/2, 1/4) and thickness = min(t̄ · σ_min/2, 1) = min(t̄/2, 1).
+Material filament_material()
+{
+    Material m = burley_material(glm::dvec3(0.1), glm::vec3(0.8f, 0.6f, 0.5f), "filament test");
+    m.specular = 0.0f;  // the lobe is every mode's and tested in test_render; this checks the rest
+    m.transmission.sigma_tr = glm::vec3(1.0f, 2.0f, 4.0f);
+    return m;
+}
+constexpr double kSubsurfaceColor[3] = {1.0, 0.5, 0.25};
+constexpr double kPower = 12.234;  // Filament's default subsurfacePower
+
+// Filament's per-light sum in float64 (the formula as published, written here on its own):
+// (k_d/π) NoL E + subsurfaceColor · mix(back, 1, forward) · (1 − thickness)/π · E.
+glm::dvec3 filament_f64(glm::dvec3 n, glm::dvec3 p, glm::dvec3 eye, double thickness, const Material& m,
+                        std::span<const Light> lights)
+{
+    n = glm::normalize(n);
+    const glm::dvec3 v = glm::normalize(eye - p);
+    glm::dvec3 out(0.0);
+    for (const Light& light : lights) {
+        glm::dvec3 l = glm::dvec3(light.vector), e = glm::dvec3(light.color);
+        if (light.type == Light::Type::Point) {
+            l -= p;
+            e /= glm::dot(l, l);
+        }
+        l = glm::normalize(l);
+        const double no_l = std::clamp(glm::dot(n, l), 0.0, 1.0);
+        const double forward = std::exp2(kPower * (std::clamp(glm::dot(v, -l), 0.0, 1.0) - 1.0));
+        const double back = 0.5 * std::clamp(no_l * thickness + 1.0 - thickness, 0.0, 1.0);
+        const double subsurface = (back + (1.0 - back) * forward) * (1.0 - thickness);
+        for (int c = 0; c < 3; ++c)
+            out[c] += (double(m.albedo[c]) / kPi * no_l + kSubsurfaceColor[c] * subsurface / kPi) * e[c];
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST(FilamentInputs, DerivedFromTheMediumByTheDocumentedRule)
+{
+    const FilamentSubsurface f = filament_subsurface(filament_material());
+    for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(f.color[c], float(kSubsurfaceColor[c]));
+    EXPECT_FLOAT_EQ(f.thickness_per_unit, 0.5f);
+    EXPECT_FLOAT_EQ(f.power, float(kPower));
+    // The ramp 1 − t/L with L = 1/thickness_per_unit carries ∫ e^{−σ_min t} dt = 1/σ_min.
+    EXPECT_NEAR(0.5 / f.thickness_per_unit, 1.0 / 1.0, 1e-12);
+    // No medium: Filament's defaults (white; the renderer then uses the constant thickness 0.5).
+    const FilamentSubsurface none = filament_subsurface(burley_material(glm::dvec3(0.1), glm::vec3(1.0f), "plain"));
+    EXPECT_EQ(none.color, glm::vec3(1.0f));
+    EXPECT_EQ(none.thickness_per_unit, 0.0f);
+}
+
+// Every covered pixel of a sphere with a thickness that varies over it (linear in y, so exact
+// under interpolation), lit by a light behind it (forward scattering towards the eye) and a
+// point light in front, against filament_f64 on the rasterised position, normal and thickness.
+// Also the constant thickness of RenderSettings::filament_thickness. float32 against float64:
+// within 1e-5 of the brightest pixel (measured 3.3e-7 and 4.7e-7: a few float32 roundings).
+TEST_F(Peers, FilamentMatchesFloat64FormulaOnEveryPixel)
+{
+    const PreparedMesh& mesh = unit_sphere();
+    std::vector<float> thickness(mesh.vertex_count());
+    for (size_t i = 0; i < thickness.size(); ++i) thickness[i] = 0.2f + 1.1f * (mesh.positions[i].y + 1.0f);
+    Renderer r(context());
+    r.set_mesh(mesh, {}, thickness);
+    const Material m = filament_material();
+    r.set_material(m);
+    const Camera camera{{0.0f, 0.0f, 5.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 30.0f};
+    const std::vector<Light> lights = {Light::directional({0.3f, 0.4f, -1.0f}, glm::vec3(3.0f)),
+                                       Light::point({2.0f, 1.0f, 3.0f}, glm::vec3(20.0f, 15.0f, 10.0f))};
+    RenderSettings s;
+    s.width = s.height = 96, s.samples = 1, s.float32 = true, s.transparent_background = true;
+    s.mode = ShadingMode::Filament, s.shadows = false;
+    const ShadingInputs in = r.shading_inputs(camera, lights, s);
+    for (const float constant : {-1.0f, 0.5f}) {
+        s.filament_thickness = constant;
+        const RenderedImage img = r.render(camera, lights, s);
+        double worst = 0.0, peak = 0.0, sum_subsurface = 0.0;
+        size_t covered = 0, clamped = 0;
+        for (uint32_t y = 0; y < img.height; ++y)
+            for (uint32_t x = 0; x < img.width; ++x) {
+                const size_t p = size_t(y) * img.width + x;
+                if (in.position[p].w < 1.0f) continue;  // background
+                const double baked = in.normal[p].w;
+                const double th = constant >= 0.0f ? constant : std::min(baked * 0.5, 1.0);
+                clamped += th == 1.0;
+                const glm::dvec3 ref = filament_f64(glm::dvec3(in.normal[p]), glm::dvec3(in.position[p]),
+                                                    glm::dvec3(camera.eye), th, m, lights);
+                for (int c = 0; c < 3; ++c) {
+                    worst = std::max(worst, std::abs(double(img.pixel(x, y)[c]) - ref[c]));
+                    peak = std::max(peak, ref[c]);
+                }
+                sum_subsurface += 1.0 - th;
+                ++covered;
+            }
+        std::printf("thickness %s: %zu pixels, %zu at thickness 1, max |GPU - float64| %.3g of peak %.3g\n",
+                    constant < 0.0f ? "baked" : "0.5", covered, clamped, worst, peak);
+        ASSERT_GT(covered, 4000u);
+        EXPECT_GT(sum_subsurface, 0.1 * double(covered));  // the subsurface term is really there
+        if (constant < 0.0f) EXPECT_GT(clamped, 100u);     // and the clamp at 1 is exercised
+        EXPECT_LT(worst, 1e-5 * peak);
+    }
+}
+
+// Thickness 1 leaves Filament's BRDF alone: the image is Lambert's (with shadows on, the same
+// shadows), up to float rounding.
+TEST_F(Peers, FilamentThickLimitIsLambert)
+{
+    Renderer r(context());
+    r.set_mesh(unit_sphere());
+    r.set_material(filament_material());
+    const Camera camera{{0.0f, 0.0f, 5.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 30.0f};
+    const std::vector<Light> lights = {Light::directional({0.3f, 0.4f, -1.0f}, glm::vec3(3.0f)),
+                                       Light::directional({-0.5f, 0.2f, 1.0f}, glm::vec3(2.0f))};
+    RenderSettings s;
+    s.width = s.height = 64, s.float32 = true;
+    s.mode = ShadingMode::Lambert;
+    const RenderedImage lambert = r.render(camera, lights, s);
+    s.mode = ShadingMode::Filament, s.filament_thickness = 1.0f;
+    const RenderedImage thick = r.render(camera, lights, s);
+    s.filament_thickness = 0.0f;
+    const RenderedImage thin = r.render(camera, lights, s);
+    double worst = 0.0, gained = 0.0;
+    for (size_t i = 0; i < lambert.rgba.size(); ++i) {
+        worst = std::max(worst, double(std::abs(thick.rgba[i] - lambert.rgba[i])));
+        gained += double(thin.rgba[i] - lambert.rgba[i]);
+    }
+    EXPECT_LT(worst, 1e-6);
+    EXPECT_GT(gained, 1.0);  // thickness 0: the subsurface light is added
+}
+
+TEST_F(Peers, FilamentThicknessOutsideItsRangeIsRefused)
+{
+    Renderer r(context());
+    r.set_mesh(unit_sphere());
+    r.set_material(filament_material());
+    const Light light = Light::directional({0, 0, 1}, glm::vec3(1.0f));
+    RenderSettings s;
+    s.width = s.height = 16, s.mode = ShadingMode::Filament, s.filament_thickness = 1.5f;
+    const std::string what = test::error_of([&] { r.render(Camera{}, {&light, 1}, s); });
+    EXPECT_NE(what.find("filament_thickness"), std::string::npos) << what;
+    EXPECT_EQ(parse_shading_mode("filament"), ShadingMode::Filament);
+    EXPECT_EQ(shading_mode_name(ShadingMode::Filament), "filament");
+}
