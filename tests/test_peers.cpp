@@ -174,3 +174,24 @@ TEST_F(Peers, FilamentThicknessOutsideItsRangeIsRefused)
     EXPECT_EQ(parse_shading_mode("filament"), ShadingMode::Filament);
     EXPECT_EQ(shading_mode_name(ShadingMode::Filament), "filament");
 }
+
+// `jade bench render` times every mode in one run, each with its ratio to Lambert and its
+// fetches per shaded pixel; a mode it does not know is named.
+TEST(PeersCli, BenchRenderTimesEveryModeAgainstLambert)
+{
+    const auto r = test::run_cli({"bench", "render", "--validation", "--quality", "draft", "--repeat", "1", "--sizes",
+                                  "32,48x24", "--ao-rays", "8"});
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    for (const char* row : {"32x32      lambert", "32x32      curvature", "32x32      tm", "32x32      filament",
+                            "48x24      lambert", "48x24      filament"})
+        EXPECT_NE(r.output.find(row), std::string::npos) << row << "\n" << r.output;
+    EXPECT_NE(r.output.find("1.000x"), std::string::npos) << r.output;  // Lambert against itself
+    const auto bad = test::run_cli({"bench", "render", "--modes", "lambert,phong"});
+    EXPECT_NE(bad.exit_code, 0);
+    EXPECT_NE(bad.output.find("phong"), std::string::npos) << bad.output;
+    const auto fidelity = test::run_cli({"fidelity", "--modes", "default,separabl"});
+    EXPECT_NE(fidelity.exit_code, 0);
+    EXPECT_NE(fidelity.output.find("'separabl' is not one of lambert, curvature, tm, default, filament"),
+              std::string::npos)
+        << fidelity.output;
+}
