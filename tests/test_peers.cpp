@@ -30,8 +30,9 @@ const PreparedMesh& unit_sphere()
     return m;
 }
 
-// A matte material whose medium has σ_tr = (1, 2, 4) per mesh unit: by the rule of docs/peers.md
-// subsurfaceColor = σ_min/σ_tr = (1, 1/2, 1/4) and thickness = min(t̄ · σ_min/2, 1) = min(t̄/2, 1).
+// A matte material of albedo (0.8, 0.6, 0.5) whose medium has σ_tr = (1, 2, 4) per mesh unit: by
+// the rule of docs/peers.md subsurfaceColor = (1 − k_d) σ_min/σ_tr = (0.2 · 1, 0.4 / 2, 0.5 / 4)
+// and thickness = min(t̄ · σ_min/2, 1) = min(t̄/2, 1).
 Material filament_material()
 {
     Material m = burley_material(glm::dvec3(0.1), glm::vec3(0.8f, 0.6f, 0.5f), "filament test");
@@ -39,7 +40,7 @@ Material filament_material()
     m.transmission.sigma_tr = glm::vec3(1.0f, 2.0f, 4.0f);
     return m;
 }
-constexpr double kSubsurfaceColor[3] = {1.0, 0.5, 0.25};
+constexpr double kSubsurfaceColor[3] = {0.2, 0.2, 0.125};
 constexpr double kPower = 12.234;  // Filament's default subsurfacePower
 
 // Filament's per-light sum in float64 (the formula as published, written here on its own):
@@ -77,9 +78,10 @@ TEST(FilamentInputs, DerivedFromTheMediumByTheDocumentedRule)
     EXPECT_FLOAT_EQ(f.power, float(kPower));
     // The ramp 1 − t/L with L = 1/thickness_per_unit carries ∫ e^{−σ_min t} dt = 1/σ_min.
     EXPECT_NEAR(0.5 / f.thickness_per_unit, 1.0 / 1.0, 1e-12);
-    // No medium: Filament's defaults (white; the renderer then uses the constant thickness 0.5).
-    const FilamentSubsurface none = filament_subsurface(burley_material(glm::dvec3(0.1), glm::vec3(1.0f), "plain"));
-    EXPECT_EQ(none.color, glm::vec3(1.0f));
+    // No medium: 1 − k_d, grey (the renderer then uses Filament's default thickness 0.5).
+    const FilamentSubsurface none =
+        filament_subsurface(burley_material(glm::dvec3(0.1), glm::vec3(0.75f, 0.5f, 0.25f), "plain"));
+    EXPECT_EQ(none.color, glm::vec3(0.25f, 0.5f, 0.75f));
     EXPECT_EQ(none.thickness_per_unit, 0.0f);
 }
 

@@ -54,11 +54,14 @@ enum class ShadingMode : uint32_t {
 ///   thickness_per_unit = σ_min / 2, σ_min the smallest positive σ_tr,c: Filament's BTDF falls
 ///   as (1 − thickness), and a ramp 1 − t/L carries the same total ∫ dt as the diffusion's
 ///   transmittance e^{−σ_min t} for L = 2/σ_min;
-/// - subsurfaceColor_c = σ_min / σ_tr,c (1 where σ_tr,c = 0): matched the same way per channel,
-///   ∫ color_c (1 − t/L) dt = ∫ e^{−σ_tr,c t} dt, so the most penetrating channel is 1;
+/// - subsurfaceColor_c = (1 − k_d,c) · σ_min / σ_tr,c (σ_min/σ_tr,c = 1 where σ_tr,c = 0): the
+///   share of the light that the surface does not reflect diffusely (k_d = Material::albedo, the
+///   medium's diffuse albedo), the only light there is to cross the part (Filament adds its BTDF
+///   to the BRDF, so without it a slab would return more than it receives), with the colour of
+///   the ramp matched per channel, ∫ (σ_min/σ_tr,c)(1 − t/L) dt = ∫ e^{−σ_tr,c t} dt;
 /// - subsurfacePower = 12.234, Filament's default (nothing in a medium sets a lobe's width).
-/// A material without σ_tr (not made from a medium) gets Filament's defaults: white, and
-/// thickness_per_unit 0, which the renderer reads as the constant thickness 0.5.
+/// A material without σ_tr (not made from a medium) gets 1 − k_d and thickness_per_unit 0, which
+/// the renderer reads as Filament's default constant thickness 0.5.
 struct FilamentSubsurface {
     glm::vec3 color{1.0f};
     float power = 12.234f;

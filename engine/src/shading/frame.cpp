@@ -94,8 +94,11 @@ FilamentSubsurface filament_subsurface(const Material& m)
     float smallest = 0.0f;
     for (int c = 0; c < 3; ++c)
         if (std::isfinite(s[c]) && s[c] > 0.0f && (smallest == 0.0f || s[c] < smallest)) smallest = s[c];
+    for (int c = 0; c < 3; ++c) {
+        const float transmitted = std::clamp(1.0f - m.albedo[c], 0.0f, 1.0f);
+        f.color[c] = transmitted * (smallest > 0.0f && s[c] > 0.0f ? smallest / s[c] : 1.0f);
+    }
     if (smallest == 0.0f) return f;
-    for (int c = 0; c < 3; ++c) f.color[c] = s[c] > 0.0f ? smallest / s[c] : 1.0f;
     f.thickness_per_unit = 0.5f * smallest;
     return f;
 }
