@@ -21,7 +21,7 @@ layout(location = 0) in vec3 in_position;
 layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec3 in_tm;
 layout(location = 3) in float in_curvature;
-layout(location = 4) in float in_thickness;
+layout(location = 4) in float in_thickness;  // mesh units; the Filament mode: its thickness in [0, 1] (mesh.vert)
 layout(location = 5) in float in_lobe[kMaxTransmitters];
 layout(location = 9) in vec3 in_scattering_normal;
 layout(location = 10) in vec3 in_normal_spread;
@@ -126,7 +126,6 @@ void main()
     Translucency tr;
     if (MODE == kTm) tr = translucency_setup(CHANNELS == 1 ? in_variance.rrr : in_variance);
     float kappa_scaled = max(in_curvature, 0.0) * data.params.y;  // concave: treated as flat
-    float thickness = MODE == kFilament ? filament_thickness(in_thickness) : 0.0;
 
     vec3 color = vec3(0.0);
     for (uint k = 0; k < frame.light_count; ++k) {
@@ -136,7 +135,7 @@ void main()
         // The mesh's shadow (shadow.glsl) dims this light's diffuse and specular light alike.
         uint tile = uint(data.lights[k].color.w);
         // Filament's BTDF is not shadowed (filament.glsl): it takes the light before the shadow.
-        if (MODE == kFilament) color += filament_subsurface(n, v, l, thickness) * e;
+        if (MODE == kFilament) color += filament_subsurface(n, v, l, in_thickness) * e;
         if (SHADOWS == 1u && tile != 0u) e *= shadow_visibility(tile, in_position, n, l);
         vec3 diffuse = albedo * (1.0 / JADE_PI) * diffuse_response(c_diffuse, tr, kappa_scaled) * e;
         if (boundary) diffuse *= boundary_transmittance(c_diffuse) * exit_transmittance;

@@ -132,7 +132,7 @@ void closer_than_the_filament_peer_in_every_light_class()
     }
     EXPECT_LT(ours["front"], 0.40 * filament["front"]) << "measured 0.172 against 0.536";
     EXPECT_LT(ours["side"], 0.75 * filament["side"]) << "measured 0.273 against 0.405";
-    EXPECT_LT(ours["back"], 0.75 * filament["back"]) << "measured 0.378 against 0.566";
+    EXPECT_LT(ours["back"], 0.75 * filament["back"]) << "measured 0.378 against 0.565";
     EXPECT_EQ(wins["front"], 13);
     EXPECT_EQ(wins["side"], 13);
     EXPECT_GE(wins["back"], 12) << "measured 13; the nearest, camel_wax_back: 0.457 against 0.461";

@@ -17,12 +17,16 @@
 #ifndef JADE_FILAMENT_GLSL
 #define JADE_FILAMENT_GLSL
 
-// Filament's `thickness` at a fragment with baked thickness t̄ (mesh units): a constant when
-// FrameData::subsurface_thickness.y ≥ 0, else t̄ · x clamped to [0, 1].
+// Filament's `thickness` at a vertex with baked thickness t̄ (mesh units): a constant when
+// FrameData::subsurface_thickness.y ≥ 0, else t̄ · x clamped to [0, 1]. Evaluated per vertex
+// (mesh.vert) and interpolated, as a thickness map would be: interpolating t̄ itself overflowed
+// for values near FLT_MAX at MSAA samples outside the triangle and lit such a part as the
+// thinnest. A NaN counts as thick.
 float filament_thickness(float baked)
 {
     vec4 m = data.subsurface_thickness;
-    return m.y >= 0.0 ? m.y : clamp(baked * m.x, 0.0, 1.0);
+    float t = baked * m.x;
+    return m.y >= 0.0 ? m.y : t < 1.0 ? max(t, 0.0) : 1.0;
 }
 
 // The BTDF above, per unit irradiance: what Filament adds for light l (unit, towards the light)
