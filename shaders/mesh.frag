@@ -10,8 +10,9 @@
 #include "translucency.glsl"
 #include "transmission.glsl"
 #include "shadow.glsl"
+#include "filament.glsl"
 
-layout(constant_id = 0) const uint MODE = 2;      // kLambert, kCurvature, kTm, kFalseColor (shading.glsl), kInputs + k
+layout(constant_id = 0) const uint MODE = 2;      // kLambert, kCurvature, kTm, kFalseColor, kFilament (shading.glsl), kInputs + k
 layout(constant_id = 1) const uint CHANNELS = 3;  // 1: grey material, one evaluation per light
 
 layout(binding = 2) uniform sampler2D curvature_lut;  // RGBA32F, D_c(cos θ, κ) per channel
@@ -20,7 +21,7 @@ layout(location = 0) in vec3 in_position;
 layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec3 in_tm;
 layout(location = 3) in float in_curvature;
-layout(location = 4) in float in_thickness;
+layout(location = 4) in float in_thickness;  // mesh units; the Filament mode: its thickness in [0, 1] (mesh.vert)
 layout(location = 5) in float in_lobe[kMaxTransmitters];
 layout(location = 9) in vec3 in_scattering_normal;
 layout(location = 10) in vec3 in_normal_spread;
@@ -133,6 +134,8 @@ void main()
         float c = dot(n, l), c_diffuse = dot(n_diffuse, l);
         // The mesh's shadow (shadow.glsl) dims this light's diffuse and specular light alike.
         uint tile = uint(data.lights[k].color.w);
+        // Filament's BTDF is not shadowed (filament.glsl): it takes the light before the shadow.
+        if (MODE == kFilament) color += filament_subsurface(n, v, l, in_thickness) * e;
         if (SHADOWS == 1u && tile != 0u) e *= shadow_visibility(tile, in_position, n, l);
         vec3 diffuse = albedo * (1.0 / JADE_PI) * diffuse_response(c_diffuse, tr, kappa_scaled) * e;
         if (boundary) diffuse *= boundary_transmittance(c_diffuse) * exit_transmittance;

@@ -6,6 +6,7 @@
 // per vertex instead of once per fragment.
 #include "shading.glsl"
 #include "transmission.glsl"
+#include "filament.glsl"
 
 layout(constant_id = 0) const uint MODE = 2;  // as mesh.frag; kInputs and above: the inputs pass
 
@@ -21,7 +22,7 @@ layout(location = 0) out vec3 out_position;
 layout(location = 1) out vec3 out_normal;
 layout(location = 2) out vec3 out_tm;
 layout(location = 3) out float out_curvature;
-layout(location = 4) out float out_thickness;
+layout(location = 4) out float out_thickness;  // mesh units; the Filament mode: its thickness in [0, 1]
 // Per transmitting light: its forward lobe (transmitter_lobe).
 layout(location = 5) out float out_lobe[kMaxTransmitters];
 layout(location = 9) out vec3 out_scattering_normal;
@@ -36,7 +37,8 @@ void main()
     out_normal = in_normal;
     out_tm = in_tm;
     out_curvature = in_curvature;
-    out_thickness = in_thickness;
+    // The Filament mode reads its own thickness in [0, 1] here (filament.glsl).
+    out_thickness = MODE == kFilament ? filament_thickness(in_thickness) : in_thickness;
     out_scattering_normal = in_scattering_normal;
     out_normal_spread = in_normal_spread;
     out_variance = MODE == kTm ? variance(in_tm, in_normal_spread) : vec3(0.0);

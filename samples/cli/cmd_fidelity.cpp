@@ -7,11 +7,13 @@
 #include <jade/io.hpp>
 #include <jade/render.hpp>
 
+#include "fidelity_modes.hpp"
 #include "flip.hpp"
 #include "report.hpp"
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -143,51 +145,6 @@ struct BakedMesh {
     BakeResult bake;
 };
 
-struct Mode {
-    const char* name;
-    ShadingMode mode;
-    bool transmission;
-};
-constexpr Mode kModes[] = {{"lambert", ShadingMode::Lambert, false},
-                           {"curvature", ShadingMode::Curvature, false},
-                           {"tm", ShadingMode::Tm, false},
-                           {"default", ShadingMode::Tm, true}};
-
-std::string fidelity_markdown(const json& rows, const std::string& device)
-{
-    std::ostringstream md;
-    char line[512];
-    md << "| scene | set | lambert | curvature | tm (poster) | **default** | GPU ms lambert / default | thin region, "
-          "path tracer | thin region, default |\n|---|---|---|---|---|---|---|---|---|\n";
-    std::map<std::string, std::array<double, 5>> mean;  // light → 4 modes, count
-    for (const json& r : rows) {
-        auto f = [&](const char* m) { return r[m]["flip_masked"].get<double>(); };
-        auto rgb = [&](const json& v) {
-            char b[64];
-            std::snprintf(b, sizeof b, "%.3f %.3f %.3f", v[0].get<double>(), v[1].get<double>(), v[2].get<double>());
-            return std::string(b);
-        };
-        const bool back = r["light"] == "back";
-        std::snprintf(line, sizeof line, "| %s | %s | %.3f | %.3f | %.3f | **%.3f** | %.0f / %.0f | %s | %s |\n",
-                      r["scene"].get<std::string>().c_str(), r["set"].get<std::string>().c_str(), f("lambert"),
-                      f("curvature"), f("tm"), f("default"), r["lambert"]["gpu_ms"].get<double>(),
-                      r["default"]["gpu_ms"].get<double>(), back ? rgb(r["thin_reference"]).c_str() : "",
-                      back ? rgb(r["default"]["thin"]).c_str() : "");
-        md << line;
-        auto& m = mean[r["light"].get<std::string>()];
-        m[0] += f("lambert"), m[1] += f("curvature"), m[2] += f("tm"), m[3] += f("default"), m[4] += 1;
-    }
-    md << "\nMean masked LDR FLIP per light (lower is closer to the path tracer):\n\n"
-          "| light | lambert | curvature | tm (poster) | **default** |\n|---|---|---|---|---|\n";
-    for (const auto& [light, m] : mean) {
-        std::snprintf(line, sizeof line, "| %s | %.3f | %.3f | %.3f | **%.3f** |\n", light.c_str(), m[0] / m[4],
-                      m[1] / m[4], m[2] / m[4], m[3] / m[4]);
-        md << line;
-    }
-    md << "\nDevice: " << device << " (256x256, 4x MSAA, GPU time of one frame per mode).\n";
-    return md.str();
-}
-
 }  // namespace
 
 int cmd_fidelity(int argc, char** argv)
@@ -202,7 +159,11 @@ int cmd_fidelity(int argc, char** argv)
         o.push_back(
             {"set", "S", "train | validation | regimes (held out: physical media, point lights) | all (default all)"});
         o.push_back({"scene", "TEXT", "only scenes whose name contains TEXT"});
-        o.push_back({"no-shadows", "", "the lights are not shadowed by the mesh (default: shadowed)"});
+        o.push_back({"no-shadows", "", "the lights are not shadowed by the mesh (default: shadowed); = --shadows off"});
+        o.push_back({"shadows", "S", "on | off | both: score each mode with and without shadows (default on)"});
+        o.push_back({"modes", "LIST",
+                     "comma-separated modes to score (default all: lambert, curvature, tm, default, "
+                     "filament, filament-flat)"});
         o.push_back({"fit", "FILE", "JSON of MediumFit values instead of the built-in defaults"});
         o.push_back({"json", "FILE", "write every number as JSON"});
         o.push_back({"markdown", "FILE", "write the tables as Markdown (docs/fidelity.md's)"});
@@ -215,12 +176,12 @@ int cmd_fidelity(int argc, char** argv)
         }(),
         argc, argv, 2);
     if (args.flag("help")) {
-        std::printf("jade fidelity [options]\n\nRenders every committed path-traced reference scene with lambert, "
-                    "curvature, tm\n"
-                    "(the poster's model) and the default (tm with transmission), all with the albedo derived\n"
-                    "from the scene's medium, and prints LDR FLIP against the reference, whole and inside\n"
-                    "the object, the thin region's mean linear radiance, and the GPU time per mode.\n\n%s",
-                    args.help().c_str());
+        std::printf("jade fidelity [options]\n\nRenders every committed path-traced reference scene in each mode, all "
+                    "with the albedo\nderived from the scene's medium, and prints LDR FLIP against the reference, "
+                    "whole and inside\nthe object, the thin region's mean linear radiance, and the GPU time per mode. "
+                    "Modes:\n");
+        for (const Mode& m : kModes) std::printf("  %-14s %s\n", m.name, m.what);
+        std::printf("\n%s", args.help().c_str());
         return 0;
     }
     const std::filesystem::path dir = args.get_or("references", "tools/groundtruth/references");
@@ -230,6 +191,8 @@ int cmd_fidelity(int argc, char** argv)
     if (set != "train" && set != "validation" && set != "regimes" && set != "all")
         args.fail("--set: '" + set + "' is not train, validation, regimes or all");
     const MediumFit fit = fit_from_args(args);
+    const std::vector<const Mode*> modes = modes_from_args(args);
+    const std::vector<bool> shadows = shadow_states(args);
     BakeSettings bake_settings = bake_settings_from_args(args);
     const auto components = args.get("components"), images = args.get("images");
     if (components) check_output_folder("components", *components);
@@ -258,8 +221,11 @@ int cmd_fidelity(int argc, char** argv)
     Renderer renderer(*ctx);
     std::map<std::string, BakedMesh> baked;  // key: mesh + medium
     json out = json::array();
-    std::printf("%-26s %8s %8s %8s %8s   thin region mean (ref | default)\n", "scene (LDR FLIP, masked)", "lambert",
-                "curvature", "tm", "default");
+    std::printf("%-26s", "scene (LDR FLIP, masked)");
+    for (const Mode* m : modes)
+        for (bool s : shadows)
+            std::printf(" %*s", int(std::max<size_t>(8, column(*m, s).size())), column(*m, s).c_str());
+    std::printf("   thin region mean (ref | default)\n");
     for (const auto& path : records) {
         const json peek = read_json(path);
         if (!peek.contains("scene") || !peek.contains("set")) continue;
@@ -292,7 +258,6 @@ int cmd_fidelity(int argc, char** argv)
         RenderSettings rs;
         rs.width = uint32_t(ref.image.width), rs.height = uint32_t(ref.image.height);
         rs.float32 = true;
-        rs.shadows = !args.flag("no-shadows");
         json row = {{"scene", ref.name},
                     {"set", ref.set},
                     {"mesh", ref.mesh},
@@ -307,34 +272,41 @@ int cmd_fidelity(int argc, char** argv)
         std::printf("%-26s", ref.name.c_str());
         renderer.set_material(material);
         glm::dvec3 thin_default(0.0);
-        for (const Mode& mode : kModes) {
-            rs.mode = mode.mode;
-            rs.transmission = mode.transmission;
-            // The poster's model alone: no boundary transmittance either.
-            Material as_drawn = material;
-            as_drawn.boundary_transmittance = mode.transmission;
-            if (!mode.transmission) as_drawn.spread_strength = 0.0f, as_drawn.strength = kPosterStrength;
-            renderer.set_material(as_drawn);
-            RenderedImage img = renderer.render(camera, lights, rs);
-            const flip::Image test = flip::from_linear(img.width, img.height, img.rgba.data(), 4);
-            const double whole = flip::ldr_flip(ref.srgb, test),
-                         masked = flip::ldr_flip(ref.srgb, test, flip::pixels_per_degree(), &ref.mask);
-            const glm::dvec3 thin = region_mean(img.rgba, ref.thin);
-            row[mode.name] = {
-                {"flip", whole}, {"flip_masked", masked}, {"gpu_ms", img.gpu_ms}, {"thin", {thin.x, thin.y, thin.z}}};
-            if (!ref.away.empty()) {
-                const glm::dvec3 away = region_mean(img.rgba, ref.away);
-                row[mode.name]["away"] = {away.x, away.y, away.z};
+        for (const Mode* mode_of_column : modes)
+            for (const bool shadowed : shadows) {
+                const Mode& mode = *mode_of_column;
+                const std::string name = column(mode, shadowed);
+                rs.mode = mode.mode;
+                rs.transmission = mode.transmission;
+                rs.shadows = shadowed;
+                rs.filament_thickness = mode.filament_thickness;
+                // The poster's model alone: no boundary transmittance either.
+                Material as_drawn = material;
+                as_drawn.boundary_transmittance = mode.transmission;
+                if (!mode.transmission) as_drawn.spread_strength = 0.0f, as_drawn.strength = kPosterStrength;
+                renderer.set_material(as_drawn);
+                RenderedImage img = renderer.render(camera, lights, rs);
+                const flip::Image test = flip::from_linear(img.width, img.height, img.rgba.data(), 4);
+                const double whole = flip::ldr_flip(ref.srgb, test),
+                             masked = flip::ldr_flip(ref.srgb, test, flip::pixels_per_degree(), &ref.mask);
+                const glm::dvec3 thin = region_mean(img.rgba, ref.thin);
+                row[name] = {{"flip", whole},
+                             {"flip_masked", masked},
+                             {"gpu_ms", img.gpu_ms},
+                             {"thin", {thin.x, thin.y, thin.z}}};
+                if (!ref.away.empty()) {
+                    const glm::dvec3 away = region_mean(img.rgba, ref.away);
+                    row[name]["away"] = {away.x, away.y, away.z};
+                }
+                if (name == "default") thin_default = thin;
+                if (images)
+                    save_image(std::filesystem::path(*images) / (ref.name + "__" + name_for_file(name) + ".png"),
+                               int(img.width), int(img.height), img.rgba);
+                std::printf(" %*.4f", int(std::max<size_t>(8, name.size())), masked);
             }
-            if (std::string(mode.name) == "default") thin_default = thin;
-            if (images)
-                save_image(std::filesystem::path(*images) / (ref.name + "__" + mode.name + ".png"), int(img.width),
-                           int(img.height), img.rgba);
-            std::printf(" %8.4f", masked);
-        }
         std::printf("   %.3f %.3f %.3f | %.3f %.3f %.3f", ref_thin.x, ref_thin.y, ref_thin.z, thin_default.x,
                     thin_default.y, thin_default.z);
-        if (row.contains("away_reference")) {
+        if (row.contains("away_reference") && row.contains("default")) {
             const json &a = row["away_reference"], &d = row["default"]["away"];
             std::printf("   away %.4f %.4f %.4f | %.4f %.4f %.4f", a[0].get<double>(), a[1].get<double>(),
                         a[2].get<double>(), d[0].get<double>(), d[1].get<double>(), d[2].get<double>());
@@ -393,7 +365,8 @@ int cmd_fidelity(int argc, char** argv)
         save_image(folder / (ref.name + "__inputs_normal_path.exr"), int(in.width), int(in.height), normal_path);
     }
     if (out.empty()) throw Error("--references " + dir.string() + ": no reference scene matched");
-    if (auto path = args.get("markdown")) write_file_atomically(*path, fidelity_markdown(out, ctx->device_info().name));
+    if (auto path = args.get("markdown"))
+        write_file_atomically(*path, fidelity_markdown(out, modes, shadows, ctx->device_info().name));
     if (auto path = args.get("json")) {
         const json doc = {{"fit",
                            {{"albedo_scale", fit.albedo_scale},

@@ -26,7 +26,7 @@ const char* kUsage = "usage: jade-view [MESH] [options]      (also: jade view [M
                      "  --frames N           render N frames, then exit (default: until the window is closed)\n"
                      "  --screenshot FILE    write the last presented frame (.png sRGB 8 bit, .exr) - needs --frames\n"
                      "  --no-ui              hide the ImGui panel\n"
-                     "  --mode M             lambert | curvature | tm | tm-false-color (default tm)\n"
+                     "  --mode M             lambert | curvature | tm | tm-false-color | filament (default tm)\n"
                      "  --material NAME      a preset of jade::material_preset_names() (default jade)\n"
                      "  --strength X         shading strength, rad^2 per unit t_m (default: the preset's)\n"
                      "  --quality Q          bake quality draft | default | high (default default)\n"
@@ -91,8 +91,8 @@ samples::viewer::Options parse(int argc, char** argv)
         else if (a == "--no-ui")
             o.ui = false;
         else if (a == "--mode")
-            o.state.mode = jade::ShadingMode(
-                index_of(a, value(), std::vector<std::string>{"lambert", "curvature", "tm", "tm-false-color"}));
+            o.state.mode = jade::ShadingMode(index_of(
+                a, value(), std::vector<std::string>{"lambert", "curvature", "tm", "tm-false-color", "filament"}));
         else if (a == "--material")
             o.state.material = index_of(a, value(), jade::material_preset_names());
         else if (a == "--strength") {

@@ -192,7 +192,7 @@ bool Ui::build(ViewState& s, const PanelInfo& info)
         static const std::vector<std::string> materials = jade::material_preset_names();
         changed |= combo("material", &s.material, materials);
         changed |= ImGui::SliderFloat("strength", &s.strength, 0.0f, 20.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
-        static const std::vector<std::string> modes = {"lambert", "curvature", "tm", "tm-false-color"};
+        static const std::vector<std::string> modes = {"lambert", "curvature", "tm", "tm-false-color", "filament"};
         int mode = int(s.mode);
         if (combo("shading", &mode, modes)) {
             s.mode = jade::ShadingMode(mode);

@@ -66,6 +66,8 @@ struct FrameData {
     vec4 transmission_scatter;    // σ_s' (1/mesh unit), unused
     vec4 transmission_shape;      // lobe exponent n, (n + 1)/(2π), normal_mix, 1: diffuse × boundary transmittance
     vec4 light_depth_map;         // light-depth tile size (texels), tiles in the atlas, unused, unused
+    vec4 subsurface;              // Filament mode: subsurfaceColor (linear RGB), subsurfacePower (filament.glsl)
+    vec4 subsurface_thickness;    // Filament mode: thickness = min(t̄ · x, 1) (x in 1/mesh unit), or y when y ≥ 0; zw unused
     LightTile light_tiles[JADE_MAX_LIGHT_DEPTH_TILES];  // per tile of the atlas (GpuLight::color.w − 1)
     vec4 color_map[JADE_COLOR_MAP_STOPS];               // false-colour stops, linear RGB
     vec4
@@ -76,7 +78,7 @@ struct FrameData {
 
 #ifdef __cplusplus
 static_assert(sizeof(FramePush) == 80 && sizeof(GpuLight) == 32 && sizeof(LightTile) == 96);
-static_assert(sizeof(FrameData) == 10 * 16 + JADE_MAX_LIGHT_DEPTH_TILES * 96 + JADE_COLOR_MAP_STOPS * 16 + 16 +
+static_assert(sizeof(FrameData) == 12 * 16 + JADE_MAX_LIGHT_DEPTH_TILES * 96 + JADE_COLOR_MAP_STOPS * 16 + 16 +
                                        (JADE_MAX_TRANSMITTERS + JADE_MAX_LIGHTS) * 32,
               "FrameData must have no padding: scalar layout packs it so");
 }  // namespace jade::shading

@@ -3,6 +3,8 @@
 
   build/samples/cli/jade fidelity --images IMAGES
   tools/groundtruth/.venv/bin/python tools/groundtruth/contact_sheet.py IMAGES --out docs/fidelity_contact.png
+
+The peers' sheet (docs/peers.md): --columns reference,filament,filament-flat,default
 """
 import argparse
 import os
@@ -25,18 +27,20 @@ def main():
     ap.add_argument("--references", default=os.path.join(HERE, "references"))
     ap.add_argument("--out", required=True)
     ap.add_argument("--scenes", default=",".join(SCENES))
+    ap.add_argument("--columns", default=",".join(COLUMNS),
+                    help="reference, then jade fidelity's modes (the SCENE__MODE.png of IMAGES)")
     a = ap.parse_args()
     rows = []
     for scene in a.scenes.split(","):
         tiles = []
-        for col in COLUMNS:
+        for col in a.columns.split(","):
             path = os.path.join(a.references, scene + ".png") if col == "reference" else \
                 os.path.join(a.images, f"{scene}__{col}.png")
             tiles.append(gt_io.read_png(path)[:, :, :3])
         rows.append(np.concatenate(tiles, axis=1))
     sheet = np.concatenate(rows, axis=0)
     gt_io.write_png(a.out, sheet)
-    print(f"wrote {a.out}: rows {a.scenes}; columns {', '.join(COLUMNS)}")
+    print(f"wrote {a.out}: rows {a.scenes}; columns {a.columns}")
 
 
 if __name__ == "__main__":

@@ -6,7 +6,8 @@
 // exactly Lambert), plus a GGX specular lobe (Smith height-correlated visibility, Schlick
 // Fresnel with F0 from Material::ior, α = Material::roughness², weight Material::specular).
 // Modes: Lambert; Curvature (Kubo et al. 2010 / pre-integrated: F replaced by the curvature
-// LUT D(cos θ, 1/κ) of jade/lut.hpp, κ the vertex's mean curvature); Tm (ours); TmFalseColor.
+// LUT D(cos θ, 1/κ) of jade/lut.hpp, κ the vertex's mean curvature); Tm (ours); TmFalseColor;
+// Filament (google/filament's subsurface model, a peer to compare with: docs/peers.md).
 //
 // Units: positions, camera and point lights in mesh units (no normalisation anywhere);
 // directional light irradiance E and point light intensity I (E = I / d²) are linear RGB in
@@ -45,8 +46,30 @@ enum class ShadingMode : uint32_t {
     Curvature = 1,     ///< curvature-dependent reflectance (Kubo et al. 2010), needs no bake
     Tm = 2,            ///< translucency magnitude (Kubo, Tokoi, Mukaigawa 2015)
     TmFalseColor = 3,  ///< t_m (mean of the channels) as the viridis colour map, unlit
+    Filament = 4,      ///< Filament's subsurface shading model (a peer; docs/peers.md), fed Jade's baked thickness
 };
-/// "lambert", "curvature", "tm", "tm-false-color".
+/// What ShadingMode::Filament feeds Filament's subsurface model (shaders/include/filament.glsl),
+/// derived from the material's medium (Material::transmission.sigma_tr, docs/peers.md):
+/// - thickness = min(t̄ · thickness_per_unit, 1), t̄ the baked thickness (mesh units) and
+///   thickness_per_unit = σ_min / 2, σ_min the smallest positive σ_tr,c: Filament's BTDF falls
+///   as (1 − thickness), and a ramp 1 − t/L carries the same total ∫ dt as the diffusion's
+///   transmittance e^{−σ_min t} for L = 2/σ_min;
+/// - subsurfaceColor_c = (1 − k_d,c) · σ_min / σ_tr,c (σ_min/σ_tr,c = 1 where σ_tr,c = 0): the
+///   share of the light that the surface does not reflect diffusely (k_d = Material::albedo, the
+///   medium's diffuse albedo), the only light there is to cross the part (Filament adds its BTDF
+///   to the BRDF, so without it a slab would return more than it receives), with the colour of
+///   the ramp matched per channel, ∫ (σ_min/σ_tr,c)(1 − t/L) dt = ∫ e^{−σ_tr,c t} dt;
+/// - subsurfacePower = 12.234, Filament's default (nothing in a medium sets a lobe's width).
+/// A material without σ_tr (not made from a medium) gets 1 − k_d and thickness_per_unit 0, which
+/// the renderer reads as Filament's default constant thickness 0.5.
+struct FilamentSubsurface {
+    glm::vec3 color{1.0f};
+    float power = 12.234f;
+    float thickness_per_unit = 0.0f;  ///< 1/mesh unit
+};
+FilamentSubsurface filament_subsurface(const Material& material);
+
+/// "lambert", "curvature", "tm", "tm-false-color", "filament".
 std::string_view shading_mode_name(ShadingMode mode);
 /// The inverse of shading_mode_name; throws jade::Error listing the names.
 ShadingMode parse_shading_mode(std::string_view name);
@@ -144,6 +167,11 @@ struct RenderSettings {
     /// sphere cannot), the rest are unshadowed; the mesh shadows itself only (not other objects
     /// of a scene). false, or no light that can: the pipeline without shadows (no cost).
     bool shadows = true;
+    /// Filament: the `thickness` Filament's subsurface model reads, in [0, 1] (0 thin: the most
+    /// subsurface light; 1 thick: none). Negative (the default): Jade's baked per-vertex thickness
+    /// t̄ normalised as t̄ · σ_tr,min / 2, clamped to 1 (docs/peers.md), or Filament's default 0.5
+    /// where the mesh has no baked thickness. 0.5 stands for a material without a thickness map.
+    float filament_thickness = -1.0f;
 };
 
 /// The translucency LUT's parameterisation (texel i, j of a W × H R32_SFLOAT texture):
@@ -245,7 +273,7 @@ struct ShadingInputs {
 /// normal, normal spread: floats) and its per-draw constants with 64 lights, in bytes: for
 /// memory plans (jade/scene.hpp).
 inline constexpr uint64_t kRendererVertexBytes = 68;
-inline constexpr uint64_t kRendererFrameDataBytes = 2880;
+inline constexpr uint64_t kRendererFrameDataBytes = 2912;
 
 /// Draws one mesh with one material. Owns its GPU buffers, LUT images and pipelines (created
 /// lazily per mode, sample count and format). Threading and lifetime as in the header comment.

@@ -22,7 +22,11 @@ void check_settings(const gpu::Context& ctx, const RenderSettings& s, std::span<
     if (s.width == 0 || s.height == 0 || s.width > 16384 || s.height > 16384)
         throw Error("render settings: size " + std::to_string(s.width) + "x" + std::to_string(s.height) +
                     " is outside 1..16384");
-    if (uint32_t(s.mode) > 3) throw Error("render settings: unknown shading mode " + std::to_string(uint32_t(s.mode)));
+    if (uint32_t(s.mode) > uint32_t(ShadingMode::Filament))
+        throw Error("render settings: unknown shading mode " + std::to_string(uint32_t(s.mode)));
+    if (!(s.filament_thickness <= 1.0f))  // NaN too
+        throw Error("render settings: filament_thickness " + std::to_string(s.filament_thickness) +
+                    " is not in [0, 1] (or negative: the baked thickness)");
     if (lights.size() > kMaxLights)
         throw Error("render: " + std::to_string(lights.size()) + " lights, at most " + std::to_string(kMaxLights));
     for (size_t k = 0; k < lights.size(); ++k) {
@@ -78,6 +82,30 @@ FrameData material_constants(const Material& m)
                                      m.boundary_transmittance ? 1.0f : 0.0f);
     return d;
 }
+
+}  // namespace jade::shading
+
+namespace jade {
+
+FilamentSubsurface filament_subsurface(const Material& m)
+{
+    FilamentSubsurface f;
+    const glm::vec3 s = m.transmission.sigma_tr;
+    float smallest = 0.0f;
+    for (int c = 0; c < 3; ++c)
+        if (std::isfinite(s[c]) && s[c] > 0.0f && (smallest == 0.0f || s[c] < smallest)) smallest = s[c];
+    for (int c = 0; c < 3; ++c) {
+        const float transmitted = std::clamp(1.0f - m.albedo[c], 0.0f, 1.0f);
+        f.color[c] = transmitted * (smallest > 0.0f && s[c] > 0.0f ? smallest / s[c] : 1.0f);
+    }
+    if (smallest == 0.0f) return f;
+    f.thickness_per_unit = 0.5f * smallest;
+    return f;
+}
+
+}  // namespace jade
+
+namespace jade::shading {
 
 void check_target(const RenderTarget& t, const RenderSettings& s)
 {

@@ -153,7 +153,7 @@ struct Renderer::Impl {
     static bool shadowed(const RenderSettings& s, uint32_t mode)
     {
         return s.shadows && (mode == uint32_t(ShadingMode::Lambert) || mode == uint32_t(ShadingMode::Curvature) ||
-                             mode == uint32_t(ShadingMode::Tm));
+                             mode == uint32_t(ShadingMode::Tm) || mode == uint32_t(ShadingMode::Filament));
     }
 
     // The lights' depth tiles (shading/light_depth.hpp: directional lights, and point lights
@@ -250,6 +250,14 @@ struct Renderer::Impl {
                 if (const uint32_t tile = transmitting.tile[k]; tile != 0)
                     d.light_tiles[tile - 1].depth.w = shadow_spacing(lights[k], d.light_tiles[tile - 1], mode);
         }
+        // Filament's inputs: the baked thickness normalised by the medium, or a constant (the
+        // setting's, else Filament's default 0.5 where there is nothing to normalise).
+        const FilamentSubsurface filament = filament_subsurface(*material);
+        d.subsurface = glm::vec4(filament.color, filament.power);
+        const bool baked = s.filament_thickness < 0.0f && has_thickness && filament.thickness_per_unit > 0.0f;
+        d.subsurface_thickness = glm::vec4(filament.thickness_per_unit,
+                                           baked ? -1.0f : s.filament_thickness < 0.0f ? 0.5f : s.filament_thickness,
+                                           0.0f, 0.0f);
         for (int i = 0; i < 9; ++i) d.color_map[i] = glm::vec4(false_color(float(i) / 8.0f), 1.0f);
         d.transmission_table_map = transmission_table.shader_map();
         std::copy(transmitting.lights.begin(), transmitting.lights.end(), d.transmitters);
