@@ -35,7 +35,8 @@ OptionSpec light_path_option()
 
 std::vector<OptionSpec> render_options()
 {
-    return {{"mode", "M", "lambert | curvature | tm | tm-false-color (default tm)"},
+    return {{"mode", "M", "lambert | curvature | tm | tm-false-color | separable (default tm)"},
+            {"taps", "N", "separable: taps of each 1-D blur pass, 11 | 17 | 25 (default 17)"},
             {"out", "FILE", "output .png (sRGB, 8 bit) or .exr (linear half float); default render.png"},
             {"size", "WxH", "image size in pixels (default 512x512)"},
             {"eye", "X,Y,Z", "camera position, mesh units (default: framed, see --frame)"},
@@ -224,6 +225,8 @@ int cmd_render(int argc, char** argv)
     settings.exposure = float(args.number("exposure", 1.0, 0.0, 1e6));
     settings.samples = args.count("samples", 4, 1, 8);
     settings.shadows = !args.flag("no-shadows");
+    settings.separable_taps = args.count("taps", 17, 11, 25);
+    if (settings.separable_taps % 6 != 5) args.fail("--taps: 11, 17 or 25");
     const std::string out = args.get_or("out", "render.png");
     check_output_file(args, "out", out, {".png", ".exr"});
 

@@ -45,8 +45,12 @@ enum class ShadingMode : uint32_t {
     Curvature = 1,     ///< curvature-dependent reflectance (Kubo et al. 2010), needs no bake
     Tm = 2,            ///< translucency magnitude (Kubo, Tokoi, Mukaigawa 2015)
     TmFalseColor = 3,  ///< t_m (mean of the channels) as the viridis colour map, unlit
+    /// A peer: Jimenez et al. 2015's separable subsurface scattering, the Lambert diffuse light
+    /// (and SSSSTransmittance's) blurred on screen by two 1-D passes of a kernel fitted to the
+    /// material's profiles (jade/separable.hpp, docs/peers_separable.md); needs no bake.
+    Separable = 5,
 };
-/// "lambert", "curvature", "tm", "tm-false-color".
+/// "lambert", "curvature", "tm", "tm-false-color", "separable".
 std::string_view shading_mode_name(ShadingMode mode);
 /// The inverse of shading_mode_name; throws jade::Error listing the names.
 ShadingMode parse_shading_mode(std::string_view name);
@@ -83,7 +87,7 @@ struct Camera {
                           glm::vec3 up = {0.0f, 1.0f, 0.0f}, float fov_y_degrees = 30.0f);
 };
 
-/// A light for the Tm, Curvature and Lambert modes (at most 64 per draw).
+/// A light for the lit modes (at most 64 per draw).
 struct Light {
     enum class Type : uint32_t { Directional = 0, Point = 1 };
     Type type = Type::Directional;
@@ -144,6 +148,8 @@ struct RenderSettings {
     /// sphere cannot), the rest are unshadowed; the mesh shadows itself only (not other objects
     /// of a scene). false, or no light that can: the pipeline without shadows (no cost).
     bool shadows = true;
+    /// Separable: taps of each of the two 1-D passes, 11, 17 or 25 (jade/separable.hpp).
+    uint32_t separable_taps = 17;
 };
 
 /// The translucency LUT's parameterisation (texel i, j of a W × H R32_SFLOAT texture):

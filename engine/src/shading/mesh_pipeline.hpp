@@ -22,7 +22,7 @@ namespace jade::shading {
 
 inline constexpr uint32_t kMaxLights = JADE_MAX_LIGHTS;
 /// Mode constant of the inputs pass: kInputsMode + k writes the k-th vec4 of the inputs (shading.glsl).
-inline constexpr uint32_t kInputsMode = 4, kInputsSlots = 6;
+inline constexpr uint32_t kInputsMode = 8, kInputsSlots = 6;
 /// Lights drawn with transmission per draw: the first that may shine through (transmission.glsl).
 inline constexpr uint32_t kMaxTransmitters = JADE_MAX_TRANSMITTERS;
 

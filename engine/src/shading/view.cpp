@@ -14,7 +14,8 @@
 namespace jade {
 
 namespace {
-constexpr std::string_view kModeNames[] = {"lambert", "curvature", "tm", "tm-false-color"};
+// Indexed by ShadingMode; "" where no mode has that value.
+constexpr std::string_view kModeNames[] = {"lambert", "curvature", "tm", "tm-false-color", "", "separable"};
 constexpr std::string_view kToneMapNames[] = {"none", "reinhard", "aces"};
 
 // The camera's right, up and backward (towards the eye) unit vectors.
@@ -29,13 +30,20 @@ Frame camera_frame(const Camera& c)
 }
 }  // namespace
 
-std::string_view shading_mode_name(ShadingMode mode) { return kModeNames[uint32_t(mode)]; }
+std::string_view shading_mode_name(ShadingMode mode)
+{
+    return uint32_t(mode) < std::size(kModeNames) ? kModeNames[uint32_t(mode)] : "unknown";
+}
 
 ShadingMode parse_shading_mode(std::string_view name)
 {
-    for (uint32_t i = 0; i < 4; ++i)
+    std::string known;
+    for (uint32_t i = 0; i < std::size(kModeNames); ++i) {
+        if (kModeNames[i].empty()) continue;
         if (name == kModeNames[i]) return ShadingMode(i);
-    throw Error("shading mode '" + std::string(name) + "' is not one of lambert, curvature, tm, tm-false-color");
+        known += (known.empty() ? "" : ", ") + std::string(kModeNames[i]);
+    }
+    throw Error("shading mode '" + std::string(name) + "' is not one of " + known);
 }
 
 ToneMap parse_tone_map(std::string_view name)

@@ -1,0 +1,172 @@
+// shading/separable.cpp - see separable.hpp.
+#include "shading/separable.hpp"
+
+#include "gpu/context.hpp"
+#include "shading/frame.hpp"
+
+#include <jade/error.hpp>
+#include <jade/separable.hpp>
+
+#include "jade_shaders.hpp"
+
+#include <glm/mat4x4.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace jade::shading {
+
+SeparableData separable_data(const Material& material, uint32_t taps)
+{
+    const SeparableKernel k = separable_kernel(material, taps);
+    SeparableData d{};
+    // The taps of a shorter kernel first; the shader reads TAPS of them.
+    for (uint32_t i = 0; i < taps; ++i) d.taps[i] = glm::vec4(glm::vec3(k.weight[i]), float(k.offset[i]));
+    double reach = 0.0;
+    for (const ChannelProfile& p : material.profile) reach = std::max(reach, p.radius_for_tail(1e-4));
+    const double step = std::max(reach, 1e-30) / double(JADE_SEPARABLE_TRANSMITTANCE_STEPS - 1);
+    for (uint32_t i = 0; i < JADE_SEPARABLE_TRANSMITTANCE_STEPS; ++i)
+        for (int c = 0; c < 3; ++c)
+            d.transmittance[i][c] = float(separable_transmittance(material.profile[size_t(c)], double(i) * step));
+    d.params = glm::vec4(float(1.0 / step), float(k.range), 0.0f, 0.0f);
+    return d;
+}
+
+VkRect2D screen_bounds(const glm::mat4& view_proj, glm::vec3 lo, glm::vec3 hi, uint32_t width, uint32_t height)
+{
+    const VkRect2D whole{{0, 0}, {width, height}};
+    glm::vec2 a(1e30f), b(-1e30f);
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::vec3 p(corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z);
+        const glm::vec4 clip = view_proj * glm::vec4(p, 1.0f);
+        if (!(clip.w > 1e-6f)) return whole;  // behind the eye: the box's projection is unbounded
+        const glm::vec2 px = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(float(width), float(height));
+        a = glm::min(a, px), b = glm::max(b, px);
+    }
+    const float x0 = std::clamp(std::floor(a.x) - 1.0f, 0.0f, float(width)),
+                y0 = std::clamp(std::floor(a.y) - 1.0f, 0.0f, float(height));
+    const float x1 = std::clamp(std::ceil(b.x) + 1.0f, 0.0f, float(width)),
+                y1 = std::clamp(std::ceil(b.y) + 1.0f, 0.0f, float(height));
+    return {{int32_t(x0), int32_t(y0)}, {uint32_t(x1 - x0), uint32_t(y1 - y0)}};
+}
+
+SeparablePasses::SeparablePasses(gpu::Context& ctx)
+    : ctx_(ctx),
+      sampler_(gpu::make_sampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "separable sampler")),
+      data_(ctx, sizeof(SeparableData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+            "separable constants")
+{
+    const SeparableData zero{};
+    data_.upload(&zero, sizeof(zero));
+}
+
+void SeparablePasses::prepare(VkCommandBuffer cmd, const RenderSettings& s, const Material& material)
+{
+    if (!profiles_ || *profiles_ != material.profile || taps_ != s.separable_taps) {
+        constants_ = separable_data(material, s.separable_taps);  // throws for a bad tap count
+        profiles_ = material.profile, taps_ = s.separable_taps;
+    }
+    if (width_ != s.width || height_ != s.height || samples_ != s.samples) {
+        // Recorded draws may still read the old images.
+        if (irradiance_) ctx_.release_after_gpu(std::move(irradiance_msaa_), std::move(irradiance_), std::move(horizontal_));
+        constexpr VkImageUsageFlags kTarget = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+        irradiance_msaa_ = s.samples > 1 ? gpu::Image(ctx_, {"separable irradiance (multisampled)", s.width, s.height,
+                                                             kSeparableIrradianceFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT,
+                                                             VkSampleCountFlagBits(s.samples)})
+                                         : gpu::Image();
+        irradiance_ = gpu::Image(ctx_, {"separable irradiance", s.width, s.height, kSeparableIrradianceFormat, kTarget});
+        horizontal_ = gpu::Image(ctx_, {"separable horizontal pass", s.width, s.height, kSeparableIrradianceFormat, kTarget});
+        width_ = s.width, height_ = s.height, samples_ = s.samples;
+    }
+    // As the frame constants (renderer.cpp): after earlier draws' reads, visible to this one's.
+    constexpr VkPipelineStageFlags2 kShaders = VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+    gpu::memory_barrier(cmd, kShaders, 0, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    vkCmdUpdateBuffer(cmd, data_.handle(), 0, sizeof(SeparableData), &constants_);
+    gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, kShaders,
+                        VK_ACCESS_2_UNIFORM_READ_BIT);
+    if (irradiance_msaa_) irradiance_msaa_.transition(cmd, gpu::use::kColorAttachment, true);
+    irradiance_.transition(cmd, gpu::use::kColorAttachment, true);
+}
+
+VkRenderingAttachmentInfo SeparablePasses::irradiance_attachment() const
+{
+    VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    a.imageView = irradiance_msaa_ ? irradiance_msaa_.view() : irradiance_.view();
+    a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;  // alpha 0: no surface, the blur passes skip the pixel
+    a.storeOp = irradiance_msaa_ ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
+    a.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
+    if (irradiance_msaa_) {
+        a.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
+        a.resolveImageView = irradiance_.view();
+        a.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    }
+    return a;
+}
+
+const gpu::GraphicsPipeline& SeparablePasses::blur_pipeline(uint32_t taps, bool vertical, VkFormat format)
+{
+    auto [it, inserted] = pipelines_.try_emplace(uint64_t(taps) | uint64_t(vertical) << 8 | uint64_t(format) << 16);
+    if (!inserted) return it->second;
+    try {
+        gpu::GraphicsPipelineDesc d;
+        d.name = vertical ? "separable vertical pass" : "separable horizontal pass";
+        d.vertex_spirv = shaders::fullscreen_vert();
+        d.fragment_spirv = shaders::separable_blur_frag();
+        d.color_formats = {format};
+        d.depth_format = VK_FORMAT_UNDEFINED;
+        d.samples = VK_SAMPLE_COUNT_1_BIT;
+        d.cull = VK_CULL_MODE_NONE;
+        d.blend = vertical ? gpu::Blend::AddColor : gpu::Blend::None;  // the vertical pass adds the diffuse light
+        d.bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
+        d.push_size = sizeof(SeparablePush);
+        d.constants = {taps, vertical ? 1u : 0u};  // constant_id 0, 1 of separable_blur.frag
+        it->second = gpu::GraphicsPipeline(ctx_, d);
+    } catch (...) {
+        pipelines_.erase(it);
+        throw;
+    }
+    return it->second;
+}
+
+void SeparablePasses::record_blur(VkCommandBuffer cmd, const RenderTarget& t, const RenderSettings& s,
+                                  VkFormat color_format, float focal, VkRect2D area)
+{
+    // The follow-surface scale: a tap whose depth differs from the centre's by the kernel's
+    // range or more is replaced by the centre (Jimenez's lerp towards the centre colour).
+    const float range = std::max(constants_.params.y, 1e-30f);
+    const SeparablePush push{glm::vec4(1.0f / float(s.width), 1.0f / float(s.height), focal, 1.0f / range)};
+    const VkExtent2D extent{s.width, s.height};
+    auto pass = [&](const gpu::Image& source, VkImageView target, bool vertical, VkFormat format) {
+        VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        a.imageView = target;
+        a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        a.loadOp = vertical ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;  // horizontal: alpha 0 outside
+        a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        if (!vertical) a.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
+        VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+        ri.renderArea = {{0, 0}, extent};
+        ri.layerCount = 1;
+        ri.colorAttachmentCount = 1;
+        ri.pColorAttachments = &a;
+        vkCmdBeginRendering(cmd, &ri);
+        blur_pipeline(s.separable_taps, vertical, format)
+            .bind(cmd, extent, push,
+                  {data_, gpu::Binding::image(source.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler_)});
+        vkCmdSetScissor(cmd, 0, 1, &area);  // only the mesh's pixels pay
+        vkCmdDraw(cmd, 3, 1, 0, 0);
+        vkCmdEndRendering(cmd);
+    };
+    irradiance_.transition(cmd, gpu::use::kSampled);
+    horizontal_.transition(cmd, gpu::use::kColorAttachment, true);
+    pass(irradiance_, horizontal_.view(), false, kSeparableIrradianceFormat);
+    horizontal_.transition(cmd, gpu::use::kSampled);
+    // The mesh pass's resolve (or single-sample colour) write, before this pass adds to it.
+    const VkImageView final_view = t.resolve ? t.resolve : t.color;
+    gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                        VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                        VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+    pass(horizontal_, final_view, true, color_format);
+}
+
+}  // namespace jade::shading
