@@ -207,6 +207,7 @@ int cmd_fidelity(int argc, char** argv)
         o.push_back({"json", "FILE", "write every number as JSON"});
         o.push_back({"markdown", "FILE", "write the tables as Markdown (docs/fidelity.md's)"});
         o.push_back({"images", "DIR", "also save each scene's image per mode as SCENE__MODE.png"});
+        o.push_back({"peer", "MODE", "also score this mode (e.g. separable), a column after default"});
         o.push_back({"components", "DIR", "also write each scene's separate terms as EXR (for fit.py)"});
         o.push_back(
             {"strengths", "LIST", "with --components: strengths of the diffuse terms (default 0.25,0.5,0.8,1.2,2)"});
@@ -253,13 +254,22 @@ int cmd_fidelity(int argc, char** argv)
     }
     std::sort(records.begin(), records.end());
 
+    std::vector<Mode> modes(std::begin(kModes), std::end(kModes));
+    const std::string peer = args.get_or("peer", "");
+    if (!peer.empty()) {
+        try {
+            modes.push_back({peer.c_str(), parse_shading_mode(peer), true});  // the material as derived
+        } catch (const Error& e) {
+            args.fail(std::string("--peer: ") + e.what());
+        }
+    }
     auto ctx = make_context(args);
     Baker baker(*ctx);
     Renderer renderer(*ctx);
     std::map<std::string, BakedMesh> baked;  // key: mesh + medium
     json out = json::array();
-    std::printf("%-26s %8s %8s %8s %8s   thin region mean (ref | default)\n", "scene (LDR FLIP, masked)", "lambert",
-                "curvature", "tm", "default");
+    std::printf("%-26s %8s %8s %8s %8s %8s   thin region mean (ref | default)\n", "scene (LDR FLIP, masked)",
+                "lambert", "curvature", "tm", "default", peer.c_str());
     for (const auto& path : records) {
         const json peek = read_json(path);
         if (!peek.contains("scene") || !peek.contains("set")) continue;
@@ -307,7 +317,7 @@ int cmd_fidelity(int argc, char** argv)
         std::printf("%-26s", ref.name.c_str());
         renderer.set_material(material);
         glm::dvec3 thin_default(0.0);
-        for (const Mode& mode : kModes) {
+        for (const Mode& mode : modes) {
             rs.mode = mode.mode;
             rs.transmission = mode.transmission;
             // The poster's model alone: no boundary transmittance either.

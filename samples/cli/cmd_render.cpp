@@ -327,7 +327,8 @@ int cmd_bench_render(int argc, char** argv)
          "default (front key + fill) | figure1 (back light, front key, "
          "fill) | back (front key + back light): with a back light tm "
          "draws the transmission term too"},
-        {"sizes", "N,N", "square image sizes (default 512,1024)"},
+        {"sizes", "N,N", "image sizes, N (square) or WxH (default 512,1024)"},
+        {"mode", "M", "the mode timed against lambert (default tm; e.g. separable)"},
         {"no-shadows", "", "both modes without shadows"},
         {"shadow-cost", "MODE", "instead of lambert against tm: MODE without shadows against MODE with them"},
         eval_option(),
@@ -340,20 +341,30 @@ int cmd_bench_render(int argc, char** argv)
     if (print_help(args, usage)) return 0;
     const uint32_t repeat = args.count("repeat", 30, 1, 10000);
     const uint32_t samples = args.count("samples", 4, 1, 8);
-    std::vector<uint32_t> sizes;
+    std::vector<std::pair<uint32_t, uint32_t>> sizes;  // width, height
     {
         std::stringstream list(args.get_or("sizes", "512,1024"));
         for (std::string word; std::getline(list, word, ',');) {
-            char* end = nullptr;
-            const long n = std::strtol(word.c_str(), &end, 10);
-            if (word.empty() || *end != '\0' || n < 1 || n > 16384)
-                args.fail("--sizes: '" + word + "' is not a size in 1..16384");
-            sizes.push_back(uint32_t(n));
+            const size_t x = word.find('x');
+            long n[2] = {0, 0};
+            for (int k = 0; k < (x == std::string::npos ? 1 : 2); ++k) {
+                const std::string part = k == 0 ? word.substr(0, x) : word.substr(x + 1);
+                char* end = nullptr;
+                n[k] = std::strtol(part.c_str(), &end, 10);
+                if (part.empty() || *end != '\0' || n[k] < 1 || n[k] > 16384)
+                    args.fail("--sizes: '" + word + "' is not N or WxH in 1..16384");
+            }
+            sizes.push_back({uint32_t(n[0]), uint32_t(x == std::string::npos ? n[0] : n[1])});
         }
     }
     // The two configurations timed against each other: (mode, shadows).
     std::pair<ShadingMode, bool> config[2] = {{ShadingMode::Lambert, !args.flag("no-shadows")},
                                               {ShadingMode::Tm, !args.flag("no-shadows")}};
+    try {
+        config[1].first = parse_shading_mode(args.get_or("mode", "tm"));
+    } catch (const Error& e) {
+        args.fail(std::string("--mode: ") + e.what());
+    }
     if (const auto mode = args.get("shadow-cost")) {
         try {
             config[0] = {parse_shading_mode(*mode), false}, config[1] = {parse_shading_mode(*mode), true};
@@ -391,9 +402,9 @@ int cmd_bench_render(int argc, char** argv)
         std::sort(v.begin(), v.end());
         return v[size_t(std::lround(q * double(v.size() - 1)))];
     };
-    for (uint32_t size : sizes) {
+    for (const auto& [width, height] : sizes) {
         RenderSettings s;
-        s.width = s.height = size;
+        s.width = width, s.height = height;
         s.samples = samples;
         std::vector<double> gpu[2], wall[2], cpu[2], gpu_ratio, wall_ratio, cpu_ratio;
         for (int warm = 0; warm < 2; ++warm)  // pipelines, targets, caches
@@ -413,17 +424,17 @@ int cmd_bench_render(int argc, char** argv)
             cpu_ratio.push_back(cpu[1].back() / cpu[0].back());
         }
         for (int k = 0; k < 2; ++k)
-            std::printf("%4ux%-5u %-8s %12s %12s %12s %12s\n", size, size, names[k].c_str(),
+            std::printf("%4ux%-5u %-8s %12s %12s %12s %12s\n", width, height, names[k].c_str(),
                         format_ms(quantile(gpu[k], 0.5)).c_str(), format_ms(quantile(gpu[k], 0.0)).c_str(),
                         format_ms(quantile(wall[k], 0.5)).c_str(), format_ms(quantile(wall[k], 0.0)).c_str());
         std::printf("%4ux%-5u %s / %s: GPU %.3fx (median of %u pairs; quartiles %.3f-%.3f; ratio of mins %.3fx), "
                     "wall %.3fx (quartiles %.3f-%.3f)\n",
-                    size, size, names[1].c_str(), names[0].c_str(), quantile(gpu_ratio, 0.5), repeat,
+                    width, height, names[1].c_str(), names[0].c_str(), quantile(gpu_ratio, 0.5), repeat,
                     quantile(gpu_ratio, 0.25), quantile(gpu_ratio, 0.75), quantile(gpu[1], 0.0) / quantile(gpu[0], 0.0),
                     quantile(wall_ratio, 0.5), quantile(wall_ratio, 0.25), quantile(wall_ratio, 0.75));
         std::printf("%4ux%-5u %s / %s: CPU time of this process (lavapipe's threads) %.3fx (quartiles %.3f-%.3f; "
                     "%s %s, %s %s median)\n",
-                    size, size, names[1].c_str(), names[0].c_str(), quantile(cpu_ratio, 0.5), quantile(cpu_ratio, 0.25),
+                    width, height, names[1].c_str(), names[0].c_str(), quantile(cpu_ratio, 0.5), quantile(cpu_ratio, 0.25),
                     quantile(cpu_ratio, 0.75), names[0].c_str(), format_ms(quantile(cpu[0], 0.5)).c_str(),
                     names[1].c_str(), format_ms(quantile(cpu[1], 0.5)).c_str());
     }

@@ -28,7 +28,6 @@
 #include "jade_shaders.hpp"
 
 #include <glm/geometric.hpp>
-#include <glm/trigonometric.hpp>
 
 #include <algorithm>
 #include <array>
@@ -87,7 +86,7 @@ struct Renderer::Impl {
     TmEvaluation evaluation;
     shading::MeshPipelines pipelines;
     shading::TransmissionTable transmission_table;  // of the material's Transmission
-    shading::SeparablePasses separable_passes;           // the Separable mode's targets, kernel and blur passes
+    shading::SeparablePasses separable_passes;      // the Separable mode's targets, kernel and blur passes
 
     shading::OffscreenTarget targets;  // render()'s own, kept while the size and format stay the same
     std::optional<gpu::GpuTimer> timer;
@@ -202,8 +201,7 @@ struct Renderer::Impl {
                 out.tiles = out.tiles || out.tile[k] != 0;
             }
         const bool tiled = std::any_of(out.tile.begin(), out.tile.end(), [](uint32_t t) { return t != 0; });
-        out.shadows = shadows && tiled;
-        out.atlas = out.tiles || out.shadows || (separable && tiled);
+        out.shadows = shadows && tiled, out.atlas = out.tiles || out.shadows || (separable && tiled);
         return out;
     }
 
@@ -272,11 +270,7 @@ struct Renderer::Impl {
     {
         check_ready(s, lights);
         shading::check_target(t, s);
-        if (mode == uint32_t(ShadingMode::Separable) && material->opaque) mode = uint32_t(ShadingMode::Lambert);
         const bool separable = mode == uint32_t(ShadingMode::Separable);
-        if (separable && t.keep && t.resolve)
-            throw Error("render target: the separable mode adds its blurred light to the resolved image only; keep "
-                        "with a multisampled target would lose it");
         const FramePush push = shading::frame_push(cam, bbox_min, bbox_max, s.width, s.height, uint32_t(lights.size()));
         const gpu::Image& curvature = s.mode == ShadingMode::Curvature ? curvature_image()
                                       : curvature_lut                  ? curvature_lut->image()
@@ -297,9 +291,7 @@ struct Renderer::Impl {
         gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, shaders,
                             VK_ACCESS_2_UNIFORM_READ_BIT);
 
-        if (separable) separable_passes.prepare(cmd, s, *material);
-        const VkRenderingAttachmentInfo irradiance = separable ? separable_passes.irradiance_attachment()
-                                                               : VkRenderingAttachmentInfo{};
+        const auto irradiance = separable ? separable_passes.prepare(cmd, t, s, *material) : VkRenderingAttachmentInfo{};
         shading::begin_rendering(cmd, t, s, separable ? &irradiance : nullptr);
         pipe.bind(cmd, {s.width, s.height}, push,
                   {frame_data, lut->quads(),
@@ -313,11 +305,7 @@ struct Renderer::Impl {
         vkCmdBindIndexBuffer(cmd, indices.handle(), 0, VK_INDEX_TYPE_UINT32);
         vkCmdDrawIndexed(cmd, index_count, 1, 0, 0, 0);
         vkCmdEndRendering(cmd);
-        if (separable) {
-            const float focal = 0.5f * float(s.height) / std::tan(0.5f * glm::radians(cam.fov_y_degrees));
-            separable_passes.record_blur(cmd, t, s, color_format(s), focal,
-                                  shading::screen_bounds(push.view_proj, bbox_min, bbox_max, s.width, s.height));
-        }
+        if (separable) separable_passes.record_blur(cmd, t, s, color_format(s), cam, push.view_proj, bbox_min, bbox_max);
     }
 
     RenderedImage render(const Camera& cam, std::span<const Light> lights, const RenderSettings& s, uint32_t mode)

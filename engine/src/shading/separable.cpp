@@ -10,6 +10,7 @@
 #include "jade_shaders.hpp"
 
 #include <glm/mat4x4.hpp>
+#include <glm/trigonometric.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -60,8 +61,12 @@ SeparablePasses::SeparablePasses(gpu::Context& ctx)
     data_.upload(&zero, sizeof(zero));
 }
 
-void SeparablePasses::prepare(VkCommandBuffer cmd, const RenderSettings& s, const Material& material)
+VkRenderingAttachmentInfo SeparablePasses::prepare(VkCommandBuffer cmd, const RenderTarget& t, const RenderSettings& s,
+                                                   const Material& material)
 {
+    if (t.keep && t.resolve)
+        throw Error("render target: the separable mode adds its blurred light to the resolved image only; keep with "
+                    "a multisampled target would lose it");
     if (!profiles_ || *profiles_ != material.profile || taps_ != s.separable_taps) {
         constants_ = separable_data(material, s.separable_taps);  // throws for a bad tap count
         profiles_ = material.profile, taps_ = s.separable_taps;
@@ -86,6 +91,7 @@ void SeparablePasses::prepare(VkCommandBuffer cmd, const RenderSettings& s, cons
                         VK_ACCESS_2_UNIFORM_READ_BIT);
     if (irradiance_msaa_) irradiance_msaa_.transition(cmd, gpu::use::kColorAttachment, true);
     irradiance_.transition(cmd, gpu::use::kColorAttachment, true);
+    return irradiance_attachment();
 }
 
 VkRenderingAttachmentInfo SeparablePasses::irradiance_attachment() const
@@ -130,8 +136,11 @@ const gpu::GraphicsPipeline& SeparablePasses::blur_pipeline(uint32_t taps, bool 
 }
 
 void SeparablePasses::record_blur(VkCommandBuffer cmd, const RenderTarget& t, const RenderSettings& s,
-                                  VkFormat color_format, float focal, VkRect2D area)
+                                  VkFormat color_format, const Camera& camera, const glm::mat4& view_proj,
+                                  glm::vec3 lo, glm::vec3 hi)
 {
+    const float focal = 0.5f * float(s.height) / std::tan(0.5f * glm::radians(camera.fov_y_degrees));
+    const VkRect2D area = screen_bounds(view_proj, lo, hi, s.width, s.height);
     // The follow-surface scale: a tap whose depth differs from the centre's by the kernel's
     // range or more is replaced by the centre (Jimenez's lerp towards the centre colour).
     const float range = std::max(constants_.params.y, 1e-30f);

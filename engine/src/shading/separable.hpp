@@ -52,16 +52,19 @@ public:
     /// Before the mesh pass of a separable draw, outside rendering: the targets for this size and
     /// sample count, the constants for this material and tap count (vkCmdUpdateBuffer, guarded
     /// like the frame constants), the irradiance target made a colour attachment (discarded).
-    /// Throws jade::Error for a tap count other than 11, 17, 25.
-    void prepare(VkCommandBuffer cmd, const RenderSettings& s, const Material& material);
-    /// The irradiance target as the mesh pass's second colour attachment (cleared to 0).
-    VkRenderingAttachmentInfo irradiance_attachment() const;
+    /// Returns that target as the mesh pass's second colour attachment (cleared to 0). Throws
+    /// jade::Error for a tap count other than 11, 17, 25, and for a multisampled target that is
+    /// kept for more draws (RenderTarget::keep: its multisampled colour would lack the blurred
+    /// light, which goes to the resolve only).
+    VkRenderingAttachmentInfo prepare(VkCommandBuffer cmd, const RenderTarget& t, const RenderSettings& s,
+                                      const Material& material);
     /// After the mesh pass: the two blur passes, the second added into `t`'s single-sample image,
-    /// both within `area` (pixels). focal: pixels per mesh unit at linear depth 1.
+    /// both within the screen bounds of the mesh's box [lo, hi] (view_proj: the draw's).
     void record_blur(VkCommandBuffer cmd, const RenderTarget& t, const RenderSettings& s, VkFormat color_format,
-                     float focal, VkRect2D area);
+                     const Camera& camera, const glm::mat4& view_proj, glm::vec3 lo, glm::vec3 hi);
 
 private:
+    VkRenderingAttachmentInfo irradiance_attachment() const;
     const gpu::GraphicsPipeline& blur_pipeline(uint32_t taps, bool vertical, VkFormat format);
 
     gpu::Context& ctx_;
