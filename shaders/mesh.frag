@@ -105,7 +105,8 @@ vec3 separable_transmittance(uint tile, vec3 n, vec3 l)
     float size = data.light_depth_map.x;
     ivec2 at = clamp(ivec2(q.xy * size), ivec2(0), ivec2(int(size) - 1));
     float first = texelFetch(light_depth_atlas, ivec2(int(t) * int(size), 0) + at, 0).x;
-    float x = max(q.z - first, 0.0) * depth.y * sep.params.x;  // d in steps of the table
+    // d (mesh units) → the table's index: d = reach · (x / (STEPS − 1))².
+    float x = sqrt(max(q.z - first, 0.0) * depth.y * sep.params.x) * float(JADE_SEPARABLE_TRANSMITTANCE_STEPS - 1);
     uint i = min(uint(x), uint(JADE_SEPARABLE_TRANSMITTANCE_STEPS) - 2u);
     vec3 profile = mix(sep.transmittance[i].rgb, sep.transmittance[i + 1u].rgb, clamp(x - float(i), 0.0, 1.0));
     return profile * clamp(0.3 + dot(l, -n), 0.0, 1.0);

@@ -15,7 +15,7 @@
 #define JADE_MAX_LIGHT_DEPTH_TILES 4  // lights with a depth tile (shading/light_depth.hpp)
 #define JADE_COLOR_MAP_STOPS 9        // false-colour stops
 #define JADE_SEPARABLE_MAX_TAPS 25    // taps of one 1-D pass of the separable mode (11, 17 or 25)
-#define JADE_SEPARABLE_TRANSMITTANCE_STEPS 64  // entries of its transmittance profile
+#define JADE_SEPARABLE_TRANSMITTANCE_STEPS 128  // entries of its transmittance profile
 
 #ifdef __cplusplus
 #include <glm/mat4x4.hpp>
@@ -81,8 +81,10 @@ struct FrameData {
 // to every mesh pipeline (binding 6: mesh.frag reads the transmittance) and to the blur passes.
 struct SeparableData {
     vec4 taps[JADE_SEPARABLE_MAX_TAPS];  // rgb: weight per channel (each channel sums to 1); w: offset, mesh units
-    vec4 transmittance[JADE_SEPARABLE_TRANSMITTANCE_STEPS];  // rgb: 1 − cdf(d_i) per channel, d_i = i / params.x
-    vec4 params;  // x: 1 / the table's step (1/mesh units); y: the kernel's range (mesh units); z, w: unused
+    // rgb: 1 − cdf(d_i) per channel at d_i = reach · (i / (STEPS − 1))², denser near 0 where the
+    // narrow channels fall fastest
+    vec4 transmittance[JADE_SEPARABLE_TRANSMITTANCE_STEPS];
+    vec4 params;  // x: 1 / the table's reach (1/mesh units); y: the kernel's range (mesh units); z, w: unused
 };
 
 // The push constants of the separable blur passes (separable_blur.frag).

@@ -25,11 +25,13 @@ SeparableData separable_data(const Material& material, uint32_t taps)
     for (uint32_t i = 0; i < taps; ++i) d.taps[i] = glm::vec4(glm::vec3(k.weight[i]), float(k.offset[i]));
     double reach = 0.0;
     for (const ChannelProfile& p : material.profile) reach = std::max(reach, p.radius_for_tail(1e-4));
-    const double step = std::max(reach, 1e-30) / double(JADE_SEPARABLE_TRANSMITTANCE_STEPS - 1);
-    for (uint32_t i = 0; i < JADE_SEPARABLE_TRANSMITTANCE_STEPS; ++i)
+    reach = std::max(reach, 1e-30);
+    for (uint32_t i = 0; i < JADE_SEPARABLE_TRANSMITTANCE_STEPS; ++i) {
+        const double u = double(i) / double(JADE_SEPARABLE_TRANSMITTANCE_STEPS - 1);
         for (int c = 0; c < 3; ++c)
-            d.transmittance[i][c] = float(separable_transmittance(material.profile[size_t(c)], double(i) * step));
-    d.params = glm::vec4(float(1.0 / step), float(k.range), 0.0f, 0.0f);
+            d.transmittance[i][c] = float(separable_transmittance(material.profile[size_t(c)], reach * u * u));
+    }
+    d.params = glm::vec4(float(1.0 / reach), float(k.range), 0.0f, 0.0f);
     return d;
 }
 

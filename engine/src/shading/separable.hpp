@@ -39,7 +39,8 @@ namespace jade::shading {
 inline constexpr VkFormat kSeparableIrradianceFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
 /// The kernel for `taps` and the transmittance table of the material, as the shaders read them.
-/// The table spans d ∈ [0, the widest channel's radius_for_tail(1e-4)] in equal steps.
+/// The table spans d ∈ [0, reach], reach the widest channel's radius_for_tail(1e-4), at
+/// d_i = reach · (i / (STEPS − 1))² (the narrowest channel's steep start needs the dense steps).
 SeparableData separable_data(const Material& material, uint32_t taps);
 
 class SeparablePasses {
