@@ -268,8 +268,10 @@ int cmd_fidelity(int argc, char** argv)
     Renderer renderer(*ctx);
     std::map<std::string, BakedMesh> baked;  // key: mesh + medium
     json out = json::array();
-    std::printf("%-26s %8s %8s %8s %8s %8s   thin region mean (ref | default)\n", "scene (LDR FLIP, masked)",
-                "lambert", "curvature", "tm", "default", peer.c_str());
+    char peer_column[64] = "";
+    if (!peer.empty()) std::snprintf(peer_column, sizeof peer_column, " %8s", peer.c_str());
+    std::printf("%-26s %8s %8s %8s %8s%s   thin region mean (ref | default)\n", "scene (LDR FLIP, masked)", "lambert",
+                "curvature", "tm", "default", peer_column);
     for (const auto& path : records) {
         const json peek = read_json(path);
         if (!peek.contains("scene") || !peek.contains("set")) continue;

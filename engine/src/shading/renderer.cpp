@@ -298,7 +298,7 @@ struct Renderer::Impl {
                    gpu::Binding::image(curvature.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler),
                    gpu::Binding::image(light_depth_image.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, nearest),
                    gpu::Binding::image(lut->filtered().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler),
-                   transmission_table.texels(), separable_passes.data()});
+                   transmission_table.texels(), separable_passes.data_or(frame_data)});
         VkBuffer vb = vertices.handle();
         VkDeviceSize offset = 0;
         vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);

@@ -53,22 +53,17 @@ VkRect2D screen_bounds(const glm::mat4& view_proj, glm::vec3 lo, glm::vec3 hi, u
     return {{int32_t(x0), int32_t(y0)}, {uint32_t(x1 - x0), uint32_t(y1 - y0)}};
 }
 
-SeparablePasses::SeparablePasses(gpu::Context& ctx)
-    : ctx_(ctx),
-      sampler_(gpu::make_sampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "separable sampler")),
-      data_(ctx, sizeof(SeparableData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-            "separable constants")
-{
-    const SeparableData zero{};
-    data_.upload(&zero, sizeof(zero));
-}
-
 VkRenderingAttachmentInfo SeparablePasses::prepare(VkCommandBuffer cmd, const RenderTarget& t, const RenderSettings& s,
                                                    const Material& material)
 {
     if (t.keep && t.resolve)
         throw Error("render target: the separable mode adds its blurred light to the resolved image only; keep with "
                     "a multisampled target would lose it");
+    if (!data_) {  // the first separable draw
+        data_ = gpu::Buffer(ctx_, sizeof(SeparableData),
+                            VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, "separable constants");
+        sampler_ = gpu::make_sampler(ctx_, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "separable sampler");
+    }
     if (!profiles_ || *profiles_ != material.profile || taps_ != s.separable_taps) {
         constants_ = separable_data(material, s.separable_taps);  // throws for a bad tap count
         profiles_ = material.profile, taps_ = s.separable_taps;

@@ -35,6 +35,8 @@ class Context;
 
 namespace jade::shading {
 
+static_assert(sizeof(SeparableData) <= sizeof(FrameData), "the frame constants stand in for SeparableData");
+
 /// The irradiance target's format: alpha holds the linear depth, at full precision.
 inline constexpr VkFormat kSeparableIrradianceFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
@@ -45,10 +47,13 @@ SeparableData separable_data(const Material& material, uint32_t taps);
 
 class SeparablePasses {
 public:
-    explicit SeparablePasses(gpu::Context& ctx);
+    /// Makes nothing: a renderer that never draws the separable mode pays nothing for it.
+    explicit SeparablePasses(gpu::Context& ctx) : ctx_(ctx) {}
 
-    /// The constants every mesh pipeline binds at binding 6 (zero until the first separable draw).
-    const gpu::Buffer& data() const { return data_; }
+    /// What every mesh pipeline binds at binding 6: the constants, once a separable draw made
+    /// them; before that `stand_in`, any uniform buffer of at least sizeof(SeparableData) bytes
+    /// (the renderer's frame constants), which only the separable mode would read.
+    const gpu::Buffer& data_or(const gpu::Buffer& stand_in) const { return data_ ? data_ : stand_in; }
 
     /// Before the mesh pass of a separable draw, outside rendering: the targets for this size and
     /// sample count, the constants for this material and tap count (vkCmdUpdateBuffer, guarded
