@@ -11,7 +11,7 @@
 #include "transmission.glsl"
 #include "shadow.glsl"
 
-layout(constant_id = 0) const uint MODE = 2;      // kLambert, kCurvature, kTm, kFalseColor, kSeparable (shading.glsl), kInputs + k
+layout(constant_id = 0) const uint MODE = 2;  // kLambert, kCurvature, kTm, kFalseColor, kSeparable, kBurley, kInputs + k
 layout(constant_id = 1) const uint CHANNELS = 3;  // 1: grey material, one evaluation per light
 
 layout(binding = 2) uniform sampler2D curvature_lut;  // RGBA32F, D_c(cos θ, κ) per channel
@@ -28,8 +28,8 @@ layout(location = 11) in vec3 in_variance;
 layout(location = 12) in float in_path[kMaxTransmitters];
 
 layout(location = 0) out vec4 out_color;
-// kSeparable (shading/separable.hpp): the diffuse light, blurred after this pass, in a target of
-// its own with the linear depth in alpha; out_color keeps the specular light.
+// kSeparable, kBurley (shading/separable.hpp): the diffuse light, blurred after this pass, in a
+// target of its own with the linear depth in alpha; out_color keeps the specular light.
 layout(location = 1) out vec4 out_irradiance;
 layout(binding = 6, scalar) uniform SeparableBlock { SeparableData sep; };
 
@@ -94,7 +94,8 @@ vec4 shading_input(uint k)
 // object, from the light's first surface (layer 0 of its depth tile, the shadow map) to this
 // point moved in along the normal (by a texel of the tile, the reference's "shrinked" position),
 // run through T(d) = 1 − cdf(d) per channel (jade/separable.hpp), times the reference's
-// saturate(0.3 + N·(−L)).
+// saturate(0.3 + N·(−L)). kBurley: HDRP's thick mode, the same T(d) (for a Burley profile it is
+// HDRP's ¼(e^{−d/s} + 3e^{−d/3s})) lit by max(N·(−L), 0).
 vec3 separable_transmittance(uint tile, vec3 n, vec3 l)
 {
     uint t = tile - 1u;
@@ -109,7 +110,7 @@ vec3 separable_transmittance(uint tile, vec3 n, vec3 l)
     float x = sqrt(max(q.z - first, 0.0) * depth.y * sep.params.x) * float(JADE_SEPARABLE_TRANSMITTANCE_STEPS - 1);
     uint i = min(uint(x), uint(JADE_SEPARABLE_TRANSMITTANCE_STEPS) - 2u);
     vec3 profile = mix(sep.transmittance[i].rgb, sep.transmittance[i + 1u].rgb, clamp(x - float(i), 0.0, 1.0));
-    return profile * clamp(0.3 + dot(l, -n), 0.0, 1.0);
+    return profile * clamp((MODE == kBurley ? 0.0 : 0.3) + dot(l, -n), 0.0, 1.0);
 }
 
 // Towards light `light` from this fragment, unit, and its irradiance here.
@@ -161,13 +162,13 @@ void main()
         uint tile = uint(data.lights[k].color.w);
         // Jimenez's transmittance: k_d/π as the diffuse term's (the reference's albedo · light),
         // not shadowed (it is the light that crossed the occluder).
-        if (MODE == kSeparable && tile != 0u)
+        if ((MODE == kSeparable || MODE == kBurley) && tile != 0u)
             irradiance += albedo * (1.0 / JADE_PI) * separable_transmittance(tile, n, l) * e;
         // The mesh's shadow (shadow.glsl) dims this light's diffuse and specular light alike.
         if (SHADOWS == 1u && tile != 0u) e *= shadow_visibility(tile, in_position, n, l);
         vec3 diffuse = albedo * (1.0 / JADE_PI) * diffuse_response(c_diffuse, tr, kappa_scaled) * e;
         if (boundary) diffuse *= boundary_transmittance(c_diffuse) * exit_transmittance;
-        if (MODE == kSeparable)
+        if (MODE == kSeparable || MODE == kBurley)
             irradiance += diffuse;  // k_d before the blur (pre-scatter), Lambert's irradiance
         else
             color += diffuse;
@@ -180,5 +181,5 @@ void main()
             color += exit_transmittance * transmitted_light(k, in_position, n, in_lobe[k], path_at(k), in_thickness);
     out_color = vec4(color, 1.0);
     // Linear depth: clip w is the distance along the view axis (perspective), 1 / gl_FragCoord.w.
-    if (MODE == kSeparable) out_irradiance = vec4(irradiance, 1.0 / gl_FragCoord.w);
+    if (MODE == kSeparable || MODE == kBurley) out_irradiance = vec4(irradiance, 1.0 / gl_FragCoord.w);
 }

@@ -35,8 +35,9 @@ OptionSpec light_path_option()
 
 std::vector<OptionSpec> render_options()
 {
-    return {{"mode", "M", "lambert | curvature | tm | tm-false-color | separable (default tm)"},
+    return {{"mode", "M", "lambert | curvature | tm | tm-false-color | separable | burley (default tm)"},
             {"taps", "N", "separable: taps of each 1-D blur pass, 11 | 17 | 25 (default 17)"},
+            {"burley-samples", "N", "burley: samples per pixel, 1..80 (default 40)"},
             {"out", "FILE", "output .png (sRGB, 8 bit) or .exr (linear half float); default render.png"},
             {"size", "WxH", "image size in pixels (default 512x512)"},
             {"eye", "X,Y,Z", "camera position, mesh units (default: framed, see --frame)"},
@@ -226,6 +227,7 @@ int cmd_render(int argc, char** argv)
     settings.samples = args.count("samples", 4, 1, 8);
     settings.shadows = !args.flag("no-shadows");
     settings.separable_taps = args.count("taps", 17, 11, 25);
+    settings.burley_samples = args.count("burley-samples", 40, 1, 80);
     if (settings.separable_taps != 11 && settings.separable_taps != 17 && settings.separable_taps != 25)
         args.fail("--taps: 11, 17 or 25");
     const std::string out = args.get_or("out", "render.png");
@@ -331,6 +333,7 @@ int cmd_bench_render(int argc, char** argv)
         {"sizes", "N,N", "image sizes, N (square) or WxH (default 512,1024)"},
         {"mode", "M", "the mode timed against lambert (default tm; e.g. separable)"},
         {"taps", "N", "separable: taps of each 1-D blur pass, 11 | 17 | 25 (default 17)"},
+        {"burley-samples", "N", "burley: samples per pixel, 1..80 (default 40)"},
         {"no-shadows", "", "both modes without shadows"},
         {"shadow-cost", "MODE", "instead of lambert against tm: MODE without shadows against MODE with them"},
         eval_option(),
@@ -409,6 +412,7 @@ int cmd_bench_render(int argc, char** argv)
     for (const auto& [width, height] : sizes) {
         RenderSettings s;
         s.width = width, s.height = height, s.separable_taps = taps;
+        s.burley_samples = args.count("burley-samples", 40, 1, 80);
         s.samples = samples;
         std::vector<double> gpu[2], wall[2], cpu[2], gpu_ratio, wall_ratio, cpu_ratio;
         for (int warm = 0; warm < 2; ++warm)  // pipelines, targets, caches

@@ -16,6 +16,7 @@
 #define JADE_COLOR_MAP_STOPS 9        // false-colour stops
 #define JADE_SEPARABLE_MAX_TAPS 25    // taps of one 1-D pass of the separable mode (11, 17 or 25)
 #define JADE_SEPARABLE_TRANSMITTANCE_STEPS 128  // entries of its transmittance profile
+#define JADE_BURLEY_MAX_SAMPLES 80    // samples a pixel of the Burley mode (HDRP's high)
 
 #ifdef __cplusplus
 #include <glm/mat4x4.hpp>
@@ -85,6 +86,10 @@ struct SeparableData {
     // narrow channels fall fastest
     vec4 transmittance[JADE_SEPARABLE_TRANSMITTANCE_STEPS];
     vec4 params;  // x: 1 / the table's reach (1/mesh units); y: the kernel's range (mesh units); z, w: unused
+    // The Burley mode (jade/burley_diffusion.hpp): rgb the Burley shape d per channel, w the shape
+    // sampled (the widest channel's), mesh units; sample i's radius at [i / 4][i % 4], mesh units.
+    vec4 burley;
+    vec4 burley_radius[JADE_BURLEY_MAX_SAMPLES / 4];
 };
 
 // The push constants of the separable blur passes (separable_blur.frag).
@@ -95,7 +100,8 @@ struct SeparablePush {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(SeparableData) == (JADE_SEPARABLE_MAX_TAPS + JADE_SEPARABLE_TRANSMITTANCE_STEPS + 1) * 16);
+static_assert(sizeof(SeparableData) ==
+              (JADE_SEPARABLE_MAX_TAPS + JADE_SEPARABLE_TRANSMITTANCE_STEPS + 2 + JADE_BURLEY_MAX_SAMPLES / 4) * 16);
 static_assert(sizeof(FramePush) == 80 && sizeof(GpuLight) == 32 && sizeof(LightTile) == 96);
 static_assert(sizeof(FrameData) == 10 * 16 + JADE_MAX_LIGHT_DEPTH_TILES * 96 + JADE_COLOR_MAP_STOPS * 16 + 16 +
                                        (JADE_MAX_TRANSMITTERS + JADE_MAX_LIGHTS) * 32,

@@ -49,8 +49,11 @@ enum class ShadingMode : uint32_t {
     /// (and SSSSTransmittance's) blurred on screen by two 1-D passes of a kernel fitted to the
     /// material's profiles (jade/separable.hpp, docs/peers_separable.md); needs no bake.
     Separable = 5,
+    /// A peer: screen-space Burley diffusion as Unity HDRP does it (Golubev 2018): the same
+    /// irradiance target, one pass of importance-sampled taps (jade/burley_diffusion.hpp).
+    Burley = 6,
 };
-/// "lambert", "curvature", "tm", "tm-false-color", "separable".
+/// "lambert", "curvature", "tm", "tm-false-color", "separable", "burley".
 std::string_view shading_mode_name(ShadingMode mode);
 /// The inverse of shading_mode_name; throws jade::Error listing the names.
 ShadingMode parse_shading_mode(std::string_view name);
@@ -150,6 +153,8 @@ struct RenderSettings {
     bool shadows = true;
     /// Separable: taps of each of the two 1-D passes, 11, 17 or 25 (jade/separable.hpp).
     uint32_t separable_taps = 17;
+    /// Burley: samples per pixel, 1 … 80 (HDRP's low, medium, high: 20, 40, 80).
+    uint32_t burley_samples = 40;
 };
 
 /// The translucency LUT's parameterisation (texel i, j of a W × H R32_SFLOAT texture):

@@ -22,11 +22,13 @@ void check_settings(const gpu::Context& ctx, const RenderSettings& s, std::span<
     if (s.width == 0 || s.height == 0 || s.width > 16384 || s.height > 16384)
         throw Error("render settings: size " + std::to_string(s.width) + "x" + std::to_string(s.height) +
                     " is outside 1..16384");
-    if (uint32_t(s.mode) > 3 && s.mode != ShadingMode::Separable)
+    if (uint32_t(s.mode) > 3 && s.mode != ShadingMode::Separable && s.mode != ShadingMode::Burley)
         throw Error("render settings: unknown shading mode " + std::to_string(uint32_t(s.mode)));
     if (s.mode == ShadingMode::Separable && s.separable_taps != 11 && s.separable_taps != 17 && s.separable_taps != 25)
         throw Error("render settings: separable_taps must be 11, 17 or 25 (got " + std::to_string(s.separable_taps) +
                     ")");
+    if (s.mode == ShadingMode::Burley && (s.burley_samples < 1 || s.burley_samples > JADE_BURLEY_MAX_SAMPLES))
+        throw Error("render settings: burley_samples must be in 1..80 (got " + std::to_string(s.burley_samples) + ")");
     if (lights.size() > kMaxLights)
         throw Error("render: " + std::to_string(lights.size()) + " lights, at most " + std::to_string(kMaxLights));
     for (size_t k = 0; k < lights.size(); ++k) {

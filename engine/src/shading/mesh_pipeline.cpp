@@ -113,7 +113,8 @@ const gpu::GraphicsPipeline& MeshPipelines::get(const MeshVariant& v, VkFormat f
         d.vertex_spirv = shaders::mesh_vert();
         d.fragment_spirv = shaders::mesh_frag();
         d.color_formats = {format};
-        if (v.mode == uint32_t(ShadingMode::Separable)) d.color_formats.push_back(kSeparableIrradianceFormat);
+        if (v.mode == uint32_t(ShadingMode::Separable) || v.mode == uint32_t(ShadingMode::Burley))
+            d.color_formats.push_back(kSeparableIrradianceFormat);
         d.depth_format = VK_FORMAT_D32_SFLOAT;
         d.samples = VkSampleCountFlagBits(samples);
         d.vertex_stride = sizeof(Vertex);

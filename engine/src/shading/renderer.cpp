@@ -155,8 +155,7 @@ struct Renderer::Impl {
     // Whether this draw shadows its lights: the lit modes (not the false colour, not the inputs pass).
     static bool shadowed(const RenderSettings& s, uint32_t mode)
     {
-        return s.shadows && (mode == uint32_t(ShadingMode::Lambert) || mode == uint32_t(ShadingMode::Curvature) ||
-                             mode == uint32_t(ShadingMode::Tm) || mode == uint32_t(ShadingMode::Separable));
+        return s.shadows && mode != uint32_t(ShadingMode::TmFalseColor) && mode < shading::kInputsMode;
     }
 
     // The lights' depth tiles (shading/light_depth.hpp: directional lights, and point lights
@@ -178,7 +177,8 @@ struct Renderer::Impl {
         Transmitting out;
         out.tile.assign(lights.size(), 0);
         const bool transmission = transmission_reaches_camera(cam, lights, s), shadows = shadowed(s, mode);
-        const bool separable = mode == uint32_t(ShadingMode::Separable);  // its transmittance reads every tile
+        // The screen-space peers' transmittance reads every light's tile.
+        const bool separable = mode == uint32_t(ShadingMode::Separable) || mode == uint32_t(ShadingMode::Burley);
         if (!transmission && !shadows && !separable) return out;
         const glm::vec3 centre = 0.5f * (bbox_min + bbox_max);
         const float radius = bounding_radius();
@@ -270,7 +270,7 @@ struct Renderer::Impl {
     {
         check_ready(s, lights);
         shading::check_target(t, s);
-        const bool separable = mode == uint32_t(ShadingMode::Separable);
+        const bool separable = mode == uint32_t(ShadingMode::Separable) || mode == uint32_t(ShadingMode::Burley);
         const FramePush push = shading::frame_push(cam, bbox_min, bbox_max, s.width, s.height, uint32_t(lights.size()));
         const gpu::Image& curvature = s.mode == ShadingMode::Curvature ? curvature_image()
                                       : curvature_lut                  ? curvature_lut->image()

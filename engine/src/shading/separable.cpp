@@ -4,6 +4,7 @@
 #include "gpu/context.hpp"
 #include "shading/frame.hpp"
 
+#include <jade/burley_diffusion.hpp>
 #include <jade/error.hpp>
 #include <jade/separable.hpp>
 
@@ -17,7 +18,7 @@
 
 namespace jade::shading {
 
-SeparableData separable_data(const Material& material, uint32_t taps)
+SeparableData separable_data(const Material& material, uint32_t taps, uint32_t burley_samples)
 {
     const SeparableKernel k = separable_kernel(material, taps);
     SeparableData d{};
@@ -32,6 +33,12 @@ SeparableData separable_data(const Material& material, uint32_t taps)
             d.transmittance[i][c] = float(separable_transmittance(material.profile[size_t(c)], reach * u * u));
     }
     d.params = glm::vec4(float(1.0 / reach), float(k.range), 0.0f, 0.0f);
+    // Burley: the widest channel's shape is sampled (its samples reach every channel's light).
+    const glm::dvec3 shape = burley_shapes(material);
+    const double sampled = std::max({shape.x, shape.y, shape.z});
+    d.burley = glm::vec4(glm::vec3(shape), float(sampled));
+    for (uint32_t i = 0; i < burley_samples; ++i)
+        d.burley_radius[i / 4][i % 4] = float(burley_sample_radius((i + 0.5) / burley_samples, sampled));
     return d;
 }
 
@@ -64,9 +71,9 @@ VkRenderingAttachmentInfo SeparablePasses::prepare(VkCommandBuffer cmd, const Re
                             VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, "separable constants");
         sampler_ = gpu::make_sampler(ctx_, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "separable sampler");
     }
-    if (!profiles_ || *profiles_ != material.profile || taps_ != s.separable_taps) {
-        constants_ = separable_data(material, s.separable_taps);  // throws for a bad tap count
-        profiles_ = material.profile, taps_ = s.separable_taps;
+    if (!profiles_ || *profiles_ != material.profile || taps_ != s.separable_taps || samples_made_ != s.burley_samples) {
+        constants_ = separable_data(material, s.separable_taps, s.burley_samples);  // throws for a bad tap count
+        profiles_ = material.profile, taps_ = s.separable_taps, samples_made_ = s.burley_samples;
     }
     if (width_ != s.width || height_ != s.height || samples_ != s.samples) {
         // Recorded draws may still read the old images.
@@ -107,23 +114,27 @@ VkRenderingAttachmentInfo SeparablePasses::irradiance_attachment() const
     return a;
 }
 
-const gpu::GraphicsPipeline& SeparablePasses::blur_pipeline(uint32_t taps, bool vertical, VkFormat format)
+const gpu::GraphicsPipeline& SeparablePasses::pass_pipeline(Pass pass, uint32_t count, VkFormat format)
 {
-    auto [it, inserted] = pipelines_.try_emplace(uint64_t(taps) | uint64_t(vertical) << 8 | uint64_t(format) << 16);
+    auto [it, inserted] = pipelines_.try_emplace(uint64_t(count) | uint64_t(pass) << 8 | uint64_t(format) << 16);
     if (!inserted) return it->second;
     try {
         gpu::GraphicsPipelineDesc d;
-        d.name = vertical ? "separable vertical pass" : "separable horizontal pass";
+        d.name = pass == Pass::Horizontal ? "separable horizontal pass"
+                 : pass == Pass::Vertical ? "separable vertical pass"
+                                          : "burley pass";
         d.vertex_spirv = shaders::fullscreen_vert();
-        d.fragment_spirv = shaders::separable_blur_frag();
+        d.fragment_spirv = pass == Pass::Burley ? shaders::burley_blur_frag() : shaders::separable_blur_frag();
         d.color_formats = {format};
         d.depth_format = VK_FORMAT_UNDEFINED;
         d.samples = VK_SAMPLE_COUNT_1_BIT;
         d.cull = VK_CULL_MODE_NONE;
-        d.blend = vertical ? gpu::Blend::AddColor : gpu::Blend::None;  // the vertical pass adds the diffuse light
+        // The last pass adds the blurred light to the image.
+        d.blend = pass == Pass::Horizontal ? gpu::Blend::None : gpu::Blend::AddColor;
         d.bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
         d.push_size = sizeof(SeparablePush);
-        d.constants = {taps, vertical ? 1u : 0u};  // constant_id 0, 1 of separable_blur.frag
+        // separable_blur.frag: constant_id 0 TAPS, 1 VERTICAL; burley_blur.frag: 0 SAMPLES.
+        d.constants = {count, pass == Pass::Vertical ? 1u : 0u};
         it->second = gpu::GraphicsPipeline(ctx_, d);
     } catch (...) {
         pipelines_.erase(it);
@@ -143,7 +154,8 @@ void SeparablePasses::record_blur(VkCommandBuffer cmd, const RenderTarget& t, co
     const float range = std::max(constants_.params.y, 1e-30f);
     const SeparablePush push{glm::vec4(1.0f / float(s.width), 1.0f / float(s.height), focal, 1.0f / range)};
     const VkExtent2D extent{s.width, s.height};
-    auto pass = [&](const gpu::Image& source, VkImageView target, bool vertical, VkFormat format) {
+    // `vertical` (or burley): the last pass, which adds its light to the image.
+    auto pass = [&](const gpu::Image& source, VkImageView target, bool vertical, bool burley, VkFormat format) {
         VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
         a.imageView = target;
         a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
@@ -156,23 +168,27 @@ void SeparablePasses::record_blur(VkCommandBuffer cmd, const RenderTarget& t, co
         ri.colorAttachmentCount = 1;
         ri.pColorAttachments = &a;
         vkCmdBeginRendering(cmd, &ri);
-        blur_pipeline(s.separable_taps, vertical, format)
+        const Pass kind = burley ? Pass::Burley : vertical ? Pass::Vertical : Pass::Horizontal;
+        pass_pipeline(kind, burley ? s.burley_samples : s.separable_taps, format)
             .bind(cmd, extent, push,
                   {data_, gpu::Binding::image(source.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler_)});
         vkCmdSetScissor(cmd, 0, 1, &area);  // only the mesh's pixels pay
         vkCmdDraw(cmd, 3, 1, 0, 0);
         vkCmdEndRendering(cmd);
     };
+    const bool burley = s.mode == ShadingMode::Burley;
     irradiance_.transition(cmd, gpu::use::kSampled);
-    horizontal_.transition(cmd, gpu::use::kColorAttachment, true);
-    pass(irradiance_, horizontal_.view(), false, kSeparableIrradianceFormat);
-    horizontal_.transition(cmd, gpu::use::kSampled);
-    // The mesh pass's resolve (or single-sample colour) write, before this pass adds to it.
+    if (!burley) {
+        horizontal_.transition(cmd, gpu::use::kColorAttachment, true);
+        pass(irradiance_, horizontal_.view(), false, false, kSeparableIrradianceFormat);
+        horizontal_.transition(cmd, gpu::use::kSampled);
+    }
+    // The mesh pass's resolve (or single-sample colour) write, before the last pass adds to it.
     const VkImageView final_view = t.resolve ? t.resolve : t.color;
     gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
                         VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                         VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
-    pass(horizontal_, final_view, true, color_format);
+    pass(burley ? irradiance_ : horizontal_, final_view, true, burley, color_format);
 }
 
 }  // namespace jade::shading

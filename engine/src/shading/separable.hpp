@@ -8,7 +8,9 @@
 //   2. a horizontal 1-D pass of the kernel (jade/separable.hpp) into a second image;
 //   3. a vertical pass added (blended ONE + ONE, alpha kept) to the caller's single-sample image
 //      (the resolve, or the colour when samples = 1).
-// Only translucent pixels pay: both passes draw a fullscreen triangle clipped by a scissor to the
+// The Burley mode (screen-space Burley diffusion as HDRP, jade/burley_diffusion.hpp) shares step 1
+// and replaces 2 and 3 by one pass of importance-sampled taps (burley_blur.frag), added likewise.
+// Only translucent pixels pay: the passes draw a fullscreen triangle clipped by a scissor to the
 // mesh's bounding box on screen, and discard pixels whose irradiance alpha (the depth) is 0 at
 // once (the stencil's equivalent; lavapipe shades whole 4×4 blocks, so the scissor is what saves
 // there).
@@ -43,7 +45,8 @@ inline constexpr VkFormat kSeparableIrradianceFormat = VK_FORMAT_R32G32B32A32_SF
 /// The kernel for `taps` and the transmittance table of the material, as the shaders read them.
 /// The table spans d ∈ [0, reach], reach the widest channel's radius_for_tail(1e-4), at
 /// d_i = reach · (i / (STEPS − 1))² (the narrowest channel's steep start needs the dense steps).
-SeparableData separable_data(const Material& material, uint32_t taps);
+/// With the Burley mode's shapes and `burley_samples` radii (jade/burley_diffusion.hpp).
+SeparableData separable_data(const Material& material, uint32_t taps, uint32_t burley_samples);
 
 class SeparablePasses {
 public:
@@ -71,14 +74,16 @@ public:
 
 private:
     VkRenderingAttachmentInfo irradiance_attachment() const;
-    const gpu::GraphicsPipeline& blur_pipeline(uint32_t taps, bool vertical, VkFormat format);
+    enum class Pass : uint32_t { Horizontal = 0, Vertical = 1, Burley = 2 };
+    /// count: the separable passes' taps, the Burley pass's samples.
+    const gpu::GraphicsPipeline& pass_pipeline(Pass pass, uint32_t count, VkFormat format);
 
     gpu::Context& ctx_;
     gpu::OwnedSampler sampler_;
     gpu::Buffer data_;
     SeparableData constants_{};
     std::optional<std::array<ChannelProfile, 3>> profiles_;  // what constants_ were made for
-    uint32_t taps_ = 0;
+    uint32_t taps_ = 0, samples_made_ = 0;
     uint32_t width_ = 0, height_ = 0, samples_ = 0;
     gpu::Image irradiance_msaa_, irradiance_, horizontal_;
     std::map<uint64_t, gpu::GraphicsPipeline> pipelines_;

@@ -15,7 +15,7 @@ namespace jade {
 
 namespace {
 // Indexed by ShadingMode; "" where no mode has that value.
-constexpr std::string_view kModeNames[] = {"lambert", "curvature", "tm", "tm-false-color", "", "separable"};
+constexpr std::string_view kModeNames[] = {"lambert", "curvature", "tm", "tm-false-color", "", "separable", "burley"};
 constexpr std::string_view kToneMapNames[] = {"none", "reinhard", "aces"};
 
 // The camera's right, up and backward (towards the eye) unit vectors.
