@@ -332,8 +332,8 @@ public:
     ///   by barriers against the previous record()'s shader reads, then one dynamic rendering.
     /// - after: the resolve (or color) image was written at COLOR_ATTACHMENT_OUTPUT with
     ///   COLOR_ATTACHMENT_WRITE; the caller adds the barrier for its next use.
-    /// - Separable: the draw also writes the renderer's own irradiance target, and two more
-    ///   renderings (fullscreen, within the mesh's screen bounds) blur it and add it to the resolve
+    /// - Separable, Burley: the draw also writes the renderer's own irradiance target, and two more
+    ///   renderings (Burley: one; fullscreen, within the mesh's screen bounds) blur it and add it to the resolve
     ///   (or single-sample color) image, still at COLOR_ATTACHMENT_OUTPUT; a multisampled target
     ///   with `keep` is refused (its multisampled colour would lack the blurred light).
     /// The mesh, material and pipelines are the renderer's. Submit the command buffer to the
