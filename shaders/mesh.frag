@@ -12,7 +12,7 @@
 #include "shadow.glsl"
 #include "filament.glsl"
 
-layout(constant_id = 0) const uint MODE = 2;      // kLambert, kCurvature, kTm, kFalseColor, kFilament (shading.glsl), kInputs + k
+layout(constant_id = 0) const uint MODE = 2;  // kLambert … kBurley (shading.glsl), kInputs + k
 layout(constant_id = 1) const uint CHANNELS = 3;  // 1: grey material, one evaluation per light
 
 layout(binding = 2) uniform sampler2D curvature_lut;  // RGBA32F, D_c(cos θ, κ) per channel
@@ -29,6 +29,10 @@ layout(location = 11) in vec3 in_variance;
 layout(location = 12) in float in_path[kMaxTransmitters];
 
 layout(location = 0) out vec4 out_color;
+// kSeparable, kBurley (shading/separable.hpp): the diffuse light, blurred after this pass, in a
+// target of its own with the linear depth in alpha; out_color keeps the specular light.
+layout(location = 1) out vec4 out_irradiance;
+layout(binding = 6, scalar) uniform SeparableBlock { SeparableData sep; };
 
 // The diffuse response per channel, F in (k_d/π) F E.
 vec3 diffuse_response(float c, Translucency tr, float kappa_scaled)
@@ -86,6 +90,30 @@ vec4 shading_input(uint k)
     return path;
 }
 
+// SSSSTransmittance (Jimenez, Whelan, Sundstedt, Gutierrez 2010; iryoku/separable-sss), with the
+// material's profile for the skin's Gaussians: the distance d that the light crossed inside the
+// object, from the light's first surface (layer 0 of its depth tile, the shadow map) to this
+// point moved in along the normal (by a texel of the tile, the reference's "shrinked" position),
+// run through T(d) = 1 − cdf(d) per channel (jade/separable.hpp), times the reference's
+// saturate(0.3 + N·(−L)). kBurley: HDRP's thick mode, the same T(d) (for a Burley profile it is
+// HDRP's ¼(e^{−d/s} + 3e^{−d/3s})) lit by max(N·(−L), 0).
+vec3 separable_transmittance(uint tile, vec3 n, vec3 l)
+{
+    uint t = tile - 1u;
+    vec4 origin = data.light_tiles[t].origin, depth = data.light_tiles[t].depth;
+    float texel = depth.z * (origin.w > 0.5 ? length(in_position - origin.xyz) : 1.0);
+    vec3 q = light_tile_coords(t, in_position - n * texel);
+    if (any(lessThan(q.xy, vec2(0.0))) || any(greaterThan(q.xy, vec2(1.0)))) return vec3(0.0);
+    float size = data.light_depth_map.x;
+    ivec2 at = clamp(ivec2(q.xy * size), ivec2(0), ivec2(int(size) - 1));
+    float first = texelFetch(light_depth_atlas, ivec2(int(t) * int(size), 0) + at, 0).x;
+    // d (mesh units) → the table's index: d = reach · (x / (STEPS − 1))².
+    float x = sqrt(max(q.z - first, 0.0) * depth.y * sep.params.x) * float(JADE_SEPARABLE_TRANSMITTANCE_STEPS - 1);
+    uint i = min(uint(x), uint(JADE_SEPARABLE_TRANSMITTANCE_STEPS) - 2u);
+    vec3 profile = mix(sep.transmittance[i].rgb, sep.transmittance[i + 1u].rgb, clamp(x - float(i), 0.0, 1.0));
+    return profile * clamp((MODE == kBurley ? 0.0 : 0.3) + dot(l, -n), 0.0, 1.0);
+}
+
 // Towards light `light` from this fragment, unit, and its irradiance here.
 void light_at(GpuLight light, out vec3 l, out vec3 e)
 {
@@ -127,19 +155,26 @@ void main()
     if (MODE == kTm) tr = translucency_setup(CHANNELS == 1 ? in_variance.rrr : in_variance);
     float kappa_scaled = max(in_curvature, 0.0) * data.params.y;  // concave: treated as flat
 
-    vec3 color = vec3(0.0);
+    vec3 color = vec3(0.0), irradiance = vec3(0.0);
     for (uint k = 0; k < frame.light_count; ++k) {
         vec3 l, e;
         light_at(data.lights[k], l, e);
         float c = dot(n, l), c_diffuse = dot(n_diffuse, l);
-        // The mesh's shadow (shadow.glsl) dims this light's diffuse and specular light alike.
         uint tile = uint(data.lights[k].color.w);
         // Filament's BTDF is not shadowed (filament.glsl): it takes the light before the shadow.
         if (MODE == kFilament) color += filament_subsurface(n, v, l, in_thickness) * e;
+        // Jimenez's transmittance: k_d/π as the diffuse term's (the reference's albedo · light),
+        // not shadowed (it is the light that crossed the occluder).
+        if ((MODE == kSeparable || MODE == kBurley) && tile != 0u)
+            irradiance += albedo * (1.0 / JADE_PI) * separable_transmittance(tile, n, l) * e;
+        // The mesh's shadow (shadow.glsl) dims this light's diffuse and specular light alike.
         if (SHADOWS == 1u && tile != 0u) e *= shadow_visibility(tile, in_position, n, l);
         vec3 diffuse = albedo * (1.0 / JADE_PI) * diffuse_response(c_diffuse, tr, kappa_scaled) * e;
         if (boundary) diffuse *= boundary_transmittance(c_diffuse) * exit_transmittance;
-        color += diffuse;
+        if (MODE == kSeparable || MODE == kBurley)
+            irradiance += diffuse;  // k_d before the blur (pre-scatter), Lambert's irradiance
+        else
+            color += diffuse;
         if (c > 0.0 && data.specular.z > 0.0) color += data.specular.z * specular_lobe(n, v, l, c) * e;
     }
     // Only the lights that may shine through the object towards the eye, each in its own
@@ -148,4 +183,6 @@ void main()
         for (uint k = 0; k < TRANSMISSION; ++k)
             color += exit_transmittance * transmitted_light(k, in_position, n, in_lobe[k], path_at(k), in_thickness);
     out_color = vec4(color, 1.0);
+    // Linear depth: clip w is the distance along the view axis (perspective), 1 / gl_FragCoord.w.
+    if (MODE == kSeparable || MODE == kBurley) out_irradiance = vec4(irradiance, 1.0 / gl_FragCoord.w);
 }

@@ -45,9 +45,11 @@ struct LightLoad {
 /// tm 3 per light with the LUT paths (1 for a grey material; 0 with the ALU path that lavapipe
 /// takes), and per transmitting light 4 depth-tile fetches for the light's path (per fragment; 0
 /// with the path per vertex) and 2 of the attenuation table; filament 0 (its thickness is a
-/// vertex attribute). Returns the count and its formula.
+/// vertex attribute); separable 1 per light with a tile (its transmittance) and 1 + taps per blur
+/// pass, two passes; burley 1 per light with a tile and 1 + samples (docs/peers_separable.md).
+/// Returns the count and its formula.
 std::pair<uint32_t, std::string> fetches(ShadingMode mode, const LightLoad& l, bool shadows, TmEvaluation eval,
-                                         bool grey, LightPathSampling path)
+                                         bool grey, LightPathSampling path, const RenderSettings& s)
 {
     const uint32_t shadow = shadows ? 9 * l.shadowed : 0;
     std::string formula = shadows && l.shadowed ? "9/shadowed light" : "";
@@ -61,6 +63,14 @@ std::pair<uint32_t, std::string> fetches(ShadingMode mode, const LightLoad& l, b
         const uint32_t per_transmitter = path == LightPathSampling::PerVertex ? 2 : 6;
         n += per_transmitter * l.transmitting;
         if (l.transmitting) plus(std::to_string(per_transmitter) + "/transmitting light");
+    }
+    if (mode == ShadingMode::Separable || mode == ShadingMode::Burley) {
+        n += l.shadowed;
+        if (l.shadowed) plus("1/shadowed light");
+        const uint32_t blur = mode == ShadingMode::Separable ? 2 * (1 + s.separable_taps) : 1 + s.burley_samples;
+        n += blur;
+        plus(mode == ShadingMode::Separable ? "2 x (1 + " + std::to_string(s.separable_taps) + " taps)"
+                                            : "1 + " + std::to_string(s.burley_samples) + " samples");
     }
     return {n, formula.empty() ? "none" : formula};
 }
@@ -95,7 +105,7 @@ std::vector<Config> configs_from_args(const Args& args)
         }
         return {{std::string(shading_mode_name(m)) + "/noshadow", m, false}, {std::string(*mode), m, true}};
     }
-    std::stringstream list(args.get_or("modes", "lambert,curvature,tm,filament"));
+    std::stringstream list(args.get_or("modes", "lambert,curvature,tm,filament,separable,burley"));
     for (std::string word; std::getline(list, word, ',');) {
         ShadingMode m{};
         try {
@@ -141,7 +151,9 @@ int cmd_bench_render(int argc, char** argv)
          "default (front key + fill) | figure1 (back light, front key, fill) | back (front key + back light): with a "
          "back light tm draws the transmission term too"},
         {"sizes", "LIST", "image sizes, N (square) or WxH (default 512,1920x1080)"},
-        {"modes", "LIST", "the modes timed, lambert first (default lambert,curvature,tm,filament)"},
+        {"modes", "LIST", "the modes timed, lambert first (default lambert,curvature,tm,filament,separable,burley)"},
+        {"taps", "N", "separable: taps of each 1-D blur pass, 11 | 17 | 25 (default 17)"},
+        {"burley-samples", "N", "burley: samples per pixel, 1..80 (default 40)"},
         {"no-shadows", "", "every mode without shadows"},
         {"shadow-cost", "MODE", "instead of the modes: MODE without shadows against MODE with them"},
         {"deform", "", "also the per-frame re-bake of the mesh deforming (twist), next to the frame times"},
@@ -157,6 +169,8 @@ int cmd_bench_render(int argc, char** argv)
     const uint32_t repeat = args.count("repeat", 30, 1, 10000);
     const uint32_t samples = args.count("samples", 4, 1, 8);
     const auto sizes = parse_sizes(args);
+    const uint32_t taps = args.count("taps", 17, 11, 25), burley_samples = args.count("burley-samples", 40, 1, 80);
+    if (taps != 11 && taps != 17 && taps != 25) args.fail("--taps: 11, 17 or 25");
     const std::vector<Config> config = configs_from_args(args);
     auto ctx = make_context(args);
     MeshScene scene = load_scene(args, *ctx, args.positional().empty() ? "bunny" : args.positional()[0], true);
@@ -194,6 +208,7 @@ int cmd_bench_render(int argc, char** argv)
         RenderSettings s;
         s.width = width, s.height = height;
         s.samples = samples;
+        s.separable_taps = taps, s.burley_samples = burley_samples;
         const size_t n = config.size();
         std::vector<std::vector<double>> gpu(n), cpu(n), gpu_ratio(n), cpu_ratio(n);
         for (int warm = 0; warm < 2; ++warm)  // pipelines, targets, caches
@@ -214,7 +229,7 @@ int cmd_bench_render(int argc, char** argv)
         }
         for (size_t k = 0; k < n; ++k) {
             const auto [count, formula] = fetches(config[k].mode, load, config[k].shadows, renderer.tm_evaluation(),
-                                                  scene.material.grey(), renderer.light_path());
+                                                  scene.material.grey(), renderer.light_path(), s);
             char size[32], ratio[64], cpu_r[64];
             std::snprintf(size, sizeof size, "%ux%u", width, height);
             std::snprintf(ratio, sizeof ratio, "%.3fx (%.2f-%.2f)", quantile(gpu_ratio[k], 0.5),

@@ -163,7 +163,7 @@ int cmd_fidelity(int argc, char** argv)
         o.push_back({"shadows", "S", "on | off | both: score each mode with and without shadows (default on)"});
         o.push_back({"modes", "LIST",
                      "comma-separated modes to score (default all: lambert, curvature, tm, default, "
-                     "filament, filament-flat)"});
+                     "filament, filament-flat, separable, burley)"});
         o.push_back({"fit", "FILE", "JSON of MediumFit values instead of the built-in defaults"});
         o.push_back({"json", "FILE", "write every number as JSON"});
         o.push_back({"markdown", "FILE", "write the tables as Markdown (docs/fidelity.md's)"});

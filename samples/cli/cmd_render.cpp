@@ -56,6 +56,10 @@ int cmd_render(int argc, char** argv)
     settings.shadows = !args.flag("no-shadows");
     if (args.get("filament-thickness"))
         settings.filament_thickness = float(args.number("filament-thickness", 0.5, 0.0, 1.0));
+    settings.separable_taps = args.count("taps", 17, 11, 25);
+    settings.burley_samples = args.count("burley-samples", 40, 1, 80);
+    if (settings.separable_taps != 11 && settings.separable_taps != 17 && settings.separable_taps != 25)
+        args.fail("--taps: 11, 17 or 25");
     const std::string out = args.get_or("out", "render.png");
     check_output_file(args, "out", out, {".png", ".exr"});
 

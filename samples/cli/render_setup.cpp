@@ -29,7 +29,9 @@ OptionSpec light_path_option()
 
 std::vector<OptionSpec> render_options()
 {
-    return {{"mode", "M", "lambert | curvature | tm | tm-false-color | filament (default tm)"},
+    return {{"mode", "M", "lambert | curvature | tm | tm-false-color | filament | separable | burley (default tm)"},
+            {"taps", "N", "separable: taps of each 1-D blur pass, 11 | 17 | 25 (default 17)"},
+            {"burley-samples", "N", "burley: samples per pixel, 1..80 (default 40)"},
             {"out", "FILE", "output .png (sRGB, 8 bit) or .exr (linear half float); default render.png"},
             {"size", "WxH", "image size in pixels (default 512x512)"},
             {"eye", "X,Y,Z", "camera position, mesh units (default: framed, see --frame)"},

@@ -15,9 +15,11 @@ const uint kColorMapStops = JADE_COLOR_MAP_STOPS;
 
 // Shading modes (specialisation constant MODE of both stages, jade::ShadingMode), and the
 // inputs pass: MODE = kInputs + k writes the k-th vec4 of the rasterised shading inputs
-// (Renderer::shading_inputs) instead of shading.
-// Modes 4 to 7 are the peers (docs/peers.md), kInputs stays above them.
-const uint kLambert = 0, kCurvature = 1, kTm = 2, kFalseColor = 3, kFilament = 4, kInputs = 8;
+// (Renderer::shading_inputs) instead of shading. kInputs is past every ShadingMode (4 … 7 are
+// the peers' modes, docs/peers.md: 4 Filament's subsurface model, 5 Jimenez's separable SSS, 6
+// screen-space Burley diffusion).
+const uint kLambert = 0, kCurvature = 1, kTm = 2, kFalseColor = 3, kFilament = 4, kSeparable = 5, kBurley = 6,
+           kInputs = 8;
 
 const uint kMaxLights = JADE_MAX_LIGHTS;
 

@@ -14,6 +14,9 @@
 #define JADE_MAX_TRANSMITTERS 4       // lights drawn with transmission per draw (transmission.glsl)
 #define JADE_MAX_LIGHT_DEPTH_TILES 4  // lights with a depth tile (shading/light_depth.hpp)
 #define JADE_COLOR_MAP_STOPS 9        // false-colour stops
+#define JADE_SEPARABLE_MAX_TAPS 25    // taps of one 1-D pass of the separable mode (11, 17 or 25)
+#define JADE_SEPARABLE_TRANSMITTANCE_STEPS 128  // entries of its transmittance profile
+#define JADE_BURLEY_MAX_SAMPLES 80    // samples a pixel of the Burley mode (HDRP's high)
 
 #ifdef __cplusplus
 #include <glm/mat4x4.hpp>
@@ -76,7 +79,31 @@ struct FrameData {
     GpuLight lights[JADE_MAX_LIGHTS];
 };
 
+// The Separable mode's constants (shading/separable.hpp, jade/separable.hpp): the kernel of its two
+// 1-D blur passes and SSSSTransmittance's profile, both from the material's own profiles. Bound
+// to every mesh pipeline (binding 6: mesh.frag reads the transmittance) and to the blur passes.
+struct SeparableData {
+    vec4 taps[JADE_SEPARABLE_MAX_TAPS];  // rgb: weight per channel (each channel sums to 1); w: offset, mesh units
+    // rgb: 1 − cdf(d_i) per channel at d_i = reach · (i / (STEPS − 1))², denser near 0 where the
+    // narrow channels fall fastest
+    vec4 transmittance[JADE_SEPARABLE_TRANSMITTANCE_STEPS];
+    vec4 params;  // x: 1 / the table's reach (1/mesh units); y: the kernel's range (mesh units); z, w: unused
+    // The Burley mode (jade/burley_diffusion.hpp): rgb the Burley shape d per channel, w the shape
+    // sampled (the widest channel's), mesh units; sample i's radius at [i / 4][i % 4], mesh units.
+    vec4 burley;
+    vec4 burley_radius[JADE_BURLEY_MAX_SAMPLES / 4];
+};
+
+// The push constants of the separable blur passes (separable_blur.frag).
+struct SeparablePush {
+    vec4 texel;  // xy: 1 / the image's size (texture coordinates of one pixel); z: pixels per mesh unit at linear
+                 // depth 1, height / (2 tan(fov_y / 2)); w: 1 / the depth difference (mesh units) at which a tap
+                 // is replaced by the centre (follow-surface)
+};
+
 #ifdef __cplusplus
+static_assert(sizeof(SeparableData) ==
+              (JADE_SEPARABLE_MAX_TAPS + JADE_SEPARABLE_TRANSMITTANCE_STEPS + 2 + JADE_BURLEY_MAX_SAMPLES / 4) * 16);
 static_assert(sizeof(FramePush) == 80 && sizeof(GpuLight) == 32 && sizeof(LightTile) == 96);
 static_assert(sizeof(FrameData) == 12 * 16 + JADE_MAX_LIGHT_DEPTH_TILES * 96 + JADE_COLOR_MAP_STOPS * 16 + 16 +
                                        (JADE_MAX_TRANSMITTERS + JADE_MAX_LIGHTS) * 32,

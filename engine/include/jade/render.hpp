@@ -47,6 +47,13 @@ enum class ShadingMode : uint32_t {
     Tm = 2,            ///< translucency magnitude (Kubo, Tokoi, Mukaigawa 2015)
     TmFalseColor = 3,  ///< t_m (mean of the channels) as the viridis colour map, unlit
     Filament = 4,      ///< Filament's subsurface shading model (a peer; docs/peers.md), fed Jade's baked thickness
+    /// A peer: Jimenez et al. 2015's separable subsurface scattering, the Lambert diffuse light
+    /// (and SSSSTransmittance's) blurred on screen by two 1-D passes of a kernel fitted to the
+    /// material's profiles (jade/separable.hpp, docs/peers_separable.md); needs no bake.
+    Separable = 5,
+    /// A peer: screen-space Burley diffusion as Unity HDRP does it (Golubev 2018): the same
+    /// irradiance target, one pass of importance-sampled taps (jade/burley_diffusion.hpp).
+    Burley = 6,
 };
 /// What ShadingMode::Filament feeds Filament's subsurface model (shaders/include/filament.glsl),
 /// derived from the material's medium (Material::transmission.sigma_tr, docs/peers.md):
@@ -69,7 +76,7 @@ struct FilamentSubsurface {
 };
 FilamentSubsurface filament_subsurface(const Material& material);
 
-/// "lambert", "curvature", "tm", "tm-false-color", "filament".
+/// "lambert", "curvature", "tm", "tm-false-color", "filament", "separable", "burley".
 std::string_view shading_mode_name(ShadingMode mode);
 /// The inverse of shading_mode_name; throws jade::Error listing the names.
 ShadingMode parse_shading_mode(std::string_view name);
@@ -106,7 +113,7 @@ struct Camera {
                           glm::vec3 up = {0.0f, 1.0f, 0.0f}, float fov_y_degrees = 30.0f);
 };
 
-/// A light for the Tm, Curvature and Lambert modes (at most 64 per draw).
+/// A light for the lit modes (at most 64 per draw).
 struct Light {
     enum class Type : uint32_t { Directional = 0, Point = 1 };
     Type type = Type::Directional;
@@ -172,6 +179,10 @@ struct RenderSettings {
     /// t̄ normalised as t̄ · σ_tr,min / 2, clamped to 1 (docs/peers.md), or Filament's default 0.5
     /// where the mesh has no baked thickness. 0.5 stands for a material without a thickness map.
     float filament_thickness = -1.0f;
+    /// Separable: taps of each of the two 1-D passes, 11, 17 or 25 (jade/separable.hpp).
+    uint32_t separable_taps = 17;
+    /// Burley: samples per pixel, 1 … 80 (HDRP's low, medium, high: 20, 40, 80).
+    uint32_t burley_samples = 40;
 };
 
 /// The translucency LUT's parameterisation (texel i, j of a W × H R32_SFLOAT texture):
@@ -352,6 +363,10 @@ public:
     ///   by barriers against the previous record()'s shader reads, then one dynamic rendering.
     /// - after: the resolve (or color) image was written at COLOR_ATTACHMENT_OUTPUT with
     ///   COLOR_ATTACHMENT_WRITE; the caller adds the barrier for its next use.
+    /// - Separable, Burley: the draw also writes the renderer's own irradiance target, and two more
+    ///   renderings (Burley: one; fullscreen, within the mesh's screen bounds) blur it and add it to the resolve
+    ///   (or single-sample color) image, still at COLOR_ATTACHMENT_OUTPUT; a multisampled target
+    ///   with `keep` is refused (its multisampled colour would lack the blurred light).
     /// The mesh, material and pipelines are the renderer's. Submit the command buffer to the
     /// Context's queue: set_mesh, set_material and the destructor release what they replace
     /// when the GPU has finished the work submitted to that queue before them, never waiting.

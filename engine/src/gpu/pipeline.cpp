@@ -59,7 +59,15 @@ GraphicsPipeline::GraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& des
     ds.depthWriteEnable = desc.depth_write;
     ds.depthCompareOp = desc.depth_compare;
     std::vector<VkPipelineColorBlendAttachmentState> blend(desc.color_formats.size());
-    for (auto& b : blend) b.colorWriteMask = desc.color_write_mask;  // no blending: opaque surfaces
+    for (auto& b : blend) {
+        b.colorWriteMask = desc.color_write_mask;
+        if (desc.blend == Blend::AddColor) {
+            b.blendEnable = VK_TRUE;
+            b.srcColorBlendFactor = b.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
+            b.srcAlphaBlendFactor = VK_BLEND_FACTOR_ZERO, b.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+            b.colorBlendOp = b.alphaBlendOp = VK_BLEND_OP_ADD;
+        }
+    }
     VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
     cb.attachmentCount = uint32_t(blend.size());
     cb.pAttachments = blend.data();

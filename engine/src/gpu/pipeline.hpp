@@ -4,7 +4,9 @@
 // A pipeline is a description with defaults that fit Jade's renderer: dynamic rendering (no
 // render passes or framebuffers), one colour attachment in RGBA16F, depth D32 with LESS test
 // and writes, 4× MSAA, back faces culled (meshes are counter-clockwise seen from outside),
-// triangle lists, dynamic viewport and scissor. Bindings are push descriptors, as for compute
+// triangle lists, dynamic viewport and scissor, no blending. A fullscreen pass: no vertex
+// attributes, depth_format VK_FORMAT_UNDEFINED, samples 1, cull none, `vkCmdDraw(cmd, 3, ...)`
+// of shaders/fullscreen.vert; Blend::AddColor adds its colour to what the attachment holds. Bindings are push descriptors, as for compute
 // kernels; push constants are visible to the vertex and fragment stages; specialisation
 // constants 0, 1, ... go to both stages. `bind` sets pipeline, descriptors, push constants,
 // viewport and scissor in one call, so a draw is `bind(...)` then `vkCmdDraw*`.
@@ -29,6 +31,12 @@ struct VertexAttribute {
     uint32_t offset;  ///< bytes from the start of the vertex
 };
 
+/// How a colour attachment combines what the fragment shader writes with what it holds.
+enum class Blend : uint32_t {
+    None = 0,      ///< replaced (opaque surfaces)
+    AddColor = 1,  ///< rgb: source + destination; alpha: the destination's kept
+};
+
 struct GraphicsPipelineDesc {
     const char* name = "graphics";
     std::span<const uint32_t> vertex_spirv, fragment_spirv;
@@ -47,6 +55,7 @@ struct GraphicsPipelineDesc {
     /// The channels every colour attachment takes (VK_COLOR_COMPONENT_*_BIT); the rest keep
     /// what the attachment held.
     VkColorComponentFlags color_write_mask = 0xf;
+    Blend blend = Blend::None;  ///< every colour attachment
 
     // Vertex input: one interleaved buffer at binding 0 (stride 0 and no attributes: none).
     uint32_t vertex_stride = 0;

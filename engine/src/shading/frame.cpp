@@ -22,11 +22,16 @@ void check_settings(const gpu::Context& ctx, const RenderSettings& s, std::span<
     if (s.width == 0 || s.height == 0 || s.width > 16384 || s.height > 16384)
         throw Error("render settings: size " + std::to_string(s.width) + "x" + std::to_string(s.height) +
                     " is outside 1..16384");
-    if (uint32_t(s.mode) > uint32_t(ShadingMode::Filament))
+    if (uint32_t(s.mode) > uint32_t(ShadingMode::Burley))
         throw Error("render settings: unknown shading mode " + std::to_string(uint32_t(s.mode)));
     if (!(s.filament_thickness <= 1.0f))  // NaN too
         throw Error("render settings: filament_thickness " + std::to_string(s.filament_thickness) +
                     " is not in [0, 1] (or negative: the baked thickness)");
+    if (s.mode == ShadingMode::Separable && s.separable_taps != 11 && s.separable_taps != 17 && s.separable_taps != 25)
+        throw Error("render settings: separable_taps must be 11, 17 or 25 (got " + std::to_string(s.separable_taps) +
+                    ")");
+    if (s.mode == ShadingMode::Burley && (s.burley_samples < 1 || s.burley_samples > JADE_BURLEY_MAX_SAMPLES))
+        throw Error("render settings: burley_samples must be in 1..80 (got " + std::to_string(s.burley_samples) + ")");
     if (lights.size() > kMaxLights)
         throw Error("render: " + std::to_string(lights.size()) + " lights, at most " + std::to_string(kMaxLights));
     for (size_t k = 0; k < lights.size(); ++k) {
@@ -114,7 +119,8 @@ void check_target(const RenderTarget& t, const RenderSettings& s)
                     std::to_string(s.height) + ", " + std::to_string(s.samples) + " samples)");
 }
 
-void begin_rendering(VkCommandBuffer cmd, const RenderTarget& t, const RenderSettings& s)
+void begin_rendering(VkCommandBuffer cmd, const RenderTarget& t, const RenderSettings& s,
+                     const VkRenderingAttachmentInfo* second)
 {
     VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     color.imageView = t.color;
@@ -141,8 +147,9 @@ void begin_rendering(VkCommandBuffer cmd, const RenderTarget& t, const RenderSet
     VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
     ri.renderArea = {{0, 0}, {s.width, s.height}};
     ri.layerCount = 1;
-    ri.colorAttachmentCount = 1;
-    ri.pColorAttachments = &color;
+    const VkRenderingAttachmentInfo colors[2] = {color, second ? *second : color};
+    ri.colorAttachmentCount = second ? 2 : 1;
+    ri.pColorAttachments = colors;
     ri.pDepthAttachment = &depth;
     vkCmdBeginRendering(cmd, &ri);
 }

@@ -34,8 +34,10 @@ FrameData material_constants(const Material& m);
 void check_target(const RenderTarget& t, const RenderSettings& s);
 
 /// vkCmdBeginRendering on the target: colour (resolved when t.resolve) and depth, cleared to the
-/// background unless t.load, stored as t.keep and t.load ask.
-void begin_rendering(VkCommandBuffer cmd, const RenderTarget& t, const RenderSettings& s);
+/// background unless t.load, stored as t.keep and t.load ask; `second`: a second colour
+/// attachment (the Separable mode's irradiance target).
+void begin_rendering(VkCommandBuffer cmd, const RenderTarget& t, const RenderSettings& s,
+                     const VkRenderingAttachmentInfo* second = nullptr);
 
 /// The camera with near and far hugging the sphere about [lo, hi] (radius half the diagonal, 1 %
 /// margin) unless it gives both; when the eye is inside the sphere, near is 1e-4 of far (D32

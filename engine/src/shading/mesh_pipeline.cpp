@@ -3,6 +3,7 @@
 #include "shading/mesh_pipeline.hpp"
 
 #include "gpu/context.hpp"
+#include "shading/separable.hpp"
 
 #include <jade/error.hpp>
 
@@ -112,6 +113,8 @@ const gpu::GraphicsPipeline& MeshPipelines::get(const MeshVariant& v, VkFormat f
         d.vertex_spirv = shaders::mesh_vert();
         d.fragment_spirv = shaders::mesh_frag();
         d.color_formats = {format};
+        if (v.mode == uint32_t(ShadingMode::Separable) || v.mode == uint32_t(ShadingMode::Burley))
+            d.color_formats.push_back(kSeparableIrradianceFormat);
         d.depth_format = VK_FORMAT_D32_SFLOAT;
         d.samples = VkSampleCountFlagBits(samples);
         d.vertex_stride = sizeof(Vertex);
@@ -124,7 +127,8 @@ const gpu::GraphicsPipeline& MeshPipelines::get(const MeshVariant& v, VkFormat f
                         {6, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal_spread)}};
         d.bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,         VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,
                       VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER};
+                      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,
+                      VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER};  // 6: SeparableData
         d.push_size = sizeof(FramePush);
         // constant_id 0 … 8 of mesh.vert/mesh.frag (shading.glsl, transmission.glsl, translucency.glsl,
         // shadow.glsl).

@@ -18,6 +18,7 @@
 #include "shading/mesh_pipeline.hpp"
 #include "shading/mesh_vertices.hpp"
 #include "shading/offscreen.hpp"
+#include "shading/separable.hpp"
 #include "shading/transmission_table.hpp"
 
 #include <jade/bake.hpp>
@@ -85,6 +86,7 @@ struct Renderer::Impl {
     TmEvaluation evaluation;
     shading::MeshPipelines pipelines;
     shading::TransmissionTable transmission_table;  // of the material's Transmission
+    shading::SeparablePasses separable_passes;      // the Separable mode's targets, kernel and blur passes
 
     shading::OffscreenTarget targets;  // render()'s own, kept while the size and format stay the same
     std::optional<gpu::GpuTimer> timer;
@@ -98,7 +100,8 @@ struct Renderer::Impl {
                       {"curvature LUT placeholder", 1, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_SAMPLED_BIT}),
           frame_data(c, sizeof(FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                      "frame data"),
-          evaluation(shading::resolve_evaluation(o.tm_evaluation, c)), pipelines(c), transmission_table(c)
+          evaluation(shading::resolve_evaluation(o.tm_evaluation, c)), pipelines(c), transmission_table(c),
+          separable_passes(c)
     {
         // Sampled-image descriptors need the image in its layout even if never read.
         c.submit_and_wait([&](VkCommandBuffer cmd) { placeholder.transition(cmd, gpu::use::kSampled); });
@@ -152,8 +155,7 @@ struct Renderer::Impl {
     // Whether this draw shadows its lights: the lit modes (not the false colour, not the inputs pass).
     static bool shadowed(const RenderSettings& s, uint32_t mode)
     {
-        return s.shadows && (mode == uint32_t(ShadingMode::Lambert) || mode == uint32_t(ShadingMode::Curvature) ||
-                             mode == uint32_t(ShadingMode::Tm) || mode == uint32_t(ShadingMode::Filament));
+        return s.shadows && mode != uint32_t(ShadingMode::TmFalseColor) && mode < shading::kInputsMode;
     }
 
     // The lights' depth tiles (shading/light_depth.hpp: directional lights, and point lights
@@ -167,6 +169,7 @@ struct Renderer::Impl {
         std::vector<uint32_t> tile;   // per light of the draw: its depth tile + 1, 0 none
         bool tiles = false;           // some transmitter has a depth tile
         bool shadows = false;         // the draw shadows its lights, and some light has a tile
+        bool atlas = false;           // the draw reads the tiles (transmitters, shadows, SSSSTransmittance)
     };
     Transmitting record_transmission(VkCommandBuffer cmd, const Camera& cam, std::span<const Light> lights,
                                      const RenderSettings& s, uint32_t mode)
@@ -174,7 +177,9 @@ struct Renderer::Impl {
         Transmitting out;
         out.tile.assign(lights.size(), 0);
         const bool transmission = transmission_reaches_camera(cam, lights, s), shadows = shadowed(s, mode);
-        if (!transmission && !shadows) return out;
+        // The screen-space peers' transmittance reads every light's tile.
+        const bool separable = mode == uint32_t(ShadingMode::Separable) || mode == uint32_t(ShadingMode::Burley);
+        if (!transmission && !shadows && !separable) return out;
         const glm::vec3 centre = 0.5f * (bbox_min + bbox_max);
         const float radius = bounding_radius();
         auto transmits = [&](const Light& l) {
@@ -183,7 +188,7 @@ struct Renderer::Impl {
         std::vector<uint8_t> wanted(lights.size(), 0);
         for (size_t k = 0; k < lights.size(); ++k)
             if (shading::LightDepth::can_tile(lights[k], centre, radius))
-                wanted[k] = transmits(lights[k]) ? 2 : shadows ? 1 : 0;
+                wanted[k] = transmits(lights[k]) ? 2 : shadows || separable ? 1 : 0;
         if (std::any_of(wanted.begin(), wanted.end(), [](uint8_t w) { return w != 0; })) {
             if (!light_depth) light_depth.emplace(ctx, options.light_depth_size);
             out.tile = light_depth->record(cmd, lights, wanted, vertices.handle(), sizeof(Vertex), indices.handle(),
@@ -195,7 +200,8 @@ struct Renderer::Impl {
                 out.index.push_back(uint32_t(k));
                 out.tiles = out.tiles || out.tile[k] != 0;
             }
-        out.shadows = shadows && std::any_of(out.tile.begin(), out.tile.end(), [](uint32_t t) { return t != 0; });
+        const bool tiled = std::any_of(out.tile.begin(), out.tile.end(), [](uint32_t t) { return t != 0; });
+        out.shadows = shadows && tiled, out.atlas = out.tiles || out.shadows || (separable && tiled);
         return out;
     }
 
@@ -272,6 +278,7 @@ struct Renderer::Impl {
     {
         check_ready(s, lights);
         shading::check_target(t, s);
+        const bool separable = mode == uint32_t(ShadingMode::Separable) || mode == uint32_t(ShadingMode::Burley);
         const FramePush push = shading::frame_push(cam, bbox_min, bbox_max, s.width, s.height, uint32_t(lights.size()));
         const gpu::Image& curvature = s.mode == ShadingMode::Curvature ? curvature_image()
                                       : curvature_lut                  ? curvature_lut->image()
@@ -280,8 +287,7 @@ struct Renderer::Impl {
         const FrameData data = frame_constants(lights, s, transmitting, mode);
         const auto& pipe = pipelines.get(variant(mode, uint32_t(transmitting.lights.size()), transmitting.shadows),
                                          color_format(s), s.samples);
-        const gpu::Image& light_depth_image =
-            transmitting.tiles || transmitting.shadows ? light_depth->atlas() : placeholder;
+        const gpu::Image& light_depth_image = transmitting.atlas ? light_depth->atlas() : placeholder;
 
         // The frame constants are rewritten in the command stream: wait for the previous draw's
         // shader reads (write-after-read), then make the new values visible to this draw.
@@ -293,19 +299,21 @@ struct Renderer::Impl {
         gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, shaders,
                             VK_ACCESS_2_UNIFORM_READ_BIT);
 
-        shading::begin_rendering(cmd, t, s);
+        const auto irradiance = separable ? separable_passes.prepare(cmd, t, s, *material) : VkRenderingAttachmentInfo{};
+        shading::begin_rendering(cmd, t, s, separable ? &irradiance : nullptr);
         pipe.bind(cmd, {s.width, s.height}, push,
                   {frame_data, lut->quads(),
                    gpu::Binding::image(curvature.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler),
                    gpu::Binding::image(light_depth_image.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, nearest),
                    gpu::Binding::image(lut->filtered().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler),
-                   transmission_table.texels()});
+                   transmission_table.texels(), separable_passes.data_or(frame_data)});
         VkBuffer vb = vertices.handle();
         VkDeviceSize offset = 0;
         vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
         vkCmdBindIndexBuffer(cmd, indices.handle(), 0, VK_INDEX_TYPE_UINT32);
         vkCmdDrawIndexed(cmd, index_count, 1, 0, 0, 0);
         vkCmdEndRendering(cmd);
+        if (separable) separable_passes.record_blur(cmd, t, s, color_format(s), cam, push.view_proj, bbox_min, bbox_max);
     }
 
     RenderedImage render(const Camera& cam, std::span<const Light> lights, const RenderSettings& s, uint32_t mode)

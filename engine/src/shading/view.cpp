@@ -14,7 +14,8 @@
 namespace jade {
 
 namespace {
-constexpr std::string_view kModeNames[] = {"lambert", "curvature", "tm", "tm-false-color", "filament"};
+// Indexed by ShadingMode.
+constexpr std::string_view kModeNames[] = {"lambert", "curvature", "tm", "tm-false-color", "filament", "separable", "burley"};
 constexpr std::string_view kToneMapNames[] = {"none", "reinhard", "aces"};
 
 // The camera's right, up and backward (towards the eye) unit vectors.
@@ -36,10 +37,11 @@ std::string_view shading_mode_name(ShadingMode mode)
 
 ShadingMode parse_shading_mode(std::string_view name)
 {
-    for (uint32_t i = 0; i < std::size(kModeNames); ++i)
-        if (name == kModeNames[i]) return ShadingMode(i);
     std::string known;
-    for (std::string_view n : kModeNames) known += (known.empty() ? "" : ", ") + std::string(n);
+    for (uint32_t i = 0; i < std::size(kModeNames); ++i) {
+        if (name == kModeNames[i]) return ShadingMode(i);
+        known += (known.empty() ? "" : ", ") + std::string(kModeNames[i]);
+    }
     throw Error("shading mode '" + std::string(name) + "' is not one of " + known);
 }
 
