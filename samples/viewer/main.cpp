@@ -9,12 +9,14 @@
 #include "app.hpp"
 
 #include <jade/error.hpp>
+#include <jade/io.hpp>
 #include <jade/material.hpp>
 
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -68,7 +70,7 @@ samples::viewer::Options parse(int argc, char** argv)
 {
     samples::viewer::Options o;
     if (const char* v = std::getenv("JADE_VALIDATION"); v && *v && std::strcmp(v, "0") != 0) o.validation = true;
-    bool mesh_given = false, strength_given = false;
+    bool mesh_given = false, strength_given = false, material_given = false;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto value = [&]() -> const char* {
@@ -93,9 +95,10 @@ samples::viewer::Options parse(int argc, char** argv)
         else if (a == "--mode")
             o.state.mode = jade::ShadingMode(index_of(
                 a, value(), std::vector<std::string>{"lambert", "curvature", "tm", "tm-false-color", "filament"}));
-        else if (a == "--material")
+        else if (a == "--material") {
             o.state.material = index_of(a, value(), jade::material_preset_names());
-        else if (a == "--strength") {
+            material_given = true;
+        } else if (a == "--strength") {
             o.state.strength = float(number(a, value(), 0, 1e6));
             strength_given = true;
         } else if (a == "--quality")
@@ -123,6 +126,27 @@ samples::viewer::Options parse(int argc, char** argv)
     }
     if (!o.screenshot.empty() && o.frames == 0)
         throw UsageError("--screenshot needs --frames N (the frame it captures is the last)");
+    if (mesh_given && !material_given) {
+        // A file written by `jade bake` names its material (JADE_materials_translucency): drawn
+        // with it, as `jade render` does, when it is one of the presets the panel offers.
+        std::optional<jade::Material> baked;
+        jade::ReadOptions read;
+        read.baked_material = &baked;
+        try {
+            (void)jade::load_mesh(o.mesh, read);
+        } catch (const jade::Error&) {
+            // The scene's own load reports it.
+        }
+        const auto& names = jade::material_preset_names();
+        if (baked) {
+            const auto it = std::find(names.begin(), names.end(), baked->name);
+            if (it != names.end())
+                o.state.material = int(it - names.begin());
+            else
+                std::fprintf(stderr, "jade view: %s was baked with material '%s', not a preset; drawn with '%s'\n",
+                             o.mesh.c_str(), baked->name.c_str(), std::string(names.at(0)).c_str());
+        }
+    }
     if (o.state.material < 0) o.state.material = 0;
     if (!strength_given) {
         // The preset's own strength (what `jade render` uses without --strength).
