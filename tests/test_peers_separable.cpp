@@ -100,7 +100,8 @@ TEST(SeparableKernel, TransmittanceOfGaussiansIsTheirClosedForm)
     const ChannelProfile p = material_preset("skin", 1.0).profile[0];
     for (double d : {0.0, 0.1, 0.5, 1.0, 3.0}) {
         double expected = 0.0;
-        for (uint32_t i = 0; i < p.gaussian_count; ++i) expected += p.weight[i] * std::exp(-d * d / (2.0 * p.variance[i]));
+        for (uint32_t i = 0; i < p.gaussian_count; ++i)
+            expected += p.weight[i] * std::exp(-d * d / (2.0 * p.variance[i]));
         EXPECT_NEAR(separable_transmittance(p, d), expected, 1e-9) << "d = " << d;
     }
 }
@@ -186,7 +187,7 @@ TEST_F(PeersSeparable, AShadowEdgeGetsTheProfilesEdgeResponse)
     EXPECT_LT(std::fabs(shift), 0.05) << "the shadow's edge is not where the plate puts it";
 
     s.mode = ShadingMode::Separable;
-    std::vector<float> single_sample;  // the default's row, for the multisampled draw below
+    std::vector<float> single_sample;        // the default's row, for the multisampled draw below
     for (uint32_t taps : {11u, 17u, 25u}) {  // 17: the default
         s.separable_taps = taps;
         const RenderedImage img = r.render(cam, {&light, 1}, s);
@@ -197,7 +198,7 @@ TEST_F(PeersSeparable, AShadowEdgeGetsTheProfilesEdgeResponse)
         int count = 0;
         for (uint32_t x = 0; x < s.width; ++x) {
             const double at = (x + 0.5 - 0.5 * s.width) * unit_per_px - shift;  // from the edge, + lit
-            if (std::fabs(at) > k.range) continue;                               // within the kernel's reach
+            if (std::fabs(at) > k.range) continue;                              // within the kernel's reach
             for (int c = 0; c < 3; ++c) {
                 const double expected = lit * edge_response_reference(m.profile[size_t(c)], at);
                 // What the taps give: the discrete kernel on the same input, in float64.
@@ -230,7 +231,9 @@ TEST_F(PeersSeparable, AShadowEdgeGetsTheProfilesEdgeResponse)
         // staircase; where the taps are sparse (10 to 20 px apart) their weights are < 0.02.
         // Measured (the line printed above): largest 0.055, 0.021, 0.026 and mean 0.0082, 0.0041,
         // 0.0020 for 11, 17, 25 taps; the bounds add half again.
-        const double bound_worst = taps == 11 ? 0.083 : 0.04, bound_mean = taps == 11 ? 0.012 : taps == 17 ? 0.006 : 0.003;
+        const double bound_worst = taps == 11 ? 0.083 : 0.04, bound_mean = taps == 11   ? 0.012
+                                                                           : taps == 17 ? 0.006
+                                                                                        : 0.003;
         EXPECT_LT(worst, bound_worst);
         EXPECT_LT(worst, largest_weight + 0.03);  // the staircase's own bound
         EXPECT_LT(mean, bound_mean);
@@ -288,14 +291,16 @@ TEST_F(PeersSeparable, AShadowEdgeGetsTheProfilesEdgeResponse)
             const double got = img.pixel(x, row)[0] / lit;
             if (got > 0.02 && got < 0.98) ramp += unit_per_px;  // the softened edge's width
             for (int c = 0; c < 3; ++c) {
-                const double error = std::fabs(img.pixel(x, row)[c] / lit - edge_response_reference(m.profile[size_t(c)], at));
+                const double error =
+                    std::fabs(img.pixel(x, row)[c] / lit - edge_response_reference(m.profile[size_t(c)], at));
                 worst = std::max(worst, error), mean += error, ++count;
             }
         }
         mean /= count;
-        std::printf("tm: shadow ramp (2 %% to 98 %%) %.3f units; error against the edge response mean %.4f, largest %.4f "
-                    "of the lit value\n",
-                    ramp, mean, worst);
+        std::printf(
+            "tm: shadow ramp (2 %% to 98 %%) %.3f units; error against the edge response mean %.4f, largest %.4f "
+            "of the lit value\n",
+            ramp, mean, worst);
         SCOPED_TRACE("tm");
         // Measured: a ramp of 0.100 units, error mean 0.054 and largest 0.51 of the lit value (13
         // and 16 times the separable peer's at 17 taps): the edge response needs a blur in the
@@ -312,7 +317,8 @@ TEST_F(PeersSeparable, AShadowEdgeGetsTheProfilesEdgeResponse)
     s.samples = 4, s.separable_taps = 17;
     const RenderedImage msaa = r.render(cam, {&light, 1}, s);
     double differ = 0.0;
-    for (uint32_t x = 0; x < s.width; ++x) differ = std::max(differ, std::fabs(msaa.pixel(x, row)[0] - single_sample[x]) / lit);
+    for (uint32_t x = 0; x < s.width; ++x)
+        differ = std::max(differ, std::fabs(msaa.pixel(x, row)[0] - single_sample[x]) / lit);
     EXPECT_LT(differ, 0.01);
     // A tap count the shader is not built for is refused, naming the setting.
     s.separable_taps = 13;

@@ -158,8 +158,7 @@ TEST_F(RenderShadows, ABoxShadowsThePlaneUnderADirectionalLight)
         RenderSettings rs = lambert(true);
         rs.mode = mode;
         const RenderedImage shaded = r.render(camera(), {&light, 1}, rs);
-        EXPECT_LT(red_at(shaded, centre), 1e-3 * lit)
-            << shading_mode_name(mode);
+        EXPECT_LT(red_at(shaded, centre), 1e-3 * lit) << shading_mode_name(mode);
     }
 }
 

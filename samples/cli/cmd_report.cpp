@@ -87,8 +87,9 @@ std::vector<std::string> default_meshes()
     if (!dragon.empty() && fs::exists(dragon))
         out.push_back(dragon.string());
     else
-        std::fprintf(stderr, "jade report: the dragon is left out: no %s in $JADE_ASSETS or in an assets/ folder above "
-                             "the executable or the working folder (third_party/fetch_assets.sh puts it there)\n",
+        std::fprintf(stderr,
+                     "jade report: the dragon is left out: no %s in $JADE_ASSETS or in an assets/ folder above "
+                     "the executable or the working folder (third_party/fetch_assets.sh puts it there)\n",
                      name.string().c_str());
     return out;
 }
@@ -233,8 +234,8 @@ int cmd_report(int argc, char** argv)
                              "executable or the working folder (run from a checkout of Jade)\n");
     } else {
         const std::string md = (dir / "fidelity.md").string(), json = (dir / "fidelity.json").string();
-        std::vector<std::string> words = {"jade", "fidelity", "--markdown", md, "--json", json, "--references",
-                                          references.string()};
+        std::vector<std::string> words = {"jade",   "fidelity", "--markdown",   md,
+                                          "--json", json,       "--references", references.string()};
         if (args.get("device")) words.insert(words.end(), {"--device", *args.get("device")});
         std::vector<char*> argv2;
         for (auto& w : words) argv2.push_back(w.data());

@@ -29,7 +29,8 @@ inline constexpr Mode kModes[] = {
     {"default", ShadingMode::Tm, true, -1, "Jade's default: t_m with transmission and boundary terms"},
     {"filament", ShadingMode::Filament, false, -1, "Filament's subsurface model fed Jade's baked thickness"},
     {"filament-flat", ShadingMode::Filament, false, 0.5f, "Filament's model without a thickness map (0.5)"},
-    {"separable", ShadingMode::Separable, true, -1, "Jimenez et al.'s separable SSS (17 taps), kernel from the profile"},
+    {"separable", ShadingMode::Separable, true, -1,
+     "Jimenez et al.'s separable SSS (17 taps), kernel from the profile"},
     {"burley", ShadingMode::Burley, true, -1, "HDRP's screen-space Burley diffusion (40 samples)"},
 };
 

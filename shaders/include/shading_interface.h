@@ -10,13 +10,13 @@
 #ifndef JADE_SHADING_INTERFACE_H
 #define JADE_SHADING_INTERFACE_H
 
-#define JADE_MAX_LIGHTS 64            // lights per draw
-#define JADE_MAX_TRANSMITTERS 4       // lights drawn with transmission per draw (transmission.glsl)
-#define JADE_MAX_LIGHT_DEPTH_TILES 4  // lights with a depth tile (shading/light_depth.hpp)
-#define JADE_COLOR_MAP_STOPS 9        // false-colour stops
-#define JADE_SEPARABLE_MAX_TAPS 25    // taps of one 1-D pass of the separable mode (11, 17 or 25)
+#define JADE_MAX_LIGHTS 64                      // lights per draw
+#define JADE_MAX_TRANSMITTERS 4                 // lights drawn with transmission per draw (transmission.glsl)
+#define JADE_MAX_LIGHT_DEPTH_TILES 4            // lights with a depth tile (shading/light_depth.hpp)
+#define JADE_COLOR_MAP_STOPS 9                  // false-colour stops
+#define JADE_SEPARABLE_MAX_TAPS 25              // taps of one 1-D pass of the separable mode (11, 17 or 25)
 #define JADE_SEPARABLE_TRANSMITTANCE_STEPS 128  // entries of its transmittance profile
-#define JADE_BURLEY_MAX_SAMPLES 80    // samples a pixel of the Burley mode (HDRP's high)
+#define JADE_BURLEY_MAX_SAMPLES 80              // samples a pixel of the Burley mode (HDRP's high)
 
 #ifdef __cplusplus
 #include <glm/mat4x4.hpp>
@@ -70,7 +70,8 @@ struct FrameData {
     vec4 transmission_shape;      // lobe exponent n, (n + 1)/(2π), normal_mix, 1: diffuse × boundary transmittance
     vec4 light_depth_map;         // light-depth tile size (texels), tiles in the atlas, unused, unused
     vec4 subsurface;              // Filament mode: subsurfaceColor (linear RGB), subsurfacePower (filament.glsl)
-    vec4 subsurface_thickness;    // Filament mode: thickness = min(t̄ · x, 1) (x in 1/mesh unit), or y when y ≥ 0; zw unused
+    vec4
+        subsurface_thickness;  // Filament mode: thickness = min(t̄ · x, 1) (x in 1/mesh unit), or y when y ≥ 0; zw unused
     LightTile light_tiles[JADE_MAX_LIGHT_DEPTH_TILES];  // per tile of the atlas (GpuLight::color.w − 1)
     vec4 color_map[JADE_COLOR_MAP_STOPS];               // false-colour stops, linear RGB
     vec4

@@ -25,6 +25,8 @@
 #include <jade/noncopyable.hpp>
 #include <jade/render.hpp>
 
+#include <glm/mat3x3.hpp>
+
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -37,11 +39,25 @@
 namespace jade {
 
 /// One object of a scene: a mesh in world space with one material.
+/// This object is a rigid copy of an earlier one of the scene: the same vertices, in the same
+/// order, at rotation · p + translation (rotation orthogonal, proper), with the same material.
+/// A static bake is invariant under such a motion but for the scattering normal, which turns
+/// with it, so the copy takes the earlier object's prepared mesh, moved, and its bake instead of
+/// baking its own (PassKind::SharedBake).
+struct InstanceOf {
+    uint32_t object = 0;          ///< index of the earlier object in Scene::objects
+    glm::mat3 rotation{1.0f};     ///< that object's world directions to this one's
+    glm::vec3 translation{0.0f};  ///< mesh units
+};
+
 struct SceneObject {
     std::string name;   ///< for messages, plans and --verbose
     TriangleMesh mesh;  ///< world space, mesh units
     Material material;
     std::optional<ProceduralDeformer> deformer;  ///< set: the mesh deforms (per-frame passes)
+    /// Set by load_scene for the second and later instances of a glTF primitive whose nodes move
+    /// it rigidly (no scale) and keep its material; clear it to bake each instance on its own.
+    std::optional<InstanceOf> instance_of;
     bool deforming() const { return deformer.has_value(); }
 };
 
@@ -57,8 +73,10 @@ enum class PassKind : uint32_t {
     Deform = 2,       ///< per frame: MeshDeformer (positions, normals, areas on the GPU)
     DynamicBake = 3,  ///< per frame: DynamicBake (refit of both trees, AO, t_m)
     Draw = 4,         ///< per frame: Renderer (the object's shader variant)
+    SharedBake =
+        5,  ///< once: an earlier instance's static bake, its scattering normals turned (SceneObject::instance_of)
 };
-/// "cache read", "static bake", "deform", "dynamic bake", "draw".
+/// "cache read", "static bake", "deform", "dynamic bake", "draw", "shared bake".
 std::string_view pass_kind_name(PassKind kind);
 
 /// One GPU buffer a pass allocates; `bytes` is an estimate (see plan_scene).

@@ -35,9 +35,9 @@ double profile_edge_response(const ChannelProfile& profile, double x);
 /// edge along either axis gets exactly E sampled at the taps. `range` is where the widest
 /// channel's tail H(range) falls to kSeparableKernelTail.
 struct SeparableKernel {
-    std::vector<double> offset;     ///< mesh units
-    std::vector<glm::dvec3> weight; ///< per tap, per channel (linear RGB)
-    double range = 0;               ///< the outermost tap's offset, mesh units
+    std::vector<double> offset;      ///< mesh units
+    std::vector<glm::dvec3> weight;  ///< per tap, per channel (linear RGB)
+    double range = 0;                ///< the outermost tap's offset, mesh units
 };
 inline constexpr double kSeparableKernelTail = 0.005;
 /// Throws jade::Error unless taps is 11, 17 or 25 (the counts the shader is built for).

@@ -14,7 +14,14 @@
 
 #include <jade/error.hpp>
 
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+
 #include <cmath>
+#include <map>
+#include <optional>
+#include <span>
+#include <tuple>
 
 namespace jade {
 namespace {
@@ -52,6 +59,33 @@ std::optional<ProceduralDeformer> node_deformer(const std::string& file, const t
     return ProceduralDeformer::fit(kind, prepare_mesh(mesh), axis);
 }
 
+// The rotation R with to[i] = R (from[i] − from[0]) + to[0] for every vertex (within 1e-5 of the
+// mesh's extent), if there is one: the frame of three well-spread vertices on each side, checked
+// on all. None where the two differ by more than a rigid motion (a scale, a shear, other vertices).
+std::optional<glm::mat3> rigid_rotation(std::span<const glm::vec3> from, std::span<const glm::vec3> to)
+{
+    if (from.size() != to.size() || from.size() < 3) return std::nullopt;
+    size_t a = 0, b = 0;
+    for (size_t i = 1; i < from.size(); ++i)
+        if (glm::length(from[i] - from[0]) > glm::length(from[a] - from[0])) a = i;
+    const glm::dvec3 ea = glm::dvec3(from[a] - from[0]);
+    double best = 0.0;
+    for (size_t i = 1; i < from.size(); ++i)
+        if (const double c = glm::length(glm::cross(ea, glm::dvec3(from[i] - from[0]))); c > best) best = c, b = i;
+    const double extent = glm::length(ea);
+    if (!(extent > 0.0) || !(best > 1e-3 * extent * extent)) return std::nullopt;  // collinear: no frame
+    auto frame = [&](std::span<const glm::vec3> p) {
+        const glm::dvec3 x = glm::normalize(glm::dvec3(p[a] - p[0]));
+        const glm::dvec3 z = glm::normalize(glm::cross(x, glm::dvec3(p[b] - p[0])));
+        return glm::dmat3(x, glm::cross(z, x), z);
+    };
+    const glm::dmat3 r = frame(to) * glm::transpose(frame(from));
+    for (size_t i = 0; i < from.size(); ++i)
+        if (!(glm::length(r * glm::dvec3(from[i] - from[0]) + glm::dvec3(to[0]) - glm::dvec3(to[i])) <= 1e-5 * extent))
+            return std::nullopt;
+    return glm::mat3(r);
+}
+
 }  // namespace
 
 Scene load_scene(const std::filesystem::path& path, std::vector<std::string>* warnings, const ReadOptions& options)
@@ -68,6 +102,9 @@ Scene load_scene(const std::filesystem::path& path, std::vector<std::string>* wa
         io::MaterialMapper mapper(name, model, warnings);
         std::vector<std::optional<Material>> materials(model.materials.size());
         std::optional<Material> no_material;
+        // The first object of each (mesh, primitive, material): later instances that are rigid
+        // copies of it share its bake (SceneObject::instance_of).
+        std::map<std::tuple<int, int, int>, uint32_t> first_instance;
         for (io::GltfPrimitive& p : io::read_gltf_primitives(name, model)) {
             io::validate_loaded(p.mesh);
             if (p.material >= int(model.materials.size()))
@@ -84,6 +121,15 @@ Scene load_scene(const std::filesystem::path& path, std::vector<std::string>* wa
             o.deformer = node_deformer(name, node, p.node, p.mesh, warnings);
             o.mesh = std::move(p.mesh);
             o.mesh.name = name + ": " + o.name;
+            const auto key = std::make_tuple(p.mesh_index, p.primitive, p.material);
+            if (auto it = first_instance.find(key); it != first_instance.end()) {
+                const SceneObject& first = scene.objects[it->second];
+                if (!o.deforming() && !first.deforming())
+                    if (auto r = rigid_rotation(first.mesh.positions, o.mesh.positions))
+                        o.instance_of = {it->second, *r, o.mesh.positions[0] - *r * first.mesh.positions[0]};
+            } else {
+                first_instance.emplace(key, uint32_t(scene.objects.size()));
+            }
             scene.objects.push_back(std::move(o));
         }
         if (scene.objects.empty()) io::fail(name, "the default scene has no triangle primitives");

@@ -40,6 +40,22 @@ uint64_t buffer_bytes_of(const std::vector<BufferEstimate>& estimates)
     return sum;
 }
 
+// Whether object k takes an earlier instance's static bake (SceneObject::instance_of): both
+// static and translucent, the same render vertex count. An instance_of that names no earlier
+// object is an error; one whose source cannot lend a bake (deforming, opaque) bakes on its own.
+bool shares_bake(const Scene& scene, size_t k, const ScenePlan& plan)
+{
+    const SceneObject& obj = scene.objects[k];
+    if (!obj.instance_of) return false;
+    const uint32_t j = obj.instance_of->object;
+    if (j >= k)
+        throw Error(scene.name + ": object " + std::to_string(k) + " '" + obj.name + "': instance_of names object " +
+                    std::to_string(j) + ", not an earlier one");
+    const ObjectPlan& source = plan.objects[j];
+    return !source.opaque && !source.deforming && scene.objects[j].mesh.positions.size() == obj.mesh.positions.size() &&
+           source.channels == (obj.material.grey() ? 1u : 3u);
+}
+
 }  // namespace
 
 std::string_view pass_kind_name(PassKind kind)
@@ -50,6 +66,7 @@ std::string_view pass_kind_name(PassKind kind)
     case PassKind::Deform: return "deform";
     case PassKind::DynamicBake: return "dynamic bake";
     case PassKind::Draw: return "draw";
+    case PassKind::SharedBake: return "shared bake";
     }
     return "unknown";
 }
@@ -113,7 +130,9 @@ std::string ScenePlan::describe() const
             << (o.opaque ? std::string("no t_m")
                          : std::to_string(o.channels) + (o.channels == 1 ? " channel (grey)" : " channels"))
             << "\n  shader variant: mode " << shading_mode_name(o.variant.mode) << ", CHANNELS=" << o.variant.channels;
-        if (!o.opaque && !o.deforming) {
+        if (o.runs(PassKind::SharedBake)) {
+            out << "\n  static bake: shared with an earlier instance (no bake will run)";
+        } else if (!o.opaque && !o.deforming) {
             char key[24];
             std::snprintf(key, sizeof key, "%016llx", (unsigned long long)o.bake_key);
             out << "\n  static bake: " << (o.bake_key ? "key " + std::string(key) + ", " : std::string("no cache, "))
@@ -195,6 +214,11 @@ ScenePlan plan_scene(const Scene& scene, const SceneSettings& settings, const St
                 o.passes.push_back({PassKind::DynamicBake, true, true,
                                     bake::estimate_buffers(prepared, obj.material, settings.bake, true,
                                                            obj.material.transmission.enabled())});
+            } else if (shares_bake(scene, k, plan)) {
+                // The earlier object's prepared mesh, moved (its welding, not this copy's own).
+                const ObjectPlan& from = plan.objects[obj.instance_of->object];
+                o.bake_vertices = from.bake_vertices, o.triangles = from.triangles;
+                o.passes.push_back({PassKind::SharedBake, false, false, {}});
             } else {
                 if (source.lookup) {
                     const auto found = source.lookup(prepared, obj.material, settings.bake);

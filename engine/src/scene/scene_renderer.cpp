@@ -26,6 +26,18 @@
 namespace jade {
 namespace {
 
+// An earlier instance's prepared mesh at this instance's place: its bake vertices, welding and
+// triangles, moved rigidly (so that the shared bake's per-vertex values fit it).
+PreparedMesh moved(const PreparedMesh& from, const InstanceOf& to)
+{
+    PreparedMesh m = from;
+    for (glm::vec3& p : m.positions) p = to.rotation * p + to.translation;
+    for (glm::vec3& n : m.normals) n = glm::normalize(to.rotation * n);
+    m.bbox_min = m.bbox_max = m.positions.empty() ? glm::vec3(0.0f) : m.positions[0];
+    for (const glm::vec3& p : m.positions) m.bbox_min = glm::min(m.bbox_min, p), m.bbox_max = glm::max(m.bbox_max, p);
+    return m;
+}
+
 }  // namespace
 
 struct SceneRenderer::Impl {
@@ -63,7 +75,8 @@ struct SceneRenderer::Impl {
             const SceneObject& so = scene.objects[k];
             const ObjectPlan& op = plan.objects[k];
             Object o;
-            o.rest = prepare_mesh(so.mesh);
+            o.rest = op.runs(PassKind::SharedBake) ? moved(objects[so.instance_of->object].rest, *so.instance_of)
+                                                   : prepare_mesh(so.mesh);
             if (first) lo = o.rest.bbox_min, hi = o.rest.bbox_max, first = false;
             lo = glm::min(lo, o.rest.bbox_min), hi = glm::max(hi, o.rest.bbox_max);
             for (const PassPlan& p : op.passes) {
@@ -86,6 +99,14 @@ struct SceneRenderer::Impl {
                     o.thickness = std::move(b.result.thickness);
                     o.scattering_normal = std::move(b.result.scattering_normal);
                     o.normal_spread = std::move(b.result.normal_spread);
+                } else if (p.kind == PassKind::SharedBake) {
+                    // A rigid copy: t_m, AO and thickness are the same; the scattering normal turns.
+                    const InstanceOf& of = *so.instance_of;
+                    const Object& from = objects[of.object];
+                    o.tm = from.tm, o.thickness = from.thickness, o.normal_spread = from.normal_spread;
+                    o.scattering_normal.reserve(from.scattering_normal.size());
+                    for (const glm::vec3& n : from.scattering_normal) o.scattering_normal.push_back(of.rotation * n);
+                    r.note = "from " + plan.objects[of.object].name;
                 } else if (p.kind == PassKind::Deform) {
                     o.deformer = *so.deformer;
                     o.mesh_deformer = std::make_unique<MeshDeformer>(context, o.rest);

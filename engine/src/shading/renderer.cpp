@@ -262,7 +262,9 @@ struct Renderer::Impl {
         d.subsurface = glm::vec4(filament.color, filament.power);
         const bool baked = s.filament_thickness < 0.0f && has_thickness && filament.thickness_per_unit > 0.0f;
         d.subsurface_thickness = glm::vec4(filament.thickness_per_unit,
-                                           baked ? -1.0f : s.filament_thickness < 0.0f ? 0.5f : s.filament_thickness,
+                                           baked                         ? -1.0f
+                                           : s.filament_thickness < 0.0f ? 0.5f
+                                                                         : s.filament_thickness,
                                            0.0f, 0.0f);
         for (int i = 0; i < 9; ++i) d.color_map[i] = glm::vec4(false_color(float(i) / 8.0f), 1.0f);
         d.transmission_table_map = transmission_table.shader_map();
@@ -299,7 +301,8 @@ struct Renderer::Impl {
         gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, shaders,
                             VK_ACCESS_2_UNIFORM_READ_BIT);
 
-        const auto irradiance = separable ? separable_passes.prepare(cmd, t, s, *material) : VkRenderingAttachmentInfo{};
+        const auto irradiance =
+            separable ? separable_passes.prepare(cmd, t, s, *material) : VkRenderingAttachmentInfo{};
         shading::begin_rendering(cmd, t, s, separable ? &irradiance : nullptr);
         pipe.bind(cmd, {s.width, s.height}, push,
                   {frame_data, lut->quads(),
@@ -313,7 +316,8 @@ struct Renderer::Impl {
         vkCmdBindIndexBuffer(cmd, indices.handle(), 0, VK_INDEX_TYPE_UINT32);
         vkCmdDrawIndexed(cmd, index_count, 1, 0, 0, 0);
         vkCmdEndRendering(cmd);
-        if (separable) separable_passes.record_blur(cmd, t, s, color_format(s), cam, push.view_proj, bbox_min, bbox_max);
+        if (separable)
+            separable_passes.record_blur(cmd, t, s, color_format(s), cam, push.view_proj, bbox_min, bbox_max);
     }
 
     RenderedImage render(const Camera& cam, std::span<const Light> lights, const RenderSettings& s, uint32_t mode)

@@ -67,28 +67,36 @@ VkRenderingAttachmentInfo SeparablePasses::prepare(VkCommandBuffer cmd, const Re
         throw Error("render target: the separable mode adds its blurred light to the resolved image only; keep with "
                     "a multisampled target would lose it");
     if (!data_) {  // the first separable draw
-        data_ = gpu::Buffer(ctx_, sizeof(SeparableData),
-                            VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, "separable constants");
-        sampler_ = gpu::make_sampler(ctx_, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "separable sampler");
+        data_ =
+            gpu::Buffer(ctx_, sizeof(SeparableData),
+                        VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, "separable constants");
+        sampler_ =
+            gpu::make_sampler(ctx_, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "separable sampler");
     }
-    if (!profiles_ || *profiles_ != material.profile || taps_ != s.separable_taps || samples_made_ != s.burley_samples) {
+    if (!profiles_ || *profiles_ != material.profile || taps_ != s.separable_taps ||
+        samples_made_ != s.burley_samples) {
         constants_ = separable_data(material, s.separable_taps, s.burley_samples);  // throws for a bad tap count
         profiles_ = material.profile, taps_ = s.separable_taps, samples_made_ = s.burley_samples;
     }
     if (width_ != s.width || height_ != s.height || samples_ != s.samples) {
         // Recorded draws may still read the old images.
-        if (irradiance_) ctx_.release_after_gpu(std::move(irradiance_msaa_), std::move(irradiance_), std::move(horizontal_));
+        if (irradiance_)
+            ctx_.release_after_gpu(std::move(irradiance_msaa_), std::move(irradiance_), std::move(horizontal_));
         constexpr VkImageUsageFlags kTarget = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
-        irradiance_msaa_ = s.samples > 1 ? gpu::Image(ctx_, {"separable irradiance (multisampled)", s.width, s.height,
-                                                             kSeparableIrradianceFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT,
-                                                             VkSampleCountFlagBits(s.samples)})
-                                         : gpu::Image();
-        irradiance_ = gpu::Image(ctx_, {"separable irradiance", s.width, s.height, kSeparableIrradianceFormat, kTarget});
-        horizontal_ = gpu::Image(ctx_, {"separable horizontal pass", s.width, s.height, kSeparableIrradianceFormat, kTarget});
+        irradiance_msaa_ = s.samples > 1
+                               ? gpu::Image(ctx_, {"separable irradiance (multisampled)", s.width, s.height,
+                                                   kSeparableIrradianceFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT,
+                                                   VkSampleCountFlagBits(s.samples)})
+                               : gpu::Image();
+        irradiance_ =
+            gpu::Image(ctx_, {"separable irradiance", s.width, s.height, kSeparableIrradianceFormat, kTarget});
+        horizontal_ =
+            gpu::Image(ctx_, {"separable horizontal pass", s.width, s.height, kSeparableIrradianceFormat, kTarget});
         width_ = s.width, height_ = s.height, samples_ = s.samples;
     }
     // As the frame constants (renderer.cpp): after earlier draws' reads, visible to this one's.
-    constexpr VkPipelineStageFlags2 kShaders = VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+    constexpr VkPipelineStageFlags2 kShaders =
+        VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
     gpu::memory_barrier(cmd, kShaders, 0, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
     vkCmdUpdateBuffer(cmd, data_.handle(), 0, sizeof(SeparableData), &constants_);
     gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, kShaders,
@@ -144,8 +152,8 @@ const gpu::GraphicsPipeline& SeparablePasses::pass_pipeline(Pass pass, uint32_t 
 }
 
 void SeparablePasses::record_blur(VkCommandBuffer cmd, const RenderTarget& t, const RenderSettings& s,
-                                  VkFormat color_format, const Camera& camera, const glm::mat4& view_proj,
-                                  glm::vec3 lo, glm::vec3 hi)
+                                  VkFormat color_format, const Camera& camera, const glm::mat4& view_proj, glm::vec3 lo,
+                                  glm::vec3 hi)
 {
     const float focal = 0.5f * float(s.height) / std::tan(0.5f * glm::radians(camera.fov_y_degrees));
     const VkRect2D area = screen_bounds(view_proj, lo, hi, s.width, s.height);

@@ -70,8 +70,7 @@ SeparableKernel separable_kernel(const Material& material, uint32_t taps)
         const ChannelProfile& p = material.profile[size_t(c)];
         double below = 0.0;  // E at the lower midpoint, E(−∞) = 0
         for (uint32_t i = 0; i < taps; ++i) {
-            const double above =
-                i + 1 < taps ? profile_edge_response(p, 0.5 * (k.offset[i] + k.offset[i + 1])) : 1.0;
+            const double above = i + 1 < taps ? profile_edge_response(p, 0.5 * (k.offset[i] + k.offset[i + 1])) : 1.0;
             k.weight[i][c] = above - below;
             below = above;
         }

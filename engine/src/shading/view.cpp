@@ -15,7 +15,8 @@ namespace jade {
 
 namespace {
 // Indexed by ShadingMode.
-constexpr std::string_view kModeNames[] = {"lambert", "curvature", "tm", "tm-false-color", "filament", "separable", "burley"};
+constexpr std::string_view kModeNames[] = {"lambert",  "curvature", "tm",    "tm-false-color",
+                                           "filament", "separable", "burley"};
 constexpr std::string_view kToneMapNames[] = {"none", "reinhard", "aces"};
 
 // The camera's right, up and backward (towards the eye) unit vectors.
