@@ -112,6 +112,23 @@ FilamentSubsurface filament_subsurface(const Material& m)
 
 namespace jade::shading {
 
+float shadow_spacing(const Light& light, const LightTile& tile, float reach, glm::vec3 centre)
+{
+    constexpr float kMaxShadowSpacing = 4.0f;
+    if (!(reach > 0.0f)) return 1.0f;
+    const float distance = tile.origin.w > 0.5f ? glm::length(light.vector - centre) : 1.0f;
+    const float texel = tile.depth.z * distance;  // mesh units across a texel at the object
+    return std::clamp(reach / std::max(texel, 1e-30f), 1.0f, kMaxShadowSpacing);
+}
+
+void check_material(const Material& m)
+{
+    if (!(m.strength >= 0.0f) || !std::isfinite(m.strength))
+        throw Error("material " + m.name + ": strength must be finite and >= 0");
+    if (!(m.ior > 0.0f) || !(m.roughness >= 0.0f) || !(m.specular >= 0.0f))
+        throw Error("material " + m.name + ": ior must be > 0, roughness and specular >= 0");
+}
+
 void check_target(const RenderTarget& t, const RenderSettings& s)
 {
     if (t.width != s.width || t.height != s.height || !t.color || !t.depth || (s.samples > 1) != bool(t.resolve))

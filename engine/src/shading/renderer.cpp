@@ -205,19 +205,6 @@ struct Renderer::Impl {
         return out;
     }
 
-    // The shadow filter's tap spacing in texels of the light's tile (shadow.glsl): 1 (a 3×3
-    // bilinear PCF); in the Tm mode widened to the material's reach, so that light bleeds into a
-    // shadow's edge as far as it travels under the surface, at most kMaxShadowSpacing texels (the
-    // 16 taps stay 16: wider, they would skip over thin occluders).
-    static constexpr float kMaxShadowSpacing = 4.0f;
-    float shadow_spacing(const Light& light, const shading::LightTile& tile, uint32_t mode) const
-    {
-        if (mode != uint32_t(ShadingMode::Tm)) return 1.0f;
-        const float distance = tile.origin.w > 0.5f ? glm::length(light.vector - 0.5f * (bbox_min + bbox_max)) : 1.0f;
-        const float texel = tile.depth.z * distance;  // mesh units across a texel at the object
-        return std::clamp(reach / std::max(texel, 1e-30f), 1.0f, kMaxShadowSpacing);
-    }
-
     std::pair<float, float> false_color_range(const RenderSettings& s) const
     {
         if (s.false_color_max > s.false_color_min) return {s.false_color_min, s.false_color_max};
@@ -254,7 +241,9 @@ struct Renderer::Impl {
             for (uint32_t t = 0; t < shading::LightDepth::kMaxLights; ++t) d.light_tiles[t] = light_depth->tile(t);
             for (size_t k = 0; k < lights.size(); ++k)
                 if (const uint32_t tile = transmitting.tile[k]; tile != 0)
-                    d.light_tiles[tile - 1].depth.w = shadow_spacing(lights[k], d.light_tiles[tile - 1], mode);
+                    d.light_tiles[tile - 1].depth.w = shading::shadow_spacing(
+                        lights[k], d.light_tiles[tile - 1], mode == uint32_t(ShadingMode::Tm) ? reach : 0.0f,
+                        0.5f * (bbox_min + bbox_max));
         }
         // Filament's inputs: the baked thickness normalised by the medium, or a constant (the
         // setting's, else Filament's default 0.5 where there is nothing to normalise).
@@ -472,10 +461,7 @@ void Renderer::update_vertices(VkBuffer positions, VkBuffer normals, VkBuffer tm
 
 void Renderer::set_material(const Material& material)
 {
-    if (!(material.strength >= 0.0f) || !std::isfinite(material.strength))
-        throw Error("material " + material.name + ": strength must be finite and >= 0");
-    if (!(material.ior > 0.0f) || !(material.roughness >= 0.0f) || !(material.specular >= 0.0f))
-        throw Error("material " + material.name + ": ior must be > 0, roughness and specular >= 0");
+    shading::check_material(material);
     Impl& m = *impl_;
     if (m.curvature_lut && m.curvature_lut_profiles != material.profile) {
         m.ctx.release_after_gpu(std::move(*m.curvature_lut));  // recorded draws may read it; rebuilt on demand
