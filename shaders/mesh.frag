@@ -167,8 +167,11 @@ void main()
         // not shadowed (it is the light that crossed the occluder).
         if ((MODE == kSeparable || MODE == kBurley) && tile != 0u)
             irradiance += albedo * (1.0 / JADE_PI) * separable_transmittance(tile, n, l) * e;
-        // The mesh's shadow (shadow.glsl) dims this light's diffuse and specular light alike.
-        if (SHADOWS == 1u && tile != 0u) e *= shadow_visibility(tile, in_position, n, l);
+        // The mesh's shadow (shadow.glsl) dims this light's diffuse and specular light alike; the
+        // t_m modes' is softened by the scattering profile, per channel.
+        if (SHADOWS == 1u && tile != 0u)
+            e *= MODE == kTm ? soft_shadow_visibility(tile, in_position, n, l)
+                             : vec3(shadow_visibility(tile, in_position, n, l));
         vec3 diffuse = albedo * (1.0 / JADE_PI) * diffuse_response(c_diffuse, tr, kappa_scaled) * e;
         if (boundary) diffuse *= boundary_transmittance(c_diffuse) * exit_transmittance;
         if (MODE == kSeparable || MODE == kBurley)

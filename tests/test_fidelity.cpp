@@ -88,9 +88,10 @@ void front_and_side_lit_scenes_are_closer_than_lambert_and_curvature_everywhere(
     EXPECT_EQ(lit, 26);
     EXPECT_EQ(closer, 26);
     EXPECT_EQ(closer_than_curvature, 26);
-    EXPECT_GE(not_worse_than_tm, 24) << "measured: all but hand_jade_side and hand_jewel_side";
-    EXPECT_LT(ours["front"] / 13.0, 0.18) << "measured 0.172";
-    EXPECT_LT(ours["side"] / 13.0, 0.28) << "measured 0.273";
+    EXPECT_GE(not_worse_than_tm, 22) << "measured: all but bunny_jewel_side, bunny_wax_side, hand_jade_side and "
+                                        "hand_jewel_side";
+    EXPECT_LT(ours["front"] / 13.0, 0.17) << "measured 0.164";
+    EXPECT_LT(ours["side"] / 13.0, 0.265) << "measured 0.258";
 }
 
 void thin_parts_lit_from_behind_carry_the_path_tracers_radiance()
@@ -140,7 +141,7 @@ void closer_than_the_filament_peer_in_every_light_class()
 
 // The screen-space peers (Jimenez's separable SSS, HDRP's Burley diffusion, docs/peers.md): per
 // light class, the mean masked FLIP of Jade's default as a share of the peer's, and how many of
-// the 13 scenes the default wins. Under side light both peers are nearer: what the table says.
+// the 13 scenes the default wins. Under side light the separable peer is nearer: what the table says.
 void against_the_screen_space_peers()
 {
     ASSERT_EQ(committed().size(), 39u);
@@ -153,13 +154,17 @@ void against_the_screen_space_peers()
             wins[light] += flip(s, "default") < flip(s, peer) ? 1 : 0;
         }
         SCOPED_TRACE(peer);
-        EXPECT_LT(ours["front"], 0.55 * theirs["front"]) << "measured 0.476 (separable), 0.466 (burley)";
+        EXPECT_LT(ours["front"], 0.55 * theirs["front"]) << "measured 0.453 (separable), 0.443 (burley)";
         EXPECT_LT(ours["back"], 0.72 * theirs["back"]) << "measured 0.652 (separable), 0.606 (burley)";
         EXPECT_EQ(wins["front"], 13);
         EXPECT_EQ(wins["back"], 13);
-        // Side light: the peers win (0.273 against 0.235 and 0.265; the default wins 2 and 6 of 13).
-        EXPECT_GT(ours["side"], theirs["side"]) << "the default is not yet nearer than this peer under side light";
-        EXPECT_LT(ours["side"], 1.25 * theirs["side"]) << "measured 1.16 (separable), 1.03 (burley)";
+        // Side light: the default's mean is 1.10 of the separable peer's (it wins 3 of 13) and 0.97 of
+        // the Burley peer's (8 of 13).
+        if (std::string(peer) == "separable")
+            EXPECT_GT(ours["side"], theirs["side"]) << "the default is not yet nearer than this peer under side light";
+        else
+            EXPECT_LT(ours["side"], theirs["side"]) << "measured 0.974";
+        EXPECT_LT(ours["side"], 1.15 * theirs["side"]) << "measured 1.10 (separable), 0.97 (burley)";
     }
 }
 

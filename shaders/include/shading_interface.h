@@ -17,6 +17,7 @@
 #define JADE_SEPARABLE_MAX_TAPS 25              // taps of one 1-D pass of the separable mode (11, 17 or 25)
 #define JADE_SEPARABLE_TRANSMITTANCE_STEPS 128  // entries of its transmittance profile
 #define JADE_BURLEY_MAX_SAMPLES 80              // samples a pixel of the Burley mode (HDRP's high)
+#define JADE_SOFT_SHADOW_TAPS 16                // taps of the t_m mode's profile-shaped shadow filter (shadow.glsl)
 
 #ifdef __cplusplus
 #include <glm/mat4x4.hpp>
@@ -77,6 +78,11 @@ struct FrameData {
     vec4
         transmission_table_map;  // 1 / step of the attenuation table (mesh units), last texel, last interval, texels a part
     GpuLight transmitters[JADE_MAX_TRANSMITTERS];  // the lights drawn with transmission (transmission.glsl)
+    // The t_m mode's shadow filter (shadow.glsl): rgb the Burley shape d per channel, w the shape
+    // sampled (the widest channel's), mesh units; w = 0: the plain filter. Tap i's radius at
+    // [i / 4][i % 4], mesh units (the sampled shape's inverse CDF at (i + ½)/TAPS).
+    vec4 soft_shadow;
+    vec4 soft_shadow_radius[JADE_SOFT_SHADOW_TAPS / 4];
     GpuLight lights[JADE_MAX_LIGHTS];
 };
 
@@ -107,7 +113,8 @@ static_assert(sizeof(SeparableData) ==
               (JADE_SEPARABLE_MAX_TAPS + JADE_SEPARABLE_TRANSMITTANCE_STEPS + 2 + JADE_BURLEY_MAX_SAMPLES / 4) * 16);
 static_assert(sizeof(FramePush) == 80 && sizeof(GpuLight) == 32 && sizeof(LightTile) == 96);
 static_assert(sizeof(FrameData) == 12 * 16 + JADE_MAX_LIGHT_DEPTH_TILES * 96 + JADE_COLOR_MAP_STOPS * 16 + 16 +
-                                       (JADE_MAX_TRANSMITTERS + JADE_MAX_LIGHTS) * 32,
+                                       (JADE_MAX_TRANSMITTERS + JADE_MAX_LIGHTS) * 32 +
+                                       (1 + JADE_SOFT_SHADOW_TAPS / 4) * 16,
               "FrameData must have no padding: scalar layout packs it so");
 }  // namespace jade::shading
 #endif

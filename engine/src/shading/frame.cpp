@@ -3,6 +3,7 @@
 
 #include "gpu/context.hpp"
 
+#include <jade/burley_diffusion.hpp>
 #include <jade/context.hpp>
 #include <jade/error.hpp>
 
@@ -112,13 +113,17 @@ FilamentSubsurface filament_subsurface(const Material& m)
 
 namespace jade::shading {
 
-float shadow_spacing(const Light& light, const LightTile& tile, float reach, glm::vec3 centre)
+SoftShadowKernel soft_shadow_kernel(const Material& m)
 {
-    constexpr float kMaxShadowSpacing = 4.0f;
-    if (!(reach > 0.0f)) return 1.0f;
-    const float distance = tile.origin.w > 0.5f ? glm::length(light.vector - centre) : 1.0f;
-    const float texel = tile.depth.z * distance;  // mesh units across a texel at the object
-    return std::clamp(reach / std::max(texel, 1e-30f), 1.0f, kMaxShadowSpacing);
+    SoftShadowKernel k;
+    if (m.opaque) return k;
+    const glm::dvec3 shape = burley_shapes(m);
+    const double sampled = std::max({shape.x, shape.y, shape.z});
+    if (!(sampled > 0.0) || !std::isfinite(sampled)) return k;
+    k.shape = glm::vec4(glm::vec3(glm::max(shape, glm::dvec3(1e-30))), float(sampled));
+    for (uint32_t i = 0; i < JADE_SOFT_SHADOW_TAPS; ++i)
+        k.radius[i / 4][i % 4] = float(burley_sample_radius((i + 0.5) / JADE_SOFT_SHADOW_TAPS, sampled));
+    return k;
 }
 
 void check_material(const Material& m)

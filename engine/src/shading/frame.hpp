@@ -26,12 +26,15 @@ void check_settings(const gpu::Context& ctx, const RenderSettings& s, std::span<
 FramePush frame_push(const Camera& cam, glm::vec3 bbox_min, glm::vec3 bbox_max, uint32_t width, uint32_t height,
                      uint32_t light_count);
 
-/// The shadow filter's tap spacing in texels of the light's tile (shadow.glsl): 1 (a 3×3
-/// bilinear PCF), or widened to `reach` (mesh units; the Tm mode passes the material's, the
-/// others 0), so that light bleeds into a shadow's edge as far as it travels under the surface,
-/// at most 4 texels (the taps stay 9: wider, they would skip over thin occluders). `centre`: the
-/// object's, where a point light's texel is measured.
-float shadow_spacing(const Light& light, const LightTile& tile, float reach, glm::vec3 centre);
+/// The t_m mode's shadow filter (shadow.glsl soft_shadow_visibility), FrameData::soft_shadow and
+/// soft_shadow_radius: the material's Burley shape per channel (burley_shapes: its d, or the
+/// Burley d of the same median radius), the widest of them sampled at the radii of its exact
+/// inverse CDF at (i + ½)/JADE_SOFT_SHADOW_TAPS. A shape of 0 (an opaque material) turns it off.
+struct SoftShadowKernel {
+    glm::vec4 shape{0.0f};
+    glm::vec4 radius[JADE_SOFT_SHADOW_TAPS / 4]{};
+};
+SoftShadowKernel soft_shadow_kernel(const Material& m);
 
 /// Throws jade::Error naming the material: a negative or non-finite strength, ior ≤ 0, a
 /// negative roughness or specular weight.

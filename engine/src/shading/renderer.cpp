@@ -81,7 +81,7 @@ struct Renderer::Impl {
 
     std::optional<shading::LightDepth> light_depth;  // made on the first draw with transmission or shadows
     std::optional<Material> material;
-    float reach = 0.0f;  // the material's profile's median radius, mean of the channels (mesh units)
+    shading::SoftShadowKernel soft_shadow;  // the material's, for the Tm mode's shadows
     gpu::Buffer frame_data;
     TmEvaluation evaluation;
     shading::MeshPipelines pipelines;
@@ -239,11 +239,10 @@ struct Renderer::Impl {
             d.light_depth_map =
                 glm::vec4(float(light_depth->tile_size()), float(shading::LightDepth::kMaxLights), 0.0f, 0.0f);
             for (uint32_t t = 0; t < shading::LightDepth::kMaxLights; ++t) d.light_tiles[t] = light_depth->tile(t);
-            for (size_t k = 0; k < lights.size(); ++k)
-                if (const uint32_t tile = transmitting.tile[k]; tile != 0)
-                    d.light_tiles[tile - 1].depth.w = shading::shadow_spacing(
-                        lights[k], d.light_tiles[tile - 1], mode == uint32_t(ShadingMode::Tm) ? reach : 0.0f,
-                        0.5f * (bbox_min + bbox_max));
+        }
+        if (mode == uint32_t(ShadingMode::Tm)) {
+            d.soft_shadow = soft_shadow.shape;
+            std::copy(std::begin(soft_shadow.radius), std::end(soft_shadow.radius), d.soft_shadow_radius);
         }
         // Filament's inputs: the baked thickness normalised by the medium, or a constant (the
         // setting's, else Filament's default 0.5 where there is nothing to normalise).
@@ -469,7 +468,7 @@ void Renderer::set_material(const Material& material)
     }
     if (material.transmission.enabled()) m.transmission_table.update(material.transmission);
     m.material = material;
-    m.reach = float(shading::CurvatureLut::length_scale(material));
+    m.soft_shadow = shading::soft_shadow_kernel(material);
 }
 
 RenderedImage Renderer::render(const Camera& camera, std::span<const Light> lights, const RenderSettings& settings)
