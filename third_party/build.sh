@@ -5,6 +5,9 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bash "$root/third_party/install_deps.sh"
 bash "$root/third_party/fetch_assets.sh"
+# The web renderer's npm packages (web/node_modules; docs/web.md). Without Node.js it says so
+# and the build goes on (its test then skips, or fails under CI=true).
+bash "$root/third_party/install_web.sh" || [ $? -eq 77 ]
 jobs=$(nproc 2>/dev/null || echo 2)
 # The fast part of the asan preset (build-asan-subset/: the bad-input and CPU maths tests under
 # ASan + UBSan), which the suite in build/ runs as the test asan_subset. JADE_ASAN_SUBSET=OFF

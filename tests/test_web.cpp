@@ -1,0 +1,172 @@
+// The WebGL2 renderer (web/, docs/web.md) in a real browser: web/test/render_scenes.mjs draws the
+// committed baked bunny (blue-jewel) in headless Chromium (WebGL2 on SwiftShader) with
+// JadeTranslucentMaterial, front- and back-lit (web/test/scenes.json), and this test compares each
+// image with `jade render` of the same file, camera and lights by LDR FLIP. Neither side draws
+// shadows (the web material has none: --no-shadows here). The browser, its npm packages and the
+// demo file come from third_party/build.sh (install_web.sh); where they are missing the test
+// fails under CI=true and is skipped elsewhere, saying what to run.
+#include "flip.hpp"
+#include "gltf_reader.hpp"
+#include "test_support.hpp"
+
+#include <jade/io.hpp>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+std::filesystem::path web(const std::string& name) { return std::filesystem::path(JADE_WEB_DIR) / name; }
+
+jade::flip::Image load_png(const std::filesystem::path& path)
+{
+    const jade::LoadedImage img = jade::load_image(path);
+    return jade::flip::from_linear(uint32_t(img.width), uint32_t(img.height), img.rgba.data(), 4);
+}
+
+// Runs a shell command; its exit status, stdout and stderr together in `output`.
+int run(const std::string& command, std::string& output)
+{
+    FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+    if (!pipe) return -1;
+    std::array<char, 4096> buf;
+    size_t n;
+    while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) output.append(buf.data(), n);
+    const int status = pclose(pipe);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+nlohmann::json read_json(const std::filesystem::path& path)
+{
+    std::ifstream in(path);
+    if (!in) throw std::runtime_error(path.string() + ": cannot be read");
+    return nlohmann::json::parse(in);
+}
+
+std::string triple(const nlohmann::json& a)
+{
+    std::ostringstream s;
+    s << a.at(0).get<double>() << ',' << a.at(1).get<double>() << ',' << a.at(2).get<double>();
+    return s.str();
+}
+
+// What the browser side needs, or why it cannot run.
+std::string missing_browser_side()
+{
+    const char* chromium = std::getenv("JADE_CHROMIUM");
+    const std::filesystem::path browser = chromium && *chromium ? chromium : "/usr/bin/chromium-headless-shell";
+    if (!std::filesystem::exists(browser))
+        return "no headless Chromium at " + browser.string() +
+               " (Debian package chromium-headless-shell: bash third_party/install_deps.sh)";
+    if (!std::filesystem::exists(web("node_modules/three/package.json")) ||
+        !std::filesystem::exists(web("node_modules/puppeteer-core/package.json")))
+        return "web/node_modules lacks three or puppeteer-core (bash third_party/install_web.sh runs npm ci there)";
+    std::string output;
+    if (run("node --version", output) != 0) return "no Node.js (node): " + output;
+    return "";
+}
+
+bool in_ci()
+{
+    const char* ci = std::getenv("CI");
+    return ci && std::string(ci) == "true";
+}
+
+}  // namespace
+
+// The committed demo file is what `jade bake` writes, and valid glTF.
+TEST(Web, DemoFileIsValidGltf)
+{
+    const auto file = web("assets/bunny_blue_jewel.glb");
+    ASSERT_TRUE(std::filesystem::exists(file)) << file;
+    EXPECT_LT(std::filesystem::file_size(file), 1u << 20) << "the demo file is to stay under 1 MiB";
+    std::string why;
+    const auto reports = jade::test::run_gltf_validator({file}, &why);
+    if (!reports) GTEST_SKIP() << why;
+    ASSERT_EQ(reports->size(), 1u) << why;
+    std::string issues;
+    for (const auto& i : reports->front().issues) issues += "\n  " + i;
+    EXPECT_EQ(reports->front().errors, 0) << issues;
+    EXPECT_EQ(reports->front().warnings, 0) << issues;
+    // The file carries every input of the default shading and the material (docs/gltf.md).
+    const auto gltf = jade::test::read_gltf_file(file);
+    const auto& primitive = gltf.doc.at("meshes").at(0).at("primitives").at(0);
+    for (const char* attribute : {"_TM", "_THICKNESS", "_SCATTERING_NORMAL", "_NORMAL_SPREAD"})
+        EXPECT_TRUE(primitive.at("attributes").contains(attribute)) << attribute;
+    const auto& material = gltf.doc.at("materials").at(primitive.at("material").get<size_t>());
+    EXPECT_EQ(material.at("extensions").at("JADE_materials_translucency").at("name"), "blue-jewel");
+}
+
+// LDR FLIP of the browser's image against jade render's, per scene. Measured (lavapipe against
+// SwiftShader, 512x512, 4x MSAA on both sides; docs/web.md): see kBound for the bounds and why.
+TEST(Web, JadeMaterialMatchesJadeRender)
+{
+    if (const std::string why = missing_browser_side(); !why.empty()) {
+        if (in_ci()) FAIL() << "CI=true and the browser side cannot run: " << why;
+        GTEST_SKIP() << why;
+    }
+    const auto dir = jade::test::test_folder("web");
+    std::filesystem::create_directories(dir);
+    const auto glb = web("assets/bunny_blue_jewel.glb");
+    const nlohmann::json config = read_json(web("test/scenes.json"));
+    const auto& camera = config.at("camera");
+    const std::string size = std::to_string(config.at("size").at(0).get<int>()) + "x" +
+                             std::to_string(config.at("size").at(1).get<int>());
+
+    // jade render of each scene: the same file, camera and lights; no shadows (the web side has
+    // none); the ALU evaluation of the cosine-Gaussian (the web material's).
+    for (const auto& [name, lights] : config.at("scenes").items()) {
+        std::vector<std::string> args = {"render",   glb.string(),        "--eye",  triple(camera.at("eye")),
+                                         "--target", triple(camera.at("target")), "--up", triple(camera.at("up")),
+                                         "--fov",    std::to_string(camera.at("fov").get<double>()),
+                                         "--size",   size,                "--no-shadows", "--eval", "alu",
+                                         "--out",    (dir / ("jade_" + name + ".png")).string()};
+        for (const auto& l : lights) {
+            ASSERT_EQ(l.at("type"), "dir") << "scenes.json: only directional lights are compared";
+            args.push_back("--light");
+            args.push_back("dir:" + triple(l.at("vector")) + ":" + triple(l.at("color")));
+        }
+        const auto r = jade::test::run_cli(args);
+        ASSERT_EQ(r.exit_code, 0) << r.output;
+    }
+
+    std::string output;
+    const int rc = run("node '" + web("test/render_scenes.mjs").string() + "' --glb '" + glb.string() + "' --out '" +
+                           dir.string() + "' --frames 20",
+                       output);
+    std::printf("%s", output.c_str());
+    ASSERT_EQ(rc, 0) << output;
+
+    // Bounds: front 0.02 and back 0.08, about twice what was measured (docs/web.md). The front
+    // scene differs only where the two rasterisers and MSAA resolves differ (silhouette pixels,
+    // SwiftShader's exp/pow); the back scene also where Jade's path through the object from the
+    // light's depth layers is longer than the baked thickness the web material uses. A wrong
+    // formula or encoding costs more: the same file drawn with MeshPhysicalMaterial is ~0.2 away.
+    const std::map<std::string, double> bound = {{"front", 0.02}, {"back", 0.08}};
+    for (const auto& [name, lights] : config.at("scenes").items()) {
+        SCOPED_TRACE(name);
+        const auto reference = load_png(dir / ("jade_" + name + ".png"));
+        const double jade_flip = jade::flip::ldr_flip(reference, load_png(dir / ("web_" + name + "_jade.png")));
+        const double physical_flip = jade::flip::ldr_flip(reference, load_png(dir / ("web_" + name + "_physical.png")));
+        std::printf("%s: LDR FLIP against jade render: JadeTranslucentMaterial %.4f, MeshPhysicalMaterial %.4f\n",
+                    name.c_str(), jade_flip, physical_flip);
+        EXPECT_LE(jade_flip, bound.at(name));
+        EXPECT_GT(physical_flip, 2.0 * jade_flip);  // the comparison can tell a different material apart
+    }
+    const nlohmann::json timing = read_json(dir / "web_timing.json");
+    for (const auto& [name, t] : timing.at("scenes").items()) {
+        const double ratio = t.at("ratio").get<double>();
+        EXPECT_TRUE(ratio > 0.0 && std::isfinite(ratio)) << name;
+    }
+}

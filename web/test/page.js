@@ -1,0 +1,89 @@
+// The test page: window.jadeTest draws a baked file with a fixed camera and lights, with
+// JadeTranslucentMaterial or three.js's MeshPhysicalMaterial / MeshStandardMaterial, and times
+// frames. Driven by render_scenes.mjs.
+import * as THREE from 'three';
+import { loadJadeGltf } from '../src/index.js';
+import { makeLight } from '../src/lights.js';
+
+let renderer, meshes = [], root;
+
+function setup(width, height) {
+  if (!renderer) {
+    renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+    document.body.appendChild(renderer.domElement);
+  }
+  renderer.setPixelRatio(1);
+  renderer.setSize(width, height, false);
+  // Jade's PNG: linear light clipped to [0, 1], sRGB-encoded; no tone mapping.
+  renderer.outputColorSpace = THREE.SRGBColorSpace;
+  renderer.toneMapping = THREE.NoToneMapping;
+  renderer.setClearColor(0x000000, 1);
+}
+
+function sceneFor({ camera: c, lights, size, material }) {
+  const [width, height] = size;
+  setup(width, height);
+  const scene = new THREE.Scene();
+  scene.add(root);
+  for (const mesh of meshes) {
+    const jade = mesh.userData.jade;
+    if (material === 'jade') mesh.material = jade.material;
+    else if (material === 'physical') mesh.material = jade.physicalMaterial;
+    else if (material === 'standard') mesh.material = jade.standardMaterial;
+    else throw new Error(`unknown material '${material}'`);
+  }
+  for (const l of lights) scene.add(makeLight(l));
+  const camera = new THREE.PerspectiveCamera(c.fov, width / height, 0.01, 100);
+  camera.position.set(...c.eye);
+  camera.up.set(...c.up);
+  camera.lookAt(...c.target);
+  return { scene, camera };
+}
+
+window.jadeTest = {
+  async load(url) {
+    const gltf = await loadJadeGltf(url);
+    root = gltf.scene;
+    meshes = [];
+    root.traverse((o) => { if (o.isMesh && o.userData.jade) meshes.push(o); });
+    if (meshes.length === 0) throw new Error(`${url}: no baked primitive with JADE_materials_translucency`);
+    for (const mesh of meshes) {
+      const jade = mesh.userData.jade;
+      jade.material = mesh.material;
+      jade.standardMaterial = new THREE.MeshStandardMaterial({
+        color: new THREE.Color().setRGB(...jade.extension.albedo), roughness: jade.extension.roughness, metalness: 0 });
+    }
+    return meshes.length;
+  },
+  render(options) {
+    const { scene, camera } = sceneFor(options);
+    renderer.render(scene, camera);
+    const gl = renderer.getContext();
+    const error = gl.getError();
+    if (error !== gl.NO_ERROR) throw new Error(`WebGL error 0x${error.toString(16)}`);
+    return renderer.domElement.toDataURL('image/png');
+  },
+  // Mean milliseconds per frame over `frames` frames after `warmup`, each finished (a pixel read
+  // back: gl.finish alone may return before the work is done).
+  time(options, frames, warmup = 5) {
+    const { scene, camera } = sceneFor(options);
+    const gl = renderer.getContext();
+    const pixel = new Uint8Array(4);
+    const frame = () => {
+      renderer.render(scene, camera);
+      gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);
+    };
+    for (let i = 0; i < warmup; ++i) frame();
+    const start = performance.now();
+    for (let i = 0; i < frames; ++i) frame();
+    return (performance.now() - start) / frames;
+  },
+  info() {
+    setup(1, 1);
+    const gl = renderer.getContext();
+    const debug = gl.getExtension('WEBGL_debug_renderer_info');
+    return { renderer: debug ? gl.getParameter(debug.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER),
+             samples: gl.getParameter(gl.SAMPLES), three: THREE.REVISION };
+  },
+};
+window.jadeTestReady = true;
