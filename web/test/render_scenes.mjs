@@ -29,6 +29,8 @@ if (!existsSync(browserPath)) {
 }
 if (!existsSync(glb)) { console.error(`render_scenes: ${glb}: no such file`); process.exit(1); }
 
+// The demo page opens the committed file by default; another one is served as /baked.glb.
+const glbIsDemo = resolve(glb) === resolve(here, '..', 'assets', 'bunny_blue_jewel.glb');
 const writeAtomic = (path, data) => { writeFileSync(path + '.tmp', data); renameSync(path + '.tmp', path); };
 const server = await startServer({ extra: { '/baked.glb': resolve(glb) } });
 const browser = await puppeteer.launch({
@@ -45,7 +47,7 @@ try {
   page.on('pageerror', (e) => problems.push(`page error: ${e.message}`));
   if (screenshot) {
     await page.setViewport({ width: 960, height: 600 });
-    await page.goto(`${server.url}index.html?file=/baked.glb`, { waitUntil: 'load' });
+    await page.goto(`${server.url}index.html${glbIsDemo ? '' : '?file=/baked.glb'}`, { waitUntil: 'load' });
     await page.waitForFunction('window.jadeDemoReady === true', { timeout: 60000 });
     await page.screenshot({ path: screenshot + '.tmp.png' });
     renameSync(screenshot + '.tmp.png', screenshot);
