@@ -4,10 +4,13 @@
 // jade* attributes read here) and the vertex normal; the parameters are those of the
 // JADE_materials_translucency extension (docs/gltf.md). Lit by the scene's three.js
 // DirectionalLights and PointLights (lights: true): colour × intensity is Jade's irradiance E
-// (directional) or intensity (point, falling off as 1/d²). No shadows, no light-depth map: the
-// transmission's path is the baked _THICKNESS (docs/web.md says what that changes).
-import { ShaderMaterial, UniformsLib, UniformsUtils, Vector3, Vector4 } from 'three';
+// (directional) or intensity (point, falling off as 1/d²). No shadows. The transmission's path
+// through the object is the longer of the baked _THICKNESS and, for the first directional light
+// that may shine through towards the eye, the path from where its light enters (four depth layers
+// peeled along it, JadeLightPaths.js), per fragment; other lights use the thickness alone.
+import { Matrix4, ShaderMaterial, UniformsLib, UniformsUtils, Vector2, Vector3, Vector4 } from 'three';
 import { vertexShader, fragmentShader } from './jadeShaderChunks.js';
+import { JadeLightPaths } from './JadeLightPaths.js';
 
 const finite = (x, what) => {
   if (!Number.isFinite(x)) throw new Error(`JADE_materials_translucency: ${what} is not a finite number (${x})`);
@@ -38,6 +41,13 @@ export class JadeTranslucentMaterial extends ShaderMaterial {
         jadeShape: { value: new Vector4() },
         jadeBounds: { value: new Vector4() },
         jadeTransmission: { value: 0 },
+        jadeLayer0: { value: null },
+        jadeLayer1: { value: null },
+        jadeLayer2: { value: null },
+        jadeLayer3: { value: null },
+        jadeLightMatrix: { value: new Matrix4() },
+        jadeTile: { value: new Vector2() },
+        jadePathLight: { value: -1 },
       }]),
       vertexShader,
       fragmentShader,
@@ -48,6 +58,45 @@ export class JadeTranslucentMaterial extends ShaderMaterial {
     this.name = extension.name ?? 'jade';
     this.setExtension(extension, hasThickness);
     this.setBounds(bounds.min, bounds.max);
+    this.lightPaths = null;  // made on the first draw with a transmitting directional light
+  }
+
+  /**
+   * three.js calls this before each draw with the material: the first directional light of the
+   * scene that may shine through the object towards the eye (LightDepth::may_transmit) gets the
+   * light-depth layers (JadeLightPaths), peeled again when it, the mesh or its transform moved.
+   */
+  onBeforeRender(renderer, scene, camera, geometry, object) {
+    const u = this.uniforms;
+    u.jadePathLight.value = -1;
+    if (u.jadeTransmission.value === 0) return;
+    const lights = [];
+    scene.traverseVisible((o) => { if (o.isDirectionalLight && o.layers.test(camera.layers)) lights.push(o); });
+    const b = u.jadeBounds.value;
+    const centre = new Vector3(b.x, b.y, b.z).applyMatrix4(object.matrixWorld);
+    const radius = b.w * object.matrixWorld.getMaxScaleOnAxis();
+    const eye = new Vector3().setFromMatrixPosition(camera.matrixWorld);
+    const distance = eye.distanceTo(centre);
+    for (let i = 0; i < lights.length; ++i) {
+      const l = new Vector3().setFromMatrixPosition(lights[i].matrixWorld)
+        .sub(new Vector3().setFromMatrixPosition(lights[i].target.matrixWorld));
+      if (!(l.length() > 0)) continue;
+      const towardsEye = eye.clone().sub(centre).divideScalar(distance);
+      const mayTransmit = !(distance > radius) || towardsEye.dot(l.clone().normalize().negate()) > -radius / distance;
+      if (!mayTransmit) continue;
+      this.lightPaths ??= new JadeLightPaths();
+      this.lightPaths.update(renderer, object, l, centre, radius);
+      for (let k = 0; k < 4; ++k) u[`jadeLayer${k}`].value = this.lightPaths.targets[k].texture;
+      u.jadeLightMatrix.value.multiplyMatrices(this.lightPaths.viewProjection, camera.matrixWorld);
+      u.jadeTile.value.set(this.lightPaths.size, this.lightPaths.range);
+      u.jadePathLight.value = i;
+      return;
+    }
+  }
+
+  dispose() {
+    this.lightPaths?.dispose();
+    super.dispose();
   }
 
   /** The material's constants as Jade's material_constants (engine/src/shading/frame.cpp). */

@@ -242,9 +242,48 @@ vec3 jadeDiffused(float t)
                                       : vec3(0.0));
 }
 
-// transmitted_light (transmission.glsl) with the path t = the local thickness (Jade takes the
-// longer of it and the path from where the light enters, read from the light's depth layers;
-// this material has no light-depth map: docs/web.md).
+// The light-depth layers of one directional light (JadeLightPaths.js): window depths of the
+// first four surfaces along it, 1 where there is none.
+uniform sampler2D jadeLayer0;
+uniform sampler2D jadeLayer1;
+uniform sampler2D jadeLayer2;
+uniform sampler2D jadeLayer3;
+uniform mat4 jadeLightMatrix;  // view space -> the tile's clip space
+uniform vec2 jadeTile;         // texels across, depth range (mesh units)
+uniform int jadePathLight;     // the directionalLights index the layers are of; -1: none
+
+// medium_path (transmission.glsl): the path inside the medium up to depth z at one texel.
+float jadeMediumPath(vec4 layers, float z)
+{
+    return (clamp(z, layers.x, layers.y) - layers.x) + (clamp(z, layers.z, layers.w) - layers.z) +
+           max(z - layers.w, 0.0);
+}
+
+vec4 jadeLayers(ivec2 at)
+{
+    return vec4(texelFetch(jadeLayer0, at, 0).r, texelFetch(jadeLayer1, at, 0).r, texelFetch(jadeLayer2, at, 0).r,
+                texelFetch(jadeLayer3, at, 0).r);
+}
+
+// light_path (transmission.glsl) with light_tile_coords (light_tile.glsl) of an orthographic
+// tile: the medium's share of the light's line up to p, bilinear between the four nearest texels.
+float jadeLightPath(vec3 p)
+{
+    vec4 c = jadeLightMatrix * vec4(p, 1.0);
+    vec3 q = c.xyz / c.w * 0.5 + 0.5;
+    float size = jadeTile.x;
+    vec2 xy = clamp(q.xy, 0.0, 1.0) * size - 0.5;
+    vec2 f = fract(xy);
+    ivec2 base = ivec2(floor(xy)), lo = ivec2(0), hi = ivec2(int(size) - 1);
+    float t00 = jadeMediumPath(jadeLayers(clamp(base, lo, hi)), q.z);
+    float t10 = jadeMediumPath(jadeLayers(clamp(base + ivec2(1, 0), lo, hi)), q.z);
+    float t01 = jadeMediumPath(jadeLayers(clamp(base + ivec2(0, 1), lo, hi)), q.z);
+    float t11 = jadeMediumPath(jadeLayers(clamp(base + ivec2(1, 1), lo, hi)), q.z);
+    return mix(mix(t00, t10, f.x), mix(t01, t11, f.x), f.y) * jadeTile.y;
+}
+
+// transmitted_light (transmission.glsl): t is the path along the light (transmitter_path: the
+// longer of the thickness and jadeLightPath for the light with layers, else the thickness).
 const float kSlabPerConeThickness = 0.72134752;  // 1 / ln 4
 vec3 jadeTransmittedLight(vec3 l, vec3 e, vec3 n, float lobe, float t, float thickness)
 {
@@ -258,16 +297,18 @@ vec3 jadeTransmittedLight(vec3 l, vec3 e, vec3 n, float lobe, float t, float thi
 }
 
 // main (mesh.frag), MODE = kTm: one light's diffuse and specular light, and its transmission.
-void jadeAddLight(vec3 l, vec3 e, bool transmits, float lobe, vec3 n, vec3 n_diffuse, vec3 v, float exit_transmittance,
-                  JadeTranslucency tr, inout vec3 color)
+void jadeAddLight(vec3 l, vec3 e, bool transmits, bool layered, float lobe, vec3 n, vec3 n_diffuse, vec3 v,
+                  float exit_transmittance, JadeTranslucency tr, inout vec3 color)
 {
     float c = dot(n, l), c_diffuse = dot(n_diffuse, l);
     vec3 diffuse = jadeAlbedoStrength.rgb * (1.0 / JADE_PI) * jadeTranslucency(c_diffuse, tr) * e;
     if (jadeShape.w > 0.0) diffuse *= jadeBoundaryTransmittance(c_diffuse) * exit_transmittance;
     color += diffuse;
     if (c > 0.0 && jadeSpecular.z > 0.0) color += jadeSpecular.z * jadeSpecularLobe(n, v, l, c) * e;
-    if (transmits && jadeTransmission > 0.5)
-        color += exit_transmittance * jadeTransmittedLight(l, e, n, lobe, vJadeThickness, vJadeThickness);
+    if (transmits && jadeTransmission > 0.5) {
+        float t = layered ? max(vJadeThickness, jadeLightPath(vJadePosition)) : vJadeThickness;
+        color += exit_transmittance * jadeTransmittedLight(l, e, n, lobe, t, vJadeThickness);
+    }
 }
 
 void main()
@@ -283,7 +324,8 @@ void main()
 #pragma unroll_loop_start
     for (int i = 0; i < NUM_DIR_LIGHTS; i++) {
         jadeDirectional(directionalLights[i].direction, directionalLights[i].color, l, e);
-        jadeAddLight(l, e, jadeMayTransmit(directionalLights[i].direction, false, vJadeCentre), vJadeLobeDir[i], n, n_diffuse, v,
+        jadeAddLight(l, e, jadeMayTransmit(directionalLights[i].direction, false, vJadeCentre),
+                     jadePathLight == UNROLLED_LOOP_INDEX, vJadeLobeDir[i], n, n_diffuse, v,
                      exit_transmittance, tr, color);
     }
 #pragma unroll_loop_end
@@ -292,7 +334,7 @@ void main()
 #pragma unroll_loop_start
     for (int i = 0; i < NUM_POINT_LIGHTS; i++) {
         jadePoint(pointLights[i].position, pointLights[i].color, vJadePosition, l, e);
-        jadeAddLight(l, e, true, vJadeLobePoint[i], n, n_diffuse, v, exit_transmittance, tr, color);
+        jadeAddLight(l, e, true, false, vJadeLobePoint[i], n, n_diffuse, v, exit_transmittance, tr, color);
     }
 #pragma unroll_loop_end
 #endif
