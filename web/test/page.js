@@ -27,10 +27,8 @@ function sceneFor({ camera: c, lights, size, material }) {
   scene.add(root);
   for (const mesh of meshes) {
     const jade = mesh.userData.jade;
-    if (material === 'jade') mesh.material = jade.material;
-    else if (material === 'physical') mesh.material = jade.physicalMaterial;
-    else if (material === 'standard') mesh.material = jade.standardMaterial;
-    else throw new Error(`unknown material '${material}'`);
+    if (!jade[`${material}Material`]) throw new Error(`unknown material '${material}'`);
+    mesh.material = jade[`${material}Material`];
   }
   for (const l of lights) scene.add(makeLight(l));
   const camera = new THREE.PerspectiveCamera(c.fov, width / height, 0.01, 100);
@@ -49,7 +47,7 @@ window.jadeTest = {
     if (meshes.length === 0) throw new Error(`${url}: no baked primitive with JADE_materials_translucency`);
     for (const mesh of meshes) {
       const jade = mesh.userData.jade;
-      jade.material = mesh.material;
+      jade.jadeMaterial = mesh.material;
       jade.standardMaterial = new THREE.MeshStandardMaterial({
         color: new THREE.Color().setRGB(...jade.extension.albedo), roughness: jade.extension.roughness, metalness: 0 });
     }
@@ -63,20 +61,30 @@ window.jadeTest = {
     if (error !== gl.NO_ERROR) throw new Error(`WebGL error 0x${error.toString(16)}`);
     return renderer.domElement.toDataURL('image/png');
   },
-  // Mean milliseconds per frame over `frames` frames after `warmup`, each finished (a pixel read
-  // back: gl.finish alone may return before the work is done).
-  time(options, frames, warmup = 5) {
-    const { scene, camera } = sceneFor(options);
+  // Median milliseconds per frame of each material, `frames` frames each, in alternating blocks
+  // of 5 (the CPU that SwiftShader runs on is shared: load that comes and goes hits both alike),
+  // after `warmup` frames each. Each frame is finished by reading a pixel back (gl.finish alone
+  // may return before the work is done).
+  time(options, materials, frames, warmup = 3) {
     const gl = renderer.getContext();
     const pixel = new Uint8Array(4);
-    const frame = () => {
-      renderer.render(scene, camera);
+    const setups = materials.map((material) => sceneFor({ ...options, material }));
+    const frame = (k) => {
+      for (const mesh of meshes) mesh.material = mesh.userData.jade[`${materials[k]}Material`];
+      setups[k].scene.add(root);
+      const start = performance.now();
+      renderer.render(setups[k].scene, setups[k].camera);
       gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);
+      return performance.now() - start;
     };
-    for (let i = 0; i < warmup; ++i) frame();
-    const start = performance.now();
-    for (let i = 0; i < frames; ++i) frame();
-    return (performance.now() - start) / frames;
+    const times = materials.map(() => []);
+    for (let k = 0; k < materials.length; ++k)
+      for (let i = 0; i < warmup; ++i) frame(k);
+    for (let done = 0; done < frames; done += 5)
+      for (let k = 0; k < materials.length; ++k)
+        for (let i = done; i < Math.min(done + 5, frames); ++i) times[k].push(frame(k));
+    const median = (a) => { const b = [...a].sort((x, y) => x - y); return b[b.length >> 1]; };
+    return times.map(median);
   },
   info() {
     setup(1, 1);

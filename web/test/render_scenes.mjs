@@ -69,11 +69,10 @@ try {
         writeAtomic(file, Buffer.from(url.slice(url.indexOf(',') + 1), 'base64'));
         console.log(`wrote ${file}`);
       }
-      const jade = await page.evaluate((o, n) => window.jadeTest.time(o, n), { ...options, material: 'jade' }, frames);
-      const standard = await page.evaluate((o, n) => window.jadeTest.time(o, n), { ...options, material: 'standard' },
-                                           frames);
+      const [jade, standard] = await page.evaluate((o, n) => window.jadeTest.time(o, ['jade', 'standard'], n),
+                                                   options, frames);
       timing.scenes[name] = { jade_ms: jade, standard_ms: standard, ratio: jade / standard };
-      console.log(`frame time (${name}, ${config.size.join('x')}, ${frames} frames): JadeTranslucentMaterial ` +
+      console.log(`frame time (${name}, ${config.size.join('x')}, median of ${frames} frames): JadeTranslucentMaterial ` +
                   `${jade.toFixed(2)} ms, MeshStandardMaterial ${standard.toFixed(2)} ms, ratio ${(jade / standard).toFixed(2)}`);
     }
     writeAtomic(join(out, 'web_timing.json'), JSON.stringify(timing, null, 2) + '\n');
