@@ -68,7 +68,7 @@ std::string missing_browser_side()
     const std::filesystem::path browser = chromium && *chromium ? chromium : "/usr/bin/chromium-headless-shell";
     if (!std::filesystem::exists(browser))
         return "no headless Chromium at " + browser.string() +
-               " (Debian package chromium-headless-shell: bash third_party/install_deps.sh)";
+               " (Debian package chromium-headless-shell: bash third_party/install_web.sh)";
     if (!std::filesystem::exists(web("node_modules/three/package.json")) ||
         !std::filesystem::exists(web("node_modules/puppeteer-core/package.json")))
         return "web/node_modules lacks three or puppeteer-core (bash third_party/install_web.sh runs npm ci there)";
