@@ -59,6 +59,6 @@ if (process.argv[1] && resolve(process.argv[1]) === fileURLToPath(import.meta.ur
   const seconds = option('--for') === undefined ? undefined : Number(option('--for'));
   const { url, close } = await startServer({ port, extra });
   console.log(`jade web demo: ${url} (127.0.0.1 only; Ctrl-C stops it)`);
-  if (seconds !== undefined) setTimeout(() => close().then(() => process.exit(0)), seconds * 1000).unref?.();
-  if (seconds !== undefined) setTimeout(() => process.exit(0), seconds * 1000 + 2000);
+  // Open keep-alive connections would hold close() up: exit once the time is up.
+  if (seconds !== undefined) setTimeout(() => process.exit(0), seconds * 1000);
 }
