@@ -52,6 +52,7 @@ export class JadeTranslucentMaterial extends ShaderMaterial {
       vertexShader,
       fragmentShader,
       lights: true,
+      defines: { JADE_TERMS: 6, JADE_SMALL_T: 1 },  // every term: right for any t
     });
     this.type = 'JadeTranslucentMaterial';
     this.isJadeTranslucentMaterial = true;
@@ -122,6 +123,38 @@ export class JadeTranslucentMaterial extends ShaderMaterial {
     // Transmission::enabled (jade/material.hpp): some weight, and a thickness to shine through.
     u.jadeTransmission.value = hasThickness && (t.weight > 0 || t.diffusionWeight > 0) ? 1 : 0;
     this.extension = x;
+  }
+
+  /**
+   * choose_terms (engine/src/shading/mesh_pipeline.cpp): the fewest Fourier terms whose first
+   * omitted one, (2/π) e^{−2(K+1)²t} / (4(K+1)² − 1), stays within 2e-5 at the mesh's smallest
+   * variance t (largest there), and the closed form only where some t is below 0.3².
+   */
+  setSmallestVariance(tMin) {
+    const t = Math.max(Number.isFinite(tMin) ? tMin : 0, 0);
+    let terms = 6;
+    const smallT = t < 0.3 * 0.3 ? 1 : 0;
+    if (!smallT)
+      for (let k = 1; k < 6; ++k) {
+        const next = (k + 1) * (k + 1);
+        if ((2 / Math.PI) * Math.exp(-2 * next * t) / (4 * next - 1) <= 2e-5) { terms = k; break; }
+      }
+    if (this.defines.JADE_TERMS !== terms || this.defines.JADE_SMALL_T !== smallT) {
+      this.defines.JADE_TERMS = terms;
+      this.defines.JADE_SMALL_T = smallT;
+      this.needsUpdate = true;
+    }
+  }
+
+  /**
+   * The bound on the smallest variance Jade's renderer passes to choose_terms: strength × the
+   * smallest t_m of any vertex and channel (the spread only adds to t).
+   */
+  static smallestVariance(extension, tm) {
+    let smallest = Infinity;
+    for (let i = 0; i < tm.count; ++i)
+      for (let c = 0; c < 3; ++c) smallest = Math.min(smallest, tm.getComponent(i, c));
+    return extension.strength * smallest;
   }
 
   setBounds(min, max) {

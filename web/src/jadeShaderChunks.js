@@ -135,8 +135,9 @@ varying float vJadeLobeDir[NUM_DIR_LIGHTS];
 varying float vJadeLobePoint[NUM_POINT_LIGHTS];
 #endif
 
-// Translucency (translucency.glsl, EVAL = kEvalAlu with all six Fourier terms and the closed
-// form for small t, SMALL_SIGMA = 0.3): what one fragment needs of t, per channel.
+// Translucency (translucency.glsl, EVAL = kEvalAlu, SMALL_SIGMA = 0.3): what one fragment needs
+// of t, per channel. JADE_TERMS Fourier terms and JADE_SMALL_T (the closed form for small t) are
+// chosen per mesh as Jade's choose_terms does (JadeTranslucentMaterial.setSmallestVariance).
 struct JadeTranslucency {
     vec3 half_decay;  // e^{-t/2}/2, the coefficient of cos
     vec3 decay[6];    // e^{-2k^2 t}, k = 1 ... 6
@@ -149,7 +150,7 @@ JadeTranslucency jadeTranslucencySetup(vec3 t)
     t = clamp(t, vec3(0.0), vec3(25.0));
     JadeTranslucency r;
     vec3 q = exp(-2.0 * t), q2 = q * q, odd = q, power = q;
-    for (int k = 0; k < 6; ++k) {
+    for (int k = 0; k < JADE_TERMS; ++k) {
         r.decay[k] = power;
         odd *= q2;
         power *= odd;
@@ -184,7 +185,7 @@ vec3 jadeTranslucency(float c, JadeTranslucency r)
     c = clamp(c, -1.0, 1.0);
     float u = 2.0 * c * c - 1.0, previous = 1.0, current = u;
     vec3 f = 1.0 / JADE_PI + r.half_decay * c;
-    for (int k = 1; k <= 6; ++k) {
+    for (int k = 1; k <= JADE_TERMS; ++k) {
         float kk = float(k * k);
         float weight = ((k % 2) == 1 ? 2.0 : -2.0) / (JADE_PI * (4.0 * kk - 1.0));
         f += (weight * current) * r.decay[k - 1];
@@ -192,7 +193,10 @@ vec3 jadeTranslucency(float c, JadeTranslucency r)
         previous = current;
         current = next;
     }
-    return mix(f, jadeTranslucencySmallT(c, r), lessThan(r.sigma, vec3(0.3)));
+#if JADE_SMALL_T == 1
+    f = mix(f, jadeTranslucencySmallT(c, r), lessThan(r.sigma, vec3(0.3)));
+#endif
+    return f;
 }
 
 // boundary_transmittance (shading.glsl): 1 - Schlick's Fresnel, grazing value max(1 - alpha, F0).

@@ -83,6 +83,7 @@ export class JadeGltfPlugin {
       gltfMaterial.flatShading = false;  // GLTFLoader's choice for a file without normals
       gltfMaterial.needsUpdate = true;
       mesh.material = new JadeTranslucentMaterial(extension, box, hasThickness);
+      mesh.material.setSmallestVariance(JadeTranslucentMaterial.smallestVariance(extension, geometry.attributes.jadeTm));
       mesh.userData.jade = {
         extension,
         gltfMaterial,

@@ -51,7 +51,11 @@ window.jadeTest = {
       jade.standardMaterial = new THREE.MeshStandardMaterial({
         color: new THREE.Color().setRGB(...jade.extension.albedo), roughness: jade.extension.roughness, metalness: 0 });
     }
-    return meshes.length;
+    // What each baked primitive's material draws with: Jade's choice of Fourier terms and the
+    // small-t closed form for its t (choose_terms).
+    return meshes.map((m) => `${m.name}: ${m.userData.jade.jadeMaterial.name}, ` +
+                             `JADE_TERMS ${m.userData.jade.jadeMaterial.defines.JADE_TERMS}, ` +
+                             `JADE_SMALL_T ${m.userData.jade.jadeMaterial.defines.JADE_SMALL_T}`);
   },
   render(options) {
     const { scene, camera } = sceneFor(options);

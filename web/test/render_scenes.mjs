@@ -3,7 +3,8 @@
 // material against MeshStandardMaterial. tests/test_web.cpp runs it and compares the PNGs with
 // jade render's.
 //   node web/test/render_scenes.mjs --glb FILE --out DIR [--frames N] [--screenshot FILE]
-// Writes DIR/web_<scene>_jade.png, DIR/web_<scene>_physical.png and DIR/web_timing.json.
+// Writes DIR/web_<scene>_jade.png, DIR/web_<scene>_physical.png and (--frames > 0, default 30)
+// DIR/web_timing.json.
 // --screenshot instead opens the demo page (index.html) and saves what it shows.
 // The browser: $JADE_CHROMIUM, else /usr/bin/chromium-headless-shell (Debian's package).
 import { existsSync, mkdirSync, readFileSync, renameSync, writeFileSync } from 'node:fs';
@@ -57,7 +58,8 @@ try {
     const config = JSON.parse(readFileSync(join(here, 'scenes.json'), 'utf8'));
     await page.goto(`${server.url}test/scenes.html`, { waitUntil: 'load' });
     await page.waitForFunction('window.jadeTestReady === true', { timeout: 30000 });
-    await page.evaluate((url) => window.jadeTest.load(url), '/baked.glb');
+    const loaded = await page.evaluate((url) => window.jadeTest.load(url), '/baked.glb');
+    console.log(`${glb}: ${loaded.join('; ')}`);
     const info = await page.evaluate(() => window.jadeTest.info());
     console.log(`browser: ${await browser.version()}, WebGL: ${info.renderer}, MSAA ${info.samples}, three r${info.three}`);
     const timing = { frames, size: config.size, renderer: info.renderer, scenes: {} };
@@ -69,13 +71,14 @@ try {
         writeAtomic(file, Buffer.from(url.slice(url.indexOf(',') + 1), 'base64'));
         console.log(`wrote ${file}`);
       }
+      if (!(frames > 0)) continue;
       const [jade, standard] = await page.evaluate((o, n) => window.jadeTest.time(o, ['jade', 'standard'], n),
                                                    options, frames);
       timing.scenes[name] = { jade_ms: jade, standard_ms: standard, ratio: jade / standard };
       console.log(`frame time (${name}, ${config.size.join('x')}, median of ${frames} frames): JadeTranslucentMaterial ` +
                   `${jade.toFixed(2)} ms, MeshStandardMaterial ${standard.toFixed(2)} ms, ratio ${(jade / standard).toFixed(2)}`);
     }
-    writeAtomic(join(out, 'web_timing.json'), JSON.stringify(timing, null, 2) + '\n');
+    if (frames > 0) writeAtomic(join(out, 'web_timing.json'), JSON.stringify(timing, null, 2) + '\n');
   }
   if (problems.length > 0) {
     console.error(`render_scenes: the page reported:\n  ${problems.join('\n  ')}`);
