@@ -85,9 +85,10 @@ bool in_ci()
 
 // The browser's images of `glb` against jade render's, per scene of web/test/scenes.json, into
 // `dir`: LDR FLIP within `bound` (per scene), and MeshPhysicalMaterial's FLIP printed. `frames`
-// > 0: the page also times JadeTranslucentMaterial against MeshStandardMaterial.
+// > 0: the page also times JadeTranslucentMaterial against MeshStandardMaterial. `light_path`:
+// where both sides read the transmission's path (auto: each picks as Jade's resolve_light_path).
 void compare_with_jade_render(const std::filesystem::path& glb, const std::filesystem::path& dir,
-                              const std::map<std::string, double>& bound, int frames)
+                              const std::map<std::string, double>& bound, int frames, const std::string& light_path)
 {
     std::filesystem::create_directories(dir);
     const nlohmann::json config = read_json(web("test/scenes.json"));
@@ -96,8 +97,7 @@ void compare_with_jade_render(const std::filesystem::path& glb, const std::files
         std::to_string(config.at("size").at(0).get<int>()) + "x" + std::to_string(config.at("size").at(1).get<int>());
 
     // jade render of each scene: the same file, camera and lights; no shadows (the web side has
-    // none); the ALU evaluation of the cosine-Gaussian and the light's path per fragment (the web
-    // material's; auto picks per vertex for this mesh).
+    // none); the ALU evaluation of the cosine-Gaussian (the web material's).
     for (const auto& [name, lights] : config.at("scenes").items()) {
         std::vector<std::string> args = {"render",
                                          glb.string(),
@@ -115,7 +115,7 @@ void compare_with_jade_render(const std::filesystem::path& glb, const std::files
                                          "--eval",
                                          "alu",
                                          "--light-path",
-                                         "fragment",
+                                         light_path,
                                          "--out",
                                          (dir / ("jade_" + name + ".png")).string()};
         for (const auto& l : lights) {
@@ -129,7 +129,7 @@ void compare_with_jade_render(const std::filesystem::path& glb, const std::files
 
     std::string output;
     const int rc = run("node '" + web("test/render_scenes.mjs").string() + "' --glb '" + glb.string() + "' --out '" +
-                           dir.string() + "' --frames " + std::to_string(frames),
+                           dir.string() + "' --frames " + std::to_string(frames) + " --light-path " + light_path,
                        output);
     std::printf("%s", output.c_str());
     ASSERT_EQ(rc, 0) << output;
@@ -186,9 +186,10 @@ TEST(Web, DemoFileIsValidGltf)
     EXPECT_EQ(material.at("extensions").at("JADE_materials_translucency").at("name"), "blue-jewel");
 }
 
-// The Figure 1 bunny (blue-jewel), front- and back-lit, and the frame times. Measured (512x512,
-// 4x MSAA both sides): front 0.0017, back 0.0029; the bounds are about two and a half times
-// that. What is left is where the two rasterisers, MSAA resolves (three.js resolves the
+// The Figure 1 bunny (blue-jewel), front- and back-lit, and the frame times, with both sides'
+// defaults (the path per vertex on this mesh). Measured (512x512, 4x MSAA both sides): front
+// 0.0017, back 0.0031 (0.0029 with the path per fragment on both sides); the bounds are about two
+// and a half times that. What is left is where the two rasterisers, MSAA resolves (three.js resolves the
 // sRGB-encoded canvas, Jade the linear image) and exp/pow differ, mostly on silhouettes. A wrong
 // formula or input costs more: the back scene with the baked thickness alone for the path (no
 // light-depth layers) measured 0.027, and three.js's MeshPhysicalMaterial with the same colour,
@@ -198,13 +199,14 @@ TEST(Web, JadeMaterialMatchesJadeRender)
     require_browser_side();
     if (testing::Test::HasFatalFailure() || testing::Test::IsSkipped()) return;
     compare_with_jade_render(web("assets/bunny_blue_jewel.glb"), jade::test::test_folder("web"),
-                             {{"front", 0.005}, {"back", 0.008}}, 20);
+                             {{"front", 0.005}, {"back", 0.008}}, 20, "auto");
 }
 
 // Another material through the same path: the demo file re-baked with marble (white, its own
 // transmission constants) and strength 0.3, so that t > 0.3² everywhere and the web material, as
 // Jade, drops the small-t closed form and sums 3 Fourier terms (choose_terms) instead of 6.
-// Measured: front 0.0028, back 0.0035 (MeshPhysicalMaterial 0.073, 0.040); bounds as above.
+// The path per fragment on both sides. Measured: front 0.0028, back 0.0035 (MeshPhysicalMaterial
+// 0.073, 0.040); bounds as above.
 TEST(Web, AnotherMaterialMatchesJadeRender)
 {
     require_browser_side();
@@ -215,5 +217,5 @@ TEST(Web, AnotherMaterialMatchesJadeRender)
     const auto r = jade::test::run_cli({"bake", web("assets/bunny_blue_jewel.glb").string(), "--material", "marble",
                                         "--strength", "0.3", "--out", glb.string()});
     ASSERT_EQ(r.exit_code, 0) << r.output;
-    compare_with_jade_render(glb, dir, {{"front", 0.008}, {"back", 0.008}}, 0);
+    compare_with_jade_render(glb, dir, {{"front", 0.008}, {"back", 0.008}}, 0, "fragment");
 }

@@ -7,7 +7,8 @@
 // (directional) or intensity (point, falling off as 1/d²). No shadows. The transmission's path
 // through the object is the longer of the baked _THICKNESS and, for the first directional light
 // that may shine through towards the eye, the path from where its light enters (four depth layers
-// peeled along it, JadeLightPaths.js), per fragment; other lights use the thickness alone.
+// peeled along it, JadeLightPaths.js), per vertex or per fragment as Jade picks (setLightPath);
+// other lights use the thickness alone.
 import { Matrix4, ShaderMaterial, UniformsLib, UniformsUtils, Vector2, Vector3, Vector4 } from 'three';
 import { vertexShader, fragmentShader } from './jadeShaderChunks.js';
 import { JadeLightPaths } from './JadeLightPaths.js';
@@ -52,7 +53,8 @@ export class JadeTranslucentMaterial extends ShaderMaterial {
       vertexShader,
       fragmentShader,
       lights: true,
-      defines: { JADE_TERMS: 6, JADE_SMALL_T: 1 },  // every term: right for any t
+      // Every term (right for any t) and the path per fragment until told otherwise.
+      defines: { JADE_TERMS: 6, JADE_SMALL_T: 1, JADE_PATH_PER_VERTEX: 0 },
     });
     this.type = 'JadeTranslucentMaterial';
     this.isJadeTranslucentMaterial = true;
@@ -144,6 +146,41 @@ export class JadeTranslucentMaterial extends ShaderMaterial {
       this.defines.JADE_SMALL_T = smallT;
       this.needsUpdate = true;
     }
+  }
+
+  /**
+   * Where the light's path through the object is read: 'vertex' (interpolated), 'fragment', or
+   * 'auto' with the mesh's median edge length (object space): per vertex where it spans at most 8
+   * texels of the light-depth tile, as Jade's resolve_light_path.
+   */
+  setLightPath(where, medianEdge = Infinity) {
+    if (!['auto', 'vertex', 'fragment'].includes(where))
+      throw new Error(`light path '${where}' is not auto, vertex or fragment`);
+    const texel = (2 * 1.1 * this.uniforms.jadeBounds.value.w) / 512;  // LightDepth::kMargin, light_depth_size
+    const perVertex = where === 'vertex' || (where === 'auto' && medianEdge <= 8 * texel) ? 1 : 0;
+    this.lightPath = perVertex ? 'vertex' : 'fragment';
+    if (this.defines.JADE_PATH_PER_VERTEX !== perVertex) {
+      this.defines.JADE_PATH_PER_VERTEX = perVertex;
+      this.needsUpdate = true;
+    }
+  }
+
+  /** The median length of the triangles' edges (mesh_vertices.cpp's median_edge). */
+  static medianEdge(geometry) {
+    const p = geometry.attributes.position, index = geometry.index;
+    const corner = (i) => (index ? index.getX(i) : i);
+    const count = index ? index.count : p.count;
+    const edges = [];
+    const a = new Vector3(), b = new Vector3();
+    for (let i = 0; i + 2 < count; i += 3)
+      for (let e = 0; e < 3; ++e) {
+        a.fromBufferAttribute(p, corner(i + e));
+        b.fromBufferAttribute(p, corner(i + ((e + 1) % 3)));
+        edges.push(a.distanceTo(b));
+      }
+    if (edges.length === 0) return Infinity;
+    edges.sort((x, y) => x - y);
+    return edges[edges.length >> 1];
   }
 
   /**

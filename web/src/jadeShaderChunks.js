@@ -30,6 +30,47 @@ struct PointLight { vec3 position; vec3 color; float distance; float decay; };
 uniform PointLight pointLights[NUM_POINT_LIGHTS];
 #endif
 
+// The light-depth layers of one directional light (JadeLightPaths.js): window depths of the
+// first four surfaces along it, 1 where there is none.
+uniform sampler2D jadeLayer0;
+uniform sampler2D jadeLayer1;
+uniform sampler2D jadeLayer2;
+uniform sampler2D jadeLayer3;
+uniform mat4 jadeLightMatrix;  // view space -> the tile's clip space
+uniform vec2 jadeTile;         // texels across, depth range (mesh units)
+uniform int jadePathLight;     // the directionalLights index the layers are of; -1: none
+
+// medium_path (transmission.glsl): the path inside the medium up to depth z at one texel.
+float jadeMediumPath(vec4 layers, float z)
+{
+    return (clamp(z, layers.x, layers.y) - layers.x) + (clamp(z, layers.z, layers.w) - layers.z) +
+           max(z - layers.w, 0.0);
+}
+
+vec4 jadeLayers(ivec2 at)
+{
+    return vec4(texelFetch(jadeLayer0, at, 0).r, texelFetch(jadeLayer1, at, 0).r, texelFetch(jadeLayer2, at, 0).r,
+                texelFetch(jadeLayer3, at, 0).r);
+}
+
+// light_path (transmission.glsl) with light_tile_coords (light_tile.glsl) of an orthographic
+// tile: the medium's share of the light's line up to p (view space), bilinear between the four
+// nearest texels. Per fragment, or per vertex (JADE_PATH_PER_VERTEX) as Jade picks.
+float jadeLightPath(vec3 p)
+{
+    vec4 c = jadeLightMatrix * vec4(p, 1.0);
+    vec3 q = c.xyz / c.w * 0.5 + 0.5;
+    float size = jadeTile.x;
+    vec2 xy = clamp(q.xy, 0.0, 1.0) * size - 0.5;
+    vec2 f = fract(xy);
+    ivec2 base = ivec2(floor(xy)), lo = ivec2(0), hi = ivec2(int(size) - 1);
+    float t00 = jadeMediumPath(jadeLayers(clamp(base, lo, hi)), q.z);
+    float t10 = jadeMediumPath(jadeLayers(clamp(base + ivec2(1, 0), lo, hi)), q.z);
+    float t01 = jadeMediumPath(jadeLayers(clamp(base + ivec2(0, 1), lo, hi)), q.z);
+    float t11 = jadeMediumPath(jadeLayers(clamp(base + ivec2(1, 1), lo, hi)), q.z);
+    return mix(mix(t00, t10, f.x), mix(t01, t11, f.x), f.y) * jadeTile.y;
+}
+
 // light_at (mesh.frag) / transmitter_at (transmission.glsl): towards the light, unit, and its
 // irradiance at p.
 void jadeDirectional(vec3 direction, vec3 color, out vec3 l, out vec3 e) { l = normalize(direction); e = color; }
@@ -66,6 +107,7 @@ varying vec3 vJadeScatteringNormal;
 varying vec3 vJadeVariance;
 varying float vJadeThickness;
 varying vec3 vJadeCentre;  // the bounding sphere's centre, view space (the same at every vertex)
+varying float vJadePath;   // JADE_PATH_PER_VERTEX: transmitter_path of the layered light, per vertex
 #if NUM_DIR_LIGHTS > 0
 varying float vJadeLobeDir[NUM_DIR_LIGHTS];
 #endif
@@ -98,6 +140,12 @@ void main()
     vJadeVariance = jadeVariance(jadeTm, jadeNormalSpread);
     vJadeThickness = jadeThickness;
     vJadeCentre = (modelViewMatrix * vec4(jadeBounds.xyz, 1.0)).xyz;
+    // mesh.vert's out_path (PATH_PER_VERTEX): the path per vertex, interpolated.
+#if JADE_PATH_PER_VERTEX == 1
+    vJadePath = jadePathLight >= 0 ? max(jadeThickness, jadeLightPath(p.xyz)) : jadeThickness;
+#else
+    vJadePath = 0.0;
+#endif
     vec3 v = normalize(-p.xyz), l, e;
 #if NUM_DIR_LIGHTS > 0
 #pragma unroll_loop_start
@@ -128,6 +176,7 @@ varying vec3 vJadeScatteringNormal;
 varying vec3 vJadeVariance;
 varying float vJadeThickness;
 varying vec3 vJadeCentre;  // the bounding sphere's centre, view space (the same at every vertex)
+varying float vJadePath;   // JADE_PATH_PER_VERTEX: transmitter_path of the layered light, per vertex
 #if NUM_DIR_LIGHTS > 0
 varying float vJadeLobeDir[NUM_DIR_LIGHTS];
 #endif
@@ -246,46 +295,6 @@ vec3 jadeDiffused(float t)
                                       : vec3(0.0));
 }
 
-// The light-depth layers of one directional light (JadeLightPaths.js): window depths of the
-// first four surfaces along it, 1 where there is none.
-uniform sampler2D jadeLayer0;
-uniform sampler2D jadeLayer1;
-uniform sampler2D jadeLayer2;
-uniform sampler2D jadeLayer3;
-uniform mat4 jadeLightMatrix;  // view space -> the tile's clip space
-uniform vec2 jadeTile;         // texels across, depth range (mesh units)
-uniform int jadePathLight;     // the directionalLights index the layers are of; -1: none
-
-// medium_path (transmission.glsl): the path inside the medium up to depth z at one texel.
-float jadeMediumPath(vec4 layers, float z)
-{
-    return (clamp(z, layers.x, layers.y) - layers.x) + (clamp(z, layers.z, layers.w) - layers.z) +
-           max(z - layers.w, 0.0);
-}
-
-vec4 jadeLayers(ivec2 at)
-{
-    return vec4(texelFetch(jadeLayer0, at, 0).r, texelFetch(jadeLayer1, at, 0).r, texelFetch(jadeLayer2, at, 0).r,
-                texelFetch(jadeLayer3, at, 0).r);
-}
-
-// light_path (transmission.glsl) with light_tile_coords (light_tile.glsl) of an orthographic
-// tile: the medium's share of the light's line up to p, bilinear between the four nearest texels.
-float jadeLightPath(vec3 p)
-{
-    vec4 c = jadeLightMatrix * vec4(p, 1.0);
-    vec3 q = c.xyz / c.w * 0.5 + 0.5;
-    float size = jadeTile.x;
-    vec2 xy = clamp(q.xy, 0.0, 1.0) * size - 0.5;
-    vec2 f = fract(xy);
-    ivec2 base = ivec2(floor(xy)), lo = ivec2(0), hi = ivec2(int(size) - 1);
-    float t00 = jadeMediumPath(jadeLayers(clamp(base, lo, hi)), q.z);
-    float t10 = jadeMediumPath(jadeLayers(clamp(base + ivec2(1, 0), lo, hi)), q.z);
-    float t01 = jadeMediumPath(jadeLayers(clamp(base + ivec2(0, 1), lo, hi)), q.z);
-    float t11 = jadeMediumPath(jadeLayers(clamp(base + ivec2(1, 1), lo, hi)), q.z);
-    return mix(mix(t00, t10, f.x), mix(t01, t11, f.x), f.y) * jadeTile.y;
-}
-
 // transmitted_light (transmission.glsl): t is the path along the light (transmitter_path: the
 // longer of the thickness and jadeLightPath for the light with layers, else the thickness).
 const float kSlabPerConeThickness = 0.72134752;  // 1 / ln 4
@@ -310,7 +319,11 @@ void jadeAddLight(vec3 l, vec3 e, bool transmits, bool layered, float lobe, vec3
     color += diffuse;
     if (c > 0.0 && jadeSpecular.z > 0.0) color += jadeSpecular.z * jadeSpecularLobe(n, v, l, c) * e;
     if (transmits && jadeTransmission > 0.5) {
+#if JADE_PATH_PER_VERTEX == 1
+        float t = layered ? vJadePath : vJadeThickness;
+#else
         float t = layered ? max(vJadeThickness, jadeLightPath(vJadePosition)) : vJadeThickness;
+#endif
         color += exit_transmittance * jadeTransmittedLight(l, e, n, lobe, t, vJadeThickness);
     }
 }

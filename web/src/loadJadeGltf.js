@@ -44,13 +44,15 @@ function physicalMaterial(extension, materialDef) {
 
 /** GLTFLoader plugin: after the file is parsed, baked primitives get JadeTranslucentMaterial. */
 export class JadeGltfPlugin {
-  constructor(parser) {
+  /** options.lightPath: 'auto' (default), 'vertex' or 'fragment' (JadeTranslucentMaterial.setLightPath). */
+  constructor(parser, options = {}) {
     this.parser = parser;
+    this.options = options;
     this.name = JADE_EXTENSION;
   }
 
   afterRoot(result) {
-    const parser = this.parser;
+    const { parser, options } = this;
     const materials = parser.json.materials ?? [];
     const meshes = [];
     result.scene.traverse((object) => { if (object.isMesh) meshes.push(object); });
@@ -84,6 +86,7 @@ export class JadeGltfPlugin {
       gltfMaterial.needsUpdate = true;
       mesh.material = new JadeTranslucentMaterial(extension, box, hasThickness);
       mesh.material.setSmallestVariance(JadeTranslucentMaterial.smallestVariance(extension, geometry.attributes.jadeTm));
+      mesh.material.setLightPath(options.lightPath ?? 'auto', JadeTranslucentMaterial.medianEdge(geometry));
       mesh.userData.jade = {
         extension,
         gltfMaterial,
@@ -96,9 +99,10 @@ export class JadeGltfPlugin {
 /**
  * Loads a baked .glb/.gltf from `url`; resolves to GLTFLoader's result, whose scene draws every
  * baked primitive with JadeTranslucentMaterial (mesh.userData.jade holds the extension and the
- * file's own and a MeshPhysicalMaterial for comparison).
+ * file's own and a MeshPhysicalMaterial for comparison). lightPath: where the transmission's path
+ * is read ('auto', 'vertex', 'fragment'; JadeTranslucentMaterial.setLightPath).
  */
-export async function loadJadeGltf(url, loader = new GLTFLoader()) {
-  loader.register((parser) => new JadeGltfPlugin(parser));
+export async function loadJadeGltf(url, { loader = new GLTFLoader(), lightPath = 'auto' } = {}) {
+  loader.register((parser) => new JadeGltfPlugin(parser, { lightPath }));
   return loader.loadAsync(url);
 }

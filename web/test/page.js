@@ -39,8 +39,8 @@ function sceneFor({ camera: c, lights, size, material }) {
 }
 
 window.jadeTest = {
-  async load(url) {
-    const gltf = await loadJadeGltf(url);
+  async load(url, lightPath = 'auto') {
+    const gltf = await loadJadeGltf(url, { lightPath });
     root = gltf.scene;
     meshes = [];
     root.traverse((o) => { if (o.isMesh && o.userData.jade) meshes.push(o); });
@@ -52,10 +52,11 @@ window.jadeTest = {
         color: new THREE.Color().setRGB(...jade.extension.albedo), roughness: jade.extension.roughness, metalness: 0 });
     }
     // What each baked primitive's material draws with: Jade's choice of Fourier terms and the
-    // small-t closed form for its t (choose_terms).
+    // small-t closed form for its t (choose_terms), and where it reads the light's path.
     return meshes.map((m) => `${m.name}: ${m.userData.jade.jadeMaterial.name}, ` +
                              `JADE_TERMS ${m.userData.jade.jadeMaterial.defines.JADE_TERMS}, ` +
-                             `JADE_SMALL_T ${m.userData.jade.jadeMaterial.defines.JADE_SMALL_T}`);
+                             `JADE_SMALL_T ${m.userData.jade.jadeMaterial.defines.JADE_SMALL_T}, ` +
+                             `light path per ${m.userData.jade.jadeMaterial.lightPath}`);
   },
   render(options) {
     const { scene, camera } = sceneFor(options);

@@ -2,7 +2,8 @@
 // with JadeTranslucentMaterial and with MeshPhysicalMaterial, writes PNGs, and times the Jade
 // material against MeshStandardMaterial. tests/test_web.cpp runs it and compares the PNGs with
 // jade render's.
-//   node web/test/render_scenes.mjs --glb FILE --out DIR [--frames N] [--screenshot FILE]
+//   node web/test/render_scenes.mjs --glb FILE --out DIR [--frames N] [--light-path auto|vertex|fragment]
+//   node web/test/render_scenes.mjs --glb FILE --screenshot FILE
 // Writes DIR/web_<scene>_jade.png, DIR/web_<scene>_physical.png and (--frames > 0, default 30)
 // DIR/web_timing.json.
 // --screenshot instead opens the demo page (index.html) and saves what it shows.
@@ -18,6 +19,7 @@ const args = process.argv.slice(2);
 const option = (name, fallback) => { const i = args.indexOf(name); return i >= 0 ? args[i + 1] : fallback; };
 const glb = option('--glb'), out = option('--out'), frames = Number(option('--frames', '30'));
 const screenshot = option('--screenshot');
+const lightPath = option('--light-path', 'auto');
 if (!glb || (!out && !screenshot)) {
   console.error('usage: node web/test/render_scenes.mjs --glb FILE (--out DIR [--frames N] | --screenshot FILE)');
   process.exit(2);
@@ -58,7 +60,7 @@ try {
     const config = JSON.parse(readFileSync(join(here, 'scenes.json'), 'utf8'));
     await page.goto(`${server.url}test/scenes.html`, { waitUntil: 'load' });
     await page.waitForFunction('window.jadeTestReady === true', { timeout: 30000 });
-    const loaded = await page.evaluate((url) => window.jadeTest.load(url), '/baked.glb');
+    const loaded = await page.evaluate((url, where) => window.jadeTest.load(url, where), '/baked.glb', lightPath);
     console.log(`${glb}: ${loaded.join('; ')}`);
     const info = await page.evaluate(() => window.jadeTest.info());
     console.log(`browser: ${await browser.version()}, WebGL: ${info.renderer}, MSAA ${info.samples}, three r${info.three}`);
