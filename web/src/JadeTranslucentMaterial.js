@@ -4,14 +4,16 @@
 // jade* attributes read here) and the vertex normal; the parameters are those of the
 // JADE_materials_translucency extension (docs/gltf.md). Lit by the scene's three.js
 // DirectionalLights and PointLights (lights: true): colour × intensity is Jade's irradiance E
-// (directional) or intensity (point, falling off as 1/d²). No shadows. The transmission's path
-// through the object is the longer of the baked _THICKNESS and, for the first directional light
-// that may shine through towards the eye, the path from where its light enters (four depth layers
-// peeled along it, JadeLightPaths.js), per vertex or per fragment as Jade picks (setLightPath);
-// other lights use the thickness alone.
-import { Matrix4, ShaderMaterial, UniformsLib, UniformsUtils, Vector2, Vector3, Vector4 } from 'three';
+// (directional) or intensity (point, falling off as 1/d²). Each directional light (the first
+// four) gets a depth tile of the mesh (JadeLightDepth.js) when it may shine through the object
+// towards the eye (the transmission's path: the longer of the baked _THICKNESS and the path from
+// where its light enters, per vertex or per fragment as Jade picks, setLightPath) or when the
+// material draws shadows (`shadows`, default on, as jade render); point lights use the thickness
+// alone and are not shadowed.
+import { Matrix4, ShaderMaterial, UniformsLib, UniformsUtils, Vector3, Vector4 } from 'three';
 import { vertexShader, fragmentShader } from './jadeShaderChunks.js';
-import { JadeLightPaths } from './JadeLightPaths.js';
+import { JadeLightDepth, kMaxTiles } from './JadeLightDepth.js';
+import { profileReach } from './profile.js';
 
 const finite = (x, what) => {
   if (!Number.isFinite(x)) throw new Error(`JADE_materials_translucency: ${what} is not a finite number (${x})`);
@@ -42,63 +44,77 @@ export class JadeTranslucentMaterial extends ShaderMaterial {
         jadeShape: { value: new Vector4() },
         jadeBounds: { value: new Vector4() },
         jadeTransmission: { value: 0 },
-        jadeLayer0: { value: null },
-        jadeLayer1: { value: null },
-        jadeLayer2: { value: null },
-        jadeLayer3: { value: null },
-        jadeLightMatrix: { value: new Matrix4() },
-        jadeTile: { value: new Vector2() },
-        jadePathLight: { value: -1 },
+        jadeTileLayers: { value: [] },  // per directional light (sized in onBeforeRender)
+        jadeTileMatrix: { value: [] },
+        jadeTileInfo: { value: [] },
       }]),
       vertexShader,
       fragmentShader,
       lights: true,
       // Every term (right for any t) and the path per fragment until told otherwise.
-      defines: { JADE_TERMS: 6, JADE_SMALL_T: 1, JADE_PATH_PER_VERTEX: 0 },
+      defines: { JADE_TERMS: 6, JADE_SMALL_T: 1, JADE_PATH_PER_VERTEX: 0, JADE_SHADOWS: 1 },
     });
     this.type = 'JadeTranslucentMaterial';
     this.isJadeTranslucentMaterial = true;
     this.name = extension.name ?? 'jade';
     this.setExtension(extension, hasThickness);
     this.setBounds(bounds.min, bounds.max);
-    this.lightPaths = null;  // made on the first draw with a transmitting directional light
+    this.lightDepth = null;  // made on the first draw that needs a depth tile
+  }
+
+  /** Whether the mesh shadows the directional lights (jade render's default; --no-shadows: off). */
+  get shadows() { return this.defines.JADE_SHADOWS === 1; }
+
+  set shadows(on) {
+    const value = on ? 1 : 0;
+    if (this.defines.JADE_SHADOWS !== value) this.defines.JADE_SHADOWS = value, this.needsUpdate = true;
   }
 
   /**
-   * three.js calls this before each draw with the material: the first directional light of the
-   * scene that may shine through the object towards the eye (LightDepth::may_transmit) gets the
-   * light-depth layers (JadeLightPaths), peeled again when it, the mesh or its transform moved.
+   * three.js calls this before each draw with the material: the directional lights' depth tiles,
+   * as Jade's record_transmission chooses them: the lights that may shine through the object
+   * towards the eye (LightDepth::may_transmit) first, then, with shadows, the others, at most
+   * four, in the lights' order; each peeled again only when it, the mesh or its transform moved.
+   * The lights are in the order of three.js's directionalLights uniform (the scene's order).
    */
   onBeforeRender(renderer, scene, camera, geometry, object) {
     const u = this.uniforms;
-    u.jadePathLight.value = -1;
-    if (u.jadeTransmission.value === 0) return;
     const lights = [];
     scene.traverseVisible((o) => { if (o.isDirectionalLight && o.layers.test(camera.layers)) lights.push(o); });
+    const n = Math.max(lights.length, 1);
+    const layers = u.jadeTileLayers.value = new Array(n).fill(null);
+    const matrices = u.jadeTileMatrix.value = Array.from({ length: n }, () => new Matrix4());
+    const infos = u.jadeTileInfo.value = Array.from({ length: n }, () => new Vector4());
     const b = u.jadeBounds.value;
     const centre = new Vector3(b.x, b.y, b.z).applyMatrix4(object.matrixWorld);
     const radius = b.w * object.matrixWorld.getMaxScaleOnAxis();
     const eye = new Vector3().setFromMatrixPosition(camera.matrixWorld);
     const distance = eye.distanceTo(centre);
-    for (let i = 0; i < lights.length; ++i) {
-      const l = new Vector3().setFromMatrixPosition(lights[i].matrixWorld)
-        .sub(new Vector3().setFromMatrixPosition(lights[i].target.matrixWorld));
-      if (!(l.length() > 0)) continue;
-      const towardsEye = eye.clone().sub(centre).divideScalar(distance);
-      const mayTransmit = !(distance > radius) || towardsEye.dot(l.clone().normalize().negate()) > -radius / distance;
-      if (!mayTransmit) continue;
-      this.lightPaths ??= new JadeLightPaths();
-      this.lightPaths.update(renderer, object, l, centre, radius);
-      for (let k = 0; k < 4; ++k) u[`jadeLayer${k}`].value = this.lightPaths.targets[k].texture;
-      u.jadeLightMatrix.value.multiplyMatrices(this.lightPaths.viewProjection, camera.matrixWorld);
-      u.jadeTile.value.set(this.lightPaths.size, this.lightPaths.range);
-      u.jadePathLight.value = i;
-      return;
-    }
+    const towardsEye = eye.clone().sub(centre).divideScalar(distance);
+    const directions = lights.map((light) => new Vector3().setFromMatrixPosition(light.matrixWorld)
+      .sub(new Vector3().setFromMatrixPosition(light.target.matrixWorld)));
+    const transmits = directions.map((l) => u.jadeTransmission.value === 1 && l.length() > 0 &&
+      (!(distance > radius) || towardsEye.dot(l.clone().normalize().negate()) > -radius / distance));
+    const wanted = directions.map((l, i) => (!(l.length() > 0) ? 0 : transmits[i] ? 2 : this.shadows ? 1 : 0));
+    const chosen = [];
+    for (const priority of [2, 1])
+      for (let i = 0; i < lights.length && chosen.length < kMaxTiles; ++i) if (wanted[i] === priority) chosen.push(i);
+    chosen.sort((x, y) => x - y);  // tiles in the lights' order
+    if (chosen.length === 0) return;
+    this.lightDepth ??= new JadeLightDepth();
+    this.reach ??= profileReach(this.extension.profiles);
+    chosen.forEach((i, k) => {
+      const tile = this.lightDepth.update(renderer, k, object, directions[i], centre, radius, transmits[i] ? 4 : 2);
+      layers[i] = tile.texture;
+      matrices[i].multiplyMatrices(tile.viewProjection, camera.matrixWorld);
+      // shadow_spacing (frame.cpp): the filter's taps a profile's reach apart, 1 … 4 texels.
+      const spacing = this.reach > 0 ? Math.min(Math.max(this.reach / tile.texel, 1), 4) : 1;
+      infos[i].set(this.lightDepth.size, tile.range, spacing, 1);
+    });
   }
 
   dispose() {
-    this.lightPaths?.dispose();
+    this.lightDepth?.dispose();
     super.dispose();
   }
 

@@ -30,15 +30,20 @@ struct PointLight { vec3 position; vec3 color; float distance; float decay; };
 uniform PointLight pointLights[NUM_POINT_LIGHTS];
 #endif
 
-// The light-depth layers of one directional light (JadeLightPaths.js): window depths of the
-// first four surfaces along it, 1 where there is none.
-uniform sampler2D jadeLayer0;
-uniform sampler2D jadeLayer1;
-uniform sampler2D jadeLayer2;
-uniform sampler2D jadeLayer3;
-uniform mat4 jadeLightMatrix;  // view space -> the tile's clip space
-uniform vec2 jadeTile;         // texels across, depth range (mesh units)
-uniform int jadePathLight;     // the directionalLights index the layers are of; -1: none
+// The directional lights' depth tiles (JadeLightDepth.js), one per light: window depths of the
+// first four surfaces along it, 1 where there is none (Jade's atlas column and LightTile).
+#if NUM_DIR_LIGHTS > 0
+uniform sampler2D jadeTileLayers[NUM_DIR_LIGHTS];
+uniform mat4 jadeTileMatrix[NUM_DIR_LIGHTS];  // view space -> the tile's clip space
+uniform vec4 jadeTileInfo[NUM_DIR_LIGHTS];    // texels across, depth range, shadow spacing, 1: has a tile
+#endif
+
+// light_tile_coords (light_tile.glsl), an orthographic tile: xy in [0, 1] over it, z its depth.
+vec3 jadeTileCoords(mat4 m, vec3 p)
+{
+    vec4 c = m * vec4(p, 1.0);
+    return c.xyz / c.w * 0.5 + 0.5;
+}
 
 // medium_path (transmission.glsl): the path inside the medium up to depth z at one texel.
 float jadeMediumPath(vec4 layers, float z)
@@ -47,28 +52,48 @@ float jadeMediumPath(vec4 layers, float z)
            max(z - layers.w, 0.0);
 }
 
-vec4 jadeLayers(ivec2 at)
+// light_path (transmission.glsl): the medium's share of the light's line up to p (view space),
+// bilinear between the four nearest texels, in length units. Per fragment, or per vertex
+// (JADE_PATH_PER_VERTEX) as Jade picks.
+float jadeLightPath(sampler2D layers, mat4 m, vec4 info, vec3 p)
 {
-    return vec4(texelFetch(jadeLayer0, at, 0).r, texelFetch(jadeLayer1, at, 0).r, texelFetch(jadeLayer2, at, 0).r,
-                texelFetch(jadeLayer3, at, 0).r);
-}
-
-// light_path (transmission.glsl) with light_tile_coords (light_tile.glsl) of an orthographic
-// tile: the medium's share of the light's line up to p (view space), bilinear between the four
-// nearest texels. Per fragment, or per vertex (JADE_PATH_PER_VERTEX) as Jade picks.
-float jadeLightPath(vec3 p)
-{
-    vec4 c = jadeLightMatrix * vec4(p, 1.0);
-    vec3 q = c.xyz / c.w * 0.5 + 0.5;
-    float size = jadeTile.x;
+    vec3 q = jadeTileCoords(m, p);
+    float size = info.x;
     vec2 xy = clamp(q.xy, 0.0, 1.0) * size - 0.5;
     vec2 f = fract(xy);
     ivec2 base = ivec2(floor(xy)), lo = ivec2(0), hi = ivec2(int(size) - 1);
-    float t00 = jadeMediumPath(jadeLayers(clamp(base, lo, hi)), q.z);
-    float t10 = jadeMediumPath(jadeLayers(clamp(base + ivec2(1, 0), lo, hi)), q.z);
-    float t01 = jadeMediumPath(jadeLayers(clamp(base + ivec2(0, 1), lo, hi)), q.z);
-    float t11 = jadeMediumPath(jadeLayers(clamp(base + ivec2(1, 1), lo, hi)), q.z);
-    return mix(mix(t00, t10, f.x), mix(t01, t11, f.x), f.y) * jadeTile.y;
+    float t00 = jadeMediumPath(texelFetch(layers, clamp(base, lo, hi), 0), q.z);
+    float t10 = jadeMediumPath(texelFetch(layers, clamp(base + ivec2(1, 0), lo, hi), 0), q.z);
+    float t01 = jadeMediumPath(texelFetch(layers, clamp(base + ivec2(0, 1), lo, hi), 0), q.z);
+    float t11 = jadeMediumPath(texelFetch(layers, clamp(base + ivec2(1, 1), lo, hi), 0), q.z);
+    return mix(mix(t00, t10, f.x), mix(t01, t11, f.x), f.y) * info.y;
+}
+
+// shadow_visibility (shadow.glsl), an orthographic tile: a 3 x 3 tent of depth comparisons
+// spacing texels apart, of the point moved off the surface along its normal by
+// (1 + 2.5 spacing sin theta) texels; against layer 0 where the surface faces the light, layer 1
+// where it faces away. Outside the tile, lit.
+float jadeShadowVisibility(sampler2D layers, mat4 m, vec4 info, vec3 position, vec3 n, vec3 l)
+{
+    float c = dot(n, l), spacing = max(info.z, 1.0);
+    float size = info.x, texel = info.y / size;
+    float sin_theta = sqrt(max(1.0 - c * c, 0.0));
+    vec3 towards = c >= 0.0 ? n : -n;
+    vec3 q = jadeTileCoords(m, position + towards * (texel * (1.0 + 2.5 * spacing * sin_theta)));
+    if (any(lessThan(q.xy, vec2(0.0))) || any(greaterThan(q.xy, vec2(1.0)))) return 1.0;
+    vec2 u = q.xy * (size / spacing) - 1.0;
+    vec2 b = floor(u), f = u - b;
+    vec3 wx = vec3(1.0 - f.x, 1.0, f.x), wy = vec3(1.0 - f.y, 1.0, f.y);
+    ivec2 hi = ivec2(int(size) - 1);
+    float lit = 0.0;
+    for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i) {
+            ivec2 at = clamp(ivec2(floor((b + vec2(i, j) + 0.5) * spacing)), ivec2(0), hi);
+            vec4 depths = texelFetch(layers, at, 0);
+            float occluder = c >= 0.0 ? depths.x : depths.y;
+            lit += q.z <= occluder ? wx[i] * wy[j] : 0.0;
+        }
+    return lit * 0.25;
 }
 
 // light_at (mesh.frag) / transmitter_at (transmission.glsl): towards the light, unit, and its
@@ -107,9 +132,9 @@ varying vec3 vJadeScatteringNormal;
 varying vec3 vJadeVariance;
 varying float vJadeThickness;
 varying vec3 vJadeCentre;  // the bounding sphere's centre, view space (the same at every vertex)
-varying float vJadePath;   // JADE_PATH_PER_VERTEX: transmitter_path of the layered light, per vertex
 #if NUM_DIR_LIGHTS > 0
 varying float vJadeLobeDir[NUM_DIR_LIGHTS];
+varying float vJadePathDir[NUM_DIR_LIGHTS];  // JADE_PATH_PER_VERTEX: transmitter_path per vertex
 #endif
 #if NUM_POINT_LIGHTS > 0
 varying float vJadeLobePoint[NUM_POINT_LIGHTS];
@@ -140,18 +165,20 @@ void main()
     vJadeVariance = jadeVariance(jadeTm, jadeNormalSpread);
     vJadeThickness = jadeThickness;
     vJadeCentre = (modelViewMatrix * vec4(jadeBounds.xyz, 1.0)).xyz;
-    // mesh.vert's out_path (PATH_PER_VERTEX): the path per vertex, interpolated.
-#if JADE_PATH_PER_VERTEX == 1
-    vJadePath = jadePathLight >= 0 ? max(jadeThickness, jadeLightPath(p.xyz)) : jadeThickness;
-#else
-    vJadePath = 0.0;
-#endif
     vec3 v = normalize(-p.xyz), l, e;
 #if NUM_DIR_LIGHTS > 0
 #pragma unroll_loop_start
     for (int i = 0; i < NUM_DIR_LIGHTS; i++) {
         jadeDirectional(directionalLights[i].direction, directionalLights[i].color, l, e);
         vJadeLobeDir[i] = jadeLobe(l, v);
+        // mesh.vert's out_path (PATH_PER_VERTEX): transmitter_path per vertex, interpolated.
+#if JADE_PATH_PER_VERTEX == 1
+        vJadePathDir[i] = jadeTileInfo[i].w > 0.5
+            ? max(jadeThickness, jadeLightPath(jadeTileLayers[i], jadeTileMatrix[i], jadeTileInfo[i], p.xyz))
+            : jadeThickness;
+#else
+        vJadePathDir[i] = 0.0;
+#endif
     }
 #pragma unroll_loop_end
 #endif
@@ -176,9 +203,9 @@ varying vec3 vJadeScatteringNormal;
 varying vec3 vJadeVariance;
 varying float vJadeThickness;
 varying vec3 vJadeCentre;  // the bounding sphere's centre, view space (the same at every vertex)
-varying float vJadePath;   // JADE_PATH_PER_VERTEX: transmitter_path of the layered light, per vertex
 #if NUM_DIR_LIGHTS > 0
 varying float vJadeLobeDir[NUM_DIR_LIGHTS];
+varying float vJadePathDir[NUM_DIR_LIGHTS];  // JADE_PATH_PER_VERTEX: transmitter_path per vertex
 #endif
 #if NUM_POINT_LIGHTS > 0
 varying float vJadeLobePoint[NUM_POINT_LIGHTS];
@@ -310,22 +337,19 @@ vec3 jadeTransmittedLight(vec3 l, vec3 e, vec3 n, float lobe, float t, float thi
 }
 
 // main (mesh.frag), MODE = kTm: one light's diffuse and specular light, and its transmission.
-void jadeAddLight(vec3 l, vec3 e, bool transmits, bool layered, float lobe, vec3 n, vec3 n_diffuse, vec3 v,
-                  float exit_transmittance, JadeTranslucency tr, inout vec3 color)
+// visibility: the light's shadow (1: none); path: its path through the object (transmitter_path).
+void jadeAddLight(vec3 l, vec3 e, bool transmits, float visibility, float path, float lobe, vec3 n, vec3 n_diffuse,
+                  vec3 v, float exit_transmittance, JadeTranslucency tr, inout vec3 color)
 {
     float c = dot(n, l), c_diffuse = dot(n_diffuse, l);
+    vec3 unshadowed = e;  // the transmitted light crossed the occluder: not shadowed
+    e *= visibility;
     vec3 diffuse = jadeAlbedoStrength.rgb * (1.0 / JADE_PI) * jadeTranslucency(c_diffuse, tr) * e;
     if (jadeShape.w > 0.0) diffuse *= jadeBoundaryTransmittance(c_diffuse) * exit_transmittance;
     color += diffuse;
     if (c > 0.0 && jadeSpecular.z > 0.0) color += jadeSpecular.z * jadeSpecularLobe(n, v, l, c) * e;
-    if (transmits && jadeTransmission > 0.5) {
-#if JADE_PATH_PER_VERTEX == 1
-        float t = layered ? vJadePath : vJadeThickness;
-#else
-        float t = layered ? max(vJadeThickness, jadeLightPath(vJadePosition)) : vJadeThickness;
-#endif
-        color += exit_transmittance * jadeTransmittedLight(l, e, n, lobe, t, vJadeThickness);
-    }
+    if (transmits && jadeTransmission > 0.5)
+        color += exit_transmittance * jadeTransmittedLight(l, unshadowed, n, lobe, path, vJadeThickness);
 }
 
 void main()
@@ -337,13 +361,26 @@ void main()
     float exit_transmittance = jadeShape.w > 0.0 ? jadeBoundaryTransmittance(dot(n, v)) : 1.0;
     JadeTranslucency tr = jadeTranslucencySetup(vJadeVariance);
     vec3 color = vec3(0.0), l, e;
+    float visibility = 1.0, path;
+    bool tiled;
 #if NUM_DIR_LIGHTS > 0
 #pragma unroll_loop_start
     for (int i = 0; i < NUM_DIR_LIGHTS; i++) {
         jadeDirectional(directionalLights[i].direction, directionalLights[i].color, l, e);
-        jadeAddLight(l, e, jadeMayTransmit(directionalLights[i].direction, false, vJadeCentre),
-                     jadePathLight == UNROLLED_LOOP_INDEX, vJadeLobeDir[i], n, n_diffuse, v,
-                     exit_transmittance, tr, color);
+        tiled = jadeTileInfo[i].w > 0.5;
+#if JADE_SHADOWS == 1
+        visibility = tiled ? jadeShadowVisibility(jadeTileLayers[i], jadeTileMatrix[i], jadeTileInfo[i], vJadePosition, n, l)
+                           : 1.0;
+#endif
+#if JADE_PATH_PER_VERTEX == 1
+        path = tiled ? vJadePathDir[i] : vJadeThickness;
+#else
+        path = tiled ? max(vJadeThickness, jadeLightPath(jadeTileLayers[i], jadeTileMatrix[i], jadeTileInfo[i],
+                                                         vJadePosition))
+                     : vJadeThickness;
+#endif
+        jadeAddLight(l, e, jadeMayTransmit(directionalLights[i].direction, false, vJadeCentre), visibility, path,
+                     vJadeLobeDir[i], n, n_diffuse, v, exit_transmittance, tr, color);
     }
 #pragma unroll_loop_end
 #endif
@@ -351,7 +388,7 @@ void main()
 #pragma unroll_loop_start
     for (int i = 0; i < NUM_POINT_LIGHTS; i++) {
         jadePoint(pointLights[i].position, pointLights[i].color, vJadePosition, l, e);
-        jadeAddLight(l, e, true, false, vJadeLobePoint[i], n, n_diffuse, v, exit_transmittance, tr, color);
+        jadeAddLight(l, e, true, 1.0, vJadeThickness, vJadeLobePoint[i], n, n_diffuse, v, exit_transmittance, tr, color);
     }
 #pragma unroll_loop_end
 #endif

@@ -44,7 +44,10 @@ function physicalMaterial(extension, materialDef) {
 
 /** GLTFLoader plugin: after the file is parsed, baked primitives get JadeTranslucentMaterial. */
 export class JadeGltfPlugin {
-  /** options.lightPath: 'auto' (default), 'vertex' or 'fragment' (JadeTranslucentMaterial.setLightPath). */
+  /**
+   * options.lightPath: 'auto' (default), 'vertex' or 'fragment' (JadeTranslucentMaterial.setLightPath);
+   * options.shadows: whether the mesh shadows its directional lights (default true).
+   */
   constructor(parser, options = {}) {
     this.parser = parser;
     this.options = options;
@@ -87,6 +90,7 @@ export class JadeGltfPlugin {
       mesh.material = new JadeTranslucentMaterial(extension, box, hasThickness);
       mesh.material.setSmallestVariance(JadeTranslucentMaterial.smallestVariance(extension, geometry.attributes.jadeTm));
       mesh.material.setLightPath(options.lightPath ?? 'auto', JadeTranslucentMaterial.medianEdge(geometry));
+      mesh.material.shadows = options.shadows ?? true;
       mesh.userData.jade = {
         extension,
         gltfMaterial,
@@ -100,9 +104,10 @@ export class JadeGltfPlugin {
  * Loads a baked .glb/.gltf from `url`; resolves to GLTFLoader's result, whose scene draws every
  * baked primitive with JadeTranslucentMaterial (mesh.userData.jade holds the extension and the
  * file's own and a MeshPhysicalMaterial for comparison). lightPath: where the transmission's path
- * is read ('auto', 'vertex', 'fragment'; JadeTranslucentMaterial.setLightPath).
+ * is read ('auto', 'vertex', 'fragment'; JadeTranslucentMaterial.setLightPath); shadows: whether
+ * the mesh shadows its directional lights (as jade render; false as --no-shadows).
  */
-export async function loadJadeGltf(url, { loader = new GLTFLoader(), lightPath = 'auto' } = {}) {
-  loader.register((parser) => new JadeGltfPlugin(parser, { lightPath }));
+export async function loadJadeGltf(url, { loader = new GLTFLoader(), lightPath = 'auto', shadows = true } = {}) {
+  loader.register((parser) => new JadeGltfPlugin(parser, { lightPath, shadows }));
   return loader.loadAsync(url);
 }

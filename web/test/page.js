@@ -2,7 +2,7 @@
 // JadeTranslucentMaterial or three.js's MeshPhysicalMaterial / MeshStandardMaterial, and times
 // frames. Driven by render_scenes.mjs.
 import * as THREE from 'three';
-import { loadJadeGltf } from '../src/index.js';
+import { JadeTranslucentMaterial, loadJadeGltf } from '../src/index.js';
 import { makeLight } from '../src/lights.js';
 
 let renderer, meshes = [], root;
@@ -39,8 +39,8 @@ function sceneFor({ camera: c, lights, size, material }) {
 }
 
 window.jadeTest = {
-  async load(url, lightPath = 'auto') {
-    const gltf = await loadJadeGltf(url, { lightPath });
+  async load(url, lightPath = 'auto', shadows = true) {
+    const gltf = await loadJadeGltf(url, { lightPath, shadows });
     root = gltf.scene;
     meshes = [];
     root.traverse((o) => { if (o.isMesh && o.userData.jade) meshes.push(o); });
@@ -48,6 +48,15 @@ window.jadeTest = {
     for (const mesh of meshes) {
       const jade = mesh.userData.jade;
       jade.jadeMaterial = mesh.material;
+      // The same material without shadows: what the test measures the shadows' share against.
+      const m = mesh.material;
+      const unshadowed = new JadeTranslucentMaterial(jade.extension, mesh.geometry.boundingBox,
+                                                     m.uniforms.jadeTransmission.value === 1);
+      unshadowed.setSmallestVariance(JadeTranslucentMaterial.smallestVariance(jade.extension,
+                                                                              mesh.geometry.attributes.jadeTm));
+      unshadowed.setLightPath(m.lightPath);
+      unshadowed.shadows = false;
+      jade.unshadowedMaterial = unshadowed;
       jade.standardMaterial = new THREE.MeshStandardMaterial({
         color: new THREE.Color().setRGB(...jade.extension.albedo), roughness: jade.extension.roughness, metalness: 0 });
     }
@@ -56,7 +65,8 @@ window.jadeTest = {
     return meshes.map((m) => `${m.name}: ${m.userData.jade.jadeMaterial.name}, ` +
                              `JADE_TERMS ${m.userData.jade.jadeMaterial.defines.JADE_TERMS}, ` +
                              `JADE_SMALL_T ${m.userData.jade.jadeMaterial.defines.JADE_SMALL_T}, ` +
-                             `light path per ${m.userData.jade.jadeMaterial.lightPath}`);
+                             `light path per ${m.userData.jade.jadeMaterial.lightPath}, ` +
+                             `shadows ${m.userData.jade.jadeMaterial.shadows ? 'on' : 'off'}`);
   },
   render(options) {
     const { scene, camera } = sceneFor(options);

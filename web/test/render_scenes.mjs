@@ -3,9 +3,11 @@
 // material against MeshStandardMaterial. tests/test_web.cpp runs it and compares the PNGs with
 // jade render's.
 //   node web/test/render_scenes.mjs --glb FILE --out DIR [--frames N] [--light-path auto|vertex|fragment]
+//                                   [--no-shadows]
 //   node web/test/render_scenes.mjs --glb FILE --screenshot FILE
-// Writes DIR/web_<scene>_jade.png, DIR/web_<scene>_physical.png and (--frames > 0, default 30)
-// DIR/web_timing.json.
+// Writes DIR/web_<scene>_jade.png, DIR/web_<scene>_physical.png, without --no-shadows
+// DIR/web_<scene>_unshadowed.png (Jade's material with shadows off), and with --frames > 0
+// (default 30) DIR/web_timing.json.
 // --screenshot instead opens the demo page (index.html) and saves what it shows.
 // The browser: $JADE_CHROMIUM, else /usr/bin/chromium-headless-shell (Debian's package).
 import { existsSync, mkdirSync, readFileSync, renameSync, writeFileSync } from 'node:fs';
@@ -60,14 +62,16 @@ try {
     const config = JSON.parse(readFileSync(join(here, 'scenes.json'), 'utf8'));
     await page.goto(`${server.url}test/scenes.html`, { waitUntil: 'load' });
     await page.waitForFunction('window.jadeTestReady === true', { timeout: 30000 });
-    const loaded = await page.evaluate((url, where) => window.jadeTest.load(url, where), '/baked.glb', lightPath);
+    const loaded = await page.evaluate((url, where, shadows) => window.jadeTest.load(url, where, shadows), '/baked.glb',
+                                       lightPath, !args.includes('--no-shadows'));
     console.log(`${glb}: ${loaded.join('; ')}`);
     const info = await page.evaluate(() => window.jadeTest.info());
     console.log(`browser: ${await browser.version()}, WebGL: ${info.renderer}, MSAA ${info.samples}, three r${info.three}`);
     const timing = { frames, size: config.size, renderer: info.renderer, scenes: {} };
     for (const [name, lights] of Object.entries(config.scenes)) {
       const options = { camera: config.camera, lights, size: config.size };
-      for (const material of ['jade', 'physical']) {
+      const shadows = !args.includes('--no-shadows');
+      for (const material of shadows ? ['jade', 'physical', 'unshadowed'] : ['jade', 'physical']) {
         const url = await page.evaluate((o) => window.jadeTest.render(o), { ...options, material });
         const file = join(out, `web_${name}_${material}.png`);
         writeAtomic(file, Buffer.from(url.slice(url.indexOf(',') + 1), 'base64'));
