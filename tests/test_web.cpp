@@ -1,10 +1,10 @@
 // The WebGL2 renderer (web/, docs/web.md) in a real browser: web/test/render_scenes.mjs draws the
 // committed baked bunny (blue-jewel) in headless Chromium (WebGL2 on SwiftShader) with
 // JadeTranslucentMaterial, front- and back-lit (web/test/scenes.json), and this test compares each
-// image with `jade render` of the same file, camera and lights by LDR FLIP. Neither side draws
-// shadows (the web material has none: --no-shadows here). The browser, its npm packages and the
-// demo file come from third_party/build.sh (install_web.sh); where they are missing the test
-// fails under CI=true and is skipped elsewhere, saying what to run.
+// image with `jade render` of the same file, camera and lights by LDR FLIP (with shadows on both
+// sides, and for a second material without). The browser and its npm packages come from
+// third_party/build.sh (install_web.sh); where they are missing the test fails under CI=true and
+// is skipped elsewhere, saying what to run.
 #include "flip.hpp"
 #include "gltf_reader.hpp"
 #include "test_support.hpp"
