@@ -112,9 +112,10 @@ void compare_with_jade_render(const std::filesystem::path& glb, const std::files
                                          "--out",        (dir / ("jade_" + name + ".png")).string()};
         if (!shadows) args.push_back("--no-shadows");
         for (const auto& l : lights) {
-            ASSERT_EQ(l.at("type"), "dir") << "scenes.json: only directional lights are compared";
+            const std::string type = l.at("type");
+            ASSERT_TRUE(type == "dir" || type == "point") << "scenes.json: light type " << type;
             args.push_back("--light");
-            args.push_back("dir:" + triple(l.at("vector")) + ":" + triple(l.at("color")));
+            args.push_back(type + ":" + triple(l.at("vector")) + ":" + triple(l.at("color")));
         }
         const auto r = jade::test::run_cli(args);
         ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -143,7 +144,8 @@ void compare_with_jade_render(const std::filesystem::path& glb, const std::files
                 jade::flip::ldr_flip(reference, load_png(dir / ("web_" + name + "_unshadowed.png")));
             std::printf("%s, %s: LDR FLIP against jade render: JadeTranslucentMaterial without shadows %.4f\n",
                         glb.filename().string().c_str(), name.c_str(), unshadowed_flip);
-            EXPECT_GT(unshadowed_flip, jade_flip);
+            // Asserted where the shadows' share is clear (the point scene's is 0.0002: printed).
+            if (name != "point") EXPECT_GT(unshadowed_flip, jade_flip);
         }
     }
     if (frames > 0) {
@@ -188,27 +190,29 @@ TEST(Web, DemoFileIsValidGltf)
     EXPECT_EQ(material.at("extensions").at("JADE_materials_translucency").at("name"), "blue-jewel");
 }
 
-// The Figure 1 bunny (blue-jewel), front- and back-lit, and the frame times, with both sides'
-// defaults: shadows on, the path per vertex on this mesh. Measured (512x512, 4x MSAA both sides):
-// front 0.0017, back 0.0031; the bounds are about twice that. What is left is where the two
-// rasterisers, MSAA resolves (three.js resolves the sRGB-encoded canvas, Jade the linear image)
-// and exp/pow differ, mostly on silhouettes. A wrong formula or input costs more: the web
-// material without shadows measured 0.0038 and 0.0040 (asserted: further than with them), with
-// the baked thickness alone for the path (no light-depth layers) the back scene 0.027, and
-// three.js's MeshPhysicalMaterial with the same colour, roughness and ior 0.072 and 0.108.
+// The Figure 1 bunny (blue-jewel), front- and back-lit and under a point light from behind, and
+// the frame times, with both sides' defaults: shadows on, the path per vertex on this mesh.
+// Measured (512x512, 4x MSAA both sides): front 0.0017, back 0.0031, point 0.0022; the bounds are
+// about twice that. What is left is where the two rasterisers, MSAA resolves (three.js resolves
+// the sRGB-encoded canvas, Jade the linear image) and exp/pow differ, mostly on silhouettes. A
+// wrong formula or input costs more: the web material without shadows measured 0.0038 and 0.0040
+// (asserted: further than with them), with the baked thickness alone for the path (no depth
+// tiles) the back scene 0.027, and three.js's MeshPhysicalMaterial with the same colour,
+// roughness and ior 0.072, 0.108 and 0.075.
 TEST(Web, JadeMaterialMatchesJadeRender)
 {
     require_browser_side();
     if (testing::Test::HasFatalFailure() || testing::Test::IsSkipped()) return;
     compare_with_jade_render(web("assets/bunny_blue_jewel.glb"), jade::test::test_folder("web"),
-                             {{"front", 0.004}, {"back", 0.006}}, 20, "auto", true);
+                             {{"front", 0.004}, {"back", 0.006}, {"point", 0.005}}, 12, "auto", true);
 }
 
 // Another material through the same path: the demo file re-baked with marble (white, its own
 // transmission constants) and strength 0.3, so that t > 0.3² everywhere and the web material, as
 // Jade, drops the small-t closed form and sums 3 Fourier terms (choose_terms) instead of 6.
 // The path per fragment and no shadows on both sides (jade render --no-shadows). Measured: front
-// 0.0028, back 0.0035 (MeshPhysicalMaterial 0.073, 0.040); the bounds about 2.5 times that.
+// 0.0028, back 0.0035, point 0.0024 (MeshPhysicalMaterial 0.073, 0.040, 0.037); the bounds about
+// 2.5 times that.
 TEST(Web, AnotherMaterialMatchesJadeRender)
 {
     require_browser_side();
@@ -219,5 +223,5 @@ TEST(Web, AnotherMaterialMatchesJadeRender)
     const auto r = jade::test::run_cli({"bake", web("assets/bunny_blue_jewel.glb").string(), "--material", "marble",
                                         "--strength", "0.3", "--out", glb.string()});
     ASSERT_EQ(r.exit_code, 0) << r.output;
-    compare_with_jade_render(glb, dir, {{"front", 0.008}, {"back", 0.008}}, 0, "fragment", false);
+    compare_with_jade_render(glb, dir, {{"front", 0.008}, {"back", 0.008}, {"point", 0.008}}, 0, "fragment", false);
 }

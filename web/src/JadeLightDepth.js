@@ -1,32 +1,46 @@
-// JadeLightDepth: the depths of the first surfaces along each directional light, by depth peeling
-// (Jade's LightDepth, engine/src/shading/light_depth.cpp, shaders/light_depth.frag): one tile a
-// light, an orthographic box that holds the bounding sphere. Four layers for a light that may
+// JadeLightDepth: the depths of the first surfaces along each light, by depth peeling (Jade's
+// LightDepth, engine/src/shading/light_depth.cpp, shaders/light_depth.frag): one tile a light, an
+// orthographic box that holds the bounding sphere for a directional light, a perspective cone
+// from a point light (orthographic_tile, perspective_tile). Four layers for a light that may
 // shine through the object (the transmission term's path, transmitter_path in
 // transmission.glsl), two for one that only casts shadows (shadow.glsl reads layers 0 and 1).
 // Each tile is peeled into scratch targets (one layer each) and packed into one RGBA float
 // texture (layers 0 … 3, 1 where there is none), Jade's atlas column.
 import {
-  Color, DoubleSide, FloatType, Matrix4, Mesh, NearestFilter, OrthographicCamera, PlaneGeometry, RGBAFormat, Scene,
-  ShaderMaterial, Vector3, WebGLRenderTarget,
+  Color, DoubleSide, FloatType, MathUtils, Matrix4, Mesh, NearestFilter, OrthographicCamera, PerspectiveCamera,
+  PlaneGeometry, RGBAFormat, Scene, ShaderMaterial, Vector2, Vector3, Vector4, WebGLRenderTarget,
 } from 'three';
 
 export const kLayers = 4;   // LightDepth::kLayers
 export const kMaxTiles = 4; // JADE_MAX_LIGHT_DEPTH_TILES
 const kMargin = 1.1;        // LightDepth::kMargin: a tile spans 1.1 bounding radii each side
+export const kPointMinDistance = 1.05;  // LightDepth::kPointMinDistance: nearer, a point light gets no tile
 
-// light_depth.frag: layer k keeps the nearest surface beyond layer k − 1 at the same texel and
-// writes its window depth (linear: the tile is orthographic). kPeelMargin as there.
+// light_depth.frag: layer k keeps the nearest surface beyond layer k − 1 at the same texel (by
+// the depth buffer's values, kept in .g for the next pass) and writes in .r what the shading
+// subtracts: the window depth of an orthographic tile (linear), the distance from the light of a
+// perspective one, (|p − origin| − near) / range. kPeelMargin as there.
 const peelVertex = /* glsl */ `
-void main() { gl_Position = projectionMatrix * modelViewMatrix * vec4(position, 1.0); }
+varying vec3 vWorld;
+void main()
+{
+    vec4 world = modelMatrix * vec4(position, 1.0);
+    vWorld = world.xyz;
+    gl_Position = projectionMatrix * viewMatrix * world;
+}
 `;
 const peelFragment = /* glsl */ `
 uniform sampler2D previous;
 uniform float layer;
+uniform vec4 origin;  // world position of a point light, w = 1; w = 0: orthographic
+uniform vec2 depth;   // near, range
+varying vec3 vWorld;
 const float kPeelMargin = 1.0 / 1048576.0;
 void main()
 {
-    if (layer > 0.5 && gl_FragCoord.z <= texelFetch(previous, ivec2(gl_FragCoord.xy), 0).r + kPeelMargin) discard;
-    gl_FragColor = vec4(gl_FragCoord.z);
+    if (layer > 0.5 && gl_FragCoord.z <= texelFetch(previous, ivec2(gl_FragCoord.xy), 0).g + kPeelMargin) discard;
+    float linear = (length(vWorld - origin.xyz) - depth.x) / depth.y;
+    gl_FragColor = vec4(origin.w > 0.5 ? linear : gl_FragCoord.z, gl_FragCoord.z, 0.0, 1.0);
 }
 `;
 // The layers into one texel: layers beyond `count` are 1 (no surface).
@@ -58,7 +72,8 @@ export class JadeLightDepth {
     this.scratch = Array.from({ length: kLayers }, () => floatTarget(size));
     this.tiles = [];   // per tile: {target, viewProjection, range, key}
     this.peel = new ShaderMaterial({
-      uniforms: { previous: { value: null }, layer: { value: 0 } },
+      uniforms: { previous: { value: null }, layer: { value: 0 }, origin: { value: new Vector4() },
+                  depth: { value: new Vector2() } },
       vertexShader: peelVertex,
       fragmentShader: peelFragment,
       side: DoubleSide,  // every surface along the light, facing it or not
@@ -72,6 +87,7 @@ export class JadeLightDepth {
       depthWrite: false,
     });
     this.camera = new OrthographicCamera();
+    this.perspective = new PerspectiveCamera();
     this.scene = new Scene();
     this.proxy = new Mesh(undefined, this.peel);
     this.proxy.matrixAutoUpdate = false;
@@ -84,28 +100,47 @@ export class JadeLightDepth {
   }
 
   /**
-   * Tile `k` of `mesh` along the directional light towards `direction` (world space), `layers`
-   * deep, its box holding the bounding sphere (world centre, radius) as orthographic_tile does;
-   * peeled again only when something changed. Returns {texture, viewProjection, range, texel}:
-   * world → the tile's clip space, its depth range and texel size in world units.
+   * Tile `k` of `mesh` for `light` ({point: false, vector: towards the light} or {point: true,
+   * vector: its position}, world space), `layers` deep, holding the bounding sphere (world
+   * centre, radius) as orthographic_tile / perspective_tile do; peeled again only when something
+   * changed. Returns {texture, viewProjection (world → the tile's clip space), origin (the point
+   * light's world position, or null), near, range, texel (world units across a texel; per unit
+   * of distance from a point light)}: Jade's LightTile.
    */
-  update(renderer, k, mesh, direction, centre, radius, layers) {
-    const l = direction.clone().normalize();
-    const r = Math.max(radius, 1e-20) * kMargin;
-    const key = [l.toArray(), centre.toArray(), r, layers, mesh.matrixWorld.elements, mesh.geometry.uuid].join();
+  update(renderer, k, mesh, light, centre, radius, layers) {
+    const key = [light.point, light.vector.toArray(), centre.toArray(), radius, layers, mesh.matrixWorld.elements,
+                 mesh.geometry.uuid].join();
     const tile = this.tiles[k] ??= { target: floatTarget(this.size), viewProjection: new Matrix4(), key: '' };
-    tile.range = 2 * r;  // depth.y: far − near
-    tile.texel = (2 * r) / this.size;  // depth.z
+    let camera;
+    const up = (dir) => (Math.abs(dir.y) < 0.9 ? new Vector3(0, 1, 0) : new Vector3(1, 0, 0));
+    if (!light.point) {
+      const l = light.vector.clone().normalize();
+      const r = Math.max(radius, 1e-20) * kMargin;
+      camera = this.camera;
+      camera.left = -r, camera.right = r, camera.top = r, camera.bottom = -r, camera.near = r, camera.far = 3 * r;
+      camera.up.copy(up(l));
+      camera.position.copy(centre).addScaledVector(l, 2 * r);
+      Object.assign(tile, { origin: null, near: r, range: 2 * r, texel: (2 * r) / this.size });
+    } else {
+      const axis = centre.clone().sub(light.vector), d = axis.length(), r = kMargin * radius;
+      const dir = axis.divideScalar(d);
+      const half = Math.min(Math.asin(Math.min(radius / d, 1)) * kMargin, MathUtils.degToRad(85));
+      const near = Math.max(d - r, 0.5 * (d - radius)), far = d + r;
+      camera = this.perspective;
+      camera.fov = MathUtils.radToDeg(2 * half), camera.aspect = 1, camera.near = near, camera.far = far;
+      camera.up.copy(up(dir));
+      camera.position.copy(light.vector);
+      Object.assign(tile, { origin: light.vector.clone(), near, range: far - near,
+                            texel: (2 * Math.tan(half)) / this.size });
+    }
     if (tile.key === key) return { texture: tile.target.texture, ...tile };
     tile.key = key;
-    const camera = this.camera;
-    camera.left = -r, camera.right = r, camera.top = r, camera.bottom = -r, camera.near = r, camera.far = 3 * r;
-    camera.up.copy(Math.abs(l.y) < 0.9 ? new Vector3(0, 1, 0) : new Vector3(1, 0, 0));
-    camera.position.copy(centre).addScaledVector(l, 2 * r);
     camera.lookAt(centre);
     camera.updateMatrixWorld(true);
     camera.updateProjectionMatrix();
     tile.viewProjection.multiplyMatrices(camera.projectionMatrix, camera.matrixWorldInverse);
+    this.peel.uniforms.origin.value.set(...(tile.origin ? tile.origin.toArray() : [0, 0, 0]), tile.origin ? 1 : 0);
+    this.peel.uniforms.depth.value.set(tile.near, tile.range);
 
     this.proxy.geometry = mesh.geometry;
     this.proxy.matrixWorld.copy(mesh.matrixWorld);

@@ -4,15 +4,15 @@
 // jade* attributes read here) and the vertex normal; the parameters are those of the
 // JADE_materials_translucency extension (docs/gltf.md). Lit by the scene's three.js
 // DirectionalLights and PointLights (lights: true): colour × intensity is Jade's irradiance E
-// (directional) or intensity (point, falling off as 1/d²). Each directional light (the first
-// four) gets a depth tile of the mesh (JadeLightDepth.js) when it may shine through the object
-// towards the eye (the transmission's path: the longer of the baked _THICKNESS and the path from
-// where its light enters, per vertex or per fragment as Jade picks, setLightPath) or when the
-// material draws shadows (`shadows`, default on, as jade render); point lights use the thickness
-// alone and are not shadowed.
+// (directional) or intensity (point, falling off as 1/d²). Up to four lights get a depth tile of
+// the mesh (JadeLightDepth.js) when they may shine through the object towards the eye (the
+// transmission's path: the longer of the baked _THICKNESS and the path from where the light
+// enters, per vertex or per fragment as Jade picks, setLightPath) or when the material draws
+// shadows (`shadows`, default on, as jade render); a point light within 1.05 bounding radii gets
+// none (its path is the thickness, it casts no shadow), as in Jade.
 import { Matrix4, ShaderMaterial, UniformsLib, UniformsUtils, Vector3, Vector4 } from 'three';
 import { vertexShader, fragmentShader } from './jadeShaderChunks.js';
-import { JadeLightDepth, kMaxTiles } from './JadeLightDepth.js';
+import { JadeLightDepth, kMaxTiles, kPointMinDistance } from './JadeLightDepth.js';
 import { profileReach } from './profile.js';
 
 const finite = (x, what) => {
@@ -44,9 +44,11 @@ export class JadeTranslucentMaterial extends ShaderMaterial {
         jadeShape: { value: new Vector4() },
         jadeBounds: { value: new Vector4() },
         jadeTransmission: { value: 0 },
-        jadeTileLayers: { value: [] },  // per directional light (sized in onBeforeRender)
+        jadeTileLayers: { value: [] },  // per light (sized in onBeforeRender)
         jadeTileMatrix: { value: [] },
         jadeTileInfo: { value: [] },
+        jadeTileDepth: { value: [] },
+        jadeTileOrigin: { value: [] },
       }]),
       vertexShader,
       fragmentShader,
@@ -71,31 +73,43 @@ export class JadeTranslucentMaterial extends ShaderMaterial {
   }
 
   /**
-   * three.js calls this before each draw with the material: the directional lights' depth tiles,
-   * as Jade's record_transmission chooses them: the lights that may shine through the object
-   * towards the eye (LightDepth::may_transmit) first, then, with shadows, the others, at most
-   * four, in the lights' order; each peeled again only when it, the mesh or its transform moved.
-   * The lights are in the order of three.js's directionalLights uniform (the scene's order).
+   * three.js calls this before each draw with the material: the lights' depth tiles, as Jade's
+   * record_transmission chooses them: lights that may shine through the object towards the eye
+   * (LightDepth::may_transmit: every point light) first, then, with shadows, the others, at most
+   * four; a point light only from 1.05 bounding radii (can_tile). Each is peeled again only when
+   * it, the mesh or its transform moved. Slots follow three.js's light uniforms: the directional
+   * lights, then the point lights, each in the scene's order.
    */
   onBeforeRender(renderer, scene, camera, geometry, object) {
     const u = this.uniforms;
-    const lights = [];
-    scene.traverseVisible((o) => { if (o.isDirectionalLight && o.layers.test(camera.layers)) lights.push(o); });
+    const directional = [], point = [];
+    scene.traverseVisible((o) => {
+      if (!o.layers.test(camera.layers)) return;
+      if (o.isDirectionalLight) directional.push(o);
+      else if (o.isPointLight) point.push(o);
+    });
+    const lights = [
+      ...directional.map((light) => ({ point: false, vector: new Vector3().setFromMatrixPosition(light.matrixWorld)
+        .sub(new Vector3().setFromMatrixPosition(light.target.matrixWorld)) })),
+      ...point.map((light) => ({ point: true, vector: new Vector3().setFromMatrixPosition(light.matrixWorld) })),
+    ];
     const n = Math.max(lights.length, 1);
     const layers = u.jadeTileLayers.value = new Array(n).fill(null);
     const matrices = u.jadeTileMatrix.value = Array.from({ length: n }, () => new Matrix4());
     const infos = u.jadeTileInfo.value = Array.from({ length: n }, () => new Vector4());
+    const depths = u.jadeTileDepth.value = Array.from({ length: n }, () => new Vector4());
+    const origins = u.jadeTileOrigin.value = Array.from({ length: n }, () => new Vector3());
     const b = u.jadeBounds.value;
     const centre = new Vector3(b.x, b.y, b.z).applyMatrix4(object.matrixWorld);
     const radius = b.w * object.matrixWorld.getMaxScaleOnAxis();
     const eye = new Vector3().setFromMatrixPosition(camera.matrixWorld);
     const distance = eye.distanceTo(centre);
     const towardsEye = eye.clone().sub(centre).divideScalar(distance);
-    const directions = lights.map((light) => new Vector3().setFromMatrixPosition(light.matrixWorld)
-      .sub(new Vector3().setFromMatrixPosition(light.target.matrixWorld)));
-    const transmits = directions.map((l) => u.jadeTransmission.value === 1 && l.length() > 0 &&
-      (!(distance > radius) || towardsEye.dot(l.clone().normalize().negate()) > -radius / distance));
-    const wanted = directions.map((l, i) => (!(l.length() > 0) ? 0 : transmits[i] ? 2 : this.shadows ? 1 : 0));
+    const usable = (l) => (l.point ? l.vector.distanceTo(centre) >= kPointMinDistance * Math.max(radius, 1e-20)
+                                   : l.vector.length() > 0);
+    const transmits = lights.map((l) => u.jadeTransmission.value === 1 &&
+      (l.point || !(distance > radius) || towardsEye.dot(l.vector.clone().normalize().negate()) > -radius / distance));
+    const wanted = lights.map((l, i) => (!usable(l) ? 0 : transmits[i] ? 2 : this.shadows ? 1 : 0));
     const chosen = [];
     for (const priority of [2, 1])
       for (let i = 0; i < lights.length && chosen.length < kMaxTiles; ++i) if (wanted[i] === priority) chosen.push(i);
@@ -104,12 +118,16 @@ export class JadeTranslucentMaterial extends ShaderMaterial {
     this.lightDepth ??= new JadeLightDepth();
     this.reach ??= profileReach(this.extension.profiles);
     chosen.forEach((i, k) => {
-      const tile = this.lightDepth.update(renderer, k, object, directions[i], centre, radius, transmits[i] ? 4 : 2);
+      const tile = this.lightDepth.update(renderer, k, object, lights[i], centre, radius, transmits[i] ? 4 : 2);
       layers[i] = tile.texture;
       matrices[i].multiplyMatrices(tile.viewProjection, camera.matrixWorld);
-      // shadow_spacing (frame.cpp): the filter's taps a profile's reach apart, 1 … 4 texels.
-      const spacing = this.reach > 0 ? Math.min(Math.max(this.reach / tile.texel, 1), 4) : 1;
-      infos[i].set(this.lightDepth.size, tile.range, spacing, 1);
+      // shadow_spacing (frame.cpp): the filter's taps a profile's reach apart, 1 … 4 texels at
+      // the object (for a point light, at the centre's distance).
+      const texel = tile.texel * (tile.origin ? tile.origin.distanceTo(centre) : 1);
+      const spacing = this.reach > 0 ? Math.min(Math.max(this.reach / Math.max(texel, 1e-30), 1), 4) : 1;
+      infos[i].set(this.lightDepth.size, spacing, tile.origin ? 2 : 1, 0);
+      depths[i].set(tile.near, tile.range, tile.texel, 0);
+      if (tile.origin) origins[i].copy(tile.origin).applyMatrix4(camera.matrixWorldInverse);
     });
   }
 

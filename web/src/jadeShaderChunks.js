@@ -30,19 +30,26 @@ struct PointLight { vec3 position; vec3 color; float distance; float decay; };
 uniform PointLight pointLights[NUM_POINT_LIGHTS];
 #endif
 
-// The directional lights' depth tiles (JadeLightDepth.js), one per light: window depths of the
-// first four surfaces along it, 1 where there is none (Jade's atlas column and LightTile).
-#if NUM_DIR_LIGHTS > 0
-uniform sampler2D jadeTileLayers[NUM_DIR_LIGHTS];
-uniform mat4 jadeTileMatrix[NUM_DIR_LIGHTS];  // view space -> the tile's clip space
-uniform vec4 jadeTileInfo[NUM_DIR_LIGHTS];    // texels across, depth range, shadow spacing, 1: has a tile
+// The lights' depth tiles (JadeLightDepth.js, Jade's atlas columns and LightTile), one slot a
+// light: the directional lights', then the point lights'. Layers: the first four surfaces along
+// the light, 1 where there is none.
+#define JADE_TILE_SLOTS (NUM_DIR_LIGHTS + NUM_POINT_LIGHTS)
+#if JADE_TILE_SLOTS > 0
+uniform sampler2D jadeTileLayers[JADE_TILE_SLOTS];
+uniform mat4 jadeTileMatrix[JADE_TILE_SLOTS];   // view space -> the tile's clip space
+uniform vec4 jadeTileInfo[JADE_TILE_SLOTS];     // texels across, shadow spacing, 0 none | 1 orthographic | 2 perspective
+uniform vec4 jadeTileDepth[JADE_TILE_SLOTS];    // LightTile::depth: near, range, texel (a point light's: per unit distance)
+uniform vec3 jadeTileOrigin[JADE_TILE_SLOTS];   // a point light's position, view space
 #endif
+struct JadeTile { mat4 m; vec4 info; vec4 depth; vec3 origin; };
 
-// light_tile_coords (light_tile.glsl), an orthographic tile: xy in [0, 1] over it, z its depth.
-vec3 jadeTileCoords(mat4 m, vec3 p)
+// light_tile_coords (light_tile.glsl): xy in [0, 1] over the tile, z its depth in the units the
+// layers hold (the window depth of an orthographic tile, the distance from a point light).
+vec3 jadeTileCoords(JadeTile t, vec3 p)
 {
-    vec4 c = m * vec4(p, 1.0);
-    return c.xyz / c.w * 0.5 + 0.5;
+    vec4 c = t.m * vec4(p, 1.0);
+    float z = t.info.z > 1.5 ? (length(p - t.origin) - t.depth.x) / t.depth.y : c.z / c.w * 0.5 + 0.5;
+    return vec3(c.xy / c.w * 0.5 + 0.5, z);
 }
 
 // medium_path (transmission.glsl): the path inside the medium up to depth z at one texel.
@@ -55,10 +62,10 @@ float jadeMediumPath(vec4 layers, float z)
 // light_path (transmission.glsl): the medium's share of the light's line up to p (view space),
 // bilinear between the four nearest texels, in length units. Per fragment, or per vertex
 // (JADE_PATH_PER_VERTEX) as Jade picks.
-float jadeLightPath(sampler2D layers, mat4 m, vec4 info, vec3 p)
+float jadeLightPath(sampler2D layers, JadeTile t, vec3 p)
 {
-    vec3 q = jadeTileCoords(m, p);
-    float size = info.x;
+    vec3 q = jadeTileCoords(t, p);
+    float size = t.info.x;
     vec2 xy = clamp(q.xy, 0.0, 1.0) * size - 0.5;
     vec2 f = fract(xy);
     ivec2 base = ivec2(floor(xy)), lo = ivec2(0), hi = ivec2(int(size) - 1);
@@ -66,20 +73,20 @@ float jadeLightPath(sampler2D layers, mat4 m, vec4 info, vec3 p)
     float t10 = jadeMediumPath(texelFetch(layers, clamp(base + ivec2(1, 0), lo, hi), 0), q.z);
     float t01 = jadeMediumPath(texelFetch(layers, clamp(base + ivec2(0, 1), lo, hi), 0), q.z);
     float t11 = jadeMediumPath(texelFetch(layers, clamp(base + ivec2(1, 1), lo, hi), 0), q.z);
-    return mix(mix(t00, t10, f.x), mix(t01, t11, f.x), f.y) * info.y;
+    return mix(mix(t00, t10, f.x), mix(t01, t11, f.x), f.y) * t.depth.y;
 }
 
-// shadow_visibility (shadow.glsl), an orthographic tile: a 3 x 3 tent of depth comparisons
-// spacing texels apart, of the point moved off the surface along its normal by
-// (1 + 2.5 spacing sin theta) texels; against layer 0 where the surface faces the light, layer 1
-// where it faces away. Outside the tile, lit.
-float jadeShadowVisibility(sampler2D layers, mat4 m, vec4 info, vec3 position, vec3 n, vec3 l)
+// shadow_visibility (shadow.glsl): a 3 x 3 tent of depth comparisons spacing texels apart, of the
+// point moved off the surface along its normal by (1 + 2.5 spacing sin theta) texels of the tile
+// at the point; against layer 0 where the surface faces the light, layer 1 where it faces away.
+// Outside the tile, lit.
+float jadeShadowVisibility(sampler2D layers, JadeTile t, vec3 position, vec3 n, vec3 l)
 {
-    float c = dot(n, l), spacing = max(info.z, 1.0);
-    float size = info.x, texel = info.y / size;
+    float c = dot(n, l), spacing = max(t.info.y, 1.0), size = t.info.x;
+    float texel = t.depth.z * (t.info.z > 1.5 ? length(position - t.origin) : 1.0);
     float sin_theta = sqrt(max(1.0 - c * c, 0.0));
     vec3 towards = c >= 0.0 ? n : -n;
-    vec3 q = jadeTileCoords(m, position + towards * (texel * (1.0 + 2.5 * spacing * sin_theta)));
+    vec3 q = jadeTileCoords(t, position + towards * (texel * (1.0 + 2.5 * spacing * sin_theta)));
     if (any(lessThan(q.xy, vec2(0.0))) || any(greaterThan(q.xy, vec2(1.0)))) return 1.0;
     vec2 u = q.xy * (size / spacing) - 1.0;
     vec2 b = floor(u), f = u - b;
@@ -138,6 +145,7 @@ varying float vJadePathDir[NUM_DIR_LIGHTS];  // JADE_PATH_PER_VERTEX: transmitte
 #endif
 #if NUM_POINT_LIGHTS > 0
 varying float vJadeLobePoint[NUM_POINT_LIGHTS];
+varying float vJadePathPoint[NUM_POINT_LIGHTS];
 #endif
 
 // variance (shading.glsl): t = t_m (strength + spreadStrength spread), clamped to the LUT's
@@ -173,8 +181,9 @@ void main()
         vJadeLobeDir[i] = jadeLobe(l, v);
         // mesh.vert's out_path (PATH_PER_VERTEX): transmitter_path per vertex, interpolated.
 #if JADE_PATH_PER_VERTEX == 1
-        vJadePathDir[i] = jadeTileInfo[i].w > 0.5
-            ? max(jadeThickness, jadeLightPath(jadeTileLayers[i], jadeTileMatrix[i], jadeTileInfo[i], p.xyz))
+        vJadePathDir[i] = jadeTileInfo[i].z > 0.5
+            ? max(jadeThickness, jadeLightPath(jadeTileLayers[i],
+                                               JadeTile(jadeTileMatrix[i], jadeTileInfo[i], jadeTileDepth[i], jadeTileOrigin[i]), p.xyz))
             : jadeThickness;
 #else
         vJadePathDir[i] = 0.0;
@@ -187,6 +196,17 @@ void main()
     for (int i = 0; i < NUM_POINT_LIGHTS; i++) {
         jadePoint(pointLights[i].position, pointLights[i].color, p.xyz, l, e);
         vJadeLobePoint[i] = jadeLobe(l, v);
+#if JADE_PATH_PER_VERTEX == 1
+        vJadePathPoint[i] = jadeTileInfo[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX].z > 0.5
+            ? max(jadeThickness, jadeLightPath(jadeTileLayers[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX],
+                                               JadeTile(jadeTileMatrix[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX],
+                                                        jadeTileInfo[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX],
+                                                        jadeTileDepth[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX],
+                                                        jadeTileOrigin[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX]), p.xyz))
+            : jadeThickness;
+#else
+        vJadePathPoint[i] = 0.0;
+#endif
     }
 #pragma unroll_loop_end
 #endif
@@ -209,6 +229,7 @@ varying float vJadePathDir[NUM_DIR_LIGHTS];  // JADE_PATH_PER_VERTEX: transmitte
 #endif
 #if NUM_POINT_LIGHTS > 0
 varying float vJadeLobePoint[NUM_POINT_LIGHTS];
+varying float vJadePathPoint[NUM_POINT_LIGHTS];
 #endif
 
 // Translucency (translucency.glsl, EVAL = kEvalAlu, SMALL_SIGMA = 0.3): what one fragment needs
@@ -363,21 +384,20 @@ void main()
     vec3 color = vec3(0.0), l, e;
     float visibility = 1.0, path;
     bool tiled;
+    JadeTile tile;
 #if NUM_DIR_LIGHTS > 0
 #pragma unroll_loop_start
     for (int i = 0; i < NUM_DIR_LIGHTS; i++) {
         jadeDirectional(directionalLights[i].direction, directionalLights[i].color, l, e);
-        tiled = jadeTileInfo[i].w > 0.5;
+        tile = JadeTile(jadeTileMatrix[i], jadeTileInfo[i], jadeTileDepth[i], jadeTileOrigin[i]);
+        tiled = tile.info.z > 0.5;
 #if JADE_SHADOWS == 1
-        visibility = tiled ? jadeShadowVisibility(jadeTileLayers[i], jadeTileMatrix[i], jadeTileInfo[i], vJadePosition, n, l)
-                           : 1.0;
+        visibility = tiled ? jadeShadowVisibility(jadeTileLayers[i], tile, vJadePosition, n, l) : 1.0;
 #endif
 #if JADE_PATH_PER_VERTEX == 1
         path = tiled ? vJadePathDir[i] : vJadeThickness;
 #else
-        path = tiled ? max(vJadeThickness, jadeLightPath(jadeTileLayers[i], jadeTileMatrix[i], jadeTileInfo[i],
-                                                         vJadePosition))
-                     : vJadeThickness;
+        path = tiled ? max(vJadeThickness, jadeLightPath(jadeTileLayers[i], tile, vJadePosition)) : vJadeThickness;
 #endif
         jadeAddLight(l, e, jadeMayTransmit(directionalLights[i].direction, false, vJadeCentre), visibility, path,
                      vJadeLobeDir[i], n, n_diffuse, v, exit_transmittance, tr, color);
@@ -388,7 +408,20 @@ void main()
 #pragma unroll_loop_start
     for (int i = 0; i < NUM_POINT_LIGHTS; i++) {
         jadePoint(pointLights[i].position, pointLights[i].color, vJadePosition, l, e);
-        jadeAddLight(l, e, true, 1.0, vJadeThickness, vJadeLobePoint[i], n, n_diffuse, v, exit_transmittance, tr, color);
+        tile = JadeTile(jadeTileMatrix[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX], jadeTileInfo[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX],
+                        jadeTileDepth[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX], jadeTileOrigin[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX]);
+        tiled = tile.info.z > 0.5;
+        visibility = 1.0;
+#if JADE_SHADOWS == 1
+        if (tiled) visibility = jadeShadowVisibility(jadeTileLayers[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX], tile, vJadePosition, n, l);
+#endif
+#if JADE_PATH_PER_VERTEX == 1
+        path = tiled ? vJadePathPoint[i] : vJadeThickness;
+#else
+        path = tiled ? max(vJadeThickness, jadeLightPath(jadeTileLayers[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX], tile, vJadePosition))
+                     : vJadeThickness;
+#endif
+        jadeAddLight(l, e, true, visibility, path, vJadeLobePoint[i], n, n_diffuse, v, exit_transmittance, tr, color);
     }
 #pragma unroll_loop_end
 #endif
