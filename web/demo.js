@@ -1,6 +1,6 @@
 // The demo page: a file written by `jade bake` (?file=URL, default the committed blue-jewel
-// bunny) drawn with JadeTranslucentMaterial, OrbitControls, and the test's two light rigs
-// (test/scenes.json: front, back) and materials to switch between. docs/web.md.
+// bunny) drawn with JadeTranslucentMaterial, OrbitControls, and the test's light rigs
+// (test/scenes.json: front, back, point) and materials to switch between. docs/web.md.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { loadJadeGltf } from './src/index.js';
