@@ -13,7 +13,7 @@
 import { Matrix4, ShaderMaterial, UniformsLib, UniformsUtils, Vector3, Vector4 } from 'three';
 import { vertexShader, fragmentShader } from './jadeShaderChunks.js';
 import { JadeLightDepth, kMaxTiles, kPointMinDistance } from './JadeLightDepth.js';
-import { profileReach } from './profile.js';
+import { softShadowKernel } from './profile.js';
 
 const finite = (x, what) => {
   if (!Number.isFinite(x)) throw new Error(`JADE_materials_translucency: ${what} is not a finite number (${x})`);
@@ -49,6 +49,8 @@ export class JadeTranslucentMaterial extends ShaderMaterial {
         jadeTileInfo: { value: [] },
         jadeTileDepth: { value: [] },
         jadeTileOrigin: { value: [] },
+        jadeSoftShadow: { value: new Vector4() },
+        jadeSoftShadowRadius: { value: new Array(16).fill(0) },
       }]),
       vertexShader,
       fragmentShader,
@@ -116,16 +118,18 @@ export class JadeTranslucentMaterial extends ShaderMaterial {
     chosen.sort((x, y) => x - y);  // tiles in the lights' order
     if (chosen.length === 0) return;
     this.lightDepth ??= new JadeLightDepth();
-    this.reach ??= profileReach(this.extension.profiles);
+    if (!this.softShadow) {
+      // The kernel's radii in view space: the object's scale (the camera's matrices are rigid).
+      const k = softShadowKernel(this.extension.profiles), scale = object.matrixWorld.getMaxScaleOnAxis();
+      this.softShadow = k;
+      u.jadeSoftShadow.value.set(...k.shape.slice(0, 3).map((d) => d * scale), k.shape[3] * scale);
+      u.jadeSoftShadowRadius.value = k.radii.map((r) => r * scale);
+    }
     chosen.forEach((i, k) => {
       const tile = this.lightDepth.update(renderer, k, object, lights[i], centre, radius, transmits[i] ? 4 : 2);
       layers[i] = tile.texture;
       matrices[i].multiplyMatrices(tile.viewProjection, camera.matrixWorld);
-      // shadow_spacing (frame.cpp): the filter's taps a profile's reach apart, 1 … 4 texels at
-      // the object (for a point light, at the centre's distance).
-      const texel = tile.texel * (tile.origin ? tile.origin.distanceTo(centre) : 1);
-      const spacing = this.reach > 0 ? Math.min(Math.max(this.reach / Math.max(texel, 1e-30), 1), 4) : 1;
-      infos[i].set(this.lightDepth.size, spacing, tile.origin ? 2 : 1, 0);
+      infos[i].set(this.lightDepth.size, 0, tile.origin ? 2 : 1, 0);
       depths[i].set(tile.near, tile.range, tile.texel, 0);
       if (tile.origin) origins[i].copy(tile.origin).applyMatrix4(camera.matrixWorldInverse);
     });

@@ -37,7 +37,7 @@ uniform PointLight pointLights[NUM_POINT_LIGHTS];
 #if JADE_TILE_SLOTS > 0
 uniform sampler2D jadeTileLayers[JADE_TILE_SLOTS];
 uniform mat4 jadeTileMatrix[JADE_TILE_SLOTS];   // view space -> the tile's clip space
-uniform vec4 jadeTileInfo[JADE_TILE_SLOTS];     // texels across, shadow spacing, 0 none | 1 orthographic | 2 perspective
+uniform vec4 jadeTileInfo[JADE_TILE_SLOTS];     // texels across, unused, 0 none | 1 orthographic | 2 perspective
 uniform vec4 jadeTileDepth[JADE_TILE_SLOTS];    // LightTile::depth: near, range, texel (a point light's: per unit distance)
 uniform vec3 jadeTileOrigin[JADE_TILE_SLOTS];   // a point light's position, view space
 #endif
@@ -76,31 +76,70 @@ float jadeLightPath(sampler2D layers, JadeTile t, vec3 p)
     return mix(mix(t00, t10, f.x), mix(t01, t11, f.x), f.y) * t.depth.y;
 }
 
-// shadow_visibility (shadow.glsl): a 3 x 3 tent of depth comparisons spacing texels apart, of the
-// point moved off the surface along its normal by (1 + 2.5 spacing sin theta) texels of the tile
-// at the point; against layer 0 where the surface faces the light, layer 1 where it faces away.
-// Outside the tile, lit.
+// shadow_visibility (shadow.glsl): a 3 x 3 tent of depth comparisons, of the point moved off
+// the surface along its normal by (1 + 2.5 sin theta) texels of the tile at the point; against
+// layer 0 where the surface faces the light, layer 1 where it faces away. Outside the tile, lit.
 float jadeShadowVisibility(sampler2D layers, JadeTile t, vec3 position, vec3 n, vec3 l)
 {
-    float c = dot(n, l), spacing = max(t.info.y, 1.0), size = t.info.x;
+    float c = dot(n, l), size = t.info.x;
     float texel = t.depth.z * (t.info.z > 1.5 ? length(position - t.origin) : 1.0);
     float sin_theta = sqrt(max(1.0 - c * c, 0.0));
     vec3 towards = c >= 0.0 ? n : -n;
-    vec3 q = jadeTileCoords(t, position + towards * (texel * (1.0 + 2.5 * spacing * sin_theta)));
+    vec3 q = jadeTileCoords(t, position + towards * (texel * (1.0 + 2.5 * sin_theta)));
     if (any(lessThan(q.xy, vec2(0.0))) || any(greaterThan(q.xy, vec2(1.0)))) return 1.0;
-    vec2 u = q.xy * (size / spacing) - 1.0;
+    vec2 u = q.xy * size - 1.0;
     vec2 b = floor(u), f = u - b;
     vec3 wx = vec3(1.0 - f.x, 1.0, f.x), wy = vec3(1.0 - f.y, 1.0, f.y);
     ivec2 hi = ivec2(int(size) - 1);
     float lit = 0.0;
     for (int j = 0; j < 3; ++j)
         for (int i = 0; i < 3; ++i) {
-            ivec2 at = clamp(ivec2(floor((b + vec2(i, j) + 0.5) * spacing)), ivec2(0), hi);
+            ivec2 at = clamp(ivec2(b) + ivec2(i, j), ivec2(0), hi);
             vec4 depths = texelFetch(layers, at, 0);
             float occluder = c >= 0.0 ? depths.x : depths.y;
             lit += q.z <= occluder ? wx[i] * wy[j] : 0.0;
         }
     return lit * 0.25;
+}
+
+// soft_shadow_visibility (shadow.glsl): the visibility on the tangent plane weighted by the
+// profile, per channel: 16 taps at the radii of the widest channel's Burley inverse CDF
+// (jadeSoftShadowRadius, view-space units) on a golden-angle disk rotated per pixel, each
+// weighing R_c(r)/pdf(r); an occluder counts only when nearer than twice the tap's radius. Where
+// the kernel's median radius is under a texel, the 3 x 3 filter.
+uniform vec4 jadeSoftShadow;              // Burley d per channel, w the sampled d (0: off)
+uniform float jadeSoftShadowRadius[16];
+vec3 jadeSoftShadowProfile(vec3 d, float r) { return (exp(-r / d) + exp(-r / (3.0 * d))) / (8.0 * JADE_PI * d * r); }
+// pixel: gl_FragCoord.xy (a parameter: the vertex shader compiles this chunk too).
+vec3 jadeSoftShadowVisibility(sampler2D layers, JadeTile t, vec3 position, vec3 n, vec3 l, vec2 pixel)
+{
+    float texel = t.depth.z * (t.info.z > 1.5 ? length(position - t.origin) : 1.0);
+    if (jadeSoftShadow.w <= 0.0 || jadeSoftShadowRadius[8] <= texel)
+        return vec3(jadeShadowVisibility(layers, t, position, n, l));
+    float c = dot(n, l), size = t.info.x;
+    float sin_theta = sqrt(max(1.0 - c * c, 0.0));
+    vec3 towards = c >= 0.0 ? n : -n;
+    vec3 lifted = position + towards * (texel * (1.0 + 2.5 * sin_theta));
+    float sign_z = n.z >= 0.0 ? 1.0 : -1.0;
+    float a = -1.0 / (sign_z + n.z), b = n.x * n.y * a;
+    vec3 t1 = vec3(1.0 + sign_z * n.x * n.x * a, sign_z * b, -sign_z * n.x), t2 = vec3(b, sign_z + n.y * n.y * a, -n.y);
+    float rotation = 2.0 * JADE_PI * fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715))));
+    ivec2 hi = ivec2(int(size) - 1);
+    vec3 lit = vec3(0.0), weight = vec3(0.0);
+    for (int i = 0; i < 16; ++i) {
+        float r = jadeSoftShadowRadius[i];
+        float angle = float(i) * 2.39996322972865332 + rotation;
+        vec3 q = jadeTileCoords(t, lifted + r * (cos(angle) * t1 + sin(angle) * t2));
+        vec3 w = jadeSoftShadowProfile(jadeSoftShadow.rgb, r) / jadeSoftShadowProfile(jadeSoftShadow.www, r).x;
+        weight += w;
+        if (any(lessThan(q.xy, vec2(0.0))) || any(greaterThan(q.xy, vec2(1.0)))) {
+            lit += w;
+            continue;
+        }
+        vec4 depths = texelFetch(layers, clamp(ivec2(q.xy * size), ivec2(0), hi), 0);
+        lit += q.z - 2.0 * r / t.depth.y <= (c >= 0.0 ? depths.x : depths.y) ? w : vec3(0.0);
+    }
+    return lit / max(weight, vec3(1e-30));
 }
 
 // light_at (mesh.frag) / transmitter_at (transmission.glsl): towards the light, unit, and its
@@ -359,7 +398,7 @@ vec3 jadeTransmittedLight(vec3 l, vec3 e, vec3 n, float lobe, float t, float thi
 
 // main (mesh.frag), MODE = kTm: one light's diffuse and specular light, and its transmission.
 // visibility: the light's shadow (1: none); path: its path through the object (transmitter_path).
-void jadeAddLight(vec3 l, vec3 e, bool transmits, float visibility, float path, float lobe, vec3 n, vec3 n_diffuse,
+void jadeAddLight(vec3 l, vec3 e, bool transmits, vec3 visibility, float path, float lobe, vec3 n, vec3 n_diffuse,
                   vec3 v, float exit_transmittance, JadeTranslucency tr, inout vec3 color)
 {
     float c = dot(n, l), c_diffuse = dot(n_diffuse, l);
@@ -382,7 +421,8 @@ void main()
     float exit_transmittance = jadeShape.w > 0.0 ? jadeBoundaryTransmittance(dot(n, v)) : 1.0;
     JadeTranslucency tr = jadeTranslucencySetup(vJadeVariance);
     vec3 color = vec3(0.0), l, e;
-    float visibility = 1.0, path;
+    vec3 visibility = vec3(1.0);
+    float path;
     bool tiled;
     JadeTile tile;
 #if NUM_DIR_LIGHTS > 0
@@ -392,7 +432,7 @@ void main()
         tile = JadeTile(jadeTileMatrix[i], jadeTileInfo[i], jadeTileDepth[i], jadeTileOrigin[i]);
         tiled = tile.info.z > 0.5;
 #if JADE_SHADOWS == 1
-        visibility = tiled ? jadeShadowVisibility(jadeTileLayers[i], tile, vJadePosition, n, l) : 1.0;
+        visibility = tiled ? jadeSoftShadowVisibility(jadeTileLayers[i], tile, vJadePosition, n, l, gl_FragCoord.xy) : vec3(1.0);
 #endif
 #if JADE_PATH_PER_VERTEX == 1
         path = tiled ? vJadePathDir[i] : vJadeThickness;
@@ -411,9 +451,10 @@ void main()
         tile = JadeTile(jadeTileMatrix[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX], jadeTileInfo[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX],
                         jadeTileDepth[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX], jadeTileOrigin[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX]);
         tiled = tile.info.z > 0.5;
-        visibility = 1.0;
+        visibility = vec3(1.0);
 #if JADE_SHADOWS == 1
-        if (tiled) visibility = jadeShadowVisibility(jadeTileLayers[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX], tile, vJadePosition, n, l);
+        if (tiled) visibility = jadeSoftShadowVisibility(jadeTileLayers[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX], tile, vJadePosition, n, l,
+                                                 gl_FragCoord.xy);
 #endif
 #if JADE_PATH_PER_VERTEX == 1
         path = tiled ? vJadePathPoint[i] : vJadeThickness;

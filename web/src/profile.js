@@ -1,6 +1,6 @@
-// The scattering profile's median radius, as Jade's CurvatureLut::length_scale (the mean over
-// the channels of radius_for_tail(0.5), engine/src/bake/profile.cpp): the reach that sets the
-// shadow filter's spacing (shadow_spacing in engine/src/shading/frame.cpp).
+// The scattering profile's radii that the shading reads: the soft shadow's kernel as Jade's
+// soft_shadow_kernel (engine/src/shading/frame.cpp; burley_shapes and burley_sample_radius in
+// engine/src/shading/burley_diffusion.cpp), from radius_for_tail (engine/src/bake/profile.cpp).
 
 // tail (profile.cpp): 1 − cdf(r) of one channel's profile, from the extension's profile object.
 function tail(p, r) {
@@ -40,9 +40,26 @@ function radiusForTail(p, t) {
   return hi;
 }
 
-/** The mean over the channels of the profiles' median radii (length units of the bake). */
-export function profileReach(profiles) {
+// burley_sample_radius: the radius where the Burley profile of shape d holds a share u, the
+// inverse of 1 − ¼e^{−r/d} − ¾e^{−r/(3d)}, bisected.
+function burleySampleRadius(u, d) {
+  return radiusForTail({ kind: 'burley', d }, 1 - u);
+}
+
+export const kSoftShadowTaps = 16;
+
+/**
+ * The soft shadow's kernel: the Burley shape d per channel (the profile's own d, or the Burley d
+ * of the same median radius) and the widest of them, and the 16 tap radii of its inverse CDF at
+ * (i + ½)/16 (length units of the bake). shape[3] = 0 turns the soft shadow off.
+ */
+export function softShadowKernel(profiles) {
   if (!Array.isArray(profiles) || profiles.length !== 3)
     throw new Error('JADE_materials_translucency: profiles is not three channel profiles');
-  return profiles.reduce((sum, p) => sum + radiusForTail(p, 0.5), 0) / 3;
+  const median = burleySampleRadius(0.5, 1);
+  const shape = profiles.map((p) => (p.kind === 'burley' ? p.d : radiusForTail(p, 0.5) / median));
+  const sampled = Math.max(...shape);
+  if (!(sampled > 0) || !Number.isFinite(sampled)) return { shape: [0, 0, 0, 0], radii: new Array(kSoftShadowTaps).fill(0) };
+  const radii = Array.from({ length: kSoftShadowTaps }, (_, i) => burleySampleRadius((i + 0.5) / kSoftShadowTaps, sampled));
+  return { shape: [...shape.map((d) => Math.max(d, 1e-30)), sampled], radii };
 }
