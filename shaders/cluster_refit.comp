@@ -32,7 +32,7 @@ layout(binding = 1, scalar) readonly buffer Levels { uint level_nodes[]; };
 layout(binding = 2, scalar) buffer Tree { uvec4 tree[]; };
 layout(binding = 3, scalar) readonly buffer Points { uvec4 points[]; };  // tm_common.glsl
 
-const float NEAR_FACTOR = 4.0;  // as in tm_common.glsl
+const float NEAR_FACTOR = JADE_NEAR_FACTOR;  // bake_interface.h
 
 struct Cluster {
     vec3 c;

@@ -419,9 +419,7 @@ void Renderer::record_vertex_update(VkCommandBuffer cmd, VkBuffer positions, VkB
     Impl& m = *impl_;
     if (!m.has_mesh) throw Error("Renderer::record_vertex_update: no mesh (call set_mesh first)");
     if (!positions || !normals || !tm) throw Error("Renderer::record_vertex_update: a buffer is VK_NULL_HANDLE");
-    struct PackPush {
-        uint32_t vertex_count, has_thickness, has_scattering_normal;
-    };
+    using shading::PackPush;  // shading_interface.h, shared with pack_vertices.comp
     if (!m.pack_vertices)
         m.pack_vertices.emplace(m.ctx,
                                 gpu::KernelDesc{"pack_vertices",
