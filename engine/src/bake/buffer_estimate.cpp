@@ -15,6 +15,7 @@
 #include "bake/buffer_estimate.hpp"
 
 #include "bake/baker_impl.hpp"
+#include "bake/far_field.hpp"
 
 #include <cmath>
 #include <optional>
@@ -45,13 +46,10 @@ std::vector<BufferEstimate> estimate_buffers(const PreparedMesh& mesh, const Mat
     const double ray_items = ray_nodes + tris;
     const float margin = dynamic ? kDynamicNearMargin : kStaticNearMargin;
     double near_entries = kNearEntriesPerVertex * n * (margin * margin) / (kStaticNearMargin * kStaticNearMargin);
-    const bool exact = uses_exact_tm(s.method, mesh.vertex_count());
-    // The grid far field: its own plan (bake/grid_field.hpp), as prepare_tm makes it.
-    std::optional<GridPlan> grid;
-    if (!exact && (s.method == TmMethod::Grid || s.method == TmMethod::Auto)) {
-        grid = plan_grid(mesh, material, material.grey() ? 1 : 3, s.tm_grid_resolution, dynamic, margin);
-        if (s.method == TmMethod::Auto && grid->coarsened) grid.reset();
-    }
+    // The far field by the rule the bake's set-up applies (bake/far_field.hpp), on the same tree.
+    const FarField far = choose_far_field(mesh, material, s, build_point_tree(mesh), margin);
+    const bool exact = far.method == TmMethod::Exact;
+    const GridPlan* grid = far.method == TmMethod::Grid ? &*far.grid : nullptr;
     if (grid) near_entries = double(grid->near_entries(mesh.vertex_count(), margin));
     std::vector<BufferEstimate> b = {
         {"positions", bytes(vec3 * n)},
