@@ -103,6 +103,7 @@ struct Renderer::Impl {
           evaluation(shading::resolve_evaluation(o.tm_evaluation, c)), pipelines(c), transmission_table(c),
           separable_passes(c)
     {
+        if (evaluation == TmEvaluation::Lut) lut->build_quads(c);  // the only path that reads them
         // Sampled-image descriptors need the image in its layout even if never read.
         c.submit_and_wait([&](VkCommandBuffer cmd) { placeholder.transition(cmd, gpu::use::kSampled); });
     }
