@@ -88,8 +88,8 @@ TEST_F(GpuTest, AutoFarFieldIsTheSameInTheBakeAndInItsBufferPlan)
         EXPECT_EQ(tm_method_name(planned), std::string(tm_method_name(baked))) << c.name;
         // The grids alone fit the dense patch (not coarsened): its long near lists decide, the
         // part of the rule that the estimate once left out.
-        const bake::GridPlan plan =
-            bake::plan_grid(c.mesh, material, 3, settings.tm_grid_resolution, false, 1.05f);
+        const bake::GridPlan plan = bake::plan_grid(c.mesh, material, 3, settings.tm_grid_resolution, false,
+                                                    1.05f);  // a static bake's near margin, kStaticNearMargin
         if (c.name == "sphere with a dense patch") {
             EXPECT_FALSE(plan.coarsened);
             EXPECT_EQ(baked, TmMethod::Clustered);

@@ -25,11 +25,11 @@ using namespace glsl;  // only this name: the struct below is written in GLSL's 
 #endif
 
 struct Profile {
-    uint kind;   // JADE_PROFILE_*
-    uint count;  // Gaussians: number of terms
-    float a;     // Burley: d.  Dipole: σ_tr
-    float b;     // Dipole: z_r
-    float c;     // Dipole: z_v
+    uint kind;                            // JADE_PROFILE_*
+    uint count;                           // Gaussians: number of terms
+    float a;                              // Burley: d.  Dipole: σ_tr
+    float b;                              // Dipole: z_r
+    float c;                              // Dipole: z_v
     float w[JADE_PROFILE_MAX_GAUSSIANS];  // Gaussians: weights (sum 1)
     float v[JADE_PROFILE_MAX_GAUSSIANS];  // Gaussians: variances, units²
     float faint_radius;                   // tm_cluster.comp: clusters farther than this are faint

@@ -24,6 +24,19 @@ struct FarField {
     bool long_lists = false;    // those lists would pass kGridMaxNearBytes
 };
 
+/// A t_m buffer of a fixed size per vertex: its name and bytes per vertex, written once for
+/// prepare_tm, which allocates it, and estimate_buffers, which counts it.
+struct PerVertexBuffer {
+    const char* name;
+    uint64_t bytes_per_vertex;
+};
+inline constexpr PerVertexBuffer kTmValues{"t_m", 12};                                       // float3
+inline constexpr PerVertexBuffer kTmNormalSums{"scattering normal sums (per channel)", 36};  // float3 per channel
+inline constexpr PerVertexBuffer kTmPartialSums{"t_m partial sums", 12};
+inline constexpr PerVertexBuffer kTmPartialCompensation{"t_m partial compensation", 12};
+inline constexpr PerVertexBuffer kTmSources{"t_m sources", 32};  // two RGBA32F texels (gather_sources.comp)
+inline constexpr PerVertexBuffer kTmResume{"t_m traversal resume state", 12};  // clustered pass
+
 /// The point tree the choice samples the near lists with (and the clustered pass walks).
 Bvh build_point_tree(const PreparedMesh& mesh);
 

@@ -36,10 +36,13 @@ void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Mater
             profiles[c].faint_radius = bake::faint_radius(material.profile[c], area, threshold, mesh.diagonal);
     }
     m.profiles = gpu::Buffer::from(ctx, std::span<const bake::GpuProfile>(profiles), kStorageUsage, "profiles");
-    m.tm = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m");
-    m.normal_sum = gpu::Buffer(ctx, n * 36, kStorageUsage, "scattering normal sums (per channel)");
-    m.partial_sum = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m partial sums");
-    m.partial_comp = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m partial compensation");
+    auto per_vertex = [&](const bake::PerVertexBuffer& b) {
+        return gpu::Buffer(ctx, n * b.bytes_per_vertex, kStorageUsage, b.name);
+    };
+    m.tm = per_vertex(bake::kTmValues);
+    m.normal_sum = per_vertex(bake::kTmNormalSums);
+    m.partial_sum = per_vertex(bake::kTmPartialSums);
+    m.partial_comp = per_vertex(bake::kTmPartialCompensation);
     if (m.grid)
         prepare_grid(m, *far.grid);
     else {
@@ -81,7 +84,7 @@ void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Mater
     if (m.exact || m.grid) {
         m.point_order = m.exact ? gpu::Buffer::from(ctx, identity, kStorageUsage, "identity order")
                                 : gpu::Buffer::from(ctx, tree.order, kStorageUsage, "point tree order");
-        m.points = gpu::Buffer(ctx, n * 32, kTexelUsage, "t_m sources");
+        m.points = gpu::Buffer(ctx, n * bake::kTmSources.bytes_per_vertex, kTexelUsage, bake::kTmSources.name);
         m.point_texels = gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "t_m sources (texels)");
         m.source_texels =
             gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_UINT, 16, "t_m sources (integer texels)");
@@ -98,17 +101,17 @@ void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Mater
     // Sources start at a texel that is a multiple of 16 (256 bytes): any device's allowed
     // offset for binding them alone as a storage buffer.
     m.first_point = (4 * m.node_count + 15) / 16 * 16;
-    check_storage_range(VkDeviceSize(n) * 32, "t_m sources");
+    check_storage_range(VkDeviceSize(n) * bake::kTmSources.bytes_per_vertex, bake::kTmSources.name);
     check_storage_range(VkDeviceSize(m.node_count) * 64, "t_m cluster nodes");
-    m.points =
-        gpu::Buffer(ctx, VkDeviceSize(m.first_point) * 16 + n * 32, kTexelUsage, "t_m cluster tree and sources", false,
-                    gpu::StorageBinding::Windows);  // bound as two windows, each checked above
+    m.points = gpu::Buffer(ctx, VkDeviceSize(m.first_point) * 16 + n * bake::kTmSources.bytes_per_vertex, kTexelUsage,
+                           "t_m cluster tree and sources", false,
+                           gpu::StorageBinding::Windows);  // bound as two windows, each checked above
     m.tree_texels =
         gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_UINT, 16, "t_m cluster tree and sources (texels)");
     m.source_texels =
         gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_UINT, 16, "t_m cluster tree and sources (texels)");
     m.source_base = m.first_point;
-    m.resume = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m traversal resume state");
+    m.resume = gpu::Buffer(ctx, n * bake::kTmResume.bytes_per_vertex, kStorageUsage, bake::kTmResume.name);
 }
 
 void Baker::Impl::record_near(VkCommandBuffer cmd, MeshState& m, uint32_t slot_begin, uint32_t slot_end)
