@@ -7,6 +7,7 @@
 #include <jade/lut.hpp>
 
 #include "jade_shaders.hpp"
+#include "lut_interface.h"  // struct LutBuildPush, shared with lut_build.comp
 
 #include <algorithm>
 #include <cmath>
@@ -41,11 +42,6 @@ double LutLayout::y(double t) const
 
 namespace jade::shading {
 namespace {
-
-struct BuildPush {
-    uint32_t width, height;
-    float t_max;
-};
 
 void require_format(const gpu::Context& ctx, VkFormat format, VkFormatFeatureFlags features, const char* what)
 {
@@ -109,8 +105,9 @@ TranslucencyLut::TranslucencyLut(gpu::Context& ctx, const LutLayout& layout) : l
                          VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
     // The kernel is needed once per LUT: it is not kept.
     gpu::Kernel build(
-        ctx, {"lut_build", shaders::lut_build_comp(), {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, sizeof(BuildPush), 64, {}});
-    BuildPush push{layout.width, layout.height, float(LutLayout::kMaxVariance)};
+        ctx,
+        {"lut_build", shaders::lut_build_comp(), {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, sizeof(LutBuildPush), 64, {}});
+    LutBuildPush push{layout.width, layout.height, float(LutLayout::kMaxVariance)};
     ctx.submit_and_wait([&](VkCommandBuffer cmd) {
         image_.transition(cmd, gpu::use::kComputeWrite);
         build.dispatch(cmd, uint64_t(layout.width) * layout.height, push,
