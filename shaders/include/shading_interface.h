@@ -68,6 +68,14 @@ struct Vertex {
     vec3 normal_spread;      // BakeResult::normal_spread, per channel
 };
 
+// transmission_table.comp's push constants (shading/transmission_table.cpp): the medium's
+// coefficients as transmission_attenuation() takes them, and the table's length.
+struct TablePush {
+    vec4 extinction, diffusion, scatter;  // scatter.w: step (mesh units)
+    vec4 source, boundary;                // z_s, z_b (xyz) of transmission_attenuation()
+    uint count;
+};
+
 // pack_vertices.comp's push constants (Renderer::record_vertex_update).
 struct PackPush {
     uint vertex_count;
@@ -142,8 +150,8 @@ struct SeparablePush {
 #ifdef __cplusplus
 static_assert(sizeof(SeparableData) ==
               (JADE_SEPARABLE_MAX_TAPS + JADE_SEPARABLE_TRANSMITTANCE_STEPS + 2 + JADE_BURLEY_MAX_SAMPLES / 4) * 16);
-static_assert(sizeof(Vertex) == 68 && sizeof(PackPush) == 12 && sizeof(FramePush) == 80 && sizeof(GpuLight) == 32 &&
-              sizeof(LightTile) == 96);
+static_assert(sizeof(Vertex) == 68 && sizeof(TablePush) == 84 && sizeof(PackPush) == 12 && sizeof(FramePush) == 80 &&
+              sizeof(GpuLight) == 32 && sizeof(LightTile) == 96);
 static_assert(sizeof(FrameData) == 9 * 16 + JADE_MAX_LIGHT_DEPTH_TILES * 96 + JADE_COLOR_MAP_STOPS * 16 + 16 +
                                        (JADE_MAX_TRANSMITTERS + JADE_MAX_LIGHTS) * 32,
               "FrameData must have no padding: scalar layout packs it so");
