@@ -18,13 +18,13 @@ layout(binding = 1) uniform sampler2D source;
 
 layout(location = 0) out vec4 out_color;
 
-const float kPi = 3.14159265358979323846;
+#include "pi.glsl"  // JADE_PI
 const float kGoldenAngle = 2.39996322972865332;  // π (3 − √5)
 
 // The Burley profile R(r) = (e^{−r/d} + e^{−r/(3d)}) / (8π d r) per channel.
 vec3 burley(vec3 d, float r)
 {
-    return (exp(-r / d) + exp(-r / (3.0 * d))) / (8.0 * kPi * d * r);
+    return (exp(-r / d) + exp(-r / (3.0 * d))) / (8.0 * JADE_PI * d * r);
 }
 
 void main()
@@ -33,7 +33,7 @@ void main()
     vec4 centre = textureLod(source, uv, 0.0);
     if (centre.a <= 0.0) discard;  // not a translucent pixel: it pays nothing more
     vec2 per_unit = push.texel.xy * (push.texel.z / centre.a);  // texture coordinates per mesh unit
-    float rotation = 2.0 * kPi * fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
+    float rotation = 2.0 * JADE_PI * fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
     vec3 shape = sep.burley.rgb;
     float sampled = sep.burley.a;
     vec3 sum = vec3(0.0), weight = vec3(0.0);

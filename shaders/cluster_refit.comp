@@ -19,20 +19,14 @@
 #include "bake_interface.h"  // struct RefitPush, shared with engine/src/bake
 layout(push_constant, scalar) uniform Push { RefitPush pc; };
 
-struct TopologyNode {  // bake::BvhNode: the shape is fixed, the bounds are refitted here
-    vec3 lo;
-    uint escape;
-    vec3 hi;
-    uint range;
-};
-
-layout(binding = 0, scalar) buffer Topology { TopologyNode topology[]; };
+// The tree's nodes (bvh_interface.h): the shape is fixed, the bounds are refitted here.
+layout(binding = 0, scalar) buffer Topology { BvhNode topology[]; };
 layout(binding = 1, scalar) readonly buffer Levels { uint level_nodes[]; };
 // The node and the source windows of one buffer (bound separately: each fits a binding).
 layout(binding = 2, scalar) buffer Tree { uvec4 tree[]; };
 layout(binding = 3, scalar) readonly buffer Points { uvec4 points[]; };  // tm_common.glsl
 
-const float NEAR_FACTOR = 4.0;  // as in tm_common.glsl
+const float NEAR_FACTOR = JADE_NEAR_FACTOR;  // bake_interface.h
 
 struct Cluster {
     vec3 c;

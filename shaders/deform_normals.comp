@@ -8,9 +8,8 @@
 // own adjacency list (built once on the host, triangles in ascending order), so no atomics.
 #include "common.glsl"
 
-layout(push_constant, scalar) uniform Push {
-    uint vertex_count;
-} pc;
+#include "deform_interface.h"  // struct NormalsPush, shared with engine/src/deform
+layout(push_constant, scalar) uniform Push { NormalsPush pc; };
 
 layout(binding = 0, scalar) readonly buffer Triangles { vec4 triangles[]; };  // xyz: cross product, w: area
 layout(binding = 1, scalar) readonly buffer AdjacencyOffsets { uint adjacency_offsets[]; };  // vertex_count + 1

@@ -5,15 +5,8 @@
 // factor, wave phase) so that this pass is a pure function of the rest position.
 #include "common.glsl"
 
-layout(push_constant, scalar) uniform Push {
-    uint vertex_count;
-    uint kind;         // 0 bend, 1 twist, 2 squash, 3 wave
-    uint axis;         // 0 x, 1 y, 2 z
-    float amount;      // bend: curvature κ (1/units); twist: rad per unit; squash: σ; wave: amplitude (units)
-    vec3 origin;       // base of the axis line, mesh units
-    float wave_k;      // wave: 2π / wavelength (1/units)
-    float wave_phase;  // wave: 2π t / period (rad)
-} pc;
+#include "deform_interface.h"  // struct ProceduralPush, shared with engine/src/deform
+layout(push_constant, scalar) uniform Push { ProceduralPush pc; };
 
 layout(binding = 0, scalar) readonly buffer Rest { vec3 rest[]; };
 layout(binding = 1, scalar) writeonly buffer Deformed { vec3 deformed[]; };
@@ -29,21 +22,21 @@ void main()
     uint a = pc.axis, u = (pc.axis + 1u) % 3u, v = (pc.axis + 2u) % 3u;
     vec3 d = rest[i] - pc.origin;
     float h = d[a], yu = d[u], yv = d[v];
-    if (pc.kind == 0u) {
+    if (pc.kind == JADE_DEFORM_BEND) {
         float theta = pc.amount * h;
         float s = sin(theta), c = cos(theta), half_theta = 0.5 * theta;
         float nh = h * sinc(theta) - yv * s;
         float nv = h * sin(half_theta) * sinc(half_theta) + yv * c;
         h = nh;
         yv = nv;
-    } else if (pc.kind == 1u) {
+    } else if (pc.kind == JADE_DEFORM_TWIST) {
         float phi = pc.amount * h;
         float s = sin(phi), c = cos(phi);
         float nu = c * yu - s * yv;
         float nv = s * yu + c * yv;
         yu = nu;
         yv = nv;
-    } else if (pc.kind == 2u) {
+    } else if (pc.kind == JADE_DEFORM_SQUASH) {
         float across = inversesqrt(pc.amount);
         h *= pc.amount;
         yu *= across;

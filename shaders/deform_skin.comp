@@ -5,11 +5,8 @@
 // The joint matrices and morph weights are evaluated on the host for the frame.
 #include "common.glsl"
 
-layout(push_constant, scalar) uniform Push {
-    uint vertex_count;
-    uint morph_count;
-    uint joint_count;
-} pc;
+#include "deform_interface.h"  // struct SkinPush, shared with engine/src/deform
+layout(push_constant, scalar) uniform Push { SkinPush pc; };
 
 layout(binding = 0, scalar) readonly buffer Rest { vec3 rest[]; };
 layout(binding = 1, scalar) readonly buffer MorphDeltas { vec3 morph_deltas[]; };  // [target * n + vertex]

@@ -5,9 +5,8 @@
 // second half (deform_normals.comp) gathers them per vertex.
 #include "common.glsl"
 
-layout(push_constant, scalar) uniform Push {
-    uint triangle_count;
-} pc;
+#include "deform_interface.h"  // struct TrianglesPush, shared with engine/src/deform
+layout(push_constant, scalar) uniform Push { TrianglesPush pc; };
 
 layout(binding = 0, scalar) readonly buffer Positions { vec3 positions[]; };
 layout(binding = 1, scalar) readonly buffer Indices { uint indices[]; };

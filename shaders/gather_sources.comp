@@ -16,7 +16,7 @@ layout(binding = 3, scalar) readonly buffer PointOrder { uint point_order[]; };
 layout(binding = 4, scalar) writeonly buffer Points { vec4 points[]; };
 layout(binding = 5, scalar) readonly buffer Normals { vec3 normals[]; };
 
-const float NEAR_FACTOR = 4.0;  // as in tm_common.glsl
+const float NEAR_FACTOR = JADE_NEAR_FACTOR;  // bake_interface.h
 
 void main()
 {

@@ -23,10 +23,9 @@ layout(constant_id = 2) const int STEP = 1;
 // normal's xyz signed at half the scale) as 1: four 32-bit sums, 2: two 64-bit sums of pairs
 // (grid_splat_body.glsl), whose high halves carry the low halves' borrows.
 layout(constant_id = 3) const uint FIXED = 0u;
-const int RUN = 8;
+#include "bake_interface.h"  // structs GridAxisPush, GridAxisDispatch, JADE_GRID_AXIS_RUN, shared with engine/src/bake
+const int RUN = JADE_GRID_AXIS_RUN;
 const int INPUTS = STEP * (RUN - 1) + 2 * HALF_WIDTH + 1;
-
-#include "bake_interface.h"  // structs GridAxisPush, GridAxisDispatch, shared with engine/src/bake
 layout(push_constant, scalar) uniform Push { GridAxisPush pc; };
 
 // Four fields per cell, one RGBA texel (grid_splat_body.glsl): one fetch serves them all, and

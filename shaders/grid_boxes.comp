@@ -12,7 +12,7 @@
 #include "grid.glsl"
 
 layout(constant_id = 1) const uint GROUP = 8;  // grid_axis.comp's threads per group along x
-layout(constant_id = 2) const uint RUN = 8;    // grid_axis.comp's output cells per thread
+layout(constant_id = 2) const uint RUN = JADE_GRID_AXIS_RUN;    // grid_axis.comp's output cells per thread
 
 #include "bake_interface.h"  // structs GridAxisPush, GridAxisDispatch, shared with engine/src/bake
 layout(push_constant, scalar) uniform Push { GridAxisPush pc; };

@@ -13,12 +13,10 @@
 
 layout(binding = 0, r32f) uniform writeonly image2D lut;
 
-layout(push_constant, scalar) uniform Push {
-    uint width, height;
-    float t_max;
-} push;
+#include "lut_interface.h"  // struct LutBuildPush, JADE_LUT_SERIES_FROM_T, shared with engine/src/shading
+layout(push_constant, scalar) uniform Push { LutBuildPush push; };
 
-const float kSeriesFrom = 0.1;
+const float kSeriesFrom = JADE_LUT_SERIES_FROM_T;
 
 // 16-point Gauss–Legendre nodes (positive half) and weights on [−1, 1].
 const float kNode[8] = float[](0.0950125098376374, 0.2816035507792589, 0.4580167776572274, 0.6178762444026438,

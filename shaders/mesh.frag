@@ -12,7 +12,7 @@
 #include "shadow.glsl"
 #include "filament.glsl"
 
-layout(constant_id = 0) const uint MODE = 2;  // kLambert … kBurley (shading.glsl), kInputs + k
+layout(constant_id = 0) const uint MODE = JADE_MODE_TM;  // kLambert … kBurley (shading.glsl), kInputs + k
 layout(constant_id = 1) const uint CHANNELS = 3;  // 1: grey material, one evaluation per light
 
 layout(binding = 2) uniform sampler2D curvature_lut;  // RGBA32F, D_c(cos θ, κ) per channel

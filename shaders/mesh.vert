@@ -8,7 +8,7 @@
 #include "transmission.glsl"
 #include "filament.glsl"
 
-layout(constant_id = 0) const uint MODE = 2;  // as mesh.frag; kInputs and above: the inputs pass
+layout(constant_id = 0) const uint MODE = JADE_MODE_TM;  // as mesh.frag; kInputs and above: the inputs pass
 
 layout(location = 0) in vec3 in_position;   // mesh units
 layout(location = 1) in vec3 in_normal;     // unit, outward

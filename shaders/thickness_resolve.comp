@@ -10,7 +10,7 @@ layout(push_constant, scalar) uniform Push { ThicknessResolvePush pc; };
 layout(binding = 0, scalar) readonly buffer Sums { uint sums[]; };  // [slice][vertex]
 layout(binding = 1, scalar) writeonly buffer Thickness { float thickness[]; };
 
-const float kQuantum = 4194304.0;  // thickness_trace.comp
+const float kQuantum = JADE_THICKNESS_QUANTUM;  // bake_interface.h
 
 void main()
 {

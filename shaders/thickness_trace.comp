@@ -20,7 +20,7 @@ layout(binding = 1, scalar) readonly buffer Normals { vec3 normals[]; };
 layout(binding = 2) uniform usamplerBuffer items;  // engine/src/bake/ray_items.hpp
 layout(binding = 3, scalar) buffer Sums { uint sums[]; };  // [slice][vertex], fixed point
 
-const float kQuantum = 4194304.0;  // 2^22 steps per max_distance: ≤ 1023 rays fit in 32 bits
+const float kQuantum = JADE_THICKNESS_QUANTUM;  // bake_interface.h: 2^22 steps per max_distance
 
 // Möller–Trumbore, both faces: the hit distance in (0, tmax], or tmax when there is none.
 float nearest_on_triangle(vec3 o, vec3 d, float tmax, vec3 a, vec3 e1, vec3 e2)

@@ -34,7 +34,7 @@ const float DISK_CAP = JADE_DISK_CAP;  // bake_interface.h: the float64 referenc
 #define TM_STATE_BINDING 7
 #include "tm_state.glsl"
 
-const int TABLE_SIZE = 1024;  // = kGridTableSize: S, then (R − S)·r
+const int TABLE_SIZE = JADE_GRID_TABLE_SIZE;  // bake_interface.h: S, then (R − S)·r
 
 vec3 table_lookup(float r, int first)
 {

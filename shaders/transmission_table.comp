@@ -7,11 +7,8 @@
 #include "common.glsl"
 #include "attenuation.glsl"
 
-layout(push_constant, scalar) uniform Push {
-    vec4 extinction, diffusion, scatter;  // as transmission_attenuation(); scatter.w: step (mesh units)
-    vec4 source, boundary;                // z_s, z_b (xyz) of transmission_attenuation()
-    uint count;
-} pc;
+#include "shading_interface.h"  // struct TablePush, shared with engine/src/shading
+layout(push_constant, scalar) uniform Push { TablePush pc; };
 layout(binding = 0, scalar) writeonly buffer Table { uvec4 texels[]; };
 
 void main()

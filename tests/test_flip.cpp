@@ -3,12 +3,9 @@
 #include "flip.hpp"
 #include "test_support.hpp"
 
-#include <jade/clock.hpp>
-
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -160,16 +157,4 @@ TEST(Flip, Conversions)
     EXPECT_EQ(l.rgb[3], 0.0f);
     EXPECT_NEAR(l.rgb[4], 0.01292, 1e-6);
     EXPECT_NEAR(l.rgb[5], 0.5, 1e-5);
-}
-
-// Not a speed gate (shared CI cores): reports the time of one 256x256 evaluation.
-TEST(Flip, Timing256)
-{
-    const Image a = pattern(256, 256, 5), b = pattern(256, 256, 6);
-    const auto t0 = std::chrono::steady_clock::now();
-    const double m = jade::flip::ldr_flip(a, b);
-    const double ms = jade::ms_since(t0);
-    EXPECT_GT(m, 0.0);
-    std::printf("[flip] 256x256 evaluation: %.1f ms (mean %.4f)\n", ms, m);
-    RecordProperty("ms_256x256", std::to_string(ms));
 }

@@ -7,10 +7,12 @@
 #include <jade/material.hpp>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
-#include <vector>
+#include <fstream>
 #include <numbers>
+#include <vector>
 
 using namespace jade;
 
@@ -235,4 +237,28 @@ TEST(Medium, PresetsWithAMediumHaveTransmission)
     EXPECT_FALSE(material_preset("opaque", 1.0).transmission.enabled());
     // The Jensen et al. table keeps its measured dipole profile.
     EXPECT_EQ(material_preset("marble", 1.0).profile[0].kind, ProfileKind::Dipole);
+}
+
+// MediumFit's defaults are the fit's result (tools/groundtruth/fit.py writes fit_result.json;
+// docs/fidelity.md): a refit that changes one must change the other.
+TEST(MediumFit, DefaultsAreTheFitResult)
+{
+    std::ifstream file(JADE_FIT_RESULT);
+    ASSERT_TRUE(file) << "cannot read " << JADE_FIT_RESULT;
+    const nlohmann::json fit = nlohmann::json::parse(file);
+    const MediumFit defaults;
+    const std::pair<const char*, double> fields[] = {
+        {"albedo_scale", defaults.albedo_scale},
+        {"strength", defaults.strength},
+        {"spread_strength", defaults.spread_strength},
+        {"transmission_weight", defaults.transmission_weight},
+        {"diffusion_weight", defaults.diffusion_weight},
+        {"lobe", defaults.lobe},
+        {"normal_mix", defaults.normal_mix},
+        {"forward_extinction", defaults.forward_extinction},
+    };
+    for (const auto& [name, value] : fields) {
+        ASSERT_TRUE(fit.contains(name)) << JADE_FIT_RESULT << " has no " << name;
+        EXPECT_EQ(fit[name].get<double>(), value) << "MediumFit::" << name << " against " << JADE_FIT_RESULT;
+    }
 }

@@ -337,23 +337,6 @@ TEST(ReferenceAo, SubsetsDeterminismAndErrors)
     EXPECT_THROW(reference_ao(b, AoSettings{.max_distance_rel = -1.0f}), Error);
 }
 
-TEST(ReferenceAo, BunnySpeed)
-{
-    const PreparedMesh m = prepare_mesh(load_mesh(test::asset("bunny00.off")));
-    const AoSettings s{.rays = 64};
-    const auto t0 = std::chrono::steady_clock::now();
-    const std::vector<float> ao = reference_ao(m, s);
-    const double seconds = seconds_since(t0);
-    double mean = 0.0;
-    for (float a : ao) mean += a / double(ao.size());
-    const double mrays = double(ao.size()) * s.rays / seconds * 1e-6;
-    std::printf("reference_ao bunny: %zu vertices x %u rays in %.2f s = %.2f Mrays/s, mean AO %.4f\n", ao.size(),
-                s.rays, seconds, mrays, mean);
-    RecordProperty("mrays_per_s", std::to_string(mrays));
-    EXPECT_GT(mean, 0.02);
-    EXPECT_LT(mean, 0.5);
-}
-
 // ---------------------------------------------------------------------------------------------
 // The vertex-disk integral
 

@@ -15,6 +15,19 @@
 #define JADE_DISK_CAP 0.6
 // Blur taps on each side of a grid cell, at most (bake/grid_field.hpp, shaders/include/grid.glsl).
 #define JADE_GRID_MAX_HALF_WIDTH 16
+// A source is integrated over its disk within NEAR_FACTOR disk radii ρ_j = √(A_j/π) of a target
+// and counts as a point beyond (bake/near_field.hpp; tm_common.glsl, gather_sources.comp,
+// cluster_refit.comp).
+#define JADE_NEAR_FACTOR 4.0
+// Samples of S(r), then of (R − S)·r, in the grid far field's table for the near pass
+// (bake/grid_field.hpp, tm_near.comp).
+#define JADE_GRID_TABLE_SIZE 1024
+// grid_axis.comp's output cells per thread along the axis (bake/tm_grid.cpp sizes its dispatches
+// and hands it to grid_boxes.comp as a specialisation constant).
+#define JADE_GRID_AXIS_RUN 8
+// Fixed-point steps per max_distance of the thickness sums: 2^22, so ≤ 1023 rays fit in 32 bits
+// (thickness_trace.comp, thickness_resolve.comp).
+#define JADE_THICKNESS_QUANTUM 4194304.0
 
 #ifdef __cplusplus
 #include <glm/vec3.hpp>
@@ -24,10 +37,11 @@
 namespace jade::bake {
 namespace glsl {
 using uint = std::uint32_t;
+using vec3 = glm::vec3;
 using uvec3 = glm::uvec3;
 using ivec3 = glm::ivec3;
 }  // namespace glsl
-using namespace glsl;  // only these two names: the structs below are written in GLSL's words
+using namespace glsl;  // only these names: the structs below are written in GLSL's words
 #endif
 
 // ao_trace.comp: one ray slice of the AO pass; ao_changed.comp and ao_retrace.comp: the other
@@ -70,7 +84,7 @@ struct ThicknessResolvePush {
     uint vertex_count;
     uint rays;
     uint slices;
-    float max_distance;  // mesh units: one kQuantum of fixed point
+    float max_distance;  // mesh units: JADE_THICKNESS_QUANTUM steps of fixed point
 };
 
 // gather_sources.comp and grid_bounds.comp: one thread per vertex.
@@ -164,13 +178,27 @@ struct ClusterPush {
     uint slot_end;     // (all of them, or one slice of an amortised re-bake)
 };
 
+// One Gaussian's grid of the grid far field (bake/grid_field.hpp), as the grid shaders read it
+// from a storage buffer (grid.glsl). C++ calls it bake::GpuGridLevel.
+struct GridLevel {
+    vec3 origin;        // world position of cell (0, 0, 0)'s centre
+    float inv_h;        // 1 / spacing
+    uvec3 dims;         // cells per axis
+    uint offset;        // first cell in the shared cell buffers
+    vec3 weight;        // per channel: a_g·√(2π)·(σ/h)·(A/h²) / splat_scale, A the total area
+    uint half_width;    // blur taps on each side of the centre
+    float splat_scale;  // fixed-point units per unit of (1 − A_o)·area
+    float blur[JADE_GRID_MAX_HALF_WIDTH + 1];  // blur[|k|], the 1-D kernel, Σ over k in [−hw, hw] = 1
+};
+
 #ifdef __cplusplus
 // The sizes the shaders see (scalar layout: the sum of the members).
 static_assert(sizeof(AoPush) == 36 && sizeof(AoResolvePush) == 12 && sizeof(ThicknessPush) == 36 &&
               sizeof(ThicknessResolvePush) == 16 && sizeof(GatherPush) == 4 && sizeof(RefitPush) == 8 &&
               sizeof(RayRefitPush) == 12 && sizeof(NearPush) == 24 && sizeof(GridSplatPush) == 12 &&
               sizeof(GridAxisPush) == 60 + 4 * (JADE_GRID_MAX_HALF_WIDTH + 1) && sizeof(GridAxisDispatch) == 48 &&
-              sizeof(GridGatherPush) == 16 && sizeof(ExactPush) == 12 && sizeof(ClusterPush) == 28);
+              sizeof(GridGatherPush) == 16 && sizeof(ExactPush) == 12 && sizeof(ClusterPush) == 28 &&
+              sizeof(GridLevel) == 52 + 4 * (JADE_GRID_MAX_HALF_WIDTH + 1));
 }  // namespace jade::bake
 #endif
 

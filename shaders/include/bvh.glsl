@@ -1,22 +1,17 @@
 // bvh.glsl - BVH nodes as texels (engine/src/bake/bvh.hpp: pre-order, escape pointers).
 //
 // Node i is texels 2i and 2i + 1 of an RGBA32UI texel buffer: (lo.xyz, escape), (hi.xyz, range)
-// with the floats as bit patterns and range = first | (count − 1) << 27 | leaf << 31.
+// with the floats as bit patterns (range: bvh_interface.h).
 #ifndef JADE_BVH_GLSL
 #define JADE_BVH_GLSL
 
-struct BvhNode {
-    vec3 lo;
-    uint escape;  // next node after this subtree
-    vec3 hi;
-    uint range;   // see jade_range_* below
-};
+#include "bvh_interface.h"  // struct BvhNode and its range's bits, shared with engine/src/bake
 
-const uint JADE_LEAF_BIT = 0x80000000u;
+const uint JADE_LEAF_BIT = JADE_BVH_LEAF_BIT;
 
 bool jade_range_is_leaf(uint range) { return (range & JADE_LEAF_BIT) != 0u; }
-uint jade_range_first(uint range) { return range & 0x07FFFFFFu; }
-uint jade_range_count(uint range) { return ((range >> 27u) & 15u) + 1u; }
+uint jade_range_first(uint range) { return range & ((1u << JADE_BVH_COUNT_SHIFT) - 1u); }
+uint jade_range_count(uint range) { return ((range >> JADE_BVH_COUNT_SHIFT) & (JADE_BVH_MAX_LEAF_SIZE - 1u)) + 1u; }
 
 BvhNode jade_fetch_node(usamplerBuffer nodes, uint i)
 {

@@ -14,6 +14,6 @@ uint jade_thread_index()
     return gl_GlobalInvocationID.y * (gl_NumWorkGroups.x * gl_WorkGroupSize.x) + gl_GlobalInvocationID.x;
 }
 
-const float JADE_PI = 3.14159265358979323846;
+#include "pi.glsl"  // JADE_PI
 
 #endif

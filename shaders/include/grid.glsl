@@ -7,17 +7,7 @@
 
 const uint GRID_MAX_HALF_WIDTH = JADE_GRID_MAX_HALF_WIDTH;  // = bake::kGridMaxHalfWidth
 
-// = bake::GpuGridLevel (scalar layout).
-struct GridLevel {
-    vec3 origin;      // world position of cell (0, 0, 0)'s centre
-    float inv_h;      // 1 / spacing
-    uvec3 dims;       // cells per axis
-    uint offset;      // first cell in the shared cell buffers
-    vec3 weight;      // per channel, applied to a gathered value
-    uint half_width;  // blur taps on each side of the centre
-    float splat_scale;  // fixed-point units per unit of (1 − A_o)·area
-    float blur[GRID_MAX_HALF_WIDTH + 1u];
-};
+// struct GridLevel (= bake::GpuGridLevel): bake_interface.h.
 
 // Floats as unsigned integers in the same order (for atomicMin/atomicMax), and back.
 uint ordered_bits(float f)

@@ -5,10 +5,12 @@
 #ifndef JADE_PROFILE_GLSL
 #define JADE_PROFILE_GLSL
 
-const uint PROFILE_BURLEY = 0u;
-const uint PROFILE_DIPOLE = 1u;
-const uint PROFILE_GAUSSIANS = 2u;
-const uint PROFILE_MIXED = 3u;
+#include "profile_interface.h"  // struct Profile and the kinds, shared with engine/src/bake
+
+const uint PROFILE_BURLEY = JADE_PROFILE_BURLEY;
+const uint PROFILE_DIPOLE = JADE_PROFILE_DIPOLE;
+const uint PROFILE_GAUSSIANS = JADE_PROFILE_GAUSSIANS;
+const uint PROFILE_MIXED = JADE_PROFILE_MIXED;
 
 // The kind of every channel's profile, a specialisation constant (PROFILE_MIXED: read each
 // profile's own kind at run time). Lavapipe executes both sides of every branch (docs/
@@ -21,18 +23,7 @@ uint profile_kind(uint runtime_kind) { return PROFILE_KIND == PROFILE_MIXED ? ru
 // weighing 0 (gaussian_weight): a loop to `count` would cost lavapipe a loop back-edge per term,
 // and its budget of 65,535 back-edges per invocation (docs/lavapipe.md) then ran out inside
 // the all-pairs pass of a 10,000-vertex mesh, which silently left out most of the sources.
-const uint PROFILE_MAX_GAUSSIANS = 6u;  // Material::ChannelProfile::kMaxGaussians
-
-struct Profile {
-    uint kind;
-    uint count;   // Gaussians: number of terms
-    float a;      // Burley: d.  Dipole: σ_tr
-    float b;      // Dipole: z_r
-    float c;      // Dipole: z_v
-    float w[PROFILE_MAX_GAUSSIANS];  // Gaussians: weights (sum 1)
-    float v[PROFILE_MAX_GAUSSIANS];  // Gaussians: variances, units²
-    float faint_radius;  // tm_cluster.comp: clusters farther than this are faint
-};
+const uint PROFILE_MAX_GAUSSIANS = JADE_PROFILE_MAX_GAUSSIANS;
 
 // e^x − 1 without cancellation for small |x|.
 float expm1_accurate(float x)

@@ -5,7 +5,7 @@
 
 #extension GL_EXT_scalar_block_layout : require
 
-const float JADE_PI = 3.14159265358979323846;
+#include "pi.glsl"  // JADE_PI
 
 #include "shading_interface.h"  // FramePush, GpuLight, FrameData, the array sizes
 
@@ -13,13 +13,11 @@ layout(push_constant, scalar) uniform FramePushBlock { FramePush frame; };
 
 const uint kColorMapStops = JADE_COLOR_MAP_STOPS;
 
-// Shading modes (specialisation constant MODE of both stages, jade::ShadingMode), and the
-// inputs pass: MODE = kInputs + k writes the k-th vec4 of the rasterised shading inputs
-// (Renderer::shading_inputs) instead of shading. kInputs is past every ShadingMode (4 … 7 are
-// the peers' modes, docs/peers.md: 4 Filament's subsurface model, 5 Jimenez's separable SSS, 6
-// screen-space Burley diffusion).
-const uint kLambert = 0, kCurvature = 1, kTm = 2, kFalseColor = 3, kFilament = 4, kSeparable = 5, kBurley = 6,
-           kInputs = 8;
+// Shading modes (specialisation constant MODE of both stages) and the inputs pass:
+// shading_interface.h says what each is.
+const uint kLambert = JADE_MODE_LAMBERT, kCurvature = JADE_MODE_CURVATURE, kTm = JADE_MODE_TM,
+           kFalseColor = JADE_MODE_FALSE_COLOR, kFilament = JADE_MODE_FILAMENT, kSeparable = JADE_MODE_SEPARABLE,
+           kBurley = JADE_MODE_BURLEY, kInputs = JADE_MODE_INPUTS;
 
 const uint kMaxLights = JADE_MAX_LIGHTS;
 

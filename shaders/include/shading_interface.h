@@ -19,6 +19,27 @@
 #define JADE_BURLEY_MAX_SAMPLES 80              // samples a pixel of the Burley mode (HDRP's high)
 #define JADE_SOFT_SHADOW_TAPS 16                // taps of the t_m mode's profile-shaped shadow filter (shadow.glsl)
 
+// Shading modes, the specialisation constant MODE of mesh.vert and mesh.frag: jade::ShadingMode's
+// values (shading/mesh_pipeline.hpp asserts they match; the public enum cannot include this
+// private header). 4 … 6 are the peers' modes (docs/peers.md). MODE = JADE_MODE_INPUTS + k, k <
+// JADE_INPUTS_SLOTS, is the inputs pass: it writes the k-th vec4 of the rasterised shading inputs
+// (Renderer::shading_inputs) instead of shading; it lies past every ShadingMode.
+#define JADE_MODE_LAMBERT 0
+#define JADE_MODE_CURVATURE 1
+#define JADE_MODE_TM 2
+#define JADE_MODE_FALSE_COLOR 3
+#define JADE_MODE_FILAMENT 4
+#define JADE_MODE_SEPARABLE 5
+#define JADE_MODE_BURLEY 6
+#define JADE_MODE_INPUTS 8
+#define JADE_INPUTS_SLOTS 6
+
+// How the Tm mode evaluates F(cos θ, t), the specialisation constant EVAL (translucency.glsl):
+// jade::TmEvaluation's values (asserted in shading/mesh_pipeline.hpp).
+#define JADE_EVAL_LUT 1           // the LUT as RGBA32F quads in a texel buffer
+#define JADE_EVAL_LUT_FILTERED 2  // the LUT as R16_UNORM, hardware-filtered
+#define JADE_EVAL_ALU 3           // no memory read: Fourier series and a closed form
+
 #ifdef __cplusplus
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
@@ -35,6 +56,33 @@ using mat4 = glm::mat4;
 }  // namespace glsl
 using namespace glsl;  // only these names: the structs below are written in GLSL's words
 #endif
+
+// One vertex of the renderer's interleaved vertex buffer: mesh.vert's attributes
+// (shading/mesh_pipeline.cpp gives their offsets) and what pack_vertices.comp writes.
+struct Vertex {
+    vec3 position;
+    vec3 normal;
+    vec3 tm;
+    float curvature;
+    float thickness;
+    vec3 scattering_normal;  // BakeResult::scattering_normal: what the translucent diffuse term is lit along
+    vec3 normal_spread;      // BakeResult::normal_spread, per channel
+};
+
+// transmission_table.comp's push constants (shading/transmission_table.cpp): the medium's
+// coefficients as transmission_attenuation() takes them, and the table's length.
+struct TablePush {
+    vec4 extinction, diffusion, scatter;  // scatter.w: step (mesh units)
+    vec4 source, boundary;                // z_s, z_b (xyz) of transmission_attenuation()
+    uint count;
+};
+
+// pack_vertices.comp's push constants (Renderer::record_vertex_update).
+struct PackPush {
+    uint vertex_count;
+    uint has_thickness;          // 1: the thickness stream is copied too
+    uint has_scattering_normal;  // 1: the scattering normal and spread come from DynamicBake's normal sums
+};
 
 struct FramePush {
     mat4 view_proj;  // world (mesh units) to clip space, y already flipped for Vulkan
@@ -59,18 +107,15 @@ struct LightTile {
 };
 
 struct FrameData {
-    vec4 albedo_strength;         // k_d (linear RGB), strength (variance per unit t_m)
-    vec4 specular;                // F0, α = roughness², weight; Material::spread_strength (rad² per unit spread)
-    vec4 lut_map;                 // translucency LUT quads: column cos θ·x + x, x = (W−1)/2; y = W − 1 quads
-                                  // a row; row (t / t_max)^¼ · z, z = H − 1; w = H − 2 the last row of quads
-    vec4 curvature_map;           // curvature LUT: u = cos θ · x + y, v = s / (1 + s) · z + w
-    vec4 params;                  // 1 / t_max, d̄ (curvature length, mesh units), false-colour min, 1 / range
-    vec4 transmission;            // σ_t (linear RGB, 1/mesh unit), weight (jade/material.hpp Transmission)
-    vec4 transmission_diffusion;  // σ_tr (1/mesh unit), diffusion weight
-    vec4 transmission_scatter;    // σ_s' (1/mesh unit), unused
-    vec4 transmission_shape;      // lobe exponent n, (n + 1)/(2π), normal_mix, 1: diffuse × boundary transmittance
-    vec4 light_depth_map;         // light-depth tile size (texels), tiles in the atlas, unused, unused
-    vec4 subsurface;              // Filament mode: subsurfaceColor (linear RGB), subsurfacePower (filament.glsl)
+    vec4 albedo_strength;     // k_d (linear RGB), strength (variance per unit t_m)
+    vec4 specular;            // F0, α = roughness², weight; Material::spread_strength (rad² per unit spread)
+    vec4 lut_map;             // translucency LUT quads: column cos θ·x + x, x = (W−1)/2; y = W − 1 quads
+                              // a row; row (t / t_max)^¼ · z, z = H − 1; w = H − 2 the last row of quads
+    vec4 curvature_map;       // curvature LUT: u = cos θ · x + y, v = s / (1 + s) · z + w
+    vec4 params;              // 1 / t_max, d̄ (curvature length, mesh units), false-colour min, 1 / range
+    vec4 transmission_shape;  // lobe exponent n, (n + 1)/(2π), normal_mix, 1: diffuse × boundary transmittance
+    vec4 light_depth_map;     // light-depth tile size (texels), tiles in the atlas, unused, unused
+    vec4 subsurface;          // Filament mode: subsurfaceColor (linear RGB), subsurfacePower (filament.glsl)
     vec4
         subsurface_thickness;  // Filament mode: thickness = min(t̄ · x, 1) (x in 1/mesh unit), or y when y ≥ 0; zw unused
     LightTile light_tiles[JADE_MAX_LIGHT_DEPTH_TILES];  // per tile of the atlas (GpuLight::color.w − 1)
@@ -111,8 +156,9 @@ struct SeparablePush {
 #ifdef __cplusplus
 static_assert(sizeof(SeparableData) ==
               (JADE_SEPARABLE_MAX_TAPS + JADE_SEPARABLE_TRANSMITTANCE_STEPS + 2 + JADE_BURLEY_MAX_SAMPLES / 4) * 16);
-static_assert(sizeof(FramePush) == 80 && sizeof(GpuLight) == 32 && sizeof(LightTile) == 96);
-static_assert(sizeof(FrameData) == 12 * 16 + JADE_MAX_LIGHT_DEPTH_TILES * 96 + JADE_COLOR_MAP_STOPS * 16 + 16 +
+static_assert(sizeof(Vertex) == 68 && sizeof(TablePush) == 84 && sizeof(PackPush) == 12 && sizeof(FramePush) == 80 &&
+              sizeof(GpuLight) == 32 && sizeof(LightTile) == 96);
+static_assert(sizeof(FrameData) == 9 * 16 + JADE_MAX_LIGHT_DEPTH_TILES * 96 + JADE_COLOR_MAP_STOPS * 16 + 16 +
                                        (JADE_MAX_TRANSMITTERS + JADE_MAX_LIGHTS) * 32 +
                                        (1 + JADE_SOFT_SHADOW_TAPS / 4) * 16,
               "FrameData must have no padding: scalar layout packs it so");

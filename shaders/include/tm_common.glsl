@@ -3,6 +3,7 @@
 #ifndef JADE_TM_COMMON_GLSL
 #define JADE_TM_COMMON_GLSL
 
+#include "bake_interface.h"  // JADE_NEAR_FACTOR
 #include "direction.glsl"
 #include "profile.glsl"
 
@@ -11,7 +12,7 @@ layout(constant_id = 1) const uint CHANNELS = 3u;
 
 // Sources within NEAR_FACTOR disk radii are integrated over their disk, farther ones are
 // points (jade/bake.hpp). 4 keeps the point approximation's error below 0.2 % of the pair.
-const float NEAR_FACTOR = 4.0;
+const float NEAR_FACTOR = JADE_NEAR_FACTOR;  // bake_interface.h
 
 layout(binding = 0, scalar) readonly buffer Profiles { Profile profiles[3]; };
 

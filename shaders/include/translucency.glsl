@@ -9,11 +9,11 @@
 #ifndef JADE_TRANSLUCENCY_GLSL
 #define JADE_TRANSLUCENCY_GLSL
 
-const uint kEvalQuads = 1, kEvalFiltered = 2, kEvalAlu = 3;  // jade::TmEvaluation Lut, LutFiltered, Alu
-layout(constant_id = 3) const uint EVAL = 1;
+const uint kEvalQuads = JADE_EVAL_LUT, kEvalFiltered = JADE_EVAL_LUT_FILTERED, kEvalAlu = JADE_EVAL_ALU;  // shading_interface.h
+layout(constant_id = 3) const uint EVAL = JADE_EVAL_LUT;
 // ALU: Fourier terms summed (1 … 6), and whether the closed form for small t is needed at all.
 // The renderer picks the fewest terms that stay within its error budget at the smallest t of
-// the mesh (shading/shading_variant.cpp); a mesh with smaller t than kSmallSigma² somewhere
+// the mesh (choose_terms, shading/mesh_pipeline.cpp); a mesh with smaller t than kSmallSigma² somewhere
 // gets the closed form too (both are evaluated: lavapipe runs both sides of every branch).
 layout(constant_id = 4) const uint TERMS = 6;
 layout(constant_id = 5) const uint SMALL_T = 1;

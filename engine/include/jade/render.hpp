@@ -284,7 +284,7 @@ struct ShadingInputs {
 /// normal, normal spread: floats) and its per-draw constants with 64 lights, in bytes: for
 /// memory plans (jade/scene.hpp).
 inline constexpr uint64_t kRendererVertexBytes = 68;
-inline constexpr uint64_t kRendererFrameDataBytes = 2992;
+inline constexpr uint64_t kRendererFrameDataBytes = 2944;
 
 /// Draws one mesh with one material. Owns its GPU buffers, LUT images and pipelines (created
 /// lazily per mode, sample count and format). Threading and lifetime as in the header comment.

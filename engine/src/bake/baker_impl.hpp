@@ -19,7 +19,8 @@
 #include <jade/clock.hpp>
 #include <jade/context.hpp>
 
-#include "bake_interface.h"  // the passes' push constants, shared with the shaders
+#include "bake_interface.h"     // the passes' push constants, shared with the shaders
+#include "scattering_normal.h"  // shared with pack_vertices.comp
 #include "jade_shaders.hpp"
 
 #include <glm/common.hpp>
@@ -72,13 +73,13 @@ constexpr uint32_t kClusterWorkPerDispatch = 32768;
 // shared by all channels (3: mixed kinds, chosen per channel at run time).
 struct TmVariant {
     uint32_t grey;  // 1: grey
-    uint32_t kind;  // 0 Burley, 1 dipole, 2 Gaussians, 3 mixed (shaders/include/profile.glsl)
+    uint32_t kind;  // JADE_PROFILE_* (profile_interface.h): a ProfileKind, or MIXED
 };
 inline TmVariant tm_variant(const Material& m)
 {
     const ProfileKind k = m.profile[0].kind;
     const bool same = m.profile[1].kind == k && m.profile[2].kind == k;
-    return {m.grey() ? 1u : 0u, same ? uint32_t(k) : 3u};
+    return {m.grey() ? 1u : 0u, same ? uint32_t(k) : uint32_t(JADE_PROFILE_MIXED)};
 }
 
 inline void validate_ao_settings(const AoSettings& s)
@@ -106,8 +107,8 @@ inline void validate_tm_settings(const BakeSettings& s, const gpu::Context& ctx)
 }
 
 // BakeResult::scattering_normal and normal_spread from the per-channel normal sums N_c
-// (tm_state.glsl) and t_m: the direction of Σ_c N_c (the vertex normal where it is too short to
-// have one: nothing within the profile's reach is lit), and 1 − |N_c|/t_m,c clamped to [0, 1].
+// (tm_state.glsl) and t_m, by the rule pack_vertices.comp applies to a deforming mesh's
+// (scattering_normal.h): the vertex normal where the sum has no direction.
 inline void read_scattering_normals(BakeResult& r, const gpu::Buffer& sums, const gpu::Buffer& normals, uint32_t n)
 {
     const std::vector<glm::vec3> s = sums.read<glm::vec3>(size_t(3) * n);
@@ -115,19 +116,14 @@ inline void read_scattering_normals(BakeResult& r, const gpu::Buffer& sums, cons
     r.scattering_normal.resize(n);
     r.normal_spread.resize(n);
     for (uint32_t i = 0; i < n; ++i) {
-        const glm::vec3 v = s[3 * i] + s[3 * i + 1] + s[3 * i + 2];
-        const float len2 = glm::dot(v, v);
-        if (len2 > 1e-30f && std::isfinite(len2))
-            r.scattering_normal[i] = v / std::sqrt(len2);
+        const glm::vec3 direction = bake::scattering::scattering_direction(s[3 * i], s[3 * i + 1], s[3 * i + 2]);
+        if (direction != glm::vec3(0.0f))
+            r.scattering_normal[i] = direction;
         else {
             if (fallback.empty()) fallback = normals.read<glm::vec3>(n);
             r.scattering_normal[i] = fallback[i];
         }
-        for (int c = 0; c < 3; ++c) {
-            const float t = r.tm[i][c], len = glm::length(s[3 * i + c]);
-            const float spread = t > 0.0f && std::isfinite(len) ? 1.0f - len / t : 0.0f;
-            r.normal_spread[i][c] = std::isfinite(spread) ? std::clamp(spread, 0.0f, 1.0f) : 0.0f;
-        }
+        r.normal_spread[i] = bake::scattering::normal_spread(s[3 * i], s[3 * i + 1], s[3 * i + 2], r.tm[i]);
     }
 }
 
@@ -417,14 +413,14 @@ struct Baker::Impl {
     void prepare_grid(MeshState& m, const bake::GridPlan& plan);
     void record_grid(VkCommandBuffer cmd, MeshState& m, gpu::GpuTimer* timer, uint32_t slot_begin, uint32_t slot_end);
 
-    // Gathers every source and refits the cluster tree, then evaluates t_m for the targets in
-    // tree slots [slot_begin, slot_end) (every slot by default; the all-pairs method always
-    // evaluates every target).
     // What every static bake reads back after its one submission (baker.cpp): t_m with its
     // scattering normals, how t_m was summed, and the timings.
     static void read_tm_result(BakeResult& r, const MeshState& m, const gpu::GpuTimer& timer, double setup,
                                Clock::time_point t0);
 
+    // Gathers every source and refits the cluster tree, then evaluates t_m for the targets in
+    // tree slots [slot_begin, slot_end) (every slot by default; the all-pairs method always
+    // evaluates every target).
     void record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSettings& s, gpu::GpuTimer* timer,
                    uint32_t slot_begin = 0, uint32_t slot_end = ~0u);
 };

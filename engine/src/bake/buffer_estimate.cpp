@@ -15,6 +15,7 @@
 #include "bake/buffer_estimate.hpp"
 
 #include "bake/baker_impl.hpp"
+#include "bake/far_field.hpp"
 
 #include <cmath>
 #include <optional>
@@ -27,8 +28,6 @@ constexpr double kPointNodesPerVertex = 0.3;
 constexpr double kNearEntriesPerVertex = 20.0;
 // Bytes per ray item: three RGBA32UI texels (bake/ray_items.hpp).
 constexpr double kRayItemBytes = 3 * sizeof(glm::uvec4);
-// Bytes per t_m source: two RGBA32F texels (gather_sources.comp).
-constexpr double kSourceBytes = 2 * sizeof(glm::vec4);
 // Extra near-list entries for a window's aligned start and minimum size (prepare_tm).
 constexpr double kNearSlack = 64;
 
@@ -45,13 +44,10 @@ std::vector<BufferEstimate> estimate_buffers(const PreparedMesh& mesh, const Mat
     const double ray_items = ray_nodes + tris;
     const float margin = dynamic ? kDynamicNearMargin : kStaticNearMargin;
     double near_entries = kNearEntriesPerVertex * n * (margin * margin) / (kStaticNearMargin * kStaticNearMargin);
-    const bool exact = uses_exact_tm(s.method, mesh.vertex_count());
-    // The grid far field: its own plan (bake/grid_field.hpp), as prepare_tm makes it.
-    std::optional<GridPlan> grid;
-    if (!exact && (s.method == TmMethod::Grid || s.method == TmMethod::Auto)) {
-        grid = plan_grid(mesh, material, material.grey() ? 1 : 3, s.tm_grid_resolution, dynamic, margin);
-        if (s.method == TmMethod::Auto && grid->coarsened) grid.reset();
-    }
+    // The far field by the rule the bake's set-up applies (bake/far_field.hpp), on the same tree.
+    const FarField far = choose_far_field(mesh, material, s, build_point_tree(mesh), margin);
+    const bool exact = far.method == TmMethod::Exact;
+    const GridPlan* grid = far.method == TmMethod::Grid ? &*far.grid : nullptr;
     if (grid) near_entries = double(grid->near_entries(mesh.vertex_count(), margin));
     std::vector<BufferEstimate> b = {
         {"positions", bytes(vec3 * n)},
@@ -61,10 +57,10 @@ std::vector<BufferEstimate> estimate_buffers(const PreparedMesh& mesh, const Mat
         {"ao hit counts", bytes(word * n)},
         {"ao", bytes(sizeof(float) * n)},
         {"profiles", bytes(3.0 * sizeof(GpuProfile))},
-        {"t_m", bytes(vec3 * n)},
-        {"t_m partial sums", bytes(vec3 * n)},
-        {"t_m partial compensation", bytes(vec3 * n)},
-        {"scattering normal sums (per channel)", bytes(3 * vec3 * n)},
+        {kTmValues.name, bytes(kTmValues.bytes_per_vertex * n)},
+        {kTmPartialSums.name, bytes(kTmPartialSums.bytes_per_vertex * n)},
+        {kTmPartialCompensation.name, bytes(kTmPartialCompensation.bytes_per_vertex * n)},
+        {kTmNormalSums.name, bytes(kTmNormalSums.bytes_per_vertex * n)},
         {"near-field offsets", bytes(word * (n + 1))},
         {"near-field disk candidates", bytes(word * n)},
         {"near-field sources", bytes(word * (near_entries + kNearSlack))},
@@ -75,9 +71,9 @@ std::vector<BufferEstimate> estimate_buffers(const PreparedMesh& mesh, const Mat
         b.push_back({"thickness", bytes(sizeof(float) * n)});
     }
     if (exact) {
-        b.push_back({"t_m sources", bytes(kSourceBytes * n)});
+        b.push_back({kTmSources.name, bytes(kTmSources.bytes_per_vertex * n)});
     } else if (grid) {
-        b.push_back({"t_m sources", bytes(kSourceBytes * n)});
+        b.push_back({kTmSources.name, bytes(kTmSources.bytes_per_vertex * n)});
         b.push_back({"t_m grid", bytes(double(grid->bytes()))});
     } else {
         const double nodes = kPointNodesPerVertex * n;
@@ -85,8 +81,9 @@ std::vector<BufferEstimate> estimate_buffers(const PreparedMesh& mesh, const Mat
         const double first_point = std::ceil(4.0 * nodes / 16.0) * 16.0;
         b.push_back({"point tree nodes", bytes(sizeof(BvhNode) * nodes)});
         b.push_back({"point tree levels", bytes(word * nodes)});
-        b.push_back({"t_m cluster tree and sources", bytes(sizeof(glm::uvec4) * first_point + kSourceBytes * n)});
-        b.push_back({"t_m traversal resume state", bytes(vec3 * n)});
+        b.push_back({"t_m cluster tree and sources",
+                     bytes(sizeof(glm::uvec4) * first_point + double(kTmSources.bytes_per_vertex) * n)});
+        b.push_back({kTmResume.name, bytes(kTmResume.bytes_per_vertex * n)});
     }
     if (dynamic) {  // refit data (prepare_ao with refittable = true)
         b.push_back({"triangle indices", bytes(3 * word * tris)});

@@ -9,32 +9,20 @@
 
 #include <glm/vec3.hpp>
 
+#include "bvh_interface.h"
+
 #include <cstdint>
 #include <span>
 #include <vector>
 
 namespace jade::bake {
 
-constexpr uint32_t kLeafBit = 0x80000000u;
-constexpr uint32_t kMaxLeafSize = 16;          ///< leaf counts are stored in 4 bits
-constexpr uint32_t kMaxPrimitives = 1u << 27;  ///< first primitives are stored in 27 bits
+constexpr uint32_t kLeafBit = JADE_BVH_LEAF_BIT;
+constexpr uint32_t kMaxLeafSize = JADE_BVH_MAX_LEAF_SIZE;        ///< leaf counts are stored in 4 bits
+constexpr uint32_t kMaxPrimitives = 1u << JADE_BVH_COUNT_SHIFT;  ///< first primitives are stored in 27 bits
 
-/// GPU layout: two RGBA32UI texels (32 bytes), read by shaders/include/bvh.glsl.
-struct BvhNode {
-    glm::vec3 lo;     ///< bounds, mesh units
-    uint32_t escape;  ///< next node in pre-order after this subtree
-    glm::vec3 hi;
-    uint32_t range;  ///< first primitive | (count − 1) << 27 (leaves only) | leaf << 31
-
-    bool leaf() const { return (range & kLeafBit) != 0; }
-    uint32_t first() const { return range & (kMaxPrimitives - 1); }
-    uint32_t leaf_count() const { return ((range >> 27) & 15u) + 1; }
-    static uint32_t pack_range(uint32_t first, uint32_t count, bool leaf)
-    {
-        return leaf ? first | ((count - 1) << 27) | kLeafBit : first;
-    }
-};
-static_assert(sizeof(BvhNode) == 32);
+// struct BvhNode, two RGBA32UI texels (32 bytes) on the GPU: bvh_interface.h, shared with the
+// shaders.
 
 struct Bvh {
     std::vector<BvhNode> nodes;

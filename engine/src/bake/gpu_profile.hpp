@@ -1,8 +1,10 @@
-// bake/gpu_profile.hpp - ChannelProfile in the layout of `Profile` in shaders/include/profile.glsl.
+// bake/gpu_profile.hpp - ChannelProfile in the layout of `Profile` in shaders/include/profile_interface.h.
 #pragma once
 
 #include <jade/error.hpp>
 #include <jade/material.hpp>
+
+#include "profile_interface.h"  // struct Profile, shared with the shaders
 
 #include <array>
 #include <cmath>
@@ -10,14 +12,12 @@
 
 namespace jade::bake {
 
-struct GpuProfile {
-    uint32_t kind = 0, count = 0;
-    float a = 0, b = 0, c = 0;
-    float w[6] = {}, v[6] = {};
-    /// Beyond this distance a cluster is faint (tm_cluster.comp); set by the far pass's setup.
-    float faint_radius = 3.0e38f;
-};
-static_assert(sizeof(GpuProfile) == 72);
+/// A channel's profile as the shaders read it: Profile of profile_interface.h.
+using GpuProfile = Profile;
+static_assert(JADE_PROFILE_BURLEY == uint32_t(ProfileKind::Burley) &&
+              JADE_PROFILE_DIPOLE == uint32_t(ProfileKind::Dipole) &&
+              JADE_PROFILE_GAUSSIANS == uint32_t(ProfileKind::Gaussians));
+static_assert(JADE_PROFILE_MAX_GAUSSIANS == ChannelProfile::kMaxGaussians);
 
 /// The smallest r with R(r)·total_weight ≤ threshold (R decreases with r for every kind), by
 /// bisection in float64: the clustered pass then tests distances instead of evaluating R.
@@ -36,7 +36,8 @@ inline float faint_radius(const ChannelProfile& p, double total_weight, double t
 
 inline GpuProfile to_gpu(const ChannelProfile& p)
 {
-    GpuProfile g;
+    GpuProfile g{};
+    g.faint_radius = 3.0e38f;  // none: set by the far pass's setup (tm_passes.cpp)
     g.kind = uint32_t(p.kind);
     switch (p.kind) {
     case ProfileKind::Burley: g.a = float(p.d); break;

@@ -34,7 +34,7 @@
 namespace jade::bake {
 
 constexpr uint32_t kGridMaxHalfWidth = JADE_GRID_MAX_HALF_WIDTH;  // bake_interface.h, shared with grid.glsl
-constexpr uint32_t kGridTableSize = 1024;  // samples of S(r) for the near pass, over [0, table_range]
+constexpr uint32_t kGridTableSize = JADE_GRID_TABLE_SIZE;  // samples of S(r) for the near pass, over [0, table_range]
 constexpr uint64_t kGridMaxCells =
     1ull << 23;  // all grids together (16 B a cell: one binding); past it r_cut grows (see plan_grid)
 constexpr double kGridMaxCoarsening = 1.5;  // ... by at most this factor (the near lists by its square)
@@ -49,18 +49,8 @@ uint32_t levels_per_octave(double resolution);
 constexpr uint32_t kGridFields = 4;
 constexpr double kDeformingCube = 1.1;  // a deforming mesh's grids: cubes of this × the rest pose's bounding sphere
 
-/// One Gaussian's grid, as the grid shaders read it (scalar layout, shaders/include/grid.glsl).
-struct GpuGridLevel {
-    glm::vec3 origin;                   // world position of cell (0, 0, 0)'s centre
-    float inv_h;                        // 1 / spacing
-    glm::uvec3 dims;                    // cells per axis
-    uint32_t offset;                    // first cell in the shared cell buffers
-    glm::vec3 weight;                   // per channel: a_g·√(2π)·(σ/h)·(A/h²) / splat_scale, A the total area
-    uint32_t half_width;                // blur taps on each side of the centre
-    float splat_scale;                  // fixed-point units per unit of (1 − A_o)·area
-    float blur[kGridMaxHalfWidth + 1];  // blur[|k|], the 1-D kernel, Σ over k in [−hw, hw] = 1
-};
-static_assert(sizeof(GpuGridLevel) == 120, "must match GridLevel in shaders/include/grid.glsl");
+/// One Gaussian's grid, as the grid shaders read it: GridLevel of bake_interface.h.
+using GpuGridLevel = GridLevel;
 
 /// The smooth part S of a material's profiles: Gaussians shared by the channels.
 struct SmoothFit {

@@ -10,13 +10,15 @@
 
 #include <jade/mesh.hpp>
 
+#include "bake_interface.h"  // JADE_NEAR_FACTOR, shared with the shaders
+
 #include <cstdint>
 #include <span>
 #include <vector>
 
 namespace jade::bake {
 
-constexpr float kNearFactor = 4.0f;  // = NEAR_FACTOR in shaders/include/tm_common.glsl
+constexpr float kNearFactor = float(JADE_NEAR_FACTOR);  // bake_interface.h, shared with the shaders
 
 /// Compressed rows: the near sources of target i are indices[offsets[i] .. offsets[i+1]), the
 /// disk candidates (within margin·kNearFactor·ρ_j) first: disk_counts[i] of them. The others

@@ -57,7 +57,7 @@ void Baker::Impl::prepare_grid(MeshState& m, const bake::GridPlan& plan)
 
 namespace {
 
-constexpr uint32_t kAxisRun = 8;  // = RUN in grid_axis.comp: output cells per thread
+constexpr uint32_t kAxisRun = JADE_GRID_AXIS_RUN;  // bake_interface.h: grid_axis.comp's output cells per thread
 // Threads per group of grid_axis.comp, along x: rows of a coarse grid are short, and a group
 // wider than a row idles its other lanes.
 constexpr uint32_t kAxisGroup = 8;

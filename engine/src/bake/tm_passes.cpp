@@ -2,6 +2,7 @@
 // field's buffers) and recording (gather → near field → all pairs | refit → clustered | grid).
 // Recorded by the static bake and by DynamicBake.
 #include "bake/baker_impl.hpp"
+#include "bake/far_field.hpp"
 
 namespace jade {
 
@@ -11,31 +12,19 @@ void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Mater
     validate_tm_settings(s, ctx);
     const size_t n = mesh.vertex_count();
     m.variant = tm_variant(material);
-    m.exact = uses_exact_tm(s.method, n);
-    bake::Bvh tree = bake::build_bvh(mesh.positions, mesh.positions, kPointLeafSize);
-    // Auto takes the grid unless its grids had to be coarsened to fit in memory or its near
-    // lists would be long (a mesh whose bounds are vast for its vertex spacing, or dense in
-    // patches): docs/bake.md, "Choosing the far field".
-    std::optional<bake::GridPlan> grid_plan;
-    if (!m.exact && (s.method == TmMethod::Grid || s.method == TmMethod::Auto)) {
-        grid_plan = bake::plan_grid(mesh, material, m.variant.grey ? 1 : 3, s.tm_grid_resolution,
-                                    near_margin > kStaticNearMargin, near_margin);
-        const uint64_t entries =
-            grid_plan->feasible ? bake::sample_near_entries(mesh, tree, near_margin, float(grid_plan->r_cut)) : 0;
-        const bool long_lists = entries * 4 > kGridMaxNearBytes;
-        if (s.method == TmMethod::Grid && (!grid_plan->feasible || long_lists))
-            throw Error("t_m grid: " + std::to_string(n) + " vertices spread over these bounds need " +
-                        std::to_string(grid_plan->cells_needed) + " grid cells at resolution " +
-                        std::to_string(s.tm_grid_resolution) + " (the limit is " + std::to_string(bake::kGridMaxCells) +
-                        ") or near lists of ~" + std::to_string(entries * 4 >> 20) + " MiB (the limit is " +
-                        std::to_string(kGridMaxNearBytes >> 20) +
-                        " MiB): use the clustered far field "
-                        "(TmMethod::Clustered, --method clustered) or a lower resolution");
-        if (s.method == TmMethod::Auto &&
-            (grid_plan->coarsened || long_lists || entries > 4 * grid_plan->near_entries(n, near_margin)))
-            grid_plan.reset();
-    }
-    m.grid = grid_plan.has_value();
+    bake::Bvh tree = bake::build_point_tree(mesh);
+    // The far field: docs/bake.md, "Choosing the far field"; the buffer estimate calls the same rule.
+    bake::FarField far = bake::choose_far_field(mesh, material, s, tree, near_margin);
+    if (s.method == TmMethod::Grid && far.method != TmMethod::Grid)
+        throw Error("t_m grid: " + std::to_string(n) + " vertices spread over these bounds need " +
+                    std::to_string(far.grid->cells_needed) + " grid cells at resolution " +
+                    std::to_string(s.tm_grid_resolution) + " (the limit is " + std::to_string(bake::kGridMaxCells) +
+                    ") or near lists of ~" + std::to_string(far.near_entries * 4 >> 20) + " MiB (the limit is " +
+                    std::to_string(kGridMaxNearBytes >> 20) +
+                    " MiB): use the clustered far field "
+                    "(TmMethod::Clustered, --method clustered) or a lower resolution");
+    m.exact = far.method == TmMethod::Exact;
+    m.grid = far.method == TmMethod::Grid;
     auto profiles = bake::to_gpu(material);
     if (!m.exact && !m.grid) {
         // The faint test of tm_cluster.comp against the total area (≥ the total weight, so
@@ -47,12 +36,15 @@ void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Mater
             profiles[c].faint_radius = bake::faint_radius(material.profile[c], area, threshold, mesh.diagonal);
     }
     m.profiles = gpu::Buffer::from(ctx, std::span<const bake::GpuProfile>(profiles), kStorageUsage, "profiles");
-    m.tm = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m");
-    m.normal_sum = gpu::Buffer(ctx, n * 36, kStorageUsage, "scattering normal sums (per channel)");
-    m.partial_sum = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m partial sums");
-    m.partial_comp = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m partial compensation");
+    auto per_vertex = [&](const bake::PerVertexBuffer& b) {
+        return gpu::Buffer(ctx, n * b.bytes_per_vertex, kStorageUsage, b.name);
+    };
+    m.tm = per_vertex(bake::kTmValues);
+    m.normal_sum = per_vertex(bake::kTmNormalSums);
+    m.partial_sum = per_vertex(bake::kTmPartialSums);
+    m.partial_comp = per_vertex(bake::kTmPartialCompensation);
     if (m.grid)
-        prepare_grid(m, *grid_plan);
+        prepare_grid(m, *far.grid);
     else {
         m.smooth_table = gpu::Buffer(ctx, 16, kTexelUsage, "smooth-part table (unused)");
         m.smooth_table_texels =
@@ -92,7 +84,7 @@ void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Mater
     if (m.exact || m.grid) {
         m.point_order = m.exact ? gpu::Buffer::from(ctx, identity, kStorageUsage, "identity order")
                                 : gpu::Buffer::from(ctx, tree.order, kStorageUsage, "point tree order");
-        m.points = gpu::Buffer(ctx, n * 32, kTexelUsage, "t_m sources");
+        m.points = gpu::Buffer(ctx, n * bake::kTmSources.bytes_per_vertex, kTexelUsage, bake::kTmSources.name);
         m.point_texels = gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "t_m sources (texels)");
         m.source_texels =
             gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_UINT, 16, "t_m sources (integer texels)");
@@ -109,17 +101,17 @@ void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Mater
     // Sources start at a texel that is a multiple of 16 (256 bytes): any device's allowed
     // offset for binding them alone as a storage buffer.
     m.first_point = (4 * m.node_count + 15) / 16 * 16;
-    check_storage_range(VkDeviceSize(n) * 32, "t_m sources");
+    check_storage_range(VkDeviceSize(n) * bake::kTmSources.bytes_per_vertex, bake::kTmSources.name);
     check_storage_range(VkDeviceSize(m.node_count) * 64, "t_m cluster nodes");
-    m.points =
-        gpu::Buffer(ctx, VkDeviceSize(m.first_point) * 16 + n * 32, kTexelUsage, "t_m cluster tree and sources", false,
-                    gpu::StorageBinding::Windows);  // bound as two windows, each checked above
+    m.points = gpu::Buffer(ctx, VkDeviceSize(m.first_point) * 16 + n * bake::kTmSources.bytes_per_vertex, kTexelUsage,
+                           "t_m cluster tree and sources", false,
+                           gpu::StorageBinding::Windows);  // bound as two windows, each checked above
     m.tree_texels =
         gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_UINT, 16, "t_m cluster tree and sources (texels)");
     m.source_texels =
         gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_UINT, 16, "t_m cluster tree and sources (texels)");
     m.source_base = m.first_point;
-    m.resume = gpu::Buffer(ctx, n * 12, kStorageUsage, "t_m traversal resume state");
+    m.resume = gpu::Buffer(ctx, n * bake::kTmResume.bytes_per_vertex, kStorageUsage, bake::kTmResume.name);
 }
 
 void Baker::Impl::record_near(VkCommandBuffer cmd, MeshState& m, uint32_t slot_begin, uint32_t slot_end)

@@ -13,6 +13,8 @@
 
 #include <jade_shaders.hpp>
 
+#include "deform_interface.h"  // the shaders' push constants
+
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
@@ -30,21 +32,10 @@ constexpr VkBufferUsageFlags kStorage =
 constexpr double kTwoPi = 6.283185307179586;
 using gpu::storage_bindings;
 
-struct ProceduralPush {
-    uint32_t vertex_count, kind, axis;
-    float amount;
-    glm::vec3 origin;
-    float wave_k, wave_phase;
-};
-struct SkinPush {
-    uint32_t vertex_count, morph_count, joint_count;
-};
-struct TrianglesPush {
-    uint32_t triangle_count;
-};
-struct NormalsPush {
-    uint32_t vertex_count;
-};
+// The shaders' push constants: deform_interface.h.
+using deform::NormalsPush, deform::ProceduralPush, deform::SkinPush, deform::TrianglesPush;
+static_assert(uint32_t(DeformerKind::Bend) == JADE_DEFORM_BEND && uint32_t(DeformerKind::Twist) == JADE_DEFORM_TWIST &&
+              uint32_t(DeformerKind::Squash) == JADE_DEFORM_SQUASH && uint32_t(DeformerKind::Wave) == JADE_DEFORM_WAVE);
 
 /// A buffer holding `data`, at least gpu::kMinBufferBytes (Vulkan has no empty buffers; the
 /// shaders do not read past the counts they get).

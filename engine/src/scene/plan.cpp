@@ -235,7 +235,8 @@ ScenePlan plan_scene(const Scene& scene, const SceneSettings& settings, const St
         o.passes.push_back({PassKind::Draw, true, true, shading::estimate_draw_buffers(n, tris, obj.material)});
         plan.objects.push_back(std::move(o));
     }
-    if (!plan.objects.empty()) plan.shared = shading::estimate_lut_buffers(settings.renderer.lut);
+    if (!plan.objects.empty())
+        plan.shared = shading::estimate_lut_buffers(settings.renderer.lut, settings.renderer.tm_evaluation);
     return plan;
 }
 

@@ -26,10 +26,11 @@ std::vector<BufferEstimate> estimate_draw_buffers(size_t n, size_t tris, const M
             {"curvature LUT placeholder (image)", sizeof(glm::vec4), true}};
 }
 
-std::vector<BufferEstimate> estimate_lut_buffers(const LutLayout& l)
+std::vector<BufferEstimate> estimate_lut_buffers(const LutLayout& l, TmEvaluation evaluation)
 {
-    // One RGBA32F quad per cell of the R32F image (TranslucencyLut's constructor).
-    const uint64_t cells = uint64_t(l.width - 1) * (l.height - 1);
+    // One RGBA32F quad per cell of the R32F image (TranslucencyLut::build_quads), or the one
+    // texel bound in their place.
+    const uint64_t cells = evaluation == TmEvaluation::Lut ? uint64_t(l.width - 1) * (l.height - 1) : 1;
     return {{"translucency LUT quads", bytes(sizeof(glm::vec4) * cells)},
             {"translucency LUT (image)", uint64_t(l.width) * l.height * sizeof(float), true},
             {"translucency LUT, 16 bit (image)", uint64_t(l.width) * l.height * sizeof(uint16_t), true}};

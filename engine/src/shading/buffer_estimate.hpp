@@ -17,7 +17,8 @@ namespace jade::shading {
 std::vector<BufferEstimate> estimate_draw_buffers(size_t vertices, size_t triangles, const Material& material);
 
 /// The translucency LUT of `layout` (shading/lut.cpp, TranslucencyLut), which every Renderer of
-/// a device shares: its quads buffer, its image and the image's 16-bit copy. Exact.
-std::vector<BufferEstimate> estimate_lut_buffers(const LutLayout& layout);
+/// a device shares: its image, the image's 16-bit copy and its quads buffer, which holds the
+/// quads only for TmEvaluation::Lut (Auto never resolves to it), else one texel. Exact.
+std::vector<BufferEstimate> estimate_lut_buffers(const LutLayout& layout, TmEvaluation evaluation);
 
 }  // namespace jade::shading

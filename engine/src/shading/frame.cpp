@@ -81,9 +81,6 @@ FrameData material_constants(const Material& m)
     const float f0 = std::pow((m.ior - 1.0f) / (m.ior + 1.0f), 2.0f);
     d.specular = glm::vec4(f0, std::max(m.roughness * m.roughness, 1e-3f), m.specular, m.spread_strength);
     const Transmission& tr = m.transmission;
-    d.transmission = glm::vec4(glm::min(tr.sigma_t, glm::vec3(3.0e38f)), tr.weight);
-    d.transmission_diffusion = glm::vec4(glm::min(tr.sigma_tr, glm::vec3(3.0e38f)), tr.diffusion_weight);
-    d.transmission_scatter = glm::vec4(glm::min(tr.sigma_s_reduced, glm::vec3(3.0e38f)), 0.0f);
     d.transmission_shape = glm::vec4(tr.lobe, (tr.lobe + 1.0f) / (2.0f * float(std::numbers::pi)), tr.normal_mix,
                                      m.boundary_transmittance ? 1.0f : 0.0f);
     return d;

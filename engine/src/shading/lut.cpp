@@ -7,6 +7,7 @@
 #include <jade/lut.hpp>
 
 #include "jade_shaders.hpp"
+#include "lut_interface.h"  // struct LutBuildPush, shared with lut_build.comp
 
 #include <algorithm>
 #include <cmath>
@@ -41,11 +42,6 @@ double LutLayout::y(double t) const
 
 namespace jade::shading {
 namespace {
-
-struct BuildPush {
-    uint32_t width, height;
-    float t_max;
-};
 
 void require_format(const gpu::Context& ctx, VkFormat format, VkFormatFeatureFlags features, const char* what)
 {
@@ -109,8 +105,9 @@ TranslucencyLut::TranslucencyLut(gpu::Context& ctx, const LutLayout& layout) : l
                          VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
     // The kernel is needed once per LUT: it is not kept.
     gpu::Kernel build(
-        ctx, {"lut_build", shaders::lut_build_comp(), {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, sizeof(BuildPush), 64, {}});
-    BuildPush push{layout.width, layout.height, float(LutLayout::kMaxVariance)};
+        ctx,
+        {"lut_build", shaders::lut_build_comp(), {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, sizeof(LutBuildPush), 64, {}});
+    LutBuildPush push{layout.width, layout.height, float(LutLayout::kMaxVariance)};
     ctx.submit_and_wait([&](VkCommandBuffer cmd) {
         image_.transition(cmd, gpu::use::kComputeWrite);
         build.dispatch(cmd, uint64_t(layout.width) * layout.height, push,
@@ -118,21 +115,13 @@ TranslucencyLut::TranslucencyLut(gpu::Context& ctx, const LutLayout& layout) : l
         image_.transition(cmd, gpu::use::kSampled);
     });
 
-    // mesh.frag reads quads, not the image: on lavapipe one RGBA32F texel-buffer fetch plus a
-    // bilinear blend in the shader costs a fraction of one filtered sample (docs/shading.md).
-    // Packed on the host from the GPU-built texels, so both hold the same float32 values.
-    const uint32_t W = layout.width, H = layout.height;
-    const uint64_t count = uint64_t(W - 1) * (H - 1);
+    // Until build_quads: a zero texel, so that every draw has a quads descriptor to bind.
     require_texel_format(ctx, VK_FORMAT_R32G32B32A32_SFLOAT, "translucency LUT");
+    no_quads_ = gpu::Buffer::from(ctx, std::vector<glm::vec4>(1, glm::vec4(0.0f)),
+                                  VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, "translucency LUT quads (none)");
+    no_quads_view_ = gpu::TexelView(ctx, no_quads_, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "translucency LUT quads (none)");
+    const uint32_t W = layout.width, H = layout.height;
     const std::vector<float> f = read(ctx);
-    std::vector<glm::vec4> quads(count);
-    for (uint32_t j = 0; j + 1 < H; ++j)
-        for (uint32_t i = 0; i + 1 < W; ++i) {
-            const size_t t = size_t(j) * W + i;
-            quads[size_t(j) * (W - 1) + i] = {f[t], f[t + 1], f[t + W], f[t + W + 1]};
-        }
-    quads_ = gpu::Buffer::from(ctx, quads, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, "translucency LUT quads");
-    quads_view_ = gpu::TexelView(ctx, quads_, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "translucency LUT quads");
 
     // The same texels in 16 bits for the sampler (TmEvaluation::LutFiltered): f ∈ [0, 1], so
     // UNORM steps of 1.5e-5, a tenth of what the image budget allows (docs/shading.md).
@@ -145,6 +134,27 @@ TranslucencyLut::TranslucencyLut(gpu::Context& ctx, const LutLayout& layout) : l
                              {"translucency LUT (16 bit)", W, H, VK_FORMAT_R16_UNORM,
                               VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT},
                              unorm, "translucency LUT upload");
+}
+
+void TranslucencyLut::build_quads(gpu::Context& ctx)
+{
+    const std::lock_guard lock(quads_mutex_);
+    if (quads_built_) return;
+    // TmEvaluation::Lut reads quads, not the image: on lavapipe one RGBA32F texel-buffer fetch
+    // plus a bilinear blend in the shader costs a fraction of one filtered sample (docs/shading.md).
+    // Packed on the host from the GPU-built texels, so both hold the same float32 values.
+    const uint32_t W = layout_.width, H = layout_.height;
+    const uint64_t count = uint64_t(W - 1) * (H - 1);
+    const std::vector<float> f = read(ctx);
+    std::vector<glm::vec4> quads(count);
+    for (uint32_t j = 0; j + 1 < H; ++j)
+        for (uint32_t i = 0; i + 1 < W; ++i) {
+            const size_t t = size_t(j) * W + i;
+            quads[size_t(j) * (W - 1) + i] = {f[t], f[t + 1], f[t + W], f[t + W + 1]};
+        }
+    quads_ = gpu::Buffer::from(ctx, quads, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, "translucency LUT quads");
+    quads_view_ = gpu::TexelView(ctx, quads_, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "translucency LUT quads");
+    quads_built_ = true;
 }
 
 glm::vec4 TranslucencyLut::shader_map() const

@@ -2,10 +2,10 @@
 //
 //   TranslucencyLut  f(cos θ, t) of jade/lut.hpp, R32_SFLOAT, built on the GPU by
 //                    shaders/lut_build.comp (parameterisation: jade::LutLayout); mesh.frag
-//                    reads the same texels repacked as one RGBA32F "quad" per cell (the 2×2
-//                    texels around it) from a uniform texel buffer and interpolates them
-//                    bilinearly itself (docs/shading.md says why not the sampler on lavapipe),
-//                    and the same texels in R16_UNORM for the sampler of a GPU.
+//                    reads the same texels in R16_UNORM for the sampler of a GPU, or (only
+//                    with TmEvaluation::Lut) repacked as one RGBA32F "quad" per cell (the 2×2
+//                    texels around it) from a uniform texel buffer, interpolated bilinearly
+//                    in the shader (docs/shading.md compares the paths).
 //   CurvatureLut     D_c(cos θ, κ) per colour channel, RGBA32F (A = 1), built on the CPU in
 //                    float64 with jade::curvature_lut_reference and uploaded.
 // The curvature LUT is sampled with linear filtering and clamp-to-edge (make_lut_sampler). Both
@@ -22,7 +22,9 @@
 #include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
+#include <atomic>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 namespace jade::gpu {
@@ -43,9 +45,13 @@ public:
 
     const LutLayout& layout() const { return layout_; }
     const gpu::Image& image() const { return image_; }
+    /// Packs the quads (TmEvaluation::Lut, the only path that reads them; ~3.75 MiB at the
+    /// default size) from the image's texels, once: later calls return at once. Thread-safe.
+    void build_quads(gpu::Context& ctx);
     /// The quads: (W − 1) × (H − 1) RGBA32F texels; cell (i, j), at index j·(W − 1) + i, holds
-    /// image texels (i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1).
-    const gpu::TexelView& quads() const { return quads_view_; }
+    /// image texels (i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1). Before build_quads, one
+    /// zero texel: the descriptor of a draw that never reads them.
+    const gpu::TexelView& quads() const { return quads_built_ ? quads_view_ : no_quads_view_; }
     /// The same texels as R16_UNORM, for a linearly filtering sampler (TmEvaluation::LutFiltered).
     const gpu::Image& filtered() const { return filtered_; }
     /// What mesh.frag indexes the quads with: column x = cos θ·m.x + m.x ∈ [0, W − 1],
@@ -57,8 +63,10 @@ public:
 private:
     LutLayout layout_;
     gpu::Image image_;
-    gpu::Buffer quads_;
-    gpu::TexelView quads_view_;  // destroyed before quads_
+    std::mutex quads_mutex_;
+    std::atomic<bool> quads_built_ = false;
+    gpu::Buffer quads_, no_quads_;
+    gpu::TexelView quads_view_, no_quads_view_;  // destroyed before the buffers
     gpu::Image filtered_;
 };
 

@@ -5,6 +5,8 @@
 #include <jade/error.hpp>
 #include <jade/lut.hpp>
 
+#include "lut_interface.h"  // JADE_LUT_SERIES_FROM_T, shared with lut_build.comp
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -14,8 +16,8 @@ namespace jade {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kSeriesFromT = 0.1;  ///< lut_reference: Fourier series for t ≥ this (rad²)
-constexpr double kWindow = 10.0;      ///< direct integration over |φ| ≤ 10σ (tail < 2e-23)
+constexpr double kSeriesFromT = JADE_LUT_SERIES_FROM_T;  ///< lut_interface.h, shared with lut_build.comp
+constexpr double kWindow = 10.0;                         ///< direct integration over |φ| ≤ 10σ (tail < 2e-23)
 
 double clamp_cos(double cos_theta, const char* where)
 {

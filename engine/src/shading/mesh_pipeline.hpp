@@ -21,18 +21,22 @@
 namespace jade::shading {
 
 inline constexpr uint32_t kMaxLights = JADE_MAX_LIGHTS;
-/// Mode constant of the inputs pass: kInputsMode + k writes the k-th vec4 of the inputs (shading.glsl).
-inline constexpr uint32_t kInputsMode = 8, kInputsSlots = 6;
+/// Mode constant of the inputs pass: kInputsMode + k writes the k-th vec4 of the inputs (shading_interface.h).
+inline constexpr uint32_t kInputsMode = JADE_MODE_INPUTS, kInputsSlots = JADE_INPUTS_SLOTS;
+// The public enums cannot include shading_interface.h: their values are checked against it here.
+static_assert(uint32_t(ShadingMode::Lambert) == JADE_MODE_LAMBERT &&
+              uint32_t(ShadingMode::Curvature) == JADE_MODE_CURVATURE && uint32_t(ShadingMode::Tm) == JADE_MODE_TM &&
+              uint32_t(ShadingMode::TmFalseColor) == JADE_MODE_FALSE_COLOR &&
+              uint32_t(ShadingMode::Filament) == JADE_MODE_FILAMENT &&
+              uint32_t(ShadingMode::Separable) == JADE_MODE_SEPARABLE &&
+              uint32_t(ShadingMode::Burley) == JADE_MODE_BURLEY);
+static_assert(uint32_t(TmEvaluation::Lut) == JADE_EVAL_LUT &&
+              uint32_t(TmEvaluation::LutFiltered) == JADE_EVAL_LUT_FILTERED &&
+              uint32_t(TmEvaluation::Alu) == JADE_EVAL_ALU);
 /// Lights drawn with transmission per draw: the first that may shine through (transmission.glsl).
 inline constexpr uint32_t kMaxTransmitters = JADE_MAX_TRANSMITTERS;
 
-// FramePush, GpuLight and FrameData: shaders/include/shading_interface.h.
-struct Vertex {
-    glm::vec3 position, normal, tm;
-    float curvature, thickness;
-    glm::vec3 scattering_normal;  // BakeResult::scattering_normal: what the translucent diffuse term is lit along
-    glm::vec3 normal_spread;      // BakeResult::normal_spread, per channel
-};
+// Vertex, FramePush, GpuLight and FrameData: shaders/include/shading_interface.h.
 static_assert(sizeof(Vertex) == kRendererVertexBytes && sizeof(FrameData) == kRendererFrameDataBytes);
 
 /// The specialisation constants of one mesh pipeline.

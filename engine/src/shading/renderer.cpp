@@ -103,6 +103,7 @@ struct Renderer::Impl {
           evaluation(shading::resolve_evaluation(o.tm_evaluation, c)), pipelines(c), transmission_table(c),
           separable_passes(c)
     {
+        if (evaluation == TmEvaluation::Lut) lut->build_quads(c);  // the only path that reads them
         // Sampled-image descriptors need the image in its layout even if never read.
         c.submit_and_wait([&](VkCommandBuffer cmd) { placeholder.transition(cmd, gpu::use::kSampled); });
     }
@@ -418,9 +419,7 @@ void Renderer::record_vertex_update(VkCommandBuffer cmd, VkBuffer positions, VkB
     Impl& m = *impl_;
     if (!m.has_mesh) throw Error("Renderer::record_vertex_update: no mesh (call set_mesh first)");
     if (!positions || !normals || !tm) throw Error("Renderer::record_vertex_update: a buffer is VK_NULL_HANDLE");
-    struct PackPush {
-        uint32_t vertex_count, has_thickness, has_scattering_normal;
-    };
+    using shading::PackPush;  // shading_interface.h, shared with pack_vertices.comp
     if (!m.pack_vertices)
         m.pack_vertices.emplace(m.ctx,
                                 gpu::KernelDesc{"pack_vertices",

@@ -4,6 +4,7 @@
 #include "gpu/context.hpp"
 
 #include "jade_shaders.hpp"
+#include "shading_interface.h"  // struct TablePush, shared with transmission_table.comp
 
 #include <glm/common.hpp>
 
@@ -14,10 +15,7 @@
 namespace jade::shading {
 namespace {
 
-struct TablePush {
-    glm::vec4 extinction, diffusion, scatter, source, boundary;
-    uint32_t count;
-};
+// TablePush: shading_interface.h, shared with transmission_table.comp.
 
 constexpr uint32_t kMaxTexels = 1u << 16;
 
