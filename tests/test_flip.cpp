@@ -3,7 +3,7 @@
 #include "flip.hpp"
 #include "test_support.hpp"
 
-#include <jade/clock.hpp>
+#include <jade/dev/clock.hpp>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
