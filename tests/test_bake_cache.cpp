@@ -4,6 +4,7 @@
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 
+#include <jade/dev/context.hpp>
 #include <jade/cache.hpp>
 #include <jade/context.hpp>
 
@@ -46,10 +47,10 @@ TEST_F(BakeCacheTest, SecondRunReadsTheCacheAndCreatesNoBakeObjects)
     EXPECT_TRUE(std::filesystem::exists(cache.entry_path(bake_key(sphere, material, settings))));
     EXPECT_EQ(files_in(dir), 1u);  // no temporary file left behind
 
-    const ObjectCounts before = context().created_objects();
+    const ObjectCounts before = dev::created_objects(context());
     // A new BakeCache on the same folder: what a restarted process sees.
     const CachedBake second = bake_with_cache(context(), BakeCache(dir), sphere, material, settings);
-    const ObjectCounts after = context().created_objects();
+    const ObjectCounts after = dev::created_objects(context());
     EXPECT_EQ(second.source, BakeSource::Cache);
     EXPECT_EQ(after.compute_pipelines, before.compute_pipelines);
     EXPECT_EQ(after.buffers, before.buffers);
@@ -66,8 +67,8 @@ TEST_F(BakeCacheTest, SecondRunReadsTheCacheAndCreatesNoBakeObjects)
     other.ao.seed = 7;
     const CachedBake third = bake_with_cache(context(), cache, sphere, material, other);
     EXPECT_EQ(third.source, BakeSource::Baked);
-    EXPECT_GT(context().created_objects().compute_pipelines, after.compute_pipelines);
-    EXPECT_GT(context().created_objects().buffers, after.buffers);
+    EXPECT_GT(dev::created_objects(context()).compute_pipelines, after.compute_pipelines);
+    EXPECT_GT(dev::created_objects(context()).buffers, after.buffers);
 }
 
 TEST_F(BakeCacheTest, KeyCoversMeshProfilesAndSettingsButNotShadingParameters)
@@ -182,9 +183,9 @@ TEST_F(BakeCacheTest, OpaqueMaterialBakesNothing)
     BakeCache cache(dir);
     Material opaque = material;
     opaque.opaque = true;
-    const ObjectCounts before = context().created_objects();
+    const ObjectCounts before = dev::created_objects(context());
     const CachedBake r = bake_with_cache(context(), cache, sphere, opaque, settings);
-    const ObjectCounts after = context().created_objects();
+    const ObjectCounts after = dev::created_objects(context());
     EXPECT_EQ(r.source, BakeSource::Opaque);
     EXPECT_TRUE(r.result.tm.empty());
     EXPECT_EQ(after.buffers, before.buffers);  // no t_m (or any) buffer

@@ -2,9 +2,11 @@
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 
+#include <jade/dev/bake.hpp>
+#include <jade/dev/context.hpp>
 #include <jade/bake.hpp>
 #include <jade/io.hpp>
-#include <jade/reference.hpp>
+#include <jade/dev/reference.hpp>
 
 #include <glm/geometric.hpp>
 
@@ -202,7 +204,7 @@ TEST_F(GpuTest, EveryProfileKindAgreesWithFloat64OnALargeMesh)
     }
 }
 
-// BakeSettings::tm_float64_sums: the all-pairs pass with float64 sums. Both it and the
+// dev::BakeStudy::tm_float64_sums: the all-pairs pass with float64 sums. Both it and the
 // compensated float32 sums are within 1e-4 of float64 (the pair values are float32 in both),
 // and they agree with each other more closely still: the blocks of 64 pair values are float32
 // in both, and the compensated sum of the blocks is as good as a float64 one (measured: the
@@ -217,11 +219,11 @@ TEST_F(GpuTest, Float64SumsAgreeWithCompensatedFloat32Sums)
     BakeSettings f32;
     f32.method = TmMethod::Exact;
     BakeSettings f64 = f32;
-    f64.tm_float64_sums = true;
+    dev::set_study(f64, {.tm_float64_sums = true});
     const auto a = baker.bake_tm(mesh, ao, m, f32).tm;
-    const uint64_t pipelines = context().created_objects().compute_pipelines;
+    const uint64_t pipelines = dev::created_objects(context()).compute_pipelines;
     const auto b = baker.bake_tm(mesh, ao, m, f64).tm;
-    EXPECT_EQ(context().created_objects().compute_pipelines, pipelines + 1)
+    EXPECT_EQ(dev::created_objects(context()).compute_pipelines, pipelines + 1)
         << "the float64 variant is a kernel of its own";
     auto at = sample_vertices(mesh.vertex_count(), 200);
     const auto ref = reference_tm(mesh, ao, m, at);

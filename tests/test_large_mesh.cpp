@@ -13,7 +13,7 @@
 #include <jade/bake.hpp>
 #include <jade/error.hpp>
 #include <jade/io.hpp>
-#include <jade/reference.hpp>
+#include <jade/dev/reference.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -3,7 +3,8 @@
 // whole domain, for the default size and a table of others.
 #include "gpu_fixture.hpp"
 
-#include <jade/lut.hpp>
+#include <jade/dev/renderer.hpp>
+#include <jade/dev/lut.hpp>
 #include <jade/render.hpp>
 
 #include <algorithm>
@@ -82,8 +83,8 @@ MaxError interpolation_error(const std::vector<float>& lut, const LutLayout& lay
 TEST_F(Lut, EveryTexelMatchesFloat64Reference)
 {
     Renderer renderer(context());
-    const LutLayout& layout = renderer.lut_layout();
-    const std::vector<float> lut = renderer.read_lut();
+    const LutLayout& layout = dev::lut_layout(renderer);
+    const std::vector<float> lut = dev::read_lut(renderer);
     ASSERT_EQ(lut.size(), size_t(layout.width) * layout.height);
     double worst = 0;
     uint32_t wi = 0, wj = 0;
@@ -105,8 +106,8 @@ TEST_F(Lut, EveryTexelMatchesFloat64Reference)
 TEST_F(Lut, DefaultSizeInterpolatesWithin1e4)
 {
     Renderer renderer(context());
-    const LutLayout& layout = renderer.lut_layout();
-    MaxError e = interpolation_error(renderer.read_lut(), layout);
+    const LutLayout& layout = dev::lut_layout(renderer);
+    MaxError e = interpolation_error(dev::read_lut(renderer), layout);
     std::printf("LUT %ux%u: max error of the filtered LUT over %zu points %.3g (at cos θ = %.5f, t = %.3g)\n",
                 layout.width, layout.height, queries().size(), e.error, e.cos_theta, e.t);
     EXPECT_LE(e.error, 1e-4);
@@ -115,8 +116,8 @@ TEST_F(Lut, DefaultSizeInterpolatesWithin1e4)
 TEST_F(Lut, ZeroVarianceIsLambertUnderLinearFiltering)
 {
     Renderer renderer(context());
-    const LutLayout& layout = renderer.lut_layout();
-    const std::vector<float> lut = renderer.read_lut();
+    const LutLayout& layout = dev::lut_layout(renderer);
+    const std::vector<float> lut = dev::read_lut(renderer);
     double worst = 0;
     for (int k = 0; k <= 20000; ++k) {
         const double c = -1.0 + 2.0 * k / 20000.0;
@@ -138,9 +139,9 @@ TEST_F(Lut, ErrorTableBySize)
     std::printf("%-12s %-14s %s\n", "LUT size", "max error", "at (cos θ, t)");
     for (const Row& row : rows) {
         RendererOptions o;
-        o.lut = row.size;
+        dev::set_study(o, {.lut = row.size});
         Renderer renderer(context(), o);
-        MaxError e = interpolation_error(renderer.read_lut(), row.size);
+        MaxError e = interpolation_error(dev::read_lut(renderer), row.size);
         std::printf("%4ux%-7u %-14.3g (%.4f, %.3g)\n", row.size.width, row.size.height, e.error, e.cos_theta, e.t);
         // The table's figure, to three digits: a margin of half its last digit.
         EXPECT_NEAR(e.error, row.documented, 0.006 * row.documented) << row.size.width << "x" << row.size.height;
@@ -150,8 +151,8 @@ TEST_F(Lut, ErrorTableBySize)
 TEST_F(Lut, BadSizeIsAnError)
 {
     RendererOptions o;
-    o.lut = {1024, 257};  // even width: cos θ = 0 would fall between texels
+    dev::set_study(o, {.lut = {1024, 257}});  // even width: cos θ = 0 would fall between texels
     EXPECT_THROW({ Renderer r(context(), o); }, Error);
-    o.lut = {1025, 1};
+    dev::set_study(o, {.lut = {1025, 1}});
     EXPECT_THROW({ Renderer r(context(), o); }, Error);
 }

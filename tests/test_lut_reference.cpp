@@ -1,10 +1,10 @@
-// float64 LUT references (engine/src/shading/lut_reference.cpp, jade/lut.hpp): exact limits,
+// float64 LUT references (engine/src/shading/lut_reference.cpp, jade/dev/lut.hpp): exact limits,
 // normalisation, agreement of the two evaluation branches, the curvature LUT's limits; and the
 // Gauss–Kronrod integrator they rely on.
 #include "../engine/src/bake/disk_integral.hpp"
 
 #include <jade/error.hpp>
-#include <jade/lut.hpp>
+#include <jade/dev/lut.hpp>
 #include <jade/material.hpp>
 
 #include <gtest/gtest.h>

@@ -5,6 +5,7 @@
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 
+#include <jade/dev/renderer.hpp>
 #include <jade/bake.hpp>
 #include <jade/material.hpp>
 #include <jade/render.hpp>
@@ -106,7 +107,7 @@ TEST_F(Peers, FilamentMatchesFloat64FormulaOnEveryPixel)
     RenderSettings s;
     s.width = s.height = 96, s.samples = 1, s.float32 = true, s.transparent_background = true;
     s.mode = ShadingMode::Filament, s.shadows = false;
-    const ShadingInputs in = r.shading_inputs(camera, lights, s);
+    const ShadingInputs in = dev::shading_inputs(r, camera, lights, s);
     for (const float constant : {-1.0f, 0.5f}) {
         s.filament_thickness = constant;
         const RenderedImage img = r.render(camera, lights, s);

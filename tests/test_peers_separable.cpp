@@ -1,6 +1,6 @@
 // The screen-space peers against independent float64 references: the Separable mode (Jimenez et
-// al. 2015's separable SSS fitted to Jade's profiles, jade/separable.hpp) and the Burley mode
-// (HDRP's screen-space Burley diffusion, jade/burley_diffusion.hpp):
+// al. 2015's separable SSS fitted to Jade's profiles, jade/dev/separable.hpp) and the Burley mode
+// (HDRP's screen-space Burley diffusion, jade/dev/burley_diffusion.hpp):
 // - the Burley sampling's inverse CDF and pdf against the profile's closed-form CDF;
 // - its kernel against the profile's half-plane masses computed here by a different quadrature
 //   (over the radius, R itself, not the engine's cdf form), for each profile kind;
@@ -11,9 +11,9 @@
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 
-#include <jade/burley_diffusion.hpp>
+#include <jade/dev/burley_diffusion.hpp>
 #include <jade/render.hpp>
-#include <jade/separable.hpp>
+#include <jade/dev/separable.hpp>
 
 #include <algorithm>
 #include <cmath>

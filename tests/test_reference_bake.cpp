@@ -12,7 +12,7 @@
 #include <jade/io.hpp>
 #include <jade/material.hpp>
 #include <jade/mesh.hpp>
-#include <jade/reference.hpp>
+#include <jade/dev/reference.hpp>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>

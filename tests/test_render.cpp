@@ -4,9 +4,10 @@
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 
+#include <jade/dev/renderer.hpp>
 #include <jade/bake.hpp>
 #include <jade/io.hpp>
-#include <jade/lut.hpp>
+#include <jade/dev/lut.hpp>
 #include <jade/render.hpp>
 
 // Golden PNGs are read with OpenImageIO, which jade::io links already (jade/io.hpp has no reader).

@@ -4,6 +4,7 @@
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 
+#include <jade/dev/context.hpp>
 #include <jade/cache.hpp>
 #include <jade/io.hpp>
 #include <jade/error.hpp>
@@ -327,15 +328,15 @@ TEST_F(SceneGpuTest, StaticSceneSecondRunReadsTheCacheAndCreatesNoBakeObjects)
                  // over 2048 vertices: the clustered far field (cluster tree buffers)
                  object("big", procedural::sphere(1.0f, 40, 80), burley_material({0.1, 0.05, 0.03}, glm::vec3(0.8f)))}};
     BakeCache cache(dir);
-    const ObjectCounts c0 = context().created_objects();
+    const ObjectCounts c0 = dev::created_objects(context());
     {
         SceneRenderer first(context(), scene, settings, cached_bakes(cache));
         EXPECT_FALSE(first.plan().objects[0].cached);
         for (const auto& p : first.passes_run()) EXPECT_EQ(p.kind, PassKind::StaticBake);
         // What the static bakes allocated (all of it freed at the end of the constructor)
         // against the plan's estimate: the counted bytes minus the draws' exactly known ones.
-        const uint64_t baked =
-            context().created_objects().device_buffer_bytes - c0.device_buffer_bytes - draw_buffer_bytes(first.plan());
+        const uint64_t baked = dev::created_objects(context()).device_buffer_bytes - c0.device_buffer_bytes -
+                               draw_buffer_bytes(first.plan());
         uint64_t estimate = 0;
         for (const auto& o : first.plan().objects) estimate += o.passes[0].buffer_bytes();
         std::printf("static bakes: %llu bytes allocated, %llu estimated (%.1f %%)\n", (unsigned long long)baked,
@@ -343,13 +344,13 @@ TEST_F(SceneGpuTest, StaticSceneSecondRunReadsTheCacheAndCreatesNoBakeObjects)
         EXPECT_NEAR(double(estimate) / double(baked), 1.0, 0.10);  // measured: +0.4 % here, -4.6 % on the bunny
     }
     // A scene that never bakes (t_m = 0 given) is the reference for "only the draws".
-    const ObjectCounts c1 = context().created_objects();
+    const ObjectCounts c1 = dev::created_objects(context());
     {
         SceneRenderer never(context(), scene, settings, never_baked());
     }
-    const ObjectCounts c2 = context().created_objects();
+    const ObjectCounts c2 = dev::created_objects(context());
     SceneRenderer second(context(), scene, settings, cached_bakes(BakeCache(dir)));
-    const ObjectCounts c3 = context().created_objects();
+    const ObjectCounts c3 = dev::created_objects(context());
     for (const auto& o : second.plan().objects) EXPECT_TRUE(o.cached);
     ASSERT_EQ(second.passes_run().size(), 3u);
     for (const auto& p : second.passes_run()) EXPECT_EQ(p.kind, PassKind::CacheRead);
@@ -368,9 +369,9 @@ TEST_F(SceneGpuTest, OpaqueObjectAllocatesNoTmBuffers)
     const ScenePlan plan = plan_scene(scene, settings);
     ASSERT_EQ(plan.objects[0].passes.size(), 1u);
     for (const auto& b : plan.objects[0].passes[0].buffers) EXPECT_EQ(b.name.find("t_m"), std::string::npos) << b.name;
-    const ObjectCounts c0 = context().created_objects();
+    const ObjectCounts c0 = dev::created_objects(context());
     SceneRenderer renderer(context(), scene, settings);
-    const ObjectCounts c1 = context().created_objects();
+    const ObjectCounts c1 = dev::created_objects(context());
     EXPECT_TRUE(renderer.passes_run().empty());
     EXPECT_TRUE(renderer.tm(0).empty());
     EXPECT_EQ(c1.compute_pipelines - c0.compute_pipelines, 1u);  // the Renderer's LUT builder only
@@ -421,14 +422,14 @@ TEST_F(SceneGpuTest, MixedSceneRunsThePlannedPassesPerFrame)
 {
     const Scene scene = load_scene(test::data("scene_mixed.gltf"));
     BakeCache cache(dir);
-    const ObjectCounts c0 = context().created_objects();
+    const ObjectCounts c0 = dev::created_objects(context());
     SceneRenderer renderer(context(), scene, settings, cached_bakes(cache));
     // What the constructor allocated besides the draws (whose bytes are exact: the LUT would
     // hide the rest): static bakes, deformer, dynamic bake, against the plan's estimate.
     uint64_t estimate = 0;
     for (const auto& o : renderer.plan().objects)
         for (const auto& p : o.passes) estimate += p.kind == PassKind::Draw ? 0 : p.buffer_bytes();
-    const double allocated = double(context().created_objects().device_buffer_bytes - c0.device_buffer_bytes -
+    const double allocated = double(dev::created_objects(context()).device_buffer_bytes - c0.device_buffer_bytes -
                                     draw_buffer_bytes(renderer.plan()));
     std::printf("mixed scene without draws: %.0f bytes allocated, %llu estimated\n", allocated,
                 (unsigned long long)estimate);

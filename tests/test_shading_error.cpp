@@ -5,16 +5,17 @@
 // in the renderer's own RGBA16F target; a float64 evaluation of the same per-pixel shading, from
 // the per-pixel inputs the rasteriser gave that draw (Renderer::shading_inputs: position, normal,
 // t_m, scattering normal, normal spread, the transmission path), written here from the definitions in docs/shading.md and
-// jade/lut.hpp (jade::lut_reference for F, not the shader's code), gives the expected image.
+// jade/dev/lut.hpp (jade::lut_reference for F, not the shader's code), gives the expected image.
 // Both go to sRGB (clipped to [0, 1], as a PNG) in units of one 8-bit level, unrounded; the
 // budget: 99th percentile ≤ 0.5 level and max ≤ 1 level over every channel of every pixel.
 // A LUT too coarse for the budget must fail it (the test can see an error of that size).
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 
+#include <jade/dev/renderer.hpp>
 #include <jade/bake.hpp>
 #include <jade/io.hpp>
-#include <jade/lut.hpp>
+#include <jade/dev/lut.hpp>
 #include <jade/render.hpp>
 
 #include <glm/geometric.hpp>
@@ -187,12 +188,16 @@ TEST_F(ShadingError, EveryEvaluationPathKeepsTheFinal8BitImageWithinHalfALevel)
         std::string name;
         RendererOptions options;
     };
+    const auto options = [](TmEvaluation evaluation, LightPathSampling light_path = LightPathSampling::Auto) {
+        RendererOptions o{.light_path = light_path};
+        dev::set_study(o, {.tm_evaluation = evaluation});
+        return o;
+    };
     const std::vector<Path> paths = {
-        {"lut", {.tm_evaluation = TmEvaluation::Lut}},
-        {"lut16", {.tm_evaluation = TmEvaluation::LutFiltered}},
-        {"alu", {.tm_evaluation = TmEvaluation::Alu}},
-        {"alu, light path per fragment",
-         {.tm_evaluation = TmEvaluation::Alu, .light_path = LightPathSampling::PerFragment}}};
+        {"lut", options(TmEvaluation::Lut)},
+        {"lut16", options(TmEvaluation::LutFiltered)},
+        {"alu", options(TmEvaluation::Alu)},
+        {"alu, light path per fragment", options(TmEvaluation::Alu, LightPathSampling::PerFragment)}};
     std::vector<std::unique_ptr<Renderer>> renderers;
     for (const Path& p : paths) renderers.push_back(std::make_unique<Renderer>(context(), p.options));
     std::vector<ImageError> worst(paths.size());
@@ -219,7 +224,8 @@ TEST_F(ShadingError, EveryEvaluationPathKeepsTheFinal8BitImageWithinHalfALevel)
                 std::map<LightPathSampling, ShadingInputs> inputs;
                 for (auto& r : renderers) {
                     r->set_material(material);
-                    if (!inputs.count(r->light_path())) inputs[r->light_path()] = r->shading_inputs(cam, lights, s);
+                    if (!inputs.count(r->light_path()))
+                        inputs[r->light_path()] = dev::shading_inputs(*r, cam, lights, s);
                 }
                 ASSERT_TRUE(material.transmission.enabled() == (inputs.begin()->second.transmits[1] == 1)) << preset;
                 for (size_t i = 0; i < paths.size(); ++i) {
@@ -254,8 +260,7 @@ TEST_F(ShadingError, ACoarseLutFailsTheBudget)
     Baker baker(context());
     const BakeResult bake = baker.bake(mesh.prepared, material, BakeSettings::preset(Quality::Draft));
     RendererOptions o;
-    o.tm_evaluation = TmEvaluation::Lut;
-    o.lut.width = 65, o.lut.height = 9;
+    dev::set_study(o, {.lut = {.width = 65, .height = 9}, .tm_evaluation = TmEvaluation::Lut});
     Renderer r(context(), o);
     r.set_mesh(mesh.prepared, bake);
     r.set_material(material);
@@ -266,7 +271,8 @@ TEST_F(ShadingError, ACoarseLutFailsTheBudget)
     s.samples = 1;
     s.transparent_background = true;
     s.shadows = false;
-    const ImageError err = compare(r.render(cam, lights, s), r.shading_inputs(cam, lights, s), material, cam, lights);
+    const ImageError err =
+        compare(r.render(cam, lights, s), dev::shading_inputs(r, cam, lights, s), material, cam, lights);
     std::printf("65x9 LUT: p99 %.3f, max %.3f 8-bit levels\n", err.p99, err.max);
     EXPECT_GT(err.max, 1.0);
 }

@@ -8,8 +8,8 @@
 
 #include <jade/bake.hpp>
 #include <jade/error.hpp>
-#include <jade/lut.hpp>
-#include <jade/reference.hpp>
+#include <jade/dev/lut.hpp>
+#include <jade/dev/reference.hpp>
 #include <jade/render.hpp>
 
 #include <glm/geometric.hpp>

@@ -4,9 +4,10 @@
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 
+#include <jade/dev/renderer.hpp>
 #include <jade/bake.hpp>
 #include <jade/io.hpp>
-#include <jade/reference.hpp>
+#include <jade/dev/reference.hpp>
 #include <jade/render.hpp>
 
 #include <glm/geometric.hpp>
@@ -235,7 +236,7 @@ TEST_F(Thickness, LightPathCountsTheMediumAndNotTheAirBetweenParts)
             auto centre_path = [&](const PreparedMesh& mesh) {
                 const BakeResult r = baker.bake(mesh, m, settings(16));
                 renderer.set_mesh(mesh, r.tm, r.thickness);
-                const ShadingInputs in = renderer.shading_inputs(cam, lights, rs);
+                const ShadingInputs in = dev::shading_inputs(renderer, cam, lights, rs);
                 EXPECT_EQ(in.transmits.at(0), 1);
                 return double(in.path.at(16 * in.width + 16));
             };

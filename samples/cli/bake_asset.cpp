@@ -2,7 +2,7 @@
 // instance rule of jade::GltfAsset) and the asset written back whole with the attributes.
 #include "bake_record.hpp"
 
-#include <jade/clock.hpp>
+#include <jade/dev/clock.hpp>
 #include <jade/io.hpp>
 
 #include <glm/common.hpp>

@@ -5,10 +5,11 @@
 #include "commands.hpp"
 #include "embree_ao.hpp"
 
-#include <jade/clock.hpp>
+#include <jade/dev/context.hpp>
+#include <jade/dev/clock.hpp>
 #include <jade/cache.hpp>
 #include <jade/io.hpp>
-#include <jade/reference.hpp>
+#include <jade/dev/reference.hpp>
 #include <jade/scene.hpp>
 
 #include <algorithm>
@@ -151,9 +152,9 @@ int bench_render_scene(const Args& args)
         for (const auto& p : fill.passes_run()) baked += p.kind == PassKind::StaticBake;
         std::printf("cache %s: %zu static bakes were missing and ran now\n", dir.string().c_str(), baked);
     }
-    const ObjectCounts before = ctx->created_objects();
+    const ObjectCounts before = dev::created_objects(*ctx);
     SceneRenderer cached(*ctx, scene, settings, cached_bakes(cache));
-    const ObjectCounts after = ctx->created_objects();
+    const ObjectCounts after = dev::created_objects(*ctx);
     SceneRenderer unbaked(*ctx, scene, settings, never_baked());
     std::printf(
         "cached scene set-up created %llu compute pipelines (%zu objects: the one shared LUT's builder and each "

@@ -6,6 +6,7 @@
 #include "deform_sweep.hpp"
 #include "render_setup.hpp"
 
+#include <jade/dev/renderer.hpp>
 #include <jade/bake.hpp>
 #include <jade/deform.hpp>
 
@@ -186,7 +187,7 @@ int cmd_bench_render(int argc, char** argv)
         scene.mesh.name.c_str(), scene.prepared.vertex_count(), scene.prepared.triangle_count(),
         scene.material.name.c_str(), scene.material.grey() ? "grey: 1 channel" : "RGB: 3 channels",
         transmits ? "on where a light is behind" : "off",
-        std::string(tm_evaluation_name(renderer.tm_evaluation())).c_str(),
+        std::string(tm_evaluation_name(dev::tm_evaluation(renderer))).c_str(),
         std::string(light_path_sampling_name(renderer.light_path())).c_str(), ctx->device_info().name.c_str());
     // The presets' lights are all directional (each gets a tile); figure1 and back have one light behind.
     const std::string preset = args.get_or("lights", "default");
@@ -228,7 +229,7 @@ int cmd_bench_render(int argc, char** argv)
             }
         }
         for (size_t k = 0; k < n; ++k) {
-            const auto [count, formula] = fetches(config[k].mode, load, config[k].shadows, renderer.tm_evaluation(),
+            const auto [count, formula] = fetches(config[k].mode, load, config[k].shadows, dev::tm_evaluation(renderer),
                                                   scene.material.grey(), renderer.light_path(), s);
             char size[32], ratio[64], cpu_r[64];
             std::snprintf(size, sizeof size, "%ux%u", width, height);

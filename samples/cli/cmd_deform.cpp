@@ -11,7 +11,7 @@
 // DynamicBake::record, Renderer::record_vertex_update and Renderer::record into one command buffer.
 #include "commands.hpp"
 
-#include <jade/clock.hpp>
+#include <jade/dev/clock.hpp>
 #include <jade/deform.hpp>
 #include <jade/io.hpp>
 #include <jade/render.hpp>

@@ -4,6 +4,7 @@
 // `--components DIR` writes the separate terms the calibration (tools/groundtruth/fit.py) fits.
 #include "commands.hpp"
 
+#include <jade/dev/renderer.hpp>
 #include <jade/io.hpp>
 #include <jade/render.hpp>
 
@@ -353,7 +354,7 @@ int cmd_fidelity(int argc, char** argv)
         // position (w: coverage) and the normal with the first light's path t (w; 0 without).
         renderer.set_material(material);
         rs.transmission = true;
-        const ShadingInputs in = renderer.shading_inputs(camera, lights, rs);
+        const ShadingInputs in = dev::shading_inputs(renderer, camera, lights, rs);
         std::vector<float> position, normal_path;
         for (size_t p = 0; p < in.position.size(); ++p) {
             const glm::vec4 x = in.position[p], n = in.normal[p];

@@ -4,7 +4,7 @@
 #include "render_setup.hpp"
 
 #include <jade/io.hpp>
-#include <jade/overlay.hpp>
+#include <jade/dev/overlay.hpp>
 #include <jade/render.hpp>
 
 #include <glm/geometric.hpp>

@@ -4,7 +4,7 @@
 // through samples/report/plot_report.py, DIR/*.png.
 #include "report.hpp"
 
-#include <jade/clock.hpp>
+#include <jade/dev/clock.hpp>
 #include <jade/io.hpp>
 
 #include <algorithm>

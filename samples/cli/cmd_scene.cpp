@@ -3,6 +3,7 @@
 // the planned passes (--verbose lists the passes that ran).
 #include "commands.hpp"
 
+#include <jade/dev/context.hpp>
 #include <jade/cache.hpp>
 #include <jade/io.hpp>
 #include <jade/scene.hpp>
@@ -137,7 +138,7 @@ int cmd_scene(int argc, char** argv)
         for (const PassRecord& p : renderer.passes_run())
             std::printf("  %-24s %-13s %10s  %s\n", p.object.c_str(), std::string(pass_kind_name(p.kind)).c_str(),
                         p.wall_ms > 0 ? format_ms(p.wall_ms).c_str() : "", p.note.c_str());
-        const ObjectCounts c = ctx->created_objects();
+        const ObjectCounts c = dev::created_objects(*ctx);
         std::printf("GPU objects created: %llu compute pipelines, %llu graphics pipelines, %llu buffers (%.2f MiB "
                     "device-local), "
                     "%llu images\n",

@@ -3,7 +3,7 @@
 
 #include "commands.hpp"
 
-#include <jade/clock.hpp>
+#include <jade/dev/clock.hpp>
 #include <jade/error.hpp>
 
 #include <algorithm>

@@ -7,7 +7,7 @@
 
 #include <jade/bake.hpp>
 #include <jade/mesh.hpp>
-#include <jade/reference.hpp>
+#include <jade/dev/reference.hpp>
 
 namespace jade::cli {
 

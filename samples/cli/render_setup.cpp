@@ -3,6 +3,7 @@
 // with its bake (read from a baked file or baked now).
 #include "render_setup.hpp"
 
+#include <jade/dev/renderer.hpp>
 #include <jade/bake.hpp>
 #include <jade/io.hpp>
 
@@ -59,7 +60,7 @@ RendererOptions renderer_options(const Args& args)
 {
     RendererOptions o;
     try {
-        o.tm_evaluation = parse_tm_evaluation(args.get_or("eval", "auto"));
+        dev::set_study(o, {.tm_evaluation = parse_tm_evaluation(args.get_or("eval", "auto"))});
     } catch (const Error& e) {
         args.fail(std::string("--eval: ") + e.what());
     }

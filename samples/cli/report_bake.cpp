@@ -8,8 +8,9 @@
 // end (their own AO), against the same reference.
 #include "report.hpp"
 
-#include <jade/clock.hpp>
-#include <jade/reference.hpp>
+#include <jade/dev/bake.hpp>
+#include <jade/dev/clock.hpp>
+#include <jade/dev/reference.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -188,7 +189,7 @@ Step tm_step(Session& s, MeshState& st, size_t k, std::string knob, std::string 
                       error_stats(tm_errors(b.tm, st, mc)),
                       ""};
                 r.notes = strf("relative, vs float64 on %zu vertices", st.sample.size());
-                if (settings.tm_float64_sums) {
+                if (dev::study_of(settings).tm_float64_sums) {
                     r.notes += "; float32 pair values, float64 sums";
                 } else if (settings.method == TmMethod::Exact) {
                     r.notes += "; float32 with compensated summation";
@@ -231,7 +232,7 @@ void add_tm_steps(Session& s, MeshState& st, std::vector<Step>& steps)
         exact.method = TmMethod::Exact;
         steps.push_back(tm_step(s, st, k, "tm_exact", "all pairs", "exact", exact, labels[k]));
         if (s.context.device_info().float64) {  // float32 against float64 accumulation
-            exact.tm_float64_sums = true;
+            dev::set_study(exact, {.tm_float64_sums = true});
             steps.push_back(tm_step(s, st, k, "tm_exact", "all pairs, float64 sums", "exact", exact, labels[k]));
         }
         for (float eps : plan.tm_epsilons) {

@@ -10,8 +10,9 @@
 // perceptual metric: structure, contrast and luminance over 8×8 windows).
 #include "report.hpp"
 
-#include <jade/clock.hpp>
-#include <jade/lut.hpp>
+#include <jade/dev/renderer.hpp>
+#include <jade/dev/clock.hpp>
+#include <jade/dev/lut.hpp>
 #include <jade/render.hpp>
 
 #include <algorithm>
@@ -191,7 +192,7 @@ RenderedImage render_with(Renderer& r, const MeshState& st, const std::vector<gl
 std::unique_ptr<Renderer> make_renderer(Context& ctx, const LutLayout& layout)
 {
     RendererOptions o;
-    o.lut = layout;
+    dev::set_study(o, {.lut = layout});
     return std::make_unique<Renderer>(ctx, o);
 }
 
@@ -206,7 +207,7 @@ void add_lut_steps(Session& s, std::vector<Step>& steps)
             if (state->queries.empty()) state->queries = lut_queries();
             auto t0 = Clock::now();
             auto renderer = make_renderer(s.context, layout);
-            std::vector<float> lut = renderer->read_lut();
+            std::vector<float> lut = dev::read_lut(*renderer);
             const double ms = ms_since(t0);
             std::vector<double> e;
             e.reserve(state->queries.size());

@@ -1,5 +1,5 @@
 // jade/bake.hpp - the precompute of the poster's equation (1), on the GPU (its float64 CPU
-// reference, the same rays and discretisation: jade/reference.hpp).
+// reference, the same rays and discretisation: jade/dev/reference.hpp).
 //
 //   A_o(x)  ambient occlusion: the fraction of cosine-weighted hemisphere rays from x (offset
 //           along the vertex normal by ε) that hit the mesh within max_distance. 0 = open.
@@ -66,6 +66,10 @@ struct ThicknessSettings {
 
 class Context;
 
+namespace dev {
+struct BakeStudy;  // jade/dev/bake.hpp: variants of the passes, for measuring them
+}  // namespace dev
+
 /// How t_m's far field is summed.
 enum class TmMethod {
     Auto,       ///< the fastest that meets the quality's bound (rule: docs/bake.md, "Choosing the far field")
@@ -106,12 +110,9 @@ struct BakeSettings {
     /// spacings) and the finest Gaussian (that reach / resolution); memory grows as its cube.
     /// Measured max relative error: docs/bake.md.
     float tm_grid_resolution = 2.0f;
-    /// All-pairs method only (TmMethod::Exact, or Auto on small meshes): accumulate the far
-    /// field in float64 instead of compensated float32 sums (pair values stay float32). Needs
-    /// DeviceInfo::float64 (jade::Error otherwise); for measuring what float32 sums cost in
-    /// accuracy (`jade report`), not for production: slower on every device.
-    bool tm_float64_sums = false;
     static BakeSettings preset(Quality q);  ///< the Quality table above
+    /// Set by the tools and tests only (jade/dev/bake.hpp); null: the defaults.
+    std::shared_ptr<const dev::BakeStudy> study;
 };
 
 /// GPU time per stage (timestamp queries) and wall time, milliseconds. setup_ms: host time

@@ -1,6 +1,6 @@
 // jade/cache.hpp - an on-disk cache of bakes, keyed by the content of what the bake depends on.
 // Part of jade::io (it reads and writes files). A static scene is baked once: later runs read
-// the cached AO and t_m and create no bake pipelines or buffers (Context::created_objects()).
+// the cached AO and t_m and create no bake pipelines or buffers (counted by jade/dev/context.hpp).
 //
 // Key: a 64-bit FNV-1a hash of the prepared mesh (positions, normals, areas, indices), the
 // material's three scattering profiles (albedo, strength and the specular parameters only

@@ -111,19 +111,6 @@ struct HostDeviceSetup : private NonCopyable {
                           VkQueue queue) const;
 };
 
-/// How many GPU objects a Context has created since construction (never decremented): lets
-/// tests prove that skipped work created nothing (e.g. a bake served from the cache).
-struct ObjectCounts {
-    uint64_t compute_pipelines = 0;   ///< bake kernels, LUT builders
-    uint64_t graphics_pipelines = 0;  ///< renderer variants
-    uint64_t buffers = 0;             ///< every VkBuffer (device-local and staging)
-    uint64_t images = 0;
-    /// Bytes of the device-local buffers among `buffers` (their requested sizes, at least 16
-    /// each; host-visible staging and read-back buffers are left out): what jade::plan_scene
-    /// estimates.
-    uint64_t device_buffer_bytes = 0;
-};
-
 /// What `jade info` prints and what code may want to know about the device.
 struct DeviceInfo {
     std::string name, driver,
@@ -160,8 +147,6 @@ public:
     uint64_t validation_messages() const;
     /// Names of the Vulkan devices present, best first (no context needed).
     static std::vector<std::string> list_devices();
-    /// Objects created so far through this Context (thread-safe read).
-    ObjectCounts created_objects() const;
     /// True when this Context adopted the host's objects (and will not destroy them).
     bool adopted() const;
 

@@ -35,10 +35,10 @@ struct ChannelProfile {
     static constexpr int kMaxGaussians = 6;
 
     ProfileKind kind = ProfileKind::Burley;
-    double d = 1.0;                                          ///< Burley shape, mesh units
-    double sigma_tr = 0, z_r = 0, z_v = 0;                   ///< Dipole, in 1/mesh units and mesh units
-    double dipole_total = 1;                                 ///< Dipole: unnormalised total reflectance R_d (for docs)
-    uint32_t gaussian_count = 0;                             ///< Gaussians: how many of weight/variance are used
+    double d = 1.0;                         ///< Burley shape, mesh units
+    double sigma_tr = 0, z_r = 0, z_v = 0;  ///< Dipole, in 1/mesh units and mesh units
+    double dipole_total = 1;      ///< Dipole: output, the unnormalised total reflectance R_d (reported, not used)
+    uint32_t gaussian_count = 0;  ///< Gaussians: how many of weight/variance are used
     std::array<double, kMaxGaussians> weight{}, variance{};  ///< Gaussians: Σ weight = 1; variance in units²
 
     /// Burley with shape d > 0 (mesh units); throws jade::Error for d ≤ 0 or not finite.
@@ -108,13 +108,16 @@ Medium medium_from_appearance(glm::dvec3 albedo, glm::dvec3 mean_free_path, doub
 /// term's), and what it crosses is the slab between where it entered and here: h, the path's
 /// depth along the normal (exact for a flat slab lit at any angle, t̄/ln 4 being the slab that
 /// the cone's mean thickness stands for).
-/// weight = diffusion_weight = 0 turns the term off.
+/// weight = diffusion_weight = 0 turns the term off. Material::from_medium fills every field:
+/// sigma_tr, source_depth and extrapolation are outputs derived from the medium (set them
+/// only together, as from_medium does); weight, diffusion_weight, lobe and normal_mix are the
+/// look's knobs.
 struct Transmission {
     glm::vec3 sigma_t{0.0f};          ///< extinction σ_s + σ_a, 1/mesh unit
     glm::vec3 sigma_s_reduced{0.0f};  ///< σ_s' = σ_s(1 − g), 1/mesh unit
-    glm::vec3 sigma_tr{0.0f};         ///< √(3σ_a(σ_a + σ_s')), 1/mesh unit
-    glm::vec3 source_depth{0.0f};     ///< z_s = z_0 + z_b of slab_diffusion_transmittance, mesh units
-    glm::vec3 extrapolation{0.0f};    ///< z_b of slab_diffusion_transmittance, mesh units
+    glm::vec3 sigma_tr{0.0f};         ///< output: √(3σ_a(σ_a + σ_s')), 1/mesh unit
+    glm::vec3 source_depth{0.0f};     ///< output: z_s = z_0 + z_b of slab_diffusion_transmittance, mesh units
+    glm::vec3 extrapolation{0.0f};    ///< output: z_b of slab_diffusion_transmittance, mesh units
     float weight = 0.0f;              ///< forward part (the boundary's crossings: Material::boundary_transmittance)
     float diffusion_weight = 0.0f;    ///< diffused part (the same)
     float lobe = 2.0f;                ///< exponent n of the forward lobe, ≥ 0

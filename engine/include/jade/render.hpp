@@ -2,11 +2,11 @@
 //
 // What is drawn: a mesh with per-vertex t_m (RGB), lit by directional and point lights, with
 //   diffuse_c = (k_d,c / π) · F(cos θ, strength · t_m,c) · E_c     per light and colour channel c
-// where F is the look-up table of jade/lut.hpp's f(θ, t) (F = max(cos θ, 0) for t = 0, i.e.
+// where F is a look-up table of f(θ, t) (docs/shading.md; F = max(cos θ, 0) for t = 0, i.e.
 // exactly Lambert), plus a GGX specular lobe (Smith height-correlated visibility, Schlick
 // Fresnel with F0 from Material::ior, α = Material::roughness², weight Material::specular).
 // Modes: Lambert; Curvature (Kubo et al. 2010 / pre-integrated: F replaced by the curvature
-// LUT D(cos θ, 1/κ) of jade/lut.hpp, κ the vertex's mean curvature); Tm (ours); TmFalseColor;
+// LUT D(cos θ, 1/κ), κ the vertex's mean curvature); Tm (ours); TmFalseColor;
 // Filament (google/filament's subsurface model, a peer to compare with: docs/peers.md).
 //
 // Units: positions, camera and point lights in mesh units (no normalisation anywhere);
@@ -18,12 +18,13 @@
 // jade::Error naming the setting or element at fault.
 #pragma once
 
+#include <jade/camera.hpp>
 #include <jade/error.hpp>
+#include <jade/light.hpp>
 #include <jade/material.hpp>
 #include <jade/mesh.hpp>
 #include <jade/noncopyable.hpp>
 
-#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 #include <vulkan/vulkan.h>
 
@@ -49,33 +50,12 @@ enum class ShadingMode : uint32_t {
     Filament = 4,      ///< Filament's subsurface shading model (a peer; docs/peers.md), fed Jade's baked thickness
     /// A peer: Jimenez et al. 2015's separable subsurface scattering, the Lambert diffuse light
     /// (and SSSSTransmittance's) blurred on screen by two 1-D passes of a kernel fitted to the
-    /// material's profiles (jade/separable.hpp, docs/peers_separable.md); needs no bake.
+    /// material's profiles (docs/peers_separable.md); needs no bake.
     Separable = 5,
     /// A peer: screen-space Burley diffusion as Unity HDRP does it (Golubev 2018): the same
-    /// irradiance target, one pass of importance-sampled taps (jade/burley_diffusion.hpp).
+    /// irradiance target, one pass of importance-sampled taps (docs/peers_separable.md).
     Burley = 6,
 };
-/// What ShadingMode::Filament feeds Filament's subsurface model (shaders/include/filament.glsl),
-/// derived from the material's medium (Material::transmission.sigma_tr, docs/peers.md):
-/// - thickness = min(t̄ · thickness_per_unit, 1), t̄ the baked thickness (mesh units) and
-///   thickness_per_unit = σ_min / 2, σ_min the smallest positive σ_tr,c: Filament's BTDF falls
-///   as (1 − thickness), and a ramp 1 − t/L carries the same total ∫ dt as the diffusion's
-///   transmittance e^{−σ_min t} for L = 2/σ_min;
-/// - subsurfaceColor_c = (1 − k_d,c) · σ_min / σ_tr,c (σ_min/σ_tr,c = 1 where σ_tr,c = 0): the
-///   share of the light that the surface does not reflect diffusely (k_d = Material::albedo, the
-///   medium's diffuse albedo), the only light there is to cross the part (Filament adds its BTDF
-///   to the BRDF, so without it a slab would return more than it receives), with the colour of
-///   the ramp matched per channel, ∫ (σ_min/σ_tr,c)(1 − t/L) dt = ∫ e^{−σ_tr,c t} dt;
-/// - subsurfacePower = 12.234, Filament's default (nothing in a medium sets a lobe's width).
-/// A material without σ_tr (not made from a medium) gets 1 − k_d and thickness_per_unit 0, which
-/// the renderer reads as Filament's default constant thickness 0.5.
-struct FilamentSubsurface {
-    glm::vec3 color{1.0f};
-    float power = 12.234f;
-    float thickness_per_unit = 0.0f;  ///< 1/mesh unit
-};
-FilamentSubsurface filament_subsurface(const Material& material);
-
 /// "lambert", "curvature", "tm", "tm-false-color", "filament", "separable", "burley".
 std::string_view shading_mode_name(ShadingMode mode);
 /// The inverse of shading_mode_name; throws jade::Error listing the names.
@@ -89,55 +69,6 @@ enum class ToneMap : uint32_t {
 };
 /// "none", "reinhard", "aces"; throws jade::Error listing the names.
 ToneMap parse_tone_map(std::string_view name);
-
-/// A pinhole camera. Right-handed; looks from `eye` at `target`; `up` need not be orthogonal
-/// to the view direction but not parallel to it. Near and far planes are fitted to the mesh's
-/// bounding sphere unless both are given (0 < near_plane < far_plane), e.g. to share a depth
-/// buffer with a host renderer (then use view_projection() for the host's own geometry).
-struct Camera {
-    glm::vec3 eye{0.0f, 0.0f, 5.0f};
-    glm::vec3 target{0.0f};
-    glm::vec3 up{0.0f, 1.0f, 0.0f};
-    float fov_y_degrees = 30.0f;                ///< vertical field of view, (0, 180)
-    float near_plane = 0.0f, far_plane = 0.0f;  ///< mesh units; 0, 0: fitted to the mesh
-
-    /// The clip-from-world matrix the renderer uses with explicit planes: perspectiveRH_ZO
-    /// (depth 0 at near, 1 at far) with y flipped (Vulkan framebuffer rows top to bottom) times
-    /// lookAtRH(eye, target, up). Throws jade::Error unless 0 < near_plane < far_plane, aspect > 0.
-    glm::mat4 view_projection(float aspect) const;
-
-    /// The camera looking at the centre of the box [lo, hi] from `direction` (from the target
-    /// towards the eye), at the distance where the box's bounding sphere fills the smaller of
-    /// the two fields of view with a 5 % margin.
-    static Camera framing(glm::vec3 lo, glm::vec3 hi, float aspect = 1.0f, glm::vec3 direction = {0.0f, 0.0f, 1.0f},
-                          glm::vec3 up = {0.0f, 1.0f, 0.0f}, float fov_y_degrees = 30.0f);
-};
-
-/// A light for the lit modes (at most 64 per draw).
-struct Light {
-    enum class Type : uint32_t { Directional = 0, Point = 1 };
-    Type type = Type::Directional;
-    glm::vec3 vector{0.0f, 0.0f, 1.0f};  ///< Directional: towards the light (any length); Point: position
-    glm::vec3 color{1.0f};               ///< Directional: irradiance E; Point: intensity I (E = I/d²)
-
-    /// Shorthands: a directional light towards `towards_light` with irradiance E, a point light.
-    static Light directional(glm::vec3 towards_light, glm::vec3 irradiance)
-    {
-        return {Type::Directional, towards_light, irradiance};
-    }
-    static Light point(glm::vec3 position, glm::vec3 intensity) { return {Type::Point, position, intensity}; }
-};
-
-/// A key light from the upper front-left of the camera (E = 2.5) and a dim fill from the
-/// lower right (E = 0.4), both directional.
-std::vector<Light> default_lights(const Camera& camera);
-/// Figure 1 of the poster: a strong back light from behind the object, slightly above and to
-/// the left (E = 6), a dim front key from the upper left (E = 0.6) and a faint fill (0.15):
-/// with t_m shading, light from behind wraps around and thin parts such as the ears glow.
-std::vector<Light> figure1_lights(const Camera& camera);
-/// Two lights, one behind the object: the key of default_lights (E = 2.5) and the back light of
-/// figure1_lights (E = 6), so that the transmission term is drawn (`jade bench render --lights back`).
-std::vector<Light> back_lights(const Camera& camera);
 
 /// An RGBA float image, rows top to bottom, 4 floats per pixel.
 struct RenderedImage {
@@ -179,43 +110,11 @@ struct RenderSettings {
     /// t̄ normalised as t̄ · σ_tr,min / 2, clamped to 1 (docs/peers.md), or Filament's default 0.5
     /// where the mesh has no baked thickness. 0.5 stands for a material without a thickness map.
     float filament_thickness = -1.0f;
-    /// Separable: taps of each of the two 1-D passes, 11, 17 or 25 (jade/separable.hpp).
+    /// Separable: taps of each of the two 1-D passes, 11, 17 or 25 (docs/peers_separable.md).
     uint32_t separable_taps = 17;
     /// Burley: samples per pixel, 1 … 80 (HDRP's low, medium, high: 20, 40, 80).
     uint32_t burley_samples = 40;
 };
-
-/// The translucency LUT's parameterisation (texel i, j of a W × H R32_SFLOAT texture):
-///   cos θ_i = −1 + 2i/(W − 1)                 (cos θ = 0 exactly on texel (W − 1)/2)
-///   t_j     = t_max · (j/(H − 1))⁴            (t = 0 exactly on row 0; t > t_max clamps)
-/// sampled with linear filtering and clamp-to-edge at x = (cos θ + 1)/2 · (W − 1),
-/// y = (t/t_max)^¼ · (H − 1), texture coordinates ((x + ½)/W, (y + ½)/H). The fourth root
-/// (rather than √t) spaces rows like the Gaussian's σ² ∝ v⁴, i.e. σ ∝ v²: near t = 0, f(θ, t)
-/// has a kink whose smoothing scales with σ, and the interpolation error of a uniform σ grid
-/// stays above 1e-4 up to thousands of rows (see docs/shading.md for the measured table).
-struct LutLayout {
-    static constexpr double kMaxVariance = 25.0;  ///< t_max, rad²: f(θ, 25) is within 2e-6 of 1/π
-    uint32_t width = 1537, height = 161;
-    double cos_theta(uint32_t i) const { return -1.0 + 2.0 * double(i) / double(width - 1); }
-    double variance(uint32_t j) const;  ///< t_j above, rad²
-    /// Continuous texel coordinates (x, y) of (cos θ, t) before the +½ and division.
-    double x(double cos_theta) const;
-    double y(double t) const;
-};
-
-/// How the Tm mode evaluates F(cos θ, t) (docs/shading.md: costs, errors, the rule of Auto).
-/// Every path keeps the final 8-bit sRGB image within 0.5 of a level (99th percentile) and 1
-/// level (max) of a float64 evaluation of the same shading (tests/test_shading_error.cpp).
-enum class TmEvaluation : uint32_t {
-    Auto = 0,         ///< by the device: Alu on a CPU device (lavapipe), LutFiltered on any other
-    Lut = 1,          ///< the LUT as RGBA32F quads in a texel buffer, bilinear in the shader, 1 fetch a read
-    LutFiltered = 2,  ///< the LUT in R16_UNORM, one hardware-filtered sample a read (texture units)
-    Alu = 3,          ///< no memory read: Fourier series in cos θ and a closed form for small t
-};
-/// "auto", "lut", "lut16", "alu".
-std::string_view tm_evaluation_name(TmEvaluation evaluation);
-/// The inverse of tm_evaluation_name; throws jade::Error listing the names.
-TmEvaluation parse_tm_evaluation(std::string_view name);
 
 /// Where the Tm mode reads a back light's path inside the object (Transmission: the medium along
 /// the light's line, from its depth tile; docs/shading.md "Transmission"). Per vertex saves four
@@ -231,12 +130,14 @@ std::string_view light_path_sampling_name(LightPathSampling sampling);
 /// The inverse of light_path_sampling_name; throws jade::Error listing the names.
 LightPathSampling parse_light_path_sampling(std::string_view name);
 
-/// Fixed at Renderer construction: LUT sizes (GPU memory: width × height × 4 bytes each).
+namespace dev {
+struct RendererStudy;  // jade/dev/renderer.hpp: LUT sizes and evaluation paths, for studies
+struct RendererAccess;
+}  // namespace dev
+
+/// Fixed at Renderer construction.
 struct RendererOptions {
-    LutLayout lut;                                           ///< translucency LUT size (odd width, ≥ 3 × 2)
-    TmEvaluation tm_evaluation = TmEvaluation::Auto;         ///< Renderer::tm_evaluation() says what Auto chose
     LightPathSampling light_path = LightPathSampling::Auto;  ///< Renderer::light_path() says what Auto chose
-    uint32_t curvature_lut_width = 129, curvature_lut_height = 64;
     /// Mean curvature smoothing: iterations of 1-ring averaging after the cotangent Laplacian.
     uint32_t curvature_smoothing = 2;
     /// Transmission and shadows: texels of one light's depth tile (how far light travels inside
@@ -244,6 +145,8 @@ struct RendererOptions {
     /// surfaces along the light, RGBA32F, and two D32 buffers to peel them; 4 lights at most,
     /// 24·size² bytes each).
     uint32_t light_depth_size = 512;
+    /// Set by the tools and tests only (jade/dev/renderer.hpp); null: the defaults.
+    std::shared_ptr<const dev::RendererStudy> study;
 };
 
 /// Where record() draws: the caller's images, described by views.
@@ -266,26 +169,6 @@ struct RenderTarget {
     bool keep = false;
 };
 
-/// What the Tm shading of each pixel reads, as rasterised with one sample per pixel at its
-/// centre (Renderer::shading_inputs): to check the shader against an independent evaluation.
-/// Per pixel, rows top to bottom; `path` is light-major (light k's pixel p at k·w·h + p).
-struct ShadingInputs {
-    uint32_t width = 0, height = 0;
-    std::vector<glm::vec4> position;           ///< xyz: mesh units; w: 1 where the mesh covers the pixel, 0 elsewhere
-    std::vector<glm::vec4> normal;             ///< xyz: interpolated vertex normal (not unit); w: thickness
-    std::vector<glm::vec4> tm;                 ///< rgb: interpolated t_m; w: curvature
-    std::vector<glm::vec4> scattering_normal;  ///< xyz: interpolated scattering normal (not unit); w: 0
-    std::vector<glm::vec4> normal_spread;      ///< rgb: interpolated normal spread; w: 0
-    std::vector<float> path;                   ///< the path t (mesh units) of each transmitting light's attenuation
-    std::vector<uint8_t> transmits;            ///< per light: 1 when the draw adds its transmission
-};
-
-/// What the renderer keeps per vertex (position, normal, t_m, curvature, thickness, scattering
-/// normal, normal spread: floats) and its per-draw constants with 64 lights, in bytes: for
-/// memory plans (jade/scene.hpp).
-inline constexpr uint64_t kRendererVertexBytes = 68;
-inline constexpr uint64_t kRendererFrameDataBytes = 2944;
-
 /// Draws one mesh with one material. Owns its GPU buffers, LUT images and pipelines (created
 /// lazily per mode, sample count and format). Threading and lifetime as in the header comment.
 class Renderer : NonCopyable {
@@ -293,7 +176,7 @@ public:
     /// Builds the translucency LUT on the GPU (submits to the Context's queue and waits), or
     /// shares the one another living Renderer of the same device and LUT size already built
     /// (it does not depend on the material: a scene of many objects keeps one).
-    /// Throws jade::Error for an even or too small LUT width/height or missing format support.
+    /// Throws jade::Error for missing format support.
     explicit Renderer(Context& context, const RendererOptions& options = {});
     ~Renderer();
 
@@ -373,43 +256,14 @@ public:
     void record(VkCommandBuffer cmd, const RenderTarget& target, const Camera& camera, std::span<const Light> lights,
                 const RenderSettings& settings);
 
-    /// The per-pixel inputs of the draw render(camera, lights, settings) would make, with one
-    /// sample per pixel (settings.samples is ignored): see ShadingInputs. Submits and waits.
-    ShadingInputs shading_inputs(const Camera& camera, std::span<const Light> lights, const RenderSettings& settings);
-    /// The path RendererOptions::tm_evaluation resolved to on this device (never Auto).
-    TmEvaluation tm_evaluation() const;
     /// Where RendererOptions::light_path resolved to for the current mesh (never Auto; PerFragment
     /// before set_mesh).
     LightPathSampling light_path() const;
 
-    const LutLayout& lut_layout() const;  ///< as given in RendererOptions
-    /// The translucency LUT as the GPU built it, width × height floats, row j = variance(j).
-    /// Reads back from the GPU (submits and waits).
-    std::vector<float> read_lut();
-    /// Signed mean curvature per bake vertex of the current mesh (1/mesh units, > 0 convex).
-    const std::vector<float>& curvature() const;
-    /// The curvature LUT's length scale d̄ (mesh units): rows are at κ·d̄ = v/(1 − v), v = j/(H − 1).
-    double curvature_scale() const;
-
 private:
+    friend struct dev::RendererAccess;  // the introspection of jade/dev/renderer.hpp
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };
-
-/// Mean curvature per bake vertex from the cotangent Laplacian: H = −(Δx · n)/2 with
-/// Δx_i = 1/(2A_i) Σ_j (cot α_ij + cot β_ij)(x_j − x_i), A_i the vertex area. 1/mesh units,
-/// positive where convex (1/R on a sphere of radius R), then `smoothing` iterations of
-/// area-weighted 1-ring averaging (scanned meshes are noisy at the scale of one edge).
-std::vector<float> mean_curvature(const PreparedMesh& mesh, uint32_t smoothing = 2);
-
-/// The host-side finish of Renderer::render (and SceneRenderer::render), for images read back
-/// another way too: tone mapping, and the false-colour map with its legend. Text for figures:
-/// jade/overlay.hpp.
-void apply_tone_map(RenderedImage& image, ToneMap tone_map, float exposure = 1.0f);
-/// The colour map of TmFalseColor (viridis), linear RGB, for x in [0, 1].
-glm::vec3 false_color(float x);
-/// Draws the TmFalseColor colour bar, labelled `min_value` at the bottom and `max_value` at the
-/// top, at the right edge of the image.
-void draw_color_bar(RenderedImage& image, float min_value, float max_value, std::string_view title = "t_m");
 
 }  // namespace jade

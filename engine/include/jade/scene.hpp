@@ -92,7 +92,7 @@ struct PassPlan {
     bool resident = false;   ///< its buffers stay allocated while the SceneRenderer lives
     std::vector<BufferEstimate> buffers;
     uint64_t bytes() const;         ///< Σ buffers and images
-    uint64_t buffer_bytes() const;  ///< Σ buffers only (comparable with ObjectCounts::device_buffer_bytes)
+    uint64_t buffer_bytes() const;  ///< Σ buffers only (comparable with the device buffer bytes the Context allocated)
 };
 
 /// The variant of shaders/mesh.frag an object is drawn with (its specialisation constants).
@@ -163,12 +163,12 @@ struct SceneSettings {
     /// Shading of translucent objects: Tm (the default) or TmFalseColor; opaque objects are
     /// always Lambert. Curvature is not a scene mode.
     ShadingMode mode = ShadingMode::Tm;
-    RendererOptions renderer;  ///< LUT sizes (counted in the plan)
+    RendererOptions renderer;  ///< as the SceneRenderer builds its Renderers (the LUT size is counted in the plan)
 };
 
 /// Analyses the scene (CPU only: prepares every mesh). Memory is estimated from the vertex and
 /// triangle counts with the byte sizes of the structures engine/src/bake and engine/src/shading
-/// upload (documented in bake/buffer_estimate.cpp); tests compare it with Context::created_objects().
+/// upload (documented in bake/buffer_estimate.cpp); tests compare it with what the Context allocated.
 /// Throws jade::Error naming the object for an empty or invalid mesh, or a Curvature mode.
 ScenePlan plan_scene(const Scene& scene, const SceneSettings& settings, const StaticBakeSource& source = {});
 

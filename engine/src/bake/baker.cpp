@@ -20,6 +20,17 @@
 
 namespace jade {
 
+const dev::BakeStudy& dev::study_of(const BakeSettings& settings)
+{
+    static const BakeStudy defaults;
+    return settings.study ? *settings.study : defaults;
+}
+
+void dev::set_study(BakeSettings& settings, const BakeStudy& study)
+{
+    settings.study = std::make_shared<const BakeStudy>(study);
+}
+
 BakeSettings BakeSettings::preset(Quality q)
 {
     BakeSettings s;

@@ -16,7 +16,8 @@
 #include "gpu/timer.hpp"
 
 #include <jade/bake.hpp>
-#include <jade/clock.hpp>
+#include <jade/dev/bake.hpp>
+#include <jade/dev/clock.hpp>
 #include <jade/context.hpp>
 
 #include "bake_interface.h"     // the passes' push constants, shared with the shaders
@@ -102,8 +103,8 @@ inline void validate_tm_settings(const BakeSettings& s, const gpu::Context& ctx)
 {
     if (!(s.tm_opening_ratio > 0) || !std::isfinite(s.tm_opening_ratio))
         throw Error("t_m: the opening ratio θ must be > 0");
-    if (s.tm_float64_sums && !ctx.info().float64)
-        throw Error("t_m: float64 sums (BakeSettings::tm_float64_sums) need shaderFloat64, which this device lacks");
+    if (dev::study_of(s).tm_float64_sums && !ctx.info().float64)
+        throw Error("t_m: float64 sums (dev::BakeStudy::tm_float64_sums) need shaderFloat64, which this device lacks");
 }
 
 // BakeResult::scattering_normal and normal_spread from the per-channel normal sums N_c
@@ -182,7 +183,7 @@ struct Baker::Impl {
     std::optional<gpu::Kernel> grid_splat, grid_gather, grid_bounds, grid_boxes;
     std::optional<gpu::Kernel>
         grid_axis[2][2][bake::kGridMaxHalfWidth + 1];  // [fixed-point input][blur, restrict][half-width]
-    std::optional<gpu::Kernel> tm_exact_f64[2][4];     // BakeSettings::tm_float64_sums
+    std::optional<gpu::Kernel> tm_exact_f64[2][4];     // dev::BakeStudy::tm_float64_sums
 
     explicit Impl(gpu::Context& c) : ctx(c) {}
 

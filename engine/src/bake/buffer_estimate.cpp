@@ -4,7 +4,7 @@
 // Sizes are written with the same element types and constants the passes allocate with. What
 // depends on the geometry rather than on the counts is estimated with three constants measured
 // on the test meshes (sphere, box, grid, bunny; tests/test_scene.cpp compares the total with the
-// bytes the Context really allocated, Context::created_objects().device_buffer_bytes):
+// bytes the Context really allocated, dev::created_objects(context).device_buffer_bytes):
 //   - the triangle BVH (leaves of ≤ kTriangleLeafSize triangles) has about kRayNodesPerTriangle
 //     nodes per triangle, the point tree (leaves of ≤ kPointLeafSize points)
 //     kPointNodesPerVertex nodes per vertex;

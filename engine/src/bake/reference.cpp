@@ -10,7 +10,7 @@
 
 #include <jade/bake.hpp>
 #include <jade/error.hpp>
-#include <jade/reference.hpp>
+#include <jade/dev/reference.hpp>
 
 #include <glm/geometric.hpp>
 
@@ -196,16 +196,6 @@ glm::vec3 ao_ray_direction(glm::vec3 normal, uint32_t vertex, uint32_t k, const 
     const bake::RaySample s =
         bake::ray_sample(bake::vertex_hashes(settings.seed, vertex), k, settings.rays, settings.low_discrepancy);
     return glm::vec3(bake::cosine_direction(glm::normalize(glm::dvec3(normal)), s.u1, s.u2));
-}
-
-glm::vec3 thickness_ray_direction(glm::vec3 normal, uint32_t vertex, uint32_t k, const ThicknessSettings& settings)
-{
-    check_thickness_settings(settings, "thickness_ray_direction");
-    if (k >= settings.rays)
-        throw Error("thickness_ray_direction: ray " + std::to_string(k) + " out of range for " +
-                    std::to_string(settings.rays) + " rays");
-    const bake::RaySample s = bake::ray_sample(bake::vertex_hashes(settings.seed, vertex), k, settings.rays, true);
-    return glm::vec3(bake::cone_direction(-glm::normalize(glm::dvec3(normal)), s.u1, s.u2, cos_cone(settings)));
 }
 
 namespace {

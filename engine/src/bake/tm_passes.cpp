@@ -162,7 +162,7 @@ void Baker::Impl::record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSetting
     record_near(cmd, m, slot_begin, slot_end);
     mark("t_m near field");
     if (m.exact) {
-        const auto& kernel = exact_kernel(m.variant, s.tm_float64_sums);
+        const auto& kernel = exact_kernel(m.variant, dev::study_of(s).tm_float64_sums);
         for (uint32_t begin = 0; begin < n; begin += kExactSourcesPerDispatch) {
             ExactPush push{n, begin, std::min(n, begin + kExactSourcesPerDispatch)};
             kernel.dispatch(cmd, n, push,

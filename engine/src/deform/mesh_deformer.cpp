@@ -1,6 +1,6 @@
 // deform/mesh_deformer.cpp - jade::MeshDeformer: the GPU passes that move the bake vertices
 // (procedural or skinned) and recompute normals and areas, each a gpu::Kernel.
-#include <jade/clock.hpp>
+#include <jade/dev/clock.hpp>
 #include <jade/context.hpp>
 #include <jade/deform.hpp>
 #include <jade/error.hpp>

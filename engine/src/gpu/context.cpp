@@ -1,3 +1,4 @@
+#include <jade/dev/context.hpp>
 #include "gpu/context.hpp"
 
 #include <algorithm>
@@ -482,7 +483,10 @@ Context::Context(const AdoptedVulkan& host, const ContextOptions& options)
 {
 }
 bool Context::adopted() const { return gpu_->adopted(); }
-ObjectCounts Context::created_objects() const { return gpu_->created_objects(); }
+ObjectCounts dev::created_objects(const Context& context)
+{
+    return gpu_of(const_cast<Context&>(context)).created_objects();
+}
 gpu::Context& gpu_of(Context& context) { return *context.gpu_; }
 
 }  // namespace jade

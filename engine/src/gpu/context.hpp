@@ -5,6 +5,7 @@
 #include "gpu/vk.hpp"
 
 #include <jade/context.hpp>
+#include <jade/dev/context.hpp>  // ObjectCounts
 
 #include <atomic>
 #include <functional>
@@ -59,7 +60,7 @@ public:
         set_name(type, reinterpret_cast<uint64_t>(handle), name);
     }
 
-    /// Counts one created object for Context::created_objects() (buffer, image, pipeline);
+    /// Counts one created object for dev::created_objects() (buffer, image, pipeline);
     /// `device_bytes`: the size of a device-local (not staging) buffer.
     void count_created(VkObjectType type, bool compute = false, uint64_t device_bytes = 0) const;
     ObjectCounts created_objects() const

@@ -134,7 +134,7 @@ OwnedPipelineLayout make_pipeline_layout(const Context& ctx, VkDescriptorSetLayo
 OwnedShaderModule make_shader_module(const Context& ctx, std::span<const uint32_t> spirv, const char* name);
 
 /// The owner of a pipeline vkCreate{Compute,Graphics}Pipelines just made: named `name` and
-/// counted as a compute or graphics pipeline (Context::created_objects).
+/// counted as a compute or graphics pipeline (dev::created_objects).
 OwnedPipeline own_pipeline(const Context& ctx, VkPipeline pipeline, const char* name, bool compute);
 
 /// Full memory barrier between compute passes (writes of one visible to reads of the next).

@@ -1,6 +1,7 @@
 // io/bake_cache.cpp - the on-disk bake cache of jade/cache.hpp.
 #include <jade/cache.hpp>
 #include <jade/context.hpp>
+#include <jade/dev/bake.hpp>
 #include <jade/error.hpp>
 #include <jade/io.hpp>
 
@@ -88,7 +89,7 @@ uint64_t bake_key(const PreparedMesh& mesh, const Material& material, const Bake
     f.value(s.method);
     f.value(s.tm_opening_ratio);
     f.value(s.tm_grid_resolution);
-    f.value(s.tm_float64_sums);
+    f.value(dev::study_of(s).tm_float64_sums);
     // The thickness pass runs only for a material with transmission (jade/bake.hpp).
     const bool thickness = material.transmission.enabled() && s.thickness.enabled();
     f.value(thickness);

@@ -5,6 +5,7 @@
 // rather than known; deform/buffer_estimate.hpp; shading/buffer_estimate.hpp). The plan only
 // puts them together. Images (the LUTs) are listed but are not buffers; host-visible staging
 // is not counted.
+#include <jade/dev/renderer.hpp>  // dev::study_of: the LUT size
 #include <jade/scene.hpp>
 
 #include "bake/buffer_estimate.hpp"
@@ -235,8 +236,10 @@ ScenePlan plan_scene(const Scene& scene, const SceneSettings& settings, const St
         o.passes.push_back({PassKind::Draw, true, true, shading::estimate_draw_buffers(n, tris, obj.material)});
         plan.objects.push_back(std::move(o));
     }
-    if (!plan.objects.empty())
-        plan.shared = shading::estimate_lut_buffers(settings.renderer.lut, settings.renderer.tm_evaluation);
+    if (!plan.objects.empty()) {
+        const dev::RendererStudy& study = dev::study_of(settings.renderer);
+        plan.shared = shading::estimate_lut_buffers(study.lut, study.tm_evaluation);
+    }
     return plan;
 }
 

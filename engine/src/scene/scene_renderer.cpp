@@ -6,7 +6,8 @@
 // Deforming objects also keep a MeshDeformer and a DynamicBake. render() runs the per-frame
 // passes, then records every object's draw into one set of targets (the first clears them,
 // the others load them) and reads the image back.
-#include <jade/clock.hpp>
+#include <jade/dev/overlay.hpp>
+#include <jade/dev/clock.hpp>
 #include <jade/scene.hpp>
 
 #include "gpu/buffer.hpp"

@@ -1,4 +1,5 @@
 // shading/buffer_estimate.cpp - the renderer's and the LUT's buffers, as they allocate them.
+#include <jade/dev/lut.hpp>
 #include "shading/buffer_estimate.hpp"
 
 #include "gpu/buffer.hpp"

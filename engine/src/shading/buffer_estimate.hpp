@@ -2,13 +2,22 @@
 // plan_scene, jade/scene.hpp). Private to the engine.
 #pragma once
 
+#include <jade/dev/lut.hpp>
+#include <jade/dev/renderer.hpp>  // TmEvaluation
 #include <jade/render.hpp>
 #include <jade/scene.hpp>
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace jade::shading {
+
+/// What the renderer keeps per vertex (position, normal, t_m, curvature, thickness, scattering
+/// normal, normal spread: floats) and its per-draw constants with 64 lights, in bytes: for
+/// memory plans (jade/scene.hpp).
+inline constexpr uint64_t kRendererVertexBytes = 68;
+inline constexpr uint64_t kRendererFrameDataBytes = 2944;
 
 /// What one Renderer holds of its own while it draws a mesh of `vertices` bake vertices and
 /// `triangles` triangles (shading/renderer.cpp: its Vertex and FrameData, whose sizes it

@@ -1,5 +1,5 @@
-// shading/burley_diffusion.cpp - jade/burley_diffusion.hpp.
-#include <jade/burley_diffusion.hpp>
+// shading/burley_diffusion.cpp - jade/dev/burley_diffusion.hpp.
+#include <jade/dev/burley_diffusion.hpp>
 #include <jade/error.hpp>
 
 #include <cmath>

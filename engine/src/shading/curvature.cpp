@@ -1,4 +1,5 @@
 // shading/curvature.cpp - per-vertex mean curvature for the curvature shading mode.
+#include <jade/dev/renderer.hpp>
 #include <jade/error.hpp>
 #include <jade/render.hpp>
 

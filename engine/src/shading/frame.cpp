@@ -3,7 +3,8 @@
 
 #include "gpu/context.hpp"
 
-#include <jade/burley_diffusion.hpp>
+#include <jade/dev/renderer.hpp>
+#include <jade/dev/burley_diffusion.hpp>
 #include <jade/context.hpp>
 #include <jade/error.hpp>
 

@@ -4,7 +4,7 @@
 #include "gpu/context.hpp"
 #include "gpu/kernel.hpp"
 
-#include <jade/lut.hpp>
+#include <jade/dev/lut.hpp>
 
 #include "jade_shaders.hpp"
 #include "lut_interface.h"  // struct LutBuildPush, shared with lut_build.comp

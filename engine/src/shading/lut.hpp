@@ -1,6 +1,6 @@
 // shading/lut.hpp - the two shading look-up tables as GPU textures.
 //
-//   TranslucencyLut  f(cos θ, t) of jade/lut.hpp, R32_SFLOAT, built on the GPU by
+//   TranslucencyLut  f(cos θ, t) of jade/dev/lut.hpp, R32_SFLOAT, built on the GPU by
 //                    shaders/lut_build.comp (parameterisation: jade::LutLayout); mesh.frag
 //                    reads the same texels in R16_UNORM for the sampler of a GPU, or (only
 //                    with TmEvaluation::Lut) repacked as one RGBA32F "quad" per cell (the 2×2
@@ -16,6 +16,7 @@
 #include "gpu/image.hpp"
 #include "gpu/texel_view.hpp"
 
+#include <jade/dev/lut.hpp>
 #include <jade/material.hpp>
 #include <jade/render.hpp>
 

@@ -1,9 +1,9 @@
 // shading/lut_reference.cpp - float64 references of the translucency and curvature LUTs
-// (definitions and parameterisations in jade/lut.hpp).
+// (definitions and parameterisations in jade/dev/lut.hpp).
 #include "bake/disk_integral.hpp"
 
 #include <jade/error.hpp>
-#include <jade/lut.hpp>
+#include <jade/dev/lut.hpp>
 
 #include "lut_interface.h"  // JADE_LUT_SERIES_FROM_T, shared with lut_build.comp
 

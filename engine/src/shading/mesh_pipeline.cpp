@@ -5,6 +5,7 @@
 #include "gpu/context.hpp"
 #include "shading/separable.hpp"
 
+#include <jade/dev/renderer.hpp>
 #include <jade/error.hpp>
 
 #include "jade_shaders.hpp"

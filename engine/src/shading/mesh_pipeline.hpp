@@ -5,8 +5,10 @@
 #pragma once
 
 #include "gpu/pipeline.hpp"
+#include "shading/buffer_estimate.hpp"  // kRendererVertexBytes, kRendererFrameDataBytes
 #include "shading/light_depth.hpp"
 
+#include <jade/dev/renderer.hpp>
 #include <jade/render.hpp>
 
 #include "shading_interface.h"  // FramePush, GpuLight, FrameData, shared with the shaders

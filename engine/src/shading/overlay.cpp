@@ -1,6 +1,6 @@
 // shading/overlay.cpp - host-side image helpers: tone mapping, the false-colour map and its
 // colour bar, and a tiny built-in bitmap font for labels (no font dependency).
-#include <jade/overlay.hpp>
+#include <jade/dev/overlay.hpp>
 #include <jade/render.hpp>
 
 #include <glm/common.hpp>

@@ -21,8 +21,10 @@
 #include "shading/separable.hpp"
 #include "shading/transmission_table.hpp"
 
+#include <jade/dev/overlay.hpp>
 #include <jade/bake.hpp>
 #include <jade/context.hpp>
+#include <jade/dev/renderer.hpp>
 #include <jade/render.hpp>
 
 #include "jade_shaders.hpp"
@@ -95,13 +97,13 @@ struct Renderer::Impl {
         : ctx(c), options(o), sampler(shading::make_lut_sampler(c)),
           nearest(
               gpu::make_sampler(c, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "light depth sampler")),
-          lut(shading::shared_translucency_lut(c, o.lut)),
+          lut(shading::shared_translucency_lut(c, dev::study_of(o).lut)),
           placeholder(c,
                       {"curvature LUT placeholder", 1, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_SAMPLED_BIT}),
           frame_data(c, sizeof(FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                      "frame data"),
-          evaluation(shading::resolve_evaluation(o.tm_evaluation, c)), pipelines(c), transmission_table(c),
-          separable_passes(c)
+          evaluation(shading::resolve_evaluation(dev::study_of(o).tm_evaluation, c)), pipelines(c),
+          transmission_table(c), separable_passes(c)
     {
         if (evaluation == TmEvaluation::Lut) lut->build_quads(c);  // the only path that reads them
         // Sampled-image descriptors need the image in its layout even if never read.
@@ -219,7 +221,8 @@ struct Renderer::Impl {
     const gpu::Image& curvature_image()
     {
         if (!curvature_lut && material) {
-            curvature_lut.emplace(ctx, *material, options.curvature_lut_width, options.curvature_lut_height);
+            curvature_lut.emplace(ctx, *material, dev::study_of(options).curvature_lut_width,
+                                  dev::study_of(options).curvature_lut_height);
             curvature_lut_profiles = material->profile;
         }
         return curvature_lut ? curvature_lut->image() : placeholder;
@@ -475,13 +478,6 @@ RenderedImage Renderer::render(const Camera& camera, std::span<const Light> ligh
     return impl_->render(camera, lights, settings, uint32_t(settings.mode));
 }
 
-ShadingInputs Renderer::shading_inputs(const Camera& camera, std::span<const Light> lights,
-                                       const RenderSettings& settings)
-{
-    return impl_->shading_inputs(camera, lights, settings);
-}
-
-TmEvaluation Renderer::tm_evaluation() const { return impl_->evaluation; }
 LightPathSampling Renderer::light_path() const { return impl_->light_path; }
 
 void Renderer::record(VkCommandBuffer cmd, const RenderTarget& target, const Camera& camera,
@@ -491,13 +487,47 @@ void Renderer::record(VkCommandBuffer cmd, const RenderTarget& target, const Cam
     impl_->record(cmd, target, camera, lights, settings, uint32_t(settings.mode));
 }
 
-const LutLayout& Renderer::lut_layout() const { return impl_->lut->layout(); }
-std::vector<float> Renderer::read_lut() { return impl_->lut->read(impl_->ctx); }
-const std::vector<float>& Renderer::curvature() const { return impl_->curvature; }
-double Renderer::curvature_scale() const
+// The introspection of jade/dev/renderer.hpp.
+struct dev::RendererAccess {
+    static Renderer::Impl& impl(const Renderer& renderer) { return *renderer.impl_; }
+};
+
+namespace dev {
+
+const RendererStudy& study_of(const RendererOptions& options)
 {
-    if (!impl_->material) throw Error("Renderer::curvature_scale: no material (call set_material first)");
-    return shading::CurvatureLut::length_scale(*impl_->material);
+    static const RendererStudy defaults;
+    return options.study ? *options.study : defaults;
 }
 
+void set_study(RendererOptions& options, const RendererStudy& study)
+{
+    options.study = std::make_shared<const RendererStudy>(study);
+}
+
+ShadingInputs shading_inputs(Renderer& renderer, const Camera& camera, std::span<const Light> lights,
+                             const RenderSettings& settings)
+{
+    return RendererAccess::impl(renderer).shading_inputs(camera, lights, settings);
+}
+
+TmEvaluation tm_evaluation(const Renderer& renderer) { return RendererAccess::impl(renderer).evaluation; }
+const LutLayout& lut_layout(const Renderer& renderer) { return RendererAccess::impl(renderer).lut->layout(); }
+
+std::vector<float> read_lut(Renderer& renderer)
+{
+    auto& m = RendererAccess::impl(renderer);
+    return m.lut->read(m.ctx);
+}
+
+const std::vector<float>& curvature(const Renderer& renderer) { return RendererAccess::impl(renderer).curvature; }
+
+double curvature_scale(const Renderer& renderer)
+{
+    const auto& m = RendererAccess::impl(renderer);
+    if (!m.material) throw Error("dev::curvature_scale: no material (call set_material first)");
+    return shading::CurvatureLut::length_scale(*m.material);
+}
+
+}  // namespace dev
 }  // namespace jade

@@ -4,9 +4,9 @@
 #include "gpu/context.hpp"
 #include "shading/frame.hpp"
 
-#include <jade/burley_diffusion.hpp>
+#include <jade/dev/burley_diffusion.hpp>
 #include <jade/error.hpp>
-#include <jade/separable.hpp>
+#include <jade/dev/separable.hpp>
 
 #include "jade_shaders.hpp"
 

@@ -5,10 +5,10 @@
 //      demo's pre-scatter texturing; the same as after it for Jade's constant k_d) plus
 //      SSSSTransmittance's light, with the linear depth in alpha, into an irradiance target of
 //      its own (RGBA32F, as multisampled as the draw, resolved: averaged);
-//   2. a horizontal 1-D pass of the kernel (jade/separable.hpp) into a second image;
+//   2. a horizontal 1-D pass of the kernel (jade/dev/separable.hpp) into a second image;
 //   3. a vertical pass added (blended ONE + ONE, alpha kept) to the caller's single-sample image
 //      (the resolve, or the colour when samples = 1).
-// The Burley mode (screen-space Burley diffusion as HDRP, jade/burley_diffusion.hpp) shares step 1
+// The Burley mode (screen-space Burley diffusion as HDRP, jade/dev/burley_diffusion.hpp) shares step 1
 // and replaces 2 and 3 by one pass of importance-sampled taps (burley_blur.frag), added likewise.
 // Only translucent pixels pay: the passes draw a fullscreen triangle clipped by a scissor to the
 // mesh's bounding box on screen, and discard pixels whose irradiance alpha (the depth) is 0 at
@@ -45,7 +45,7 @@ inline constexpr VkFormat kSeparableIrradianceFormat = VK_FORMAT_R32G32B32A32_SF
 /// The kernel for `taps` and the transmittance table of the material, as the shaders read them.
 /// The table spans d ∈ [0, reach], reach the widest channel's radius_for_tail(1e-4), at
 /// d_i = reach · (i / (STEPS − 1))² (the narrowest channel's steep start needs the dense steps).
-/// With the Burley mode's shapes and `burley_samples` radii (jade/burley_diffusion.hpp).
+/// With the Burley mode's shapes and `burley_samples` radii (jade/dev/burley_diffusion.hpp).
 SeparableData separable_data(const Material& material, uint32_t taps, uint32_t burley_samples);
 
 class SeparablePasses {

@@ -1,7 +1,7 @@
-// shading/separable_kernel.cpp - jade/separable.hpp: the separable kernel and the transmittance
+// shading/separable_kernel.cpp - jade/dev/separable.hpp: the separable kernel and the transmittance
 // profile fitted to a material's profiles, in float64.
 #include <jade/error.hpp>
-#include <jade/separable.hpp>
+#include <jade/dev/separable.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,5 @@
 // shading/view.cpp - cameras, light presets and the names of modes and tone maps.
+#include <jade/dev/renderer.hpp>
 #include <jade/error.hpp>
 #include <jade/render.hpp>
 

@@ -1,4 +1,4 @@
-// jade/burley_diffusion.hpp - the sampling of the Burley shading mode: screen-space Burley
+// jade/dev/burley_diffusion.hpp - the sampling of the Burley shading mode: screen-space Burley
 // diffusion as Unity HDRP does it (Golubev 2018, "Efficient Screen-Space Subsurface Scattering
 // Using Burley's Normalized Diffusion in Real-Time", SIGGRAPH course; read, not copied). Each pixel
 // draws its samples by the exact inverse CDF of the Burley profile of the material's widest

@@ -1,4 +1,4 @@
-// jade/clock.hpp - the wall clock Jade's timings use (BakeTimings::wall_ms, the passes'
+// jade/dev/clock.hpp - the wall clock Jade's timings use (BakeTimings::wall_ms, the passes'
 // wall_ms, the CLI's benchmarks): a monotonic clock, milliseconds as double. Header-only.
 #pragma once
 

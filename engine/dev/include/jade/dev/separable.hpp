@@ -1,4 +1,4 @@
-// jade/separable.hpp - the kernel and transmittance of the Separable shading mode: Jimenez's
+// jade/dev/separable.hpp - the kernel and transmittance of the Separable shading mode: Jimenez's
 // separable subsurface scattering (Jimenez, Zsolnai, Jarabo, Freude, Auzinger, Wu, von der Pahlen,
 // Wimmer, Gutierrez 2015, "Separable Subsurface Scattering"; the screen-space version of Jimenez,
 // Sundstedt, Gutierrez 2009/2012, reference code iryoku/separable-sss), fitted to a material's own

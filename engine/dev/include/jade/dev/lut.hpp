@@ -1,4 +1,5 @@
-// jade/lut.hpp - float64 reference functions of the shading look-up tables.
+// jade/dev/lut.hpp - the translucency LUT's layout (dev::RendererStudy sets its size) and the
+// float64 reference functions of the shading look-up tables.
 //
 // Translucency LUT (the poster's f_r / k_d):
 //   f(θ, t) = ∫_ℝ max(cos(θ − φ), 0) · G_t(φ) dφ,   G_t(φ) = e^{−φ²/2t} / √(2πt)
@@ -25,7 +26,27 @@
 
 #include <jade/material.hpp>
 
+#include <cstdint>
+
 namespace jade {
+
+/// The translucency LUT's parameterisation (texel i, j of a W × H R32_SFLOAT texture):
+///   cos θ_i = −1 + 2i/(W − 1)                 (cos θ = 0 exactly on texel (W − 1)/2)
+///   t_j     = t_max · (j/(H − 1))⁴            (t = 0 exactly on row 0; t > t_max clamps)
+/// sampled with linear filtering and clamp-to-edge at x = (cos θ + 1)/2 · (W − 1),
+/// y = (t/t_max)^¼ · (H − 1), texture coordinates ((x + ½)/W, (y + ½)/H). The fourth root
+/// (rather than √t) spaces rows like the Gaussian's σ² ∝ v⁴, i.e. σ ∝ v²: near t = 0, f(θ, t)
+/// has a kink whose smoothing scales with σ, and the interpolation error of a uniform σ grid
+/// stays above 1e-4 up to thousands of rows (see docs/shading.md for the measured table).
+struct LutLayout {
+    static constexpr double kMaxVariance = 25.0;  ///< t_max, rad²: f(θ, 25) is within 2e-6 of 1/π
+    uint32_t width = 1537, height = 161;
+    double cos_theta(uint32_t i) const { return -1.0 + 2.0 * double(i) / double(width - 1); }
+    double variance(uint32_t j) const;  ///< t_j above, rad²
+    /// Continuous texel coordinates (x, y) of (cos θ, t) before the +½ and division.
+    double x(double cos_theta) const;
+    double y(double t) const;
+};
 
 /// f(θ, t) above, accurate to about 1e-12 absolute. cos_theta is clamped to [−1, 1];
 /// t ≥ 0 in rad² (Fourier series for t ≥ 0.1, direct Gauss–Kronrod integration below).

@@ -1,7 +1,7 @@
-// jade/reference.hpp - float64 CPU references of the bake (jade/bake.hpp): the same rays and
+// jade/dev/reference.hpp - float64 CPU references of the bake (jade/bake.hpp): the same rays and
 // the same vertex-disk rule as the GPU passes, in double precision, for validating a bake and
 // for tools. Slow (all vertex pairs for t_m); an embedder that only bakes does not need them.
-// Part of the core library jade::jade.
+// Declared for jade::dev, defined in jade::jade.
 #pragma once
 
 #include <jade/bake.hpp>
@@ -20,9 +20,6 @@ namespace jade {
 /// (nearest hit) over a BVH. `vertices` as in reference_ao.
 std::vector<double> reference_thickness(const PreparedMesh& mesh, const ThicknessSettings& settings,
                                         std::span<const uint32_t> vertices = {});
-
-/// The direction of thickness ray k of `vertex` (unit, world space, in the cone about −normal).
-glm::vec3 thickness_ray_direction(glm::vec3 normal, uint32_t vertex, uint32_t k, const ThicknessSettings& settings);
 
 /// float64 CPU reference of the AO pass: the same rays as the GPU pass, intersected in double
 /// precision over a BVH, on all hardware threads. `vertices` limits it to a subset (empty = all);
