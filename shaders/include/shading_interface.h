@@ -123,11 +123,13 @@ struct FrameData {
     vec4
         transmission_table_map;  // 1 / step of the attenuation table (mesh units), last texel, last interval, texels a part
     GpuLight transmitters[JADE_MAX_TRANSMITTERS];  // the lights drawn with transmission (transmission.glsl)
-    // The t_m mode's shadow filter (shadow.glsl): rgb the Burley shape d per channel, w the shape
-    // sampled (the widest channel's), mesh units; w = 0: the plain filter. Tap i's radius at
-    // [i / 4][i % 4], mesh units (the sampled shape's inverse CDF at (i + ½)/TAPS).
+    // The t_m mode's shadow filter (shadow.glsl, shading::soft_shadow_kernel): x the kernel's
+    // median radius (mesh units; 0: the plain filter), yzw unused; per tap, its offset on the
+    // golden-angle disk (xy = r (cos, sin) of i times the golden angle, z = r, mesh units) and its
+    // weight per channel (rgb, R_c(r)/pdf(r), each channel summing to 1).
     vec4 soft_shadow;
-    vec4 soft_shadow_radius[JADE_SOFT_SHADOW_TAPS / 4];
+    vec4 soft_shadow_taps[JADE_SOFT_SHADOW_TAPS];
+    vec4 soft_shadow_weights[JADE_SOFT_SHADOW_TAPS];
     GpuLight lights[JADE_MAX_LIGHTS];
 };
 
@@ -160,7 +162,7 @@ static_assert(sizeof(Vertex) == 68 && sizeof(TablePush) == 84 && sizeof(PackPush
               sizeof(GpuLight) == 32 && sizeof(LightTile) == 96);
 static_assert(sizeof(FrameData) == 9 * 16 + JADE_MAX_LIGHT_DEPTH_TILES * 96 + JADE_COLOR_MAP_STOPS * 16 + 16 +
                                        (JADE_MAX_TRANSMITTERS + JADE_MAX_LIGHTS) * 32 +
-                                       (1 + JADE_SOFT_SHADOW_TAPS / 4) * 16,
+                                       (1 + 2 * JADE_SOFT_SHADOW_TAPS) * 16,
               "FrameData must have no padding: scalar layout packs it so");
 }  // namespace jade::shading
 #endif

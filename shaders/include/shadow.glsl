@@ -55,9 +55,6 @@ float shadow_visibility(uint tile, vec3 position, vec3 n, vec3 l)
     return lit * 0.25;
 }
 
-// The Burley profile R(r) = (e^{−r/d} + e^{−r/(3d)}) / (8π d r) per channel (jade/burley_diffusion.hpp).
-vec3 soft_shadow_profile(vec3 d, float r) { return (exp(-r / d) + exp(-r / (3.0 * d))) / (8.0 * JADE_PI * d * r); }
-
 // The t_m mode's shadow, per channel: light that enters the surface beside a shadow diffuses
 // under it, so what a point gets is the visibility around it weighted by the scattering profile,
 // ∫ R(|x − s|) V(s) ds over the surface. Across a straight shadow edge on a plane that is the
@@ -65,9 +62,12 @@ vec3 soft_shadow_profile(vec3 d, float r) { return (exp(-r / d) + exp(-r / (3.0 
 // JADE_SOFT_SHADOW_TAPS points s on the tangent plane at the radii of the exact inverse CDF of
 // the widest channel's Burley shape, on a golden-angle disk rotated per pixel (interleaved
 // gradient noise, as the Burley mode's taps), each compared with the light's tile as
-// shadow_visibility compares the point (tangent-plane points of a convex body lie outside it);
-// each weighs R_c(r)/pdf(r) per channel, renormalised. Where the kernel's median radius is under
-// a texel of the tile the map cannot show the softening: shadow_visibility's filter instead.
+// shadow_visibility compares the point, and weighted per channel by R_c(r)/pdf(r), normalised:
+// offsets and weights are the material's, computed once (shading::soft_shadow_kernel). The
+// points are projected into the tile through its derivative at the point (exact for a
+// directional light's orthographic tile, to first order in r/distance for a point light's).
+// Where the kernel's median radius is under a texel of the tile the map cannot show the
+// softening: shadow_visibility's filter instead.
 // A tap counts as shadowed only where the occluder is nearer to the light than the tap by more
 // than kSoftShadowTolerance times the tap's radius: the tangent plane of a lit convex body runs
 // behind the body's own silhouette as seen from the light, within about its radius of it, and the
@@ -76,41 +76,53 @@ vec3 soft_shadow_profile(vec3 d, float r) { return (exp(-r / d) + exp(-r / (3.0 
 // bunny_jewel_front, camel_wax_front and dragon_marble_front of the fidelity set 0.129, 0.159,
 // 0.188 against 0.166, 0.189, 0.213 (masked LDR FLIP; the plain filter's 0.130, 0.160, 0.210).
 const float kSoftShadowTolerance = 2.0;
+
+// Whether the light reaches tap (xy: its offset on the disk before the pixel's turn, z: its
+// radius, mesh units) of the kernel centred at q0 of tile t, whose tangent axes map to q1 and q2
+// per mesh unit; front: the point faces the light (layer 0), else layer 1. Outside the tile, lit.
+bool soft_shadow_tap_visible(vec4 tap, vec3 q0, vec3 q1, vec3 q2, vec2 turn, float tolerance, uint t, bool front)
+{
+    vec3 q = q0 + (turn.x * tap.x - turn.y * tap.y) * q1 + (turn.y * tap.x + turn.x * tap.y) * q2;
+    if (any(lessThan(q.xy, vec2(0.0))) || any(greaterThan(q.xy, vec2(1.0)))) return true;
+    float size = data.light_depth_map.x;
+    ivec2 texel = clamp(ivec2(q.xy * size), ivec2(0), ivec2(int(size) - 1)) + ivec2(int(t) * int(size), 0);
+    vec4 layers = texelFetch(light_depth_atlas, texel, 0);
+    return q.z - tolerance * tap.z <= (front ? layers.x : layers.y);
+}
+
 vec3 soft_shadow_visibility(uint tile, vec3 position, vec3 n, vec3 l)
 {
     uint t = tile - 1u;
     vec4 origin = data.light_tiles[t].origin, depth = data.light_tiles[t].depth;
     float texel = depth.z * (origin.w > 0.5 ? length(position - origin.xyz) : 1.0);
-    const uint kMedian = JADE_SOFT_SHADOW_TAPS / 2u;
-    if (data.soft_shadow.w <= 0.0 || data.soft_shadow_radius[kMedian / 4u][kMedian % 4u] <= texel)
-        return vec3(shadow_visibility(tile, position, n, l));
+    float median = data.soft_shadow.x;
+    if (median <= texel) return vec3(shadow_visibility(tile, position, n, l));
     float c = dot(n, l);
     float sin_theta = sqrt(max(1.0 - c * c, 0.0));
     vec3 towards = c >= 0.0 ? n : -n;
     vec3 lifted = position + towards * (texel * (kShadowOffset + kShadowSlope * sin_theta));
-    // An orthonormal basis of the tangent plane (Duff et al. 2017).
+    // An orthonormal basis of the tangent plane (Duff et al. 2017), and its image in the tile.
     float sign_z = n.z >= 0.0 ? 1.0 : -1.0;
     float a = -1.0 / (sign_z + n.z), b = n.x * n.y * a;
     vec3 t1 = vec3(1.0 + sign_z * n.x * n.x * a, sign_z * b, -sign_z * n.x), t2 = vec3(b, sign_z + n.y * n.y * a, -n.y);
+    vec3 q0 = light_tile_coords(t, lifted);
+    vec3 q1 = (light_tile_coords(t, lifted + median * t1) - q0) / median;
+    vec3 q2 = (light_tile_coords(t, lifted + median * t2) - q0) / median;
     float rotation = 2.0 * JADE_PI * fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
-    float size = data.light_depth_map.x;
-    int x0 = int(t) * int(size);
-    ivec2 hi = ivec2(int(size) - 1);
-    vec3 lit = vec3(0.0), weight = vec3(0.0);
-    for (uint i = 0u; i < JADE_SOFT_SHADOW_TAPS; ++i) {
-        float r = data.soft_shadow_radius[i / 4u][i % 4u];
-        float angle = float(i) * 2.39996322972865332 + rotation;  // the golden angle π(3 − √5)
-        vec3 q = light_tile_coords(t, lifted + r * (cos(angle) * t1 + sin(angle) * t2));
-        vec3 w = soft_shadow_profile(data.soft_shadow.rgb, r) / soft_shadow_profile(data.soft_shadow.www, r).x;
-        weight += w;
-        if (any(lessThan(q.xy, vec2(0.0))) || any(greaterThan(q.xy, vec2(1.0)))) {
-            lit += w;  // outside the tile: lit
-            continue;
-        }
-        vec4 layers = texelFetch(light_depth_atlas, ivec2(x0, 0) + clamp(ivec2(q.xy * size), ivec2(0), hi), 0);
-        lit += q.z - kSoftShadowTolerance * r / depth.y <= (c >= 0.0 ? layers.x : layers.y) ? w : vec3(0.0);
-    }
-    return lit / max(weight, vec3(1e-30));
+    vec2 turn = vec2(cos(rotation), sin(rotation));
+    float tolerance = kSoftShadowTolerance / depth.y;
+    bool front = c >= 0.0;
+    // Most points lie far from any shadow's edge: where the centre and the four outermost taps
+    // (the largest radii, spread round the disk by the golden angle) agree, so does the kernel.
+    bool first = soft_shadow_tap_visible(vec4(0.0), q0, q1, q2, turn, tolerance, t, front), agree = true;
+    for (uint i = JADE_SOFT_SHADOW_TAPS - 4u; i < JADE_SOFT_SHADOW_TAPS; ++i)
+        agree = agree && soft_shadow_tap_visible(data.soft_shadow_taps[i], q0, q1, q2, turn, tolerance, t, front) == first;
+    if (agree) return vec3(first ? 1.0 : 0.0);
+    vec3 lit = vec3(0.0);
+    for (uint i = 0u; i < JADE_SOFT_SHADOW_TAPS; ++i)
+        if (soft_shadow_tap_visible(data.soft_shadow_taps[i], q0, q1, q2, turn, tolerance, t, front))
+            lit += data.soft_shadow_weights[i].rgb;
+    return lit;
 }
 
 #endif

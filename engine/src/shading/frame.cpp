@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <numbers>
@@ -117,10 +118,24 @@ SoftShadowKernel soft_shadow_kernel(const Material& m)
     if (m.opaque) return k;
     const glm::dvec3 shape = burley_shapes(m);
     const double sampled = std::max({shape.x, shape.y, shape.z});
-    if (!(sampled > 0.0) || !std::isfinite(sampled)) return k;
-    k.shape = glm::vec4(glm::vec3(glm::max(shape, glm::dvec3(1e-30))), float(sampled));
-    for (uint32_t i = 0; i < JADE_SOFT_SHADOW_TAPS; ++i)
-        k.radius[i / 4][i % 4] = float(burley_sample_radius((i + 0.5) / JADE_SOFT_SHADOW_TAPS, sampled));
+    if (!(sampled > 0.0) || !std::isfinite(sampled) || !(std::min({shape.x, shape.y, shape.z}) > 0.0)) return k;
+    // R(r) = (e^{−r/d} + e^{−r/(3d)}) / (8π d r): the 8π r cancels in the ratio to the sampled one.
+    const auto burley = [](double d, double r) { return (std::exp(-r / d) + std::exp(-r / (3.0 * d))) / d; };
+    const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+    glm::dvec3 sum(0.0);
+    std::array<glm::dvec3, JADE_SOFT_SHADOW_TAPS> w{};
+    for (uint32_t i = 0; i < JADE_SOFT_SHADOW_TAPS; ++i) {
+        const double r = burley_sample_radius((i + 0.5) / JADE_SOFT_SHADOW_TAPS, sampled);
+        k.taps[i] = glm::vec4(float(r * std::cos(i * golden)), float(r * std::sin(i * golden)), float(r), 0.0f);
+        for (int c = 0; c < 3; ++c) w[i][c] = burley(shape[c], r) / burley(sampled, r);
+        sum += w[i];
+    }
+    // A channel far narrower than the sampled shape has no weight left at any tap (e^{−r/d} = 0):
+    // its nearest tap alone, about a hard shadow.
+    for (int c = 0; c < 3; ++c)
+        if (!(sum[c] > 0.0)) w[0][c] = sum[c] = 1.0;
+    for (uint32_t i = 0; i < JADE_SOFT_SHADOW_TAPS; ++i) k.weights[i] = glm::vec4(glm::vec3(w[i] / sum), 0.0f);
+    k.median = float(burley_sample_radius(0.5, sampled));
     return k;
 }
 

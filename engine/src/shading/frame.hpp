@@ -26,13 +26,17 @@ void check_settings(const gpu::Context& ctx, const RenderSettings& s, std::span<
 FramePush frame_push(const Camera& cam, glm::vec3 bbox_min, glm::vec3 bbox_max, uint32_t width, uint32_t height,
                      uint32_t light_count);
 
-/// The t_m mode's shadow filter (shadow.glsl soft_shadow_visibility), FrameData::soft_shadow and
-/// soft_shadow_radius: the material's Burley shape per channel (burley_shapes: its d, or the
-/// Burley d of the same median radius), the widest of them sampled at the radii of its exact
-/// inverse CDF at (i + ½)/JADE_SOFT_SHADOW_TAPS. A shape of 0 (an opaque material) turns it off.
+/// The t_m mode's shadow filter (shadow.glsl soft_shadow_visibility), FrameData::soft_shadow,
+/// soft_shadow_taps and soft_shadow_weights: the material's Burley shape per channel
+/// (burley_shapes: its d, or the Burley d of the same median radius); the widest of them sampled
+/// at the radii of its exact inverse CDF at (i + ½)/JADE_SOFT_SHADOW_TAPS, tap i at i times the
+/// golden angle; each tap weighing R_c(r)/pdf(r) per channel (the Burley profile of the channel's
+/// shape over the sampled one's), normalised per channel. An opaque material, or one without a
+/// profile, gets median 0: the plain filter.
 struct SoftShadowKernel {
-    glm::vec4 shape{0.0f};
-    glm::vec4 radius[JADE_SOFT_SHADOW_TAPS / 4]{};
+    float median = 0.0f;
+    glm::vec4 taps[JADE_SOFT_SHADOW_TAPS]{};
+    glm::vec4 weights[JADE_SOFT_SHADOW_TAPS]{};
 };
 SoftShadowKernel soft_shadow_kernel(const Material& m);
 

@@ -245,8 +245,9 @@ struct Renderer::Impl {
             for (uint32_t t = 0; t < shading::LightDepth::kMaxLights; ++t) d.light_tiles[t] = light_depth->tile(t);
         }
         if (mode == uint32_t(ShadingMode::Tm)) {
-            d.soft_shadow = soft_shadow.shape;
-            std::copy(std::begin(soft_shadow.radius), std::end(soft_shadow.radius), d.soft_shadow_radius);
+            d.soft_shadow = glm::vec4(soft_shadow.median, 0.0f, 0.0f, 0.0f);
+            std::copy(std::begin(soft_shadow.taps), std::end(soft_shadow.taps), d.soft_shadow_taps);
+            std::copy(std::begin(soft_shadow.weights), std::end(soft_shadow.weights), d.soft_shadow_weights);
         }
         // Filament's inputs: the baked thickness normalised by the medium, or a constant (the
         // setting's, else Filament's default 0.5 where there is nothing to normalise).
