@@ -51,6 +51,7 @@ export class JadeTranslucentMaterial extends ShaderMaterial {
         jadeTileOrigin: { value: [] },
         jadeSoftShadow: { value: new Vector4() },
         jadeSoftShadowRadius: { value: new Array(16).fill(0) },
+        jadeSoftShadowMedian: { value: 0 },
       }]),
       vertexShader,
       fragmentShader,
@@ -124,6 +125,7 @@ export class JadeTranslucentMaterial extends ShaderMaterial {
       this.softShadow = k;
       u.jadeSoftShadow.value.set(...k.shape.slice(0, 3).map((d) => d * scale), k.shape[3] * scale);
       u.jadeSoftShadowRadius.value = k.radii.map((r) => r * scale);
+      u.jadeSoftShadowMedian.value = k.median * scale;
     }
     chosen.forEach((i, k) => {
       const tile = this.lightDepth.update(renderer, k, object, lights[i], centre, radius, transmits[i] ? 4 : 2);

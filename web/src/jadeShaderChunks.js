@@ -109,14 +109,22 @@ float jadeShadowVisibility(sampler2D layers, JadeTile t, vec3 position, vec3 n, 
 // the kernel's median radius is under a texel, the 3 x 3 filter.
 uniform vec4 jadeSoftShadow;              // Burley d per channel, w the sampled d (0: off)
 uniform float jadeSoftShadowRadius[16];
+uniform float jadeSoftShadowMedian;       // the sampled shape's median radius
 vec3 jadeSoftShadowProfile(vec3 d, float r) { return (exp(-r / d) + exp(-r / (3.0 * d))) / (8.0 * JADE_PI * d * r); }
+bool jadeSoftShadowTapVisible(sampler2D layers, JadeTile t, vec3 lifted, float r, float angle, vec3 t1, vec3 t2, bool front)
+{
+    vec3 q = jadeTileCoords(t, lifted + r * (cos(angle) * t1 + sin(angle) * t2));
+    if (any(lessThan(q.xy, vec2(0.0))) || any(greaterThan(q.xy, vec2(1.0)))) return true;
+    vec4 depths = texelFetch(layers, clamp(ivec2(q.xy * t.info.x), ivec2(0), ivec2(int(t.info.x) - 1)), 0);
+    return q.z - 2.0 * r / t.depth.y <= (front ? depths.x : depths.y);
+}
 // pixel: gl_FragCoord.xy (a parameter: the vertex shader compiles this chunk too).
 vec3 jadeSoftShadowVisibility(sampler2D layers, JadeTile t, vec3 position, vec3 n, vec3 l, vec2 pixel)
 {
     float texel = t.depth.z * (t.info.z > 1.5 ? length(position - t.origin) : 1.0);
-    if (jadeSoftShadow.w <= 0.0 || jadeSoftShadowRadius[8] <= texel)
+    if (jadeSoftShadow.w <= 0.0 || jadeSoftShadowMedian <= texel)
         return vec3(jadeShadowVisibility(layers, t, position, n, l));
-    float c = dot(n, l), size = t.info.x;
+    float c = dot(n, l);
     float sin_theta = sqrt(max(1.0 - c * c, 0.0));
     vec3 towards = c >= 0.0 ? n : -n;
     vec3 lifted = position + towards * (texel * (1.0 + 2.5 * sin_theta));
@@ -124,20 +132,21 @@ vec3 jadeSoftShadowVisibility(sampler2D layers, JadeTile t, vec3 position, vec3 
     float a = -1.0 / (sign_z + n.z), b = n.x * n.y * a;
     vec3 t1 = vec3(1.0 + sign_z * n.x * n.x * a, sign_z * b, -sign_z * n.x), t2 = vec3(b, sign_z + n.y * n.y * a, -n.y);
     float rotation = 2.0 * JADE_PI * fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715))));
-    ivec2 hi = ivec2(int(size) - 1);
+    // As Jade: where the centre and the four outermost taps agree, so does the kernel.
+    bool front = c >= 0.0;
+    bool first = jadeSoftShadowTapVisible(layers, t, lifted, 0.0, 0.0, t1, t2, front), agree = true;
+    for (int i = 12; i < 16; ++i) {
+        float angle = float(i) * 2.39996322972865332 + rotation;
+        agree = agree && jadeSoftShadowTapVisible(layers, t, lifted, jadeSoftShadowRadius[i], angle, t1, t2, front) == first;
+    }
+    if (agree) return vec3(first ? 1.0 : 0.0);
     vec3 lit = vec3(0.0), weight = vec3(0.0);
     for (int i = 0; i < 16; ++i) {
         float r = jadeSoftShadowRadius[i];
         float angle = float(i) * 2.39996322972865332 + rotation;
-        vec3 q = jadeTileCoords(t, lifted + r * (cos(angle) * t1 + sin(angle) * t2));
         vec3 w = jadeSoftShadowProfile(jadeSoftShadow.rgb, r) / jadeSoftShadowProfile(jadeSoftShadow.www, r).x;
         weight += w;
-        if (any(lessThan(q.xy, vec2(0.0))) || any(greaterThan(q.xy, vec2(1.0)))) {
-            lit += w;
-            continue;
-        }
-        vec4 depths = texelFetch(layers, clamp(ivec2(q.xy * size), ivec2(0), hi), 0);
-        lit += q.z - 2.0 * r / t.depth.y <= (c >= 0.0 ? depths.x : depths.y) ? w : vec3(0.0);
+        if (jadeSoftShadowTapVisible(layers, t, lifted, r, angle, t1, t2, front)) lit += w;
     }
     return lit / max(weight, vec3(1e-30));
 }

@@ -59,7 +59,8 @@ export function softShadowKernel(profiles) {
   const median = burleySampleRadius(0.5, 1);
   const shape = profiles.map((p) => (p.kind === 'burley' ? p.d : radiusForTail(p, 0.5) / median));
   const sampled = Math.max(...shape);
-  if (!(sampled > 0) || !Number.isFinite(sampled)) return { shape: [0, 0, 0, 0], radii: new Array(kSoftShadowTaps).fill(0) };
+  if (!(sampled > 0) || !Number.isFinite(sampled))
+    return { shape: [0, 0, 0, 0], radii: new Array(kSoftShadowTaps).fill(0), median: 0 };
   const radii = Array.from({ length: kSoftShadowTaps }, (_, i) => burleySampleRadius((i + 0.5) / kSoftShadowTaps, sampled));
-  return { shape: [...shape.map((d) => Math.max(d, 1e-30)), sampled], radii };
+  return { shape: [...shape.map((d) => Math.max(d, 1e-30)), sampled], radii, median: burleySampleRadius(0.5, sampled) };
 }
