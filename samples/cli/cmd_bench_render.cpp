@@ -42,7 +42,9 @@ struct LightLoad {
 
 /// Texture and buffer fetches per shaded pixel, by construction (the shaders as written; a
 /// pixel is one fragment, MSAA shades once per pixel): per light with a shadow tile 9 (shadow.glsl:
-/// 3 × 3 taps of the RGBA32F tile, both layers in one fetch); curvature 1 per light (its LUT);
+/// 3 × 3 taps of the RGBA32F tile, both layers in one fetch), and in tm (soft_shadow_visibility,
+/// where the profile spans a texel) 5 where the centre and the 4 outermost taps agree, 21 near a
+/// shadow's edge (the count below takes the 5); curvature 1 per light (its LUT);
 /// tm 3 per light with the LUT paths (1 for a grey material; 0 with the ALU path that lavapipe
 /// takes), and per transmitting light 4 depth-tile fetches for the light's path (per fragment; 0
 /// with the path per vertex) and 2 of the attenuation table; filament 0 (its thickness is a
@@ -52,8 +54,9 @@ struct LightLoad {
 std::pair<uint32_t, std::string> fetches(ShadingMode mode, const LightLoad& l, bool shadows, TmEvaluation eval,
                                          bool grey, LightPathSampling path, const RenderSettings& s)
 {
-    const uint32_t shadow = shadows ? 9 * l.shadowed : 0;
-    std::string formula = shadows && l.shadowed ? "9/shadowed light" : "";
+    const bool soft = mode == ShadingMode::Tm;
+    const uint32_t shadow = shadows ? (soft ? 5 : 9) * l.shadowed : 0;
+    std::string formula = shadows && l.shadowed ? (soft ? "5 (21 at an edge)/shadowed light" : "9/shadowed light") : "";
     auto plus = [&](const std::string& term) { formula += (formula.empty() ? "" : " + ") + term; };
     uint32_t n = shadow;
     if (mode == ShadingMode::Curvature) n += l.lights, plus("1/light");
