@@ -1,0 +1,78 @@
+// bake/mesh_state.hpp - the GPU state of one mesh's bake that the passes share. Private to
+// engine/src/bake.
+#pragma once
+
+#include "bake/bake_common.hpp"
+
+namespace jade::bake {
+
+// GPU state of one mesh's bake: uploaded inputs, both trees, the passes' buffers. A static
+// bake builds it, records once and drops it; a DynamicBake keeps it and records every frame.
+struct MeshState {
+    uint32_t vertex_count = 0;
+    float diagonal = 0;
+    gpu::Buffer positions, normals, areas;
+    // AO: the BVH as ray items; refit data when the mesh deforms.
+    uint32_t item_count = 0;
+    gpu::Buffer ray_items, hits, ao;  // hits: per ray slice, per vertex
+    // Amortised AO (Amortisation::retrace_changed): the fresh slice's counts from the frame
+    // that last traced it, and ao_changed.comp's indirect dispatch and list of vertices.
+    gpu::Buffer ao_previous, ao_changed_list;
+    uint32_t ao_slices = 1;
+    gpu::TexelView ray_item_texels;
+    gpu::Buffer indices, item_origin, ray_work;  // dynamic only
+    gpu::Buffer thickness_sums, thickness;       // thickness pass: per ray slice, per vertex; result
+    std::vector<uint32_t> ray_work_offsets;      // [0, triangles) then one range per level
+    // t_m.
+    bool exact = false;
+    bool grid = false;  // the grid far field (bake/tm_grid.cpp) instead of the cluster tree
+    TmVariant variant{};
+    uint32_t node_count = 0, first_point = 0;  // first_point: texel of source 0 in `points`
+    gpu::Buffer profiles, point_order, points, nodes, node_levels, tm;
+    gpu::Buffer normal_sum;  // per vertex: the scattering normal's unnormalised sum (tm_state.glsl)
+    gpu::Buffer partial_sum, partial_comp, resume, near_offsets, near_disks, near_indices;
+    gpu::TexelView point_texels, tree_texels;
+    gpu::TexelView source_texels;  // the sources as RGBA32UI (the near pass), from texel source_base
+    uint32_t source_base = 0;
+    std::vector<uint32_t> level_offsets;
+    struct NearWindow {
+        bake::NearWindow span;   // rows = tree slots
+        gpu::TexelView indices;  // near_indices from entry span.first_entry on
+    };
+    std::vector<NearWindow> near_windows;  // near-pass dispatches, each within one texel view
+    // The grid far field: its plan's sizes, cells (fixed-point splats, blurred values; four
+    // fields per cell, grid_splat_body.glsl: the weight, then times n.x, n.y, n.z), two blur
+    // buffers for the largest grid, the levels and S(r) table. smooth_table is a placeholder for the
+    // other methods (the near pass always binds one).
+    float grid_cut2 = 0, grid_table_scale = 0, grid_cube_side = 0;
+    uint32_t grid_splat_levels = 0;  // the finest grids, splatted into; the others restricted
+    std::vector<bake::GpuGridLevel> grid_plan_levels;
+    uint64_t grid_bytes = 0;
+    double grid_r_cut = 0;
+    gpu::Buffer grid_levels, grid_splat, grid_cells, grid_scratch[2], smooth_table, grid_bounds;
+    gpu::Buffer grid_dispatch;  // a deforming mesh's: a GridAxisDispatch per axis pass (grid_boxes.comp)
+    gpu::TexelView smooth_table_texels, grid_splat_texels, grid_cell_texels, grid_scratch_texels[2];
+    uint32_t grid_level_count() const { return uint32_t(grid_plan_levels.size()); }
+    TmMethod method() const { return exact ? TmMethod::Exact : grid ? TmMethod::Grid : TmMethod::Clustered; }
+    uint64_t tm_bytes() const
+    {
+        uint64_t b = 0;
+        for (const gpu::Buffer* x :
+             {&profiles, &point_order, &points, &nodes, &node_levels, &tm, &normal_sum, &partial_sum, &partial_comp,
+              &resume, &near_offsets, &near_disks, &near_indices, &grid_levels, &grid_splat, &grid_cells,
+              &grid_scratch[0], &grid_scratch[1], &smooth_table})
+            b += *x ? x->size() : 0;
+        return b;
+    }
+};
+
+inline void upload_mesh(gpu::Context& ctx, MeshState& m, const PreparedMesh& mesh, VkBufferUsageFlags extra_usage = 0)
+{
+    m.vertex_count = uint32_t(mesh.vertex_count());
+    m.diagonal = mesh.diagonal;
+    m.positions = gpu::Buffer::from(ctx, mesh.positions, kStorageUsage | extra_usage, "positions");
+    m.normals = gpu::Buffer::from(ctx, mesh.normals, kStorageUsage | extra_usage, "normals");
+    m.areas = gpu::Buffer::from(ctx, mesh.areas, kStorageUsage | extra_usage, "areas");
+}
+
+}  // namespace jade::bake
