@@ -148,7 +148,7 @@ BakeResult Baker::bake(const PreparedMesh& mesh, const Material& material, const
     Impl::MeshState m;
     impl_->upload_mesh(m, mesh);
     impl_->prepare_ao(m, mesh, false);
-    impl_->prepare_thickness(m, settings.thickness);
+    impl_->thickness.prepare(m.thickness, m, settings.thickness);
     impl_->prepare_tm(m, mesh, material, settings, kStaticNearMargin);
     double setup = ms_since(t0);
     gpu::GpuTimer timer(impl_->ctx);
@@ -158,7 +158,7 @@ BakeResult Baker::bake(const PreparedMesh& mesh, const Material& material, const
         gpu::compute_barrier(cmd);
         timer.mark(cmd, "ao");
         if (settings.thickness.enabled()) {
-            impl_->record_thickness(cmd, m, settings.thickness);
+            impl_->thickness.record(cmd, m.thickness, m, settings.thickness);
             gpu::compute_barrier(cmd);
             timer.mark(cmd, "thickness");
         }
@@ -166,7 +166,7 @@ BakeResult Baker::bake(const PreparedMesh& mesh, const Material& material, const
     });
     BakeResult r;
     r.ao = m.ao.read<float>(mesh.vertex_count());
-    if (settings.thickness.enabled()) r.thickness = m.thickness.read<float>(mesh.vertex_count());
+    if (settings.thickness.enabled()) r.thickness = m.thickness.result.read<float>(mesh.vertex_count());
     Impl::read_tm_result(r, m, timer, setup, t0);
     return r;
 }

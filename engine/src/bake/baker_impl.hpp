@@ -6,6 +6,7 @@
 
 #include "bake/bake_common.hpp"
 #include "bake/mesh_state.hpp"
+#include "bake/thickness_pass.hpp"
 
 namespace jade {
 
@@ -47,8 +48,7 @@ using gpu::storage_bindings;
 struct Baker::Impl {
     gpu::Context& ctx;
     // Pipelines are made on first use: a scene that never needs one never creates it.
-    std::optional<gpu::Kernel> ao_trace, ao_resolve, ao_changed, ao_retrace, gather, refit, ray_refit, thickness_trace,
-        thickness_resolve;
+    std::optional<gpu::Kernel> ao_trace, ao_resolve, ao_changed, ao_retrace, gather, refit, ray_refit;
     // t_m kernels per [grey (1 channel) or RGB][profile kind: Burley, dipole, Gaussians, mixed].
     std::optional<gpu::Kernel> tm_exact[2][4], tm_cluster[2][4];
     std::optional<gpu::Kernel> tm_near[2][2][4];  // [grid far field][grey][kind]
@@ -57,7 +57,9 @@ struct Baker::Impl {
         grid_axis[2][2][bake::kGridMaxHalfWidth + 1];  // [fixed-point input][blur, restrict][half-width]
     std::optional<gpu::Kernel> tm_exact_f64[2][4];     // dev::BakeStudy::tm_float64_sums
 
-    explicit Impl(gpu::Context& c) : ctx(c) {}
+    bake::ThicknessPass thickness;
+
+    explicit Impl(gpu::Context& c) : ctx(c), thickness(c) {}
 
     const gpu::Kernel& kernel(std::optional<gpu::Kernel>& slot, gpu::KernelDesc desc)
     {
@@ -88,24 +90,6 @@ struct Baker::Impl {
     {
         return kernel(ao_resolve,
                       {"ao_resolve", shaders::ao_resolve_comp(), storage_bindings(2), sizeof(AoResolvePush), 64, {}});
-    }
-    const gpu::Kernel& thickness_kernel()
-    {
-        return kernel(thickness_trace, {"thickness_trace",
-                                        shaders::thickness_trace_comp(),
-                                        {kStorage, kStorage, kTexels, kStorage},
-                                        sizeof(ThicknessPush),
-                                        64,
-                                        {}});
-    }
-    const gpu::Kernel& thickness_resolve_kernel()
-    {
-        return kernel(thickness_resolve, {"thickness_resolve",
-                                          shaders::thickness_resolve_comp(),
-                                          storage_bindings(2),
-                                          sizeof(ThicknessResolvePush),
-                                          64,
-                                          {}});
     }
     const gpu::Kernel& gather_kernel()
     {
@@ -157,7 +141,10 @@ struct Baker::Impl {
                        64,
                        tm_constants(v)});
     }
-    using MeshState = bake::MeshState;
+    // One mesh's bake: the state the passes share, and each pass's own buffers.
+    struct MeshState : bake::MeshState {
+        bake::ThicknessPass::Buffers thickness;
+    };
     void upload_mesh(MeshState& m, const PreparedMesh& mesh, VkBufferUsageFlags extra_usage = 0)
     {
         bake::upload_mesh(ctx, m, mesh, extra_usage);
@@ -178,13 +165,6 @@ struct Baker::Impl {
     // (ao_changed.comp, Amortisation::retrace_changed).
     void record_ao(VkCommandBuffer cmd, MeshState& m, const AoSettings& s, uint32_t first = 0, uint32_t count = 0,
                    bool retrace_changed = false);
-
-    // The thickness pass (bake/thickness.cpp) traces the AO pass's ray items: prepare_ao first.
-    void prepare_thickness(MeshState& m, const ThicknessSettings& s);
-    // Traces the thickness ray slices [first, first + count) of m.ao_slices (all by default),
-    // then resolves the mean distance from the sums of every slice.
-    void record_thickness(VkCommandBuffer cmd, MeshState& m, const ThicknessSettings& s, uint32_t first = 0,
-                          uint32_t count = 0);
 
     // The t_m passes (bake/tm_passes.cpp). Sets up gather → near field → (all pairs | refit →
     // clustered | grid), reading m.ao, writing m.tm. `near_margin` (bake/near_field.hpp) covers

@@ -46,7 +46,7 @@ DynamicBake::DynamicBake(Baker& baker, const PreparedMesh& rest, const Material&
     // Deformers write the inputs on the GPU (or the host uploads them): transfer and storage.
     impl.upload_mesh(state_->mesh, rest, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     impl.prepare_ao(state_->mesh, rest, true);
-    impl.prepare_thickness(state_->mesh, state_->settings.thickness);
+    impl.thickness.prepare(state_->mesh.thickness, state_->mesh, state_->settings.thickness);
     impl.prepare_tm(state_->mesh, rest, material, settings, kDynamicNearMargin);
 }
 
@@ -65,7 +65,7 @@ DynamicBake::Buffers DynamicBake::buffers() const
             m.ao.handle(),
             m.tm.handle(),
             m.vertex_count,
-            m.thickness ? m.thickness.handle() : VK_NULL_HANDLE,
+            m.thickness.result ? m.thickness.result.handle() : VK_NULL_HANDLE,
             m.normal_sum.handle()};
 }
 
@@ -105,7 +105,7 @@ void DynamicBake::State::record(VkCommandBuffer cmd, gpu::GpuTimer* timer)
     gpu::compute_barrier(cmd);
     if (timer) timer->mark(cmd, "ao");
     if (settings.thickness.enabled()) {
-        impl.record_thickness(cmd, m, settings.thickness, slice, slices);
+        impl.thickness.record(cmd, m.thickness, m, settings.thickness, slice, slices);
         gpu::compute_barrier(cmd);
         if (timer) timer->mark(cmd, "thickness");
     }
@@ -128,7 +128,7 @@ void DynamicBake::set_amortisation(const Amortisation& a)
     auto& m = state_->mesh;
     if (a.ao_slices != m.ao_slices) {
         // Recorded frames may still use the old per-slice sums.
-        state_->impl.ctx.release_after_gpu(std::move(m.hits), std::move(m.thickness_sums), std::move(m.ao_previous),
+        state_->impl.ctx.release_after_gpu(std::move(m.hits), std::move(m.thickness.sums), std::move(m.ao_previous),
                                            std::move(m.ao_changed_list));
         m.hits = gpu::Buffer(state_->impl.ctx, VkDeviceSize(m.vertex_count) * a.ao_slices * sizeof(uint32_t),
                              kStorageUsage, "ao hit counts (per ray slice)");
@@ -140,10 +140,7 @@ void DynamicBake::set_amortisation(const Amortisation& a)
                                             "ao vertices to retrace (ao_changed.comp)");
         }
         m.ao_slices = a.ao_slices;
-        if (thickness_rays > 0)
-            m.thickness_sums =
-                gpu::Buffer(state_->impl.ctx, VkDeviceSize(m.vertex_count) * a.ao_slices * sizeof(uint32_t),
-                            kStorageUsage, "thickness sums (per ray slice)");
+        if (thickness_rays > 0) m.thickness.allocate_sums(state_->impl.ctx, m.vertex_count, a.ao_slices);
     }
     state_->amortisation = a;
     state_->stale = true;
@@ -191,7 +188,7 @@ BakeResult DynamicBake::State::submit(const Inputs* inputs, Clock::time_point t0
         r.ao = m.ao.read<float>(m.vertex_count);
         r.tm = m.tm.read<glm::vec3>(m.vertex_count);
         read_scattering_normals(r, m.normal_sum, m.normals, m.vertex_count);
-        if (m.thickness) r.thickness = m.thickness.read<float>(m.vertex_count);
+        if (m.thickness.result) r.thickness = m.thickness.result.read<float>(m.vertex_count);
     }
     r.method_used = m.method();
     r.tm_bytes = m.tm_bytes();

@@ -21,7 +21,6 @@ struct MeshState {
     uint32_t ao_slices = 1;
     gpu::TexelView ray_item_texels;
     gpu::Buffer indices, item_origin, ray_work;  // dynamic only
-    gpu::Buffer thickness_sums, thickness;       // thickness pass: per ray slice, per vertex; result
     std::vector<uint32_t> ray_work_offsets;      // [0, triangles) then one range per level
     // t_m.
     bool exact = false;
