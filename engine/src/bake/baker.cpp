@@ -104,12 +104,12 @@ std::vector<float> Baker::bake_ao(const PreparedMesh& mesh, const AoSettings& se
     auto t0 = Clock::now();
     Impl::MeshState m;
     impl_->upload_mesh(m, mesh);
-    impl_->prepare_ao(m, mesh, false);
+    impl_->ao.prepare(m.ao_pass, m, mesh);
     double setup = ms_since(t0);
     gpu::GpuTimer timer(impl_->ctx);
     impl_->ctx.submit_and_wait([&](VkCommandBuffer cmd) {
         timer.begin(cmd);
-        impl_->record_ao(cmd, m, settings);
+        impl_->ao.record(cmd, m.ao_pass, m, settings);
         timer.mark(cmd, "ao");
     });
     auto ao = m.ao.read<float>(mesh.vertex_count());
@@ -147,14 +147,14 @@ BakeResult Baker::bake(const PreparedMesh& mesh, const Material& material, const
     auto t0 = Clock::now();
     Impl::MeshState m;
     impl_->upload_mesh(m, mesh);
-    impl_->prepare_ao(m, mesh, false);
+    impl_->ao.prepare(m.ao_pass, m, mesh);
     impl_->thickness.prepare(m.thickness, m, settings.thickness);
     impl_->prepare_tm(m, mesh, material, settings, kStaticNearMargin);
     double setup = ms_since(t0);
     gpu::GpuTimer timer(impl_->ctx);
     impl_->ctx.submit_and_wait([&](VkCommandBuffer cmd) {
         timer.begin(cmd);
-        impl_->record_ao(cmd, m, settings.ao);
+        impl_->ao.record(cmd, m.ao_pass, m, settings.ao);
         gpu::compute_barrier(cmd);
         timer.mark(cmd, "ao");
         if (settings.thickness.enabled()) {

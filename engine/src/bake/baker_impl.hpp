@@ -5,7 +5,9 @@
 #pragma once
 
 #include "bake/bake_common.hpp"
+#include "bake/ao_pass.hpp"
 #include "bake/mesh_state.hpp"
+#include "bake/ray_refit_pass.hpp"
 #include "bake/thickness_pass.hpp"
 
 namespace jade {
@@ -48,7 +50,7 @@ using gpu::storage_bindings;
 struct Baker::Impl {
     gpu::Context& ctx;
     // Pipelines are made on first use: a scene that never needs one never creates it.
-    std::optional<gpu::Kernel> ao_trace, ao_resolve, ao_changed, ao_retrace, gather, refit, ray_refit;
+    std::optional<gpu::Kernel> gather, refit;
     // t_m kernels per [grey (1 channel) or RGB][profile kind: Burley, dipole, Gaussians, mixed].
     std::optional<gpu::Kernel> tm_exact[2][4], tm_cluster[2][4];
     std::optional<gpu::Kernel> tm_near[2][2][4];  // [grid far field][grey][kind]
@@ -57,39 +59,15 @@ struct Baker::Impl {
         grid_axis[2][2][bake::kGridMaxHalfWidth + 1];  // [fixed-point input][blur, restrict][half-width]
     std::optional<gpu::Kernel> tm_exact_f64[2][4];     // dev::BakeStudy::tm_float64_sums
 
+    bake::AoPass ao;
+    bake::RayRefitPass ray_refit;
     bake::ThicknessPass thickness;
 
-    explicit Impl(gpu::Context& c) : ctx(c), thickness(c) {}
+    explicit Impl(gpu::Context& c) : ctx(c), ao(c), ray_refit(c), thickness(c) {}
 
     const gpu::Kernel& kernel(std::optional<gpu::Kernel>& slot, gpu::KernelDesc desc)
     {
         return bake::lazy_kernel(ctx, slot, desc);
-    }
-    const gpu::Kernel& ao_kernel()
-    {
-        return kernel(
-            ao_trace,
-            {"ao_trace", shaders::ao_trace_comp(), {kStorage, kStorage, kTexels, kStorage}, sizeof(AoPush), 64, {}});
-    }
-    const gpu::Kernel& ao_retrace_kernel()
-    {
-        return kernel(ao_retrace, {"ao_retrace",
-                                   shaders::ao_retrace_comp(),
-                                   {kStorage, kStorage, kTexels, kStorage, kStorage},
-                                   sizeof(AoPush),
-                                   kAoRetraceGroup,
-                                   {}});
-    }
-    const gpu::Kernel& ao_changed_kernel()
-    {
-        return kernel(
-            ao_changed,
-            {"ao_changed", shaders::ao_changed_comp(), storage_bindings(3), sizeof(AoPush), 64, {kAoRetraceGroup}});
-    }
-    const gpu::Kernel& ao_resolve_kernel()
-    {
-        return kernel(ao_resolve,
-                      {"ao_resolve", shaders::ao_resolve_comp(), storage_bindings(2), sizeof(AoResolvePush), 64, {}});
     }
     const gpu::Kernel& gather_kernel()
     {
@@ -101,11 +79,6 @@ struct Baker::Impl {
     {
         return kernel(refit,
                       {"cluster_refit", shaders::cluster_refit_comp(), storage_bindings(4), sizeof(RefitPush), 64, {}});
-    }
-    const gpu::Kernel& ray_refit_kernel()
-    {
-        return kernel(ray_refit,
-                      {"ray_refit", shaders::ray_refit_comp(), storage_bindings(5), sizeof(RayRefitPush), 64, {}});
     }
     const gpu::Kernel& near_kernel(const TmVariant& v, bool grid)
     {
@@ -143,6 +116,8 @@ struct Baker::Impl {
     }
     // One mesh's bake: the state the passes share, and each pass's own buffers.
     struct MeshState : bake::MeshState {
+        bake::AoPass::Buffers ao_pass;
+        bake::RayRefitPass::Buffers ray_refit;  // a deforming mesh's
         bake::ThicknessPass::Buffers thickness;
     };
     void upload_mesh(MeshState& m, const PreparedMesh& mesh, VkBufferUsageFlags extra_usage = 0)
@@ -154,17 +129,6 @@ struct Baker::Impl {
         bake::check_storage_range(ctx, bytes, what);
     }
     void require_subgroup_groups() const { bake::require_subgroup_groups(ctx); }
-
-    // The AO pass (bake/ao.cpp): the BVH as ray items (with refit work when the mesh deforms),
-    // the ray items refitted to the current positions, and the traced and resolved A_o.
-    void prepare_ao(MeshState& m, const PreparedMesh& mesh, bool refittable);
-    void record_ray_refit(VkCommandBuffer cmd, MeshState& m);
-    // Traces the ray slices [first, first + count) of m.ao_slices (ao_trace.comp) into their
-    // hit counts, then resolves A_o from the counts of every slice. `retrace_changed`, with one
-    // slice of several: the vertices whose slice changed have their other slices traced too
-    // (ao_changed.comp, Amortisation::retrace_changed).
-    void record_ao(VkCommandBuffer cmd, MeshState& m, const AoSettings& s, uint32_t first = 0, uint32_t count = 0,
-                   bool retrace_changed = false);
 
     // The t_m passes (bake/tm_passes.cpp). Sets up gather → near field → (all pairs | refit →
     // clustered | grid), reading m.ao, writing m.tm. `near_margin` (bake/near_field.hpp) covers

@@ -12,16 +12,12 @@ struct MeshState {
     uint32_t vertex_count = 0;
     float diagonal = 0;
     gpu::Buffer positions, normals, areas;
-    // AO: the BVH as ray items; refit data when the mesh deforms.
+    // The triangle BVH as ray items (bake/ao_pass.hpp), traced by the AO and thickness passes in
+    // ao_slices slices of their rays; A_o, which the t_m passes read.
     uint32_t item_count = 0;
-    gpu::Buffer ray_items, hits, ao;  // hits: per ray slice, per vertex
-    // Amortised AO (Amortisation::retrace_changed): the fresh slice's counts from the frame
-    // that last traced it, and ao_changed.comp's indirect dispatch and list of vertices.
-    gpu::Buffer ao_previous, ao_changed_list;
+    gpu::Buffer ray_items, ao;
     uint32_t ao_slices = 1;
     gpu::TexelView ray_item_texels;
-    gpu::Buffer indices, item_origin, ray_work;  // dynamic only
-    std::vector<uint32_t> ray_work_offsets;      // [0, triangles) then one range per level
     // t_m.
     bool exact = false;
     bool grid = false;  // the grid far field (bake/tm_grid.cpp) instead of the cluster tree
