@@ -6,6 +6,7 @@
 
 #include "bake/bake_common.hpp"
 #include "bake/ao_pass.hpp"
+#include "bake/grid_pass.hpp"
 #include "bake/mesh_state.hpp"
 #include "bake/ray_refit_pass.hpp"
 #include "bake/thickness_pass.hpp"
@@ -53,17 +54,15 @@ struct Baker::Impl {
     std::optional<gpu::Kernel> gather, refit;
     // t_m kernels per [grey (1 channel) or RGB][profile kind: Burley, dipole, Gaussians, mixed].
     std::optional<gpu::Kernel> tm_exact[2][4], tm_cluster[2][4];
-    std::optional<gpu::Kernel> tm_near[2][2][4];  // [grid far field][grey][kind]
-    std::optional<gpu::Kernel> grid_splat, grid_gather, grid_bounds, grid_boxes;
-    std::optional<gpu::Kernel>
-        grid_axis[2][2][bake::kGridMaxHalfWidth + 1];  // [fixed-point input][blur, restrict][half-width]
-    std::optional<gpu::Kernel> tm_exact_f64[2][4];     // dev::BakeStudy::tm_float64_sums
+    std::optional<gpu::Kernel> tm_near[2][2][4];    // [grid far field][grey][kind]
+    std::optional<gpu::Kernel> tm_exact_f64[2][4];  // dev::BakeStudy::tm_float64_sums
 
     bake::AoPass ao;
     bake::RayRefitPass ray_refit;
     bake::ThicknessPass thickness;
+    bake::GridPass grid;
 
-    explicit Impl(gpu::Context& c) : ctx(c), ao(c), ray_refit(c), thickness(c) {}
+    explicit Impl(gpu::Context& c) : ctx(c), ao(c), ray_refit(c), thickness(c), grid(c) {}
 
     const gpu::Kernel& kernel(std::optional<gpu::Kernel>& slot, gpu::KernelDesc desc)
     {
@@ -119,6 +118,8 @@ struct Baker::Impl {
         bake::AoPass::Buffers ao_pass;
         bake::RayRefitPass::Buffers ray_refit;  // a deforming mesh's
         bake::ThicknessPass::Buffers thickness;
+        bake::GridPass::Buffers grids;
+        uint64_t tm_bytes() const { return shared_tm_bytes() + grids.bytes(); }
     };
     void upload_mesh(MeshState& m, const PreparedMesh& mesh, VkBufferUsageFlags extra_usage = 0)
     {
@@ -138,11 +139,6 @@ struct Baker::Impl {
 
     // The near pass over tree slots [slot_begin, slot_end): starts every target's partial sums.
     void record_near(VkCommandBuffer cmd, MeshState& m, uint32_t slot_begin, uint32_t slot_end);
-
-    // The grid far field (bake/tm_grid.cpp): plans and allocates the grids (before the near
-    // lists, whose reach is the plan's r_cut), and records splat, blur and gather.
-    void prepare_grid(MeshState& m, const bake::GridPlan& plan);
-    void record_grid(VkCommandBuffer cmd, MeshState& m, gpu::GpuTimer* timer, uint32_t slot_begin, uint32_t slot_end);
 
     // What every static bake reads back after its one submission (baker.cpp): t_m with its
     // scattering normals, how t_m was summed, and the timings.

@@ -20,7 +20,7 @@ struct MeshState {
     gpu::TexelView ray_item_texels;
     // t_m.
     bool exact = false;
-    bool grid = false;  // the grid far field (bake/tm_grid.cpp) instead of the cluster tree
+    bool grid = false;  // the grid far field (bake/grid_pass.hpp) instead of the cluster tree
     TmVariant variant{};
     uint32_t node_count = 0, first_point = 0;  // first_point: texel of source 0 in `points`
     gpu::Buffer profiles, point_order, points, nodes, node_levels, tm;
@@ -35,27 +35,13 @@ struct MeshState {
         gpu::TexelView indices;  // near_indices from entry span.first_entry on
     };
     std::vector<NearWindow> near_windows;  // near-pass dispatches, each within one texel view
-    // The grid far field: its plan's sizes, cells (fixed-point splats, blurred values; four
-    // fields per cell, grid_splat_body.glsl: the weight, then times n.x, n.y, n.z), two blur
-    // buffers for the largest grid, the levels and S(r) table. smooth_table is a placeholder for the
-    // other methods (the near pass always binds one).
-    float grid_cut2 = 0, grid_table_scale = 0, grid_cube_side = 0;
-    uint32_t grid_splat_levels = 0;  // the finest grids, splatted into; the others restricted
-    std::vector<bake::GpuGridLevel> grid_plan_levels;
-    uint64_t grid_bytes = 0;
-    double grid_r_cut = 0;
-    gpu::Buffer grid_levels, grid_splat, grid_cells, grid_scratch[2], smooth_table, grid_bounds;
-    gpu::Buffer grid_dispatch;  // a deforming mesh's: a GridAxisDispatch per axis pass (grid_boxes.comp)
-    gpu::TexelView smooth_table_texels, grid_splat_texels, grid_cell_texels, grid_scratch_texels[2];
-    uint32_t grid_level_count() const { return uint32_t(grid_plan_levels.size()); }
     TmMethod method() const { return exact ? TmMethod::Exact : grid ? TmMethod::Grid : TmMethod::Clustered; }
-    uint64_t tm_bytes() const
+    // What BakeResult::tm_bytes counts of these (the composite adds each pass's own).
+    uint64_t shared_tm_bytes() const
     {
         uint64_t b = 0;
-        for (const gpu::Buffer* x :
-             {&profiles, &point_order, &points, &nodes, &node_levels, &tm, &normal_sum, &partial_sum, &partial_comp,
-              &resume, &near_offsets, &near_disks, &near_indices, &grid_levels, &grid_splat, &grid_cells,
-              &grid_scratch[0], &grid_scratch[1], &smooth_table})
+        for (const gpu::Buffer* x : {&profiles, &point_order, &points, &nodes, &node_levels, &tm, &normal_sum,
+                                     &partial_sum, &partial_comp, &resume, &near_offsets, &near_disks, &near_indices})
             b += *x ? x->size() : 0;
         return b;
     }

@@ -44,13 +44,10 @@ void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Mater
     m.partial_sum = per_vertex(bake::kTmPartialSums);
     m.partial_comp = per_vertex(bake::kTmPartialCompensation);
     if (m.grid)
-        prepare_grid(m, *far.grid);
-    else {
-        m.smooth_table = gpu::Buffer(ctx, 16, kTexelUsage, "smooth-part table (unused)");
-        m.smooth_table_texels =
-            gpu::TexelView(ctx, m.smooth_table, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "smooth-part table");
-    }
-    bake::NearLists near = bake::build_near_lists(mesh, tree, near_margin, float(m.grid_r_cut));
+        grid.prepare(m.grids, *far.grid);
+    else
+        grid.prepare_placeholder(m.grids);
+    bake::NearLists near = bake::build_near_lists(mesh, tree, near_margin, float(m.grids.r_cut));
     std::vector<uint32_t> identity;
     if (m.exact) {
         identity.resize(n);
@@ -121,9 +118,9 @@ void Baker::Impl::record_near(VkCommandBuffer cmd, MeshState& m, uint32_t slot_b
         if (first >= end) continue;
         near_kernel(m.variant, m.grid)
             .dispatch(cmd, end - first,
-                      NearPush{first, end - first, w.first_entry, m.source_base, m.grid_cut2, m.grid_table_scale},
+                      NearPush{first, end - first, w.first_entry, m.source_base, m.grids.cut2, m.grids.table_scale},
                       {m.profiles, m.source_texels, m.near_offsets, indices, m.near_disks, m.point_order,
-                       m.smooth_table_texels, m.partial_sum, m.partial_comp, m.tm, m.normal_sum});
+                       m.grids.smooth_table_texels, m.partial_sum, m.partial_comp, m.tm, m.normal_sum});
     }
     gpu::compute_barrier(cmd);
 }
@@ -146,7 +143,7 @@ void Baker::Impl::record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSetting
     if (m.grid) {
         record_near(cmd, m, slot_begin, slot_end);
         mark("t_m near field");
-        record_grid(cmd, m, timer, slot_begin, slot_end);
+        grid.record(cmd, m.grids, m, timer, slot_begin, slot_end);
         return;
     }
     if (!m.exact) {
