@@ -8,6 +8,7 @@
 #include "bake/ao_pass.hpp"
 #include "bake/grid_pass.hpp"
 #include "bake/mesh_state.hpp"
+#include "bake/near_pass.hpp"
 #include "bake/ray_refit_pass.hpp"
 #include "bake/thickness_pass.hpp"
 
@@ -54,15 +55,15 @@ struct Baker::Impl {
     std::optional<gpu::Kernel> gather, refit;
     // t_m kernels per [grey (1 channel) or RGB][profile kind: Burley, dipole, Gaussians, mixed].
     std::optional<gpu::Kernel> tm_exact[2][4], tm_cluster[2][4];
-    std::optional<gpu::Kernel> tm_near[2][2][4];    // [grid far field][grey][kind]
     std::optional<gpu::Kernel> tm_exact_f64[2][4];  // dev::BakeStudy::tm_float64_sums
 
     bake::AoPass ao;
     bake::RayRefitPass ray_refit;
     bake::ThicknessPass thickness;
+    bake::NearPass near;
     bake::GridPass grid;
 
-    explicit Impl(gpu::Context& c) : ctx(c), ao(c), ray_refit(c), thickness(c), grid(c) {}
+    explicit Impl(gpu::Context& c) : ctx(c), ao(c), ray_refit(c), thickness(c), near(c), grid(c) {}
 
     const gpu::Kernel& kernel(std::optional<gpu::Kernel>& slot, gpu::KernelDesc desc)
     {
@@ -78,18 +79,6 @@ struct Baker::Impl {
     {
         return kernel(refit,
                       {"cluster_refit", shaders::cluster_refit_comp(), storage_bindings(4), sizeof(RefitPush), 64, {}});
-    }
-    const gpu::Kernel& near_kernel(const TmVariant& v, bool grid)
-    {
-        std::vector<uint32_t> constants = tm_constants(v);
-        constants.push_back(grid ? 1u : 0u);
-        return kernel(tm_near[grid][v.grey][v.kind], {"tm_near",
-                                                      shaders::tm_near_comp(),
-                                                      {kStorage, kTexels, kStorage, kTexels, kStorage, kStorage,
-                                                       kTexels, kStorage, kStorage, kStorage, kStorage},
-                                                      sizeof(NearPush),
-                                                      64,
-                                                      constants});
     }
     const gpu::Kernel& exact_kernel(const TmVariant& v, bool float64_sums)
     {
@@ -118,8 +107,9 @@ struct Baker::Impl {
         bake::AoPass::Buffers ao_pass;
         bake::RayRefitPass::Buffers ray_refit;  // a deforming mesh's
         bake::ThicknessPass::Buffers thickness;
+        bake::NearPass::Buffers near_lists;
         bake::GridPass::Buffers grids;
-        uint64_t tm_bytes() const { return shared_tm_bytes() + grids.bytes(); }
+        uint64_t tm_bytes() const { return shared_tm_bytes() + near_lists.bytes() + grids.bytes(); }
     };
     void upload_mesh(MeshState& m, const PreparedMesh& mesh, VkBufferUsageFlags extra_usage = 0)
     {
@@ -136,9 +126,6 @@ struct Baker::Impl {
     // how much closer vertices may come.
     void prepare_tm(MeshState& m, const PreparedMesh& mesh, const Material& material, const BakeSettings& s,
                     float near_margin);
-
-    // The near pass over tree slots [slot_begin, slot_end): starts every target's partial sums.
-    void record_near(VkCommandBuffer cmd, MeshState& m, uint32_t slot_begin, uint32_t slot_end);
 
     // What every static bake reads back after its one submission (baker.cpp): t_m with its
     // scattering normals, how t_m was summed, and the timings.

@@ -25,23 +25,18 @@ struct MeshState {
     uint32_t node_count = 0, first_point = 0;  // first_point: texel of source 0 in `points`
     gpu::Buffer profiles, point_order, points, nodes, node_levels, tm;
     gpu::Buffer normal_sum;  // per vertex: the scattering normal's unnormalised sum (tm_state.glsl)
-    gpu::Buffer partial_sum, partial_comp, resume, near_offsets, near_disks, near_indices;
+    gpu::Buffer partial_sum, partial_comp, resume;
     gpu::TexelView point_texels, tree_texels;
     gpu::TexelView source_texels;  // the sources as RGBA32UI (the near pass), from texel source_base
     uint32_t source_base = 0;
     std::vector<uint32_t> level_offsets;
-    struct NearWindow {
-        bake::NearWindow span;   // rows = tree slots
-        gpu::TexelView indices;  // near_indices from entry span.first_entry on
-    };
-    std::vector<NearWindow> near_windows;  // near-pass dispatches, each within one texel view
     TmMethod method() const { return exact ? TmMethod::Exact : grid ? TmMethod::Grid : TmMethod::Clustered; }
     // What BakeResult::tm_bytes counts of these (the composite adds each pass's own).
     uint64_t shared_tm_bytes() const
     {
         uint64_t b = 0;
         for (const gpu::Buffer* x : {&profiles, &point_order, &points, &nodes, &node_levels, &tm, &normal_sum,
-                                     &partial_sum, &partial_comp, &resume, &near_offsets, &near_disks, &near_indices})
+                                     &partial_sum, &partial_comp, &resume})
             b += *x ? x->size() : 0;
         return b;
     }

@@ -47,37 +47,14 @@ void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Mater
         grid.prepare(m.grids, *far.grid);
     else
         grid.prepare_placeholder(m.grids);
-    bake::NearLists near = bake::build_near_lists(mesh, tree, near_margin, float(m.grids.r_cut));
     std::vector<uint32_t> identity;
     if (m.exact) {
         identity.resize(n);
         std::iota(identity.begin(), identity.end(), 0u);
     }
-    // Rows in slot order, so a range of slots has a contiguous window of entries.
-    near =
-        bake::reorder_rows(near, m.exact ? std::span<const uint32_t>(identity) : std::span<const uint32_t>(tree.order));
-    // Entries name source slots: the near pass reads the sources in slot order as texels.
-    if (!m.exact) {
-        std::vector<uint32_t> slot_of(n);
-        for (uint32_t k = 0; k < n; ++k) slot_of[tree.order[k]] = k;
-        for (uint32_t& j : near.indices) j = slot_of[j];
-    }
-    m.near_offsets = gpu::Buffer::from(ctx, near.offsets, kStorageUsage, "near-field offsets");
-    m.near_disks = gpu::Buffer::from(ctx, near.disk_counts, kStorageUsage, "near-field disk candidates");
-    near.indices.resize(near.indices.size() + 64, 0);  // room for a window's aligned start and minimum size
-    // Read as texels (one SIMD gather on lavapipe, not a loop of bounds-checked loads), through
-    // one view per window of slots, so the lists may outgrow one view (maxTexelBufferElements).
-    m.near_indices = gpu::Buffer(ctx, near.indices.size() * 4, kTexelUsage, "near-field sources", false,
-                                 gpu::StorageBinding::Windows);
-    m.near_indices.upload(near.indices.data(), near.indices.size() * 4);
-    const auto& lim = ctx.limits();
-    m.near_windows.clear();
-    for (const bake::NearWindow& w :
-         bake::plan_near_windows(near.offsets, std::max<VkDeviceSize>(lim.minTexelBufferOffsetAlignment, 4),
-                                 VkDeviceSize(lim.maxTexelBufferElements) * 4))
-        m.near_windows.push_back(
-            {w, gpu::TexelView(ctx, m.near_indices, VK_FORMAT_R32_UINT, 4, "near-field sources (texels)",
-                               VkDeviceSize(w.first_entry) * 4, w.bytes)});
+    near.prepare(m.near_lists, mesh, tree,
+                 m.exact ? std::span<const uint32_t>(identity) : std::span<const uint32_t>(tree.order), m.exact,
+                 near_margin, float(m.grids.r_cut));
     if (m.exact || m.grid) {
         m.point_order = m.exact ? gpu::Buffer::from(ctx, identity, kStorageUsage, "identity order")
                                 : gpu::Buffer::from(ctx, tree.order, kStorageUsage, "point tree order");
@@ -111,20 +88,6 @@ void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Mater
     m.resume = gpu::Buffer(ctx, n * bake::kTmResume.bytes_per_vertex, kStorageUsage, bake::kTmResume.name);
 }
 
-void Baker::Impl::record_near(VkCommandBuffer cmd, MeshState& m, uint32_t slot_begin, uint32_t slot_end)
-{
-    for (const auto& [w, indices] : m.near_windows) {
-        const uint32_t first = std::max(w.first_row, slot_begin), end = std::min(w.first_row + w.row_count, slot_end);
-        if (first >= end) continue;
-        near_kernel(m.variant, m.grid)
-            .dispatch(cmd, end - first,
-                      NearPush{first, end - first, w.first_entry, m.source_base, m.grids.cut2, m.grids.table_scale},
-                      {m.profiles, m.source_texels, m.near_offsets, indices, m.near_disks, m.point_order,
-                       m.grids.smooth_table_texels, m.partial_sum, m.partial_comp, m.tm, m.normal_sum});
-    }
-    gpu::compute_barrier(cmd);
-}
-
 void Baker::Impl::record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSettings& s, gpu::GpuTimer* timer,
                             uint32_t slot_begin, uint32_t slot_end)
 {
@@ -141,7 +104,7 @@ void Baker::Impl::record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSetting
     gpu::compute_barrier(cmd);
     mark("gather");
     if (m.grid) {
-        record_near(cmd, m, slot_begin, slot_end);
+        near.record(cmd, m.near_lists, m, m.grids, slot_begin, slot_end);
         mark("t_m near field");
         grid.record(cmd, m.grids, m, timer, slot_begin, slot_end);
         return;
@@ -156,7 +119,7 @@ void Baker::Impl::record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSetting
         mark("refit");
         vkCmdFillBuffer(cmd, m.resume.handle(), 0, VK_WHOLE_SIZE, 0);
     }
-    record_near(cmd, m, slot_begin, slot_end);
+    near.record(cmd, m.near_lists, m, m.grids, slot_begin, slot_end);
     mark("t_m near field");
     if (m.exact) {
         const auto& kernel = exact_kernel(m.variant, dev::study_of(s).tm_float64_sums);
