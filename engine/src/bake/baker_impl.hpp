@@ -6,6 +6,9 @@
 
 #include "bake/bake_common.hpp"
 #include "bake/ao_pass.hpp"
+#include "bake/clustered_pass.hpp"
+#include "bake/exact_pass.hpp"
+#include "bake/gather_pass.hpp"
 #include "bake/grid_pass.hpp"
 #include "bake/mesh_state.hpp"
 #include "bake/near_pass.hpp"
@@ -51,75 +54,37 @@ using gpu::storage_bindings;
 
 struct Baker::Impl {
     gpu::Context& ctx;
-    // Pipelines are made on first use: a scene that never needs one never creates it.
-    std::optional<gpu::Kernel> gather, refit;
-    // t_m kernels per [grey (1 channel) or RGB][profile kind: Burley, dipole, Gaussians, mixed].
-    std::optional<gpu::Kernel> tm_exact[2][4], tm_cluster[2][4];
-    std::optional<gpu::Kernel> tm_exact_f64[2][4];  // dev::BakeStudy::tm_float64_sums
-
     bake::AoPass ao;
     bake::RayRefitPass ray_refit;
     bake::ThicknessPass thickness;
+    bake::GatherPass gather;
     bake::NearPass near;
+    bake::ExactPass exact;
+    bake::ClusteredPass clustered;
     bake::GridPass grid;
 
-    explicit Impl(gpu::Context& c) : ctx(c), ao(c), ray_refit(c), thickness(c), near(c), grid(c) {}
+    explicit Impl(gpu::Context& c)
+        : ctx(c), ao(c), ray_refit(c), thickness(c), gather(c), near(c), exact(c), clustered(c), grid(c)
+    {
+    }
 
-    const gpu::Kernel& kernel(std::optional<gpu::Kernel>& slot, gpu::KernelDesc desc)
-    {
-        return bake::lazy_kernel(ctx, slot, desc);
-    }
-    const gpu::Kernel& gather_kernel()
-    {
-        return kernel(
-            gather,
-            {"gather_sources", shaders::gather_sources_comp(), storage_bindings(6), sizeof(GatherPush), 64, {}});
-    }
-    const gpu::Kernel& refit_kernel()
-    {
-        return kernel(refit,
-                      {"cluster_refit", shaders::cluster_refit_comp(), storage_bindings(4), sizeof(RefitPush), 64, {}});
-    }
-    const gpu::Kernel& exact_kernel(const TmVariant& v, bool float64_sums)
-    {
-        auto& slot = float64_sums ? tm_exact_f64[v.grey][v.kind] : tm_exact[v.grey][v.kind];
-        if (!slot) require_subgroup_groups();  // once, when the kernel is made
-        return kernel(slot, {float64_sums ? "tm_exact_f64" : "tm_exact",
-                             float64_sums ? shaders::tm_exact_f64_comp() : shaders::tm_exact_comp(),
-                             {kStorage, kTexels, kStorage, kStorage, kStorage, kStorage},
-                             sizeof(ExactPush),
-                             64,
-                             tm_constants(v)});
-    }
-    const gpu::Kernel& cluster_kernel(const TmVariant& v)
-    {
-        if (!tm_cluster[v.grey][v.kind]) require_subgroup_groups();
-        return kernel(tm_cluster[v.grey][v.kind],
-                      {"tm_cluster",
-                       shaders::tm_cluster_comp(),
-                       {kStorage, kTexels, kStorage, kStorage, kStorage, kStorage, kStorage, kStorage},
-                       sizeof(ClusterPush),
-                       64,
-                       tm_constants(v)});
-    }
     // One mesh's bake: the state the passes share, and each pass's own buffers.
     struct MeshState : bake::MeshState {
         bake::AoPass::Buffers ao_pass;
         bake::RayRefitPass::Buffers ray_refit;  // a deforming mesh's
         bake::ThicknessPass::Buffers thickness;
         bake::NearPass::Buffers near_lists;
+        bake::ClusteredPass::Buffers cluster_tree;
         bake::GridPass::Buffers grids;
-        uint64_t tm_bytes() const { return shared_tm_bytes() + near_lists.bytes() + grids.bytes(); }
+        uint64_t tm_bytes() const
+        {
+            return shared_tm_bytes() + near_lists.bytes() + cluster_tree.bytes() + grids.bytes();
+        }
     };
     void upload_mesh(MeshState& m, const PreparedMesh& mesh, VkBufferUsageFlags extra_usage = 0)
     {
         bake::upload_mesh(ctx, m, mesh, extra_usage);
     }
-    void check_storage_range(VkDeviceSize bytes, const char* what) const
-    {
-        bake::check_storage_range(ctx, bytes, what);
-    }
-    void require_subgroup_groups() const { bake::require_subgroup_groups(ctx); }
 
     // The t_m passes (bake/tm_passes.cpp). Sets up gather → near field → (all pairs | refit →
     // clustered | grid), reading m.ao, writing m.tm. `near_margin` (bake/near_field.hpp) covers

@@ -23,20 +23,28 @@ struct MeshState {
     bool grid = false;  // the grid far field (bake/grid_pass.hpp) instead of the cluster tree
     TmVariant variant{};
     uint32_t node_count = 0, first_point = 0;  // first_point: texel of source 0 in `points`
-    gpu::Buffer profiles, point_order, points, nodes, node_levels, tm;
+    gpu::Buffer profiles, point_order, points, tm;
     gpu::Buffer normal_sum;  // per vertex: the scattering normal's unnormalised sum (tm_state.glsl)
-    gpu::Buffer partial_sum, partial_comp, resume;
-    gpu::TexelView point_texels, tree_texels;
+    gpu::Buffer partial_sum, partial_comp;
+    gpu::TexelView point_texels;
     gpu::TexelView source_texels;  // the sources as RGBA32UI (the near pass), from texel source_base
     uint32_t source_base = 0;
-    std::vector<uint32_t> level_offsets;
+    // `points` as two storage windows: the cluster tree's nodes (none but for the clustered far
+    // field), and the sources from texel first_point.
+    gpu::Binding nodes_window() const
+    {
+        return {points.handle(), 0, std::max<VkDeviceSize>(VkDeviceSize(node_count) * 64, 16)};
+    }
+    gpu::Binding sources_window() const
+    {
+        return {points.handle(), VkDeviceSize(first_point) * 16, VkDeviceSize(vertex_count) * 32};
+    }
     TmMethod method() const { return exact ? TmMethod::Exact : grid ? TmMethod::Grid : TmMethod::Clustered; }
     // What BakeResult::tm_bytes counts of these (the composite adds each pass's own).
     uint64_t shared_tm_bytes() const
     {
         uint64_t b = 0;
-        for (const gpu::Buffer* x : {&profiles, &point_order, &points, &nodes, &node_levels, &tm, &normal_sum,
-                                     &partial_sum, &partial_comp, &resume})
+        for (const gpu::Buffer* x : {&profiles, &point_order, &points, &tm, &normal_sum, &partial_sum, &partial_comp})
             b += *x ? x->size() : 0;
         return b;
     }

@@ -64,28 +64,7 @@ void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Mater
             gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_UINT, 16, "t_m sources (integer texels)");
         return;
     }
-    m.point_order = gpu::Buffer::from(ctx, tree.order, kStorageUsage, "point tree order");
-    m.node_count = uint32_t(tree.nodes.size());
-    m.nodes = gpu::Buffer::from(ctx, tree.nodes, kStorageUsage, "point tree nodes");
-    bake::BvhLevels levels = bake::bvh_levels(tree);
-    m.node_levels = gpu::Buffer::from(ctx, levels.nodes, kStorageUsage, "point tree levels");
-    m.level_offsets = levels.offsets;
-    // One buffer holds the nodes (4 texels each) and then the sources (2 texels each), so one
-    // fetch per lane brings a node and a source (tm_cluster.comp).
-    // Sources start at a texel that is a multiple of 16 (256 bytes): any device's allowed
-    // offset for binding them alone as a storage buffer.
-    m.first_point = (4 * m.node_count + 15) / 16 * 16;
-    check_storage_range(VkDeviceSize(n) * bake::kTmSources.bytes_per_vertex, bake::kTmSources.name);
-    check_storage_range(VkDeviceSize(m.node_count) * 64, "t_m cluster nodes");
-    m.points = gpu::Buffer(ctx, VkDeviceSize(m.first_point) * 16 + n * bake::kTmSources.bytes_per_vertex, kTexelUsage,
-                           "t_m cluster tree and sources", false,
-                           gpu::StorageBinding::Windows);  // bound as two windows, each checked above
-    m.tree_texels =
-        gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_UINT, 16, "t_m cluster tree and sources (texels)");
-    m.source_texels =
-        gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_UINT, 16, "t_m cluster tree and sources (texels)");
-    m.source_base = m.first_point;
-    m.resume = gpu::Buffer(ctx, n * bake::kTmResume.bytes_per_vertex, kStorageUsage, bake::kTmResume.name);
+    clustered.prepare(m.cluster_tree, m, tree);
 }
 
 void Baker::Impl::record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSettings& s, gpu::GpuTimer* timer,
@@ -97,10 +76,7 @@ void Baker::Impl::record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSetting
     const uint32_t n = m.vertex_count;
     if (m.exact) slot_begin = 0, slot_end = n;
     slot_end = std::min(slot_end, n);
-    const gpu::Binding nodes_window(m.points.handle(), 0, std::max<VkDeviceSize>(VkDeviceSize(m.node_count) * 64, 16));
-    const gpu::Binding points_window(m.points.handle(), VkDeviceSize(m.first_point) * 16, VkDeviceSize(n) * 32);
-    gather_kernel().dispatch(cmd, n, GatherPush{n},
-                             {m.positions, m.areas, m.ao, m.point_order, points_window, m.normals});
+    gather.record(cmd, m);
     gpu::compute_barrier(cmd);
     mark("gather");
     if (m.grid) {
@@ -109,40 +85,15 @@ void Baker::Impl::record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSetting
         grid.record(cmd, m.grids, m, timer, slot_begin, slot_end);
         return;
     }
-    if (!m.exact) {
-        for (size_t l = 0; l + 1 < m.level_offsets.size(); ++l) {
-            const uint32_t first = m.level_offsets[l], count = m.level_offsets[l + 1] - first;
-            refit_kernel().dispatch(cmd, count, RefitPush{count, first},
-                                    {m.nodes, m.node_levels, nodes_window, points_window});
-            gpu::compute_barrier(cmd);
-        }
-        mark("refit");
-        vkCmdFillBuffer(cmd, m.resume.handle(), 0, VK_WHOLE_SIZE, 0);
-    }
+    if (!m.exact) clustered.record_refit(cmd, m.cluster_tree, m, timer);
     near.record(cmd, m.near_lists, m, m.grids, slot_begin, slot_end);
     mark("t_m near field");
     if (m.exact) {
-        const auto& kernel = exact_kernel(m.variant, dev::study_of(s).tm_float64_sums);
-        for (uint32_t begin = 0; begin < n; begin += kExactSourcesPerDispatch) {
-            ExactPush push{n, begin, std::min(n, begin + kExactSourcesPerDispatch)};
-            kernel.dispatch(cmd, n, push,
-                            {m.profiles, m.point_texels, m.partial_sum, m.partial_comp, m.tm, m.normal_sum});
-            gpu::compute_barrier(cmd);
-        }
+        exact.record(cmd, m, dev::study_of(s).tm_float64_sums);
         mark("t_m far field (all pairs)");
         return;
     }
-    const auto& kernel = cluster_kernel(m.variant);
-    // Every thread visits each node and each source at most once: this many dispatches finish
-    // every traversal; threads that are done return at once.
-    const uint32_t dispatches = (m.node_count + n) / kClusterWorkPerDispatch + 1;
-    ClusterPush push{n, m.node_count, s.tm_opening_ratio, kClusterWorkPerDispatch, m.first_point, slot_begin, slot_end};
-    for (uint32_t d = 0; d < dispatches; ++d) {
-        kernel.dispatch(
-            cmd, slot_end - slot_begin, push,
-            {m.profiles, m.tree_texels, m.point_order, m.resume, m.partial_sum, m.partial_comp, m.tm, m.normal_sum});
-        gpu::compute_barrier(cmd);
-    }
+    clustered.record(cmd, m.cluster_tree, m, s.tm_opening_ratio, slot_begin, slot_end);
     mark("t_m far field (clustered)");
 }
 
