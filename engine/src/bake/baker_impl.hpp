@@ -1,7 +1,7 @@
 // bake/baker_impl.hpp - Baker::Impl, which the static bake (baker.cpp) and the per-frame
-// re-bake (dynamic_bake.cpp) share: it owns the bake kernels and records every pass of one
-// mesh's bake (its data flow: baker.cpp) on a bake::MeshState (bake/mesh_state.hpp); the
-// passes' shared vocabulary is bake/bake_common.hpp. Private to engine/src/bake.
+// re-bake (dynamic_bake.cpp) share: one owner per pass (bake/*_pass.hpp: its kernels, made on
+// first use, and the type of one mesh's buffers for it), and the order in which a mesh's bake
+// calls them (its data flow: baker.cpp). Private to engine/src/bake.
 #pragma once
 
 #include "bake/bake_common.hpp"
@@ -17,40 +17,18 @@
 
 namespace jade {
 
-// The bake's own vocabulary, for the two files that include this one.
-using bake::AoPush;
-using bake::AoResolvePush;
-using bake::ClusterPush;
-using bake::ExactPush;
+// The bake's own vocabulary, for the files that include this one (baker.cpp, dynamic_bake.cpp,
+// tm_passes.cpp).
 using bake::finish_timings;
-using bake::GatherPush;
-using bake::GridGatherPush;
-using bake::GridSplatPush;
-using bake::kAoRetraceGroup;
-using bake::kClusterWorkPerDispatch;
 using bake::kDynamicNearMargin;
-using bake::kExactSourcesPerDispatch;
 using bake::kGridMaxNearBytes;
-using bake::kPointLeafSize;
 using bake::kStaticNearMargin;
-using bake::kStorage;
 using bake::kStorageUsage;
-using bake::kTexels;
 using bake::kTexelUsage;
-using bake::kTriangleLeafSize;
-using bake::NearPush;
-using bake::RayRefitPush;
 using bake::read_scattering_normals;
-using bake::RefitPush;
-using bake::ThicknessPush;
-using bake::ThicknessResolvePush;
-using bake::tm_constants;
 using bake::tm_variant;
-using bake::TmVariant;
-using bake::uses_exact_tm;
 using bake::validate_ao_settings;
 using bake::validate_tm_settings;
-using gpu::storage_bindings;
 
 struct Baker::Impl {
     gpu::Context& ctx;
@@ -69,7 +47,7 @@ struct Baker::Impl {
     }
 
     // One mesh's bake: the state the passes share, and each pass's own buffers.
-    struct MeshState : bake::MeshState {
+    struct MeshBake : bake::MeshState {
         bake::AoPass::Buffers ao_pass;
         bake::RayRefitPass::Buffers ray_refit;  // a deforming mesh's
         bake::ThicknessPass::Buffers thickness;
@@ -81,7 +59,7 @@ struct Baker::Impl {
             return shared_tm_bytes() + near_lists.bytes() + cluster_tree.bytes() + grids.bytes();
         }
     };
-    void upload_mesh(MeshState& m, const PreparedMesh& mesh, VkBufferUsageFlags extra_usage = 0)
+    void upload_mesh(MeshBake& m, const PreparedMesh& mesh, VkBufferUsageFlags extra_usage = 0)
     {
         bake::upload_mesh(ctx, m, mesh, extra_usage);
     }
@@ -89,18 +67,18 @@ struct Baker::Impl {
     // The t_m passes (bake/tm_passes.cpp). Sets up gather → near field → (all pairs | refit →
     // clustered | grid), reading m.ao, writing m.tm. `near_margin` (bake/near_field.hpp) covers
     // how much closer vertices may come.
-    void prepare_tm(MeshState& m, const PreparedMesh& mesh, const Material& material, const BakeSettings& s,
+    void prepare_tm(MeshBake& m, const PreparedMesh& mesh, const Material& material, const BakeSettings& s,
                     float near_margin);
 
     // What every static bake reads back after its one submission (baker.cpp): t_m with its
     // scattering normals, how t_m was summed, and the timings.
-    static void read_tm_result(BakeResult& r, const MeshState& m, const gpu::GpuTimer& timer, double setup,
+    static void read_tm_result(BakeResult& r, const MeshBake& m, const gpu::GpuTimer& timer, double setup,
                                Clock::time_point t0);
 
     // Gathers every source and refits the cluster tree, then evaluates t_m for the targets in
     // tree slots [slot_begin, slot_end) (every slot by default; the all-pairs method always
     // evaluates every target).
-    void record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSettings& s, gpu::GpuTimer* timer,
+    void record_tm(VkCommandBuffer cmd, MeshBake& m, const BakeSettings& s, gpu::GpuTimer* timer,
                    uint32_t slot_begin = 0, uint32_t slot_end = ~0u);
 };
 

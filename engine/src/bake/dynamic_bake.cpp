@@ -1,6 +1,6 @@
 // bake/dynamic_bake.cpp - the per-frame re-bake of a deforming mesh (jade::DynamicBake): the
-// static bake's passes (baker_impl.hpp) recorded every frame after refitting both trees on the
-// GPU, optionally a slice of the work per frame (jade::Amortisation).
+// static bake's passes (bake/*_pass.hpp, composed by baker_impl.hpp) recorded every frame after
+// refitting both trees on the GPU, optionally a slice of the work per frame (jade::Amortisation).
 #include "bake/baker_impl.hpp"
 
 #include <jade/bake.hpp>
@@ -11,7 +11,7 @@ struct DynamicBake::State {
     Baker::Impl& impl;
     gpu::Context& ctx;  // impl's: kept apart for ~DynamicBake, which must not need the Baker
     BakeSettings settings;
-    Baker::Impl::MeshState mesh;
+    Baker::Impl::MeshBake mesh;
     Amortisation amortisation;
     uint64_t frame = 0;  // record() calls since the last full re-bake
     bool stale = true;   // the next record() re-bakes everything

@@ -6,8 +6,10 @@
 
 namespace jade::bake {
 
-// GPU state of one mesh's bake: uploaded inputs, both trees, the passes' buffers. A static
-// bake builds it, records once and drops it; a DynamicBake keeps it and records every frame.
+// What several passes of one mesh's bake read or write: the uploaded inputs, the ray items,
+// A_o, the t_m sources and sums. Each pass keeps its own buffers beside it (Baker::Impl::
+// MeshBake). A static bake builds it, records once and drops it; a DynamicBake keeps it and
+// records every frame.
 struct MeshState {
     uint32_t vertex_count = 0;
     float diagonal = 0;

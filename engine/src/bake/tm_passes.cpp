@@ -1,12 +1,13 @@
-// bake/tm_passes.cpp - the t_m passes of Baker::Impl: set-up (method choice, near lists, the far
-// field's buffers) and recording (gather → near field → all pairs | refit → clustered | grid).
-// Recorded by the static bake and by DynamicBake.
+// bake/tm_passes.cpp - how Baker::Impl runs the t_m passes: set-up (the far field's choice, the
+// shared t_m buffers, then each pass's own: near lists, grids or cluster tree) and recording
+// (gather → near field → all pairs | refit → clustered | grid). Recorded by the static bake and
+// by DynamicBake.
 #include "bake/baker_impl.hpp"
 #include "bake/far_field.hpp"
 
 namespace jade {
 
-void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Material& material, const BakeSettings& s,
+void Baker::Impl::prepare_tm(MeshBake& m, const PreparedMesh& mesh, const Material& material, const BakeSettings& s,
                              float near_margin)
 {
     validate_tm_settings(s, ctx);
@@ -67,7 +68,7 @@ void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Mater
     clustered.prepare(m.cluster_tree, m, tree);
 }
 
-void Baker::Impl::record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSettings& s, gpu::GpuTimer* timer,
+void Baker::Impl::record_tm(VkCommandBuffer cmd, MeshBake& m, const BakeSettings& s, gpu::GpuTimer* timer,
                             uint32_t slot_begin, uint32_t slot_end)
 {
     auto mark = [&](const char* stage) {
