@@ -1,7 +1,7 @@
 // bake_interface.h - what the bake's C++ (engine/src/bake) and its compute shaders must agree
 // on, written once: the push constants of every bake pass and the constants both sides read.
 //
-// Included by the shaders (glslang's include directive) and by C++ (bake/baker_impl.hpp,
+// Included by the shaders (glslang's include directive) and by C++ (bake/bake_common.hpp,
 // bake/disk_integral.hpp, bake/grid_field.hpp). In C++ the structs live in jade::bake and the
 // GLSL types are spelt with std::uint32_t and GLM. A shader declares its push constants as
 //     layout(push_constant, scalar) uniform Push { AoPush pc; };
@@ -22,7 +22,7 @@
 // Samples of S(r), then of (R − S)·r, in the grid far field's table for the near pass
 // (bake/grid_field.hpp, tm_near.comp).
 #define JADE_GRID_TABLE_SIZE 1024
-// grid_axis.comp's output cells per thread along the axis (bake/tm_grid.cpp sizes its dispatches
+// grid_axis.comp's output cells per thread along the axis (bake/grid_pass.cpp sizes its dispatches
 // and hands it to grid_boxes.comp as a specialisation constant).
 #define JADE_GRID_AXIS_RUN 8
 // Fixed-point steps per max_distance of the thickness sums: 2^22, so ≤ 1023 rays fit in 32 bits

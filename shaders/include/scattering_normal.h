@@ -1,6 +1,6 @@
 // scattering_normal.h - BakeResult::scattering_normal and normal_spread (jade/bake.hpp) from the
 // per-channel normal sums N_c (tm_state.glsl) and t_m, written once in the words that C++ (GLM)
-// and GLSL share: the static bake's read-back (bake/baker_impl.hpp) and a deforming mesh's
+// and GLSL share: the static bake's read-back (bake/bake_common.hpp) and a deforming mesh's
 // pack_vertices.comp both call these.
 #ifndef JADE_SCATTERING_NORMAL_H
 #define JADE_SCATTERING_NORMAL_H

@@ -1,6 +1,6 @@
-// bake/baker.cpp - the GPU bake: AO, then t_m, in one submission (the passes themselves are
-// Baker::Impl's, bake/baker_impl.hpp; the per-frame re-bake of a deforming mesh, which records
-// the same passes after refitting both trees, is bake/dynamic_bake.cpp).
+// bake/baker.cpp - the GPU bake: AO, then t_m, in one submission (the passes are bake/*_pass.hpp,
+// composed by Baker::Impl, bake/baker_impl.hpp; the per-frame re-bake of a deforming mesh, which
+// records the same passes after refitting both trees, is bake/dynamic_bake.cpp).
 //
 // Data flow (all on the GPU after one upload):
 //   positions, indices                                      -> ray_refit      -> ray items (dynamic only)
@@ -85,7 +85,7 @@ TmMethod parse_tm_method(std::string_view name)
 
 // What every static bake reads back after its one submission: t_m with its scattering normals,
 // how t_m was summed, and the timings (after the read-backs, which the wall time includes).
-void Baker::Impl::read_tm_result(BakeResult& r, const MeshState& m, const gpu::GpuTimer& timer, double setup,
+void Baker::Impl::read_tm_result(BakeResult& r, const MeshBake& m, const gpu::GpuTimer& timer, double setup,
                                  Clock::time_point t0)
 {
     r.tm = m.tm.read<glm::vec3>(m.vertex_count);
@@ -102,14 +102,14 @@ std::vector<float> Baker::bake_ao(const PreparedMesh& mesh, const AoSettings& se
 {
     validate_ao_settings(settings);
     auto t0 = Clock::now();
-    Impl::MeshState m;
+    Impl::MeshBake m;
     impl_->upload_mesh(m, mesh);
-    impl_->prepare_ao(m, mesh, false);
+    impl_->ao.prepare(m.ao_pass, m, mesh);
     double setup = ms_since(t0);
     gpu::GpuTimer timer(impl_->ctx);
     impl_->ctx.submit_and_wait([&](VkCommandBuffer cmd) {
         timer.begin(cmd);
-        impl_->record_ao(cmd, m, settings);
+        impl_->ao.record(cmd, m.ao_pass, m, settings);
         timer.mark(cmd, "ao");
     });
     auto ao = m.ao.read<float>(mesh.vertex_count());
@@ -124,7 +124,7 @@ BakeResult Baker::bake_tm(const PreparedMesh& mesh, std::span<const float> ao, c
         throw Error("bake_tm: " + std::to_string(ao.size()) + " AO values for " + std::to_string(mesh.vertex_count()) +
                     " vertices");
     auto t0 = Clock::now();
-    Impl::MeshState m;
+    Impl::MeshBake m;
     impl_->upload_mesh(m, mesh);
     m.ao = gpu::Buffer::from(impl_->ctx, ao, kStorageUsage, "ao (given)");
     impl_->prepare_tm(m, mesh, material, settings, kStaticNearMargin);
@@ -145,20 +145,20 @@ BakeResult Baker::bake(const PreparedMesh& mesh, const Material& material, const
     validate_ao_settings(requested.ao);
     const BakeSettings settings = bake::without_unused_passes(requested, material);
     auto t0 = Clock::now();
-    Impl::MeshState m;
+    Impl::MeshBake m;
     impl_->upload_mesh(m, mesh);
-    impl_->prepare_ao(m, mesh, false);
-    impl_->prepare_thickness(m, settings.thickness);
+    impl_->ao.prepare(m.ao_pass, m, mesh);
+    impl_->thickness.prepare(m.thickness, m, settings.thickness);
     impl_->prepare_tm(m, mesh, material, settings, kStaticNearMargin);
     double setup = ms_since(t0);
     gpu::GpuTimer timer(impl_->ctx);
     impl_->ctx.submit_and_wait([&](VkCommandBuffer cmd) {
         timer.begin(cmd);
-        impl_->record_ao(cmd, m, settings.ao);
+        impl_->ao.record(cmd, m.ao_pass, m, settings.ao);
         gpu::compute_barrier(cmd);
         timer.mark(cmd, "ao");
         if (settings.thickness.enabled()) {
-            impl_->record_thickness(cmd, m, settings.thickness);
+            impl_->thickness.record(cmd, m.thickness, m, settings.thickness);
             gpu::compute_barrier(cmd);
             timer.mark(cmd, "thickness");
         }
@@ -166,7 +166,7 @@ BakeResult Baker::bake(const PreparedMesh& mesh, const Material& material, const
     });
     BakeResult r;
     r.ao = m.ao.read<float>(mesh.vertex_count());
-    if (settings.thickness.enabled()) r.thickness = m.thickness.read<float>(mesh.vertex_count());
+    if (settings.thickness.enabled()) r.thickness = m.thickness.result.read<float>(mesh.vertex_count());
     Impl::read_tm_result(r, m, timer, setup, t0);
     return r;
 }

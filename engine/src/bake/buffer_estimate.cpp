@@ -1,5 +1,6 @@
-// bake/buffer_estimate.cpp - estimate_buffers: the buffers of Baker::Impl::MeshState before a
-// bake allocates them (upload_mesh, prepare_ao, prepare_thickness, prepare_tm).
+// bake/buffer_estimate.cpp - estimate_buffers: the buffers of one mesh's bake (Baker::Impl::
+// MeshBake: the shared bake::MeshState and each pass's own) before a bake allocates them
+// (upload_mesh, the passes' prepare, prepare_tm).
 //
 // Sizes are written with the same element types and constants the passes allocate with. What
 // depends on the geometry rather than on the counts is estimated with three constants measured
@@ -14,7 +15,7 @@
 // Host-visible staging is not counted.
 #include "bake/buffer_estimate.hpp"
 
-#include "bake/baker_impl.hpp"
+#include "bake/bake_common.hpp"
 #include "bake/far_field.hpp"
 
 #include <cmath>
@@ -85,7 +86,7 @@ std::vector<BufferEstimate> estimate_buffers(const PreparedMesh& mesh, const Mat
                      bytes(sizeof(glm::uvec4) * first_point + double(kTmSources.bytes_per_vertex) * n)});
         b.push_back({kTmResume.name, bytes(kTmResume.bytes_per_vertex * n)});
     }
-    if (dynamic) {  // refit data (prepare_ao with refittable = true)
+    if (dynamic) {  // refit data (RayRefitPass::prepare)
         b.push_back({"triangle indices", bytes(3 * word * tris)});
         b.push_back({"ray item origins", bytes(word * ray_items)});
         b.push_back({"ray refit work", bytes(sizeof(glm::uvec2) * ray_items)});

@@ -1,6 +1,6 @@
 // bake/dynamic_bake.cpp - the per-frame re-bake of a deforming mesh (jade::DynamicBake): the
-// static bake's passes (baker_impl.hpp) recorded every frame after refitting both trees on the
-// GPU, optionally a slice of the work per frame (jade::Amortisation).
+// static bake's passes (bake/*_pass.hpp, composed by baker_impl.hpp) recorded every frame after
+// refitting both trees on the GPU, optionally a slice of the work per frame (jade::Amortisation).
 #include "bake/baker_impl.hpp"
 
 #include <jade/bake.hpp>
@@ -11,7 +11,7 @@ struct DynamicBake::State {
     Baker::Impl& impl;
     gpu::Context& ctx;  // impl's: kept apart for ~DynamicBake, which must not need the Baker
     BakeSettings settings;
-    Baker::Impl::MeshState mesh;
+    Baker::Impl::MeshBake mesh;
     Amortisation amortisation;
     uint64_t frame = 0;  // record() calls since the last full re-bake
     bool stale = true;   // the next record() re-bakes everything
@@ -45,8 +45,9 @@ DynamicBake::DynamicBake(Baker& baker, const PreparedMesh& rest, const Material&
     auto& impl = state_->impl;
     // Deformers write the inputs on the GPU (or the host uploads them): transfer and storage.
     impl.upload_mesh(state_->mesh, rest, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-    impl.prepare_ao(state_->mesh, rest, true);
-    impl.prepare_thickness(state_->mesh, state_->settings.thickness);
+    const bake::AoPass::Tree ray_tree = impl.ao.prepare(state_->mesh.ao_pass, state_->mesh, rest);
+    impl.ray_refit.prepare(state_->mesh.ray_refit, ray_tree, rest);
+    impl.thickness.prepare(state_->mesh.thickness, state_->mesh, state_->settings.thickness);
     impl.prepare_tm(state_->mesh, rest, material, settings, kDynamicNearMargin);
 }
 
@@ -65,7 +66,7 @@ DynamicBake::Buffers DynamicBake::buffers() const
             m.ao.handle(),
             m.tm.handle(),
             m.vertex_count,
-            m.thickness ? m.thickness.handle() : VK_NULL_HANDLE,
+            m.thickness.result ? m.thickness.result.handle() : VK_NULL_HANDLE,
             m.normal_sum.handle()};
 }
 
@@ -92,7 +93,7 @@ void DynamicBake::State::record(VkCommandBuffer cmd, gpu::GpuTimer* timer)
 {
     auto& m = mesh;
     gpu::compute_barrier(cmd);  // the inputs' writes (transfer or compute) before the refit reads them
-    impl.record_ray_refit(cmd, m);
+    impl.ray_refit.record(cmd, m.ray_refit, m);
     if (timer) timer->mark(cmd, "BVH refit");
     // Amortised: one AO slice and one t_m slice per record(), in turn; everything when stale.
     const bool full = stale;
@@ -101,11 +102,11 @@ void DynamicBake::State::record(VkCommandBuffer cmd, gpu::GpuTimer* timer)
     frame = full ? 1 : this_frame + 1;
     // The ray slices of this frame: all of them (count 0) after a full re-bake, else one in turn.
     const uint32_t slice = full ? 0 : uint32_t(this_frame % m.ao_slices), slices = full ? 0 : 1;
-    impl.record_ao(cmd, m, settings.ao, slice, slices, amortisation.retrace_changed);
+    impl.ao.record(cmd, m.ao_pass, m, settings.ao, slice, slices, amortisation.retrace_changed);
     gpu::compute_barrier(cmd);
     if (timer) timer->mark(cmd, "ao");
     if (settings.thickness.enabled()) {
-        impl.record_thickness(cmd, m, settings.thickness, slice, slices);
+        impl.thickness.record(cmd, m.thickness, m, settings.thickness, slice, slices);
         gpu::compute_barrier(cmd);
         if (timer) timer->mark(cmd, "thickness");
     }
@@ -128,22 +129,11 @@ void DynamicBake::set_amortisation(const Amortisation& a)
     auto& m = state_->mesh;
     if (a.ao_slices != m.ao_slices) {
         // Recorded frames may still use the old per-slice sums.
-        state_->impl.ctx.release_after_gpu(std::move(m.hits), std::move(m.thickness_sums), std::move(m.ao_previous),
-                                           std::move(m.ao_changed_list));
-        m.hits = gpu::Buffer(state_->impl.ctx, VkDeviceSize(m.vertex_count) * a.ao_slices * sizeof(uint32_t),
-                             kStorageUsage, "ao hit counts (per ray slice)");
-        if (a.ao_slices > 1) {
-            m.ao_previous = gpu::Buffer(state_->impl.ctx, VkDeviceSize(m.vertex_count) * sizeof(uint32_t),
-                                        kStorageUsage, "ao hit counts of the fresh slice, before");
-            m.ao_changed_list = gpu::Buffer(state_->impl.ctx, 16 + VkDeviceSize(m.vertex_count) * sizeof(uint32_t),
-                                            kStorageUsage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
-                                            "ao vertices to retrace (ao_changed.comp)");
-        }
+        state_->impl.ctx.release_after_gpu(std::move(m.ao_pass.hits), std::move(m.thickness.sums),
+                                           std::move(m.ao_pass.previous), std::move(m.ao_pass.changed_list));
+        m.ao_pass.set_slices(state_->impl.ctx, m.vertex_count, a.ao_slices);
         m.ao_slices = a.ao_slices;
-        if (thickness_rays > 0)
-            m.thickness_sums =
-                gpu::Buffer(state_->impl.ctx, VkDeviceSize(m.vertex_count) * a.ao_slices * sizeof(uint32_t),
-                            kStorageUsage, "thickness sums (per ray slice)");
+        if (thickness_rays > 0) m.thickness.allocate_sums(state_->impl.ctx, m.vertex_count, a.ao_slices);
     }
     state_->amortisation = a;
     state_->stale = true;
@@ -191,7 +181,7 @@ BakeResult DynamicBake::State::submit(const Inputs* inputs, Clock::time_point t0
         r.ao = m.ao.read<float>(m.vertex_count);
         r.tm = m.tm.read<glm::vec3>(m.vertex_count);
         read_scattering_normals(r, m.normal_sum, m.normals, m.vertex_count);
-        if (m.thickness) r.thickness = m.thickness.read<float>(m.vertex_count);
+        if (m.thickness.result) r.thickness = m.thickness.result.read<float>(m.vertex_count);
     }
     r.method_used = m.method();
     r.tm_bytes = m.tm_bytes();

@@ -1,7 +1,7 @@
 // bake/far_field.cpp - choose_far_field: TmMethod::Auto's rule (bake/far_field.hpp).
 #include "bake/far_field.hpp"
 
-#include "bake/baker_impl.hpp"
+#include "bake/bake_common.hpp"
 
 namespace jade::bake {
 

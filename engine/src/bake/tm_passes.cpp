@@ -1,12 +1,13 @@
-// bake/tm_passes.cpp - the t_m passes of Baker::Impl: set-up (method choice, near lists, the far
-// field's buffers) and recording (gather → near field → all pairs | refit → clustered | grid).
-// Recorded by the static bake and by DynamicBake.
+// bake/tm_passes.cpp - how Baker::Impl runs the t_m passes: set-up (the far field's choice, the
+// shared t_m buffers, then each pass's own: near lists, grids or cluster tree) and recording
+// (gather → near field → all pairs | refit → clustered | grid). Recorded by the static bake and
+// by DynamicBake.
 #include "bake/baker_impl.hpp"
 #include "bake/far_field.hpp"
 
 namespace jade {
 
-void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Material& material, const BakeSettings& s,
+void Baker::Impl::prepare_tm(MeshBake& m, const PreparedMesh& mesh, const Material& material, const BakeSettings& s,
                              float near_margin)
 {
     validate_tm_settings(s, ctx);
@@ -44,43 +45,17 @@ void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Mater
     m.partial_sum = per_vertex(bake::kTmPartialSums);
     m.partial_comp = per_vertex(bake::kTmPartialCompensation);
     if (m.grid)
-        prepare_grid(m, *far.grid);
-    else {
-        m.smooth_table = gpu::Buffer(ctx, 16, kTexelUsage, "smooth-part table (unused)");
-        m.smooth_table_texels =
-            gpu::TexelView(ctx, m.smooth_table, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "smooth-part table");
-    }
-    bake::NearLists near = bake::build_near_lists(mesh, tree, near_margin, float(m.grid_r_cut));
+        grid.prepare(m.grids, *far.grid);
+    else
+        grid.prepare_placeholder(m.grids);
     std::vector<uint32_t> identity;
     if (m.exact) {
         identity.resize(n);
         std::iota(identity.begin(), identity.end(), 0u);
     }
-    // Rows in slot order, so a range of slots has a contiguous window of entries.
-    near =
-        bake::reorder_rows(near, m.exact ? std::span<const uint32_t>(identity) : std::span<const uint32_t>(tree.order));
-    // Entries name source slots: the near pass reads the sources in slot order as texels.
-    if (!m.exact) {
-        std::vector<uint32_t> slot_of(n);
-        for (uint32_t k = 0; k < n; ++k) slot_of[tree.order[k]] = k;
-        for (uint32_t& j : near.indices) j = slot_of[j];
-    }
-    m.near_offsets = gpu::Buffer::from(ctx, near.offsets, kStorageUsage, "near-field offsets");
-    m.near_disks = gpu::Buffer::from(ctx, near.disk_counts, kStorageUsage, "near-field disk candidates");
-    near.indices.resize(near.indices.size() + 64, 0);  // room for a window's aligned start and minimum size
-    // Read as texels (one SIMD gather on lavapipe, not a loop of bounds-checked loads), through
-    // one view per window of slots, so the lists may outgrow one view (maxTexelBufferElements).
-    m.near_indices = gpu::Buffer(ctx, near.indices.size() * 4, kTexelUsage, "near-field sources", false,
-                                 gpu::StorageBinding::Windows);
-    m.near_indices.upload(near.indices.data(), near.indices.size() * 4);
-    const auto& lim = ctx.limits();
-    m.near_windows.clear();
-    for (const bake::NearWindow& w :
-         bake::plan_near_windows(near.offsets, std::max<VkDeviceSize>(lim.minTexelBufferOffsetAlignment, 4),
-                                 VkDeviceSize(lim.maxTexelBufferElements) * 4))
-        m.near_windows.push_back(
-            {w, gpu::TexelView(ctx, m.near_indices, VK_FORMAT_R32_UINT, 4, "near-field sources (texels)",
-                               VkDeviceSize(w.first_entry) * 4, w.bytes)});
+    near.prepare(m.near_lists, mesh, tree,
+                 m.exact ? std::span<const uint32_t>(identity) : std::span<const uint32_t>(tree.order), m.exact,
+                 near_margin, float(m.grids.r_cut));
     if (m.exact || m.grid) {
         m.point_order = m.exact ? gpu::Buffer::from(ctx, identity, kStorageUsage, "identity order")
                                 : gpu::Buffer::from(ctx, tree.order, kStorageUsage, "point tree order");
@@ -90,45 +65,10 @@ void Baker::Impl::prepare_tm(MeshState& m, const PreparedMesh& mesh, const Mater
             gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_UINT, 16, "t_m sources (integer texels)");
         return;
     }
-    m.point_order = gpu::Buffer::from(ctx, tree.order, kStorageUsage, "point tree order");
-    m.node_count = uint32_t(tree.nodes.size());
-    m.nodes = gpu::Buffer::from(ctx, tree.nodes, kStorageUsage, "point tree nodes");
-    bake::BvhLevels levels = bake::bvh_levels(tree);
-    m.node_levels = gpu::Buffer::from(ctx, levels.nodes, kStorageUsage, "point tree levels");
-    m.level_offsets = levels.offsets;
-    // One buffer holds the nodes (4 texels each) and then the sources (2 texels each), so one
-    // fetch per lane brings a node and a source (tm_cluster.comp).
-    // Sources start at a texel that is a multiple of 16 (256 bytes): any device's allowed
-    // offset for binding them alone as a storage buffer.
-    m.first_point = (4 * m.node_count + 15) / 16 * 16;
-    check_storage_range(VkDeviceSize(n) * bake::kTmSources.bytes_per_vertex, bake::kTmSources.name);
-    check_storage_range(VkDeviceSize(m.node_count) * 64, "t_m cluster nodes");
-    m.points = gpu::Buffer(ctx, VkDeviceSize(m.first_point) * 16 + n * bake::kTmSources.bytes_per_vertex, kTexelUsage,
-                           "t_m cluster tree and sources", false,
-                           gpu::StorageBinding::Windows);  // bound as two windows, each checked above
-    m.tree_texels =
-        gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_UINT, 16, "t_m cluster tree and sources (texels)");
-    m.source_texels =
-        gpu::TexelView(ctx, m.points, VK_FORMAT_R32G32B32A32_UINT, 16, "t_m cluster tree and sources (texels)");
-    m.source_base = m.first_point;
-    m.resume = gpu::Buffer(ctx, n * bake::kTmResume.bytes_per_vertex, kStorageUsage, bake::kTmResume.name);
+    clustered.prepare(m.cluster_tree, m, tree);
 }
 
-void Baker::Impl::record_near(VkCommandBuffer cmd, MeshState& m, uint32_t slot_begin, uint32_t slot_end)
-{
-    for (const auto& [w, indices] : m.near_windows) {
-        const uint32_t first = std::max(w.first_row, slot_begin), end = std::min(w.first_row + w.row_count, slot_end);
-        if (first >= end) continue;
-        near_kernel(m.variant, m.grid)
-            .dispatch(cmd, end - first,
-                      NearPush{first, end - first, w.first_entry, m.source_base, m.grid_cut2, m.grid_table_scale},
-                      {m.profiles, m.source_texels, m.near_offsets, indices, m.near_disks, m.point_order,
-                       m.smooth_table_texels, m.partial_sum, m.partial_comp, m.tm, m.normal_sum});
-    }
-    gpu::compute_barrier(cmd);
-}
-
-void Baker::Impl::record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSettings& s, gpu::GpuTimer* timer,
+void Baker::Impl::record_tm(VkCommandBuffer cmd, MeshBake& m, const BakeSettings& s, gpu::GpuTimer* timer,
                             uint32_t slot_begin, uint32_t slot_end)
 {
     auto mark = [&](const char* stage) {
@@ -137,52 +77,24 @@ void Baker::Impl::record_tm(VkCommandBuffer cmd, MeshState& m, const BakeSetting
     const uint32_t n = m.vertex_count;
     if (m.exact) slot_begin = 0, slot_end = n;
     slot_end = std::min(slot_end, n);
-    const gpu::Binding nodes_window(m.points.handle(), 0, std::max<VkDeviceSize>(VkDeviceSize(m.node_count) * 64, 16));
-    const gpu::Binding points_window(m.points.handle(), VkDeviceSize(m.first_point) * 16, VkDeviceSize(n) * 32);
-    gather_kernel().dispatch(cmd, n, GatherPush{n},
-                             {m.positions, m.areas, m.ao, m.point_order, points_window, m.normals});
+    gather.record(cmd, m);
     gpu::compute_barrier(cmd);
     mark("gather");
     if (m.grid) {
-        record_near(cmd, m, slot_begin, slot_end);
+        near.record(cmd, m.near_lists, m, m.grids, slot_begin, slot_end);
         mark("t_m near field");
-        record_grid(cmd, m, timer, slot_begin, slot_end);
+        grid.record(cmd, m.grids, m, timer, slot_begin, slot_end);
         return;
     }
-    if (!m.exact) {
-        for (size_t l = 0; l + 1 < m.level_offsets.size(); ++l) {
-            const uint32_t first = m.level_offsets[l], count = m.level_offsets[l + 1] - first;
-            refit_kernel().dispatch(cmd, count, RefitPush{count, first},
-                                    {m.nodes, m.node_levels, nodes_window, points_window});
-            gpu::compute_barrier(cmd);
-        }
-        mark("refit");
-        vkCmdFillBuffer(cmd, m.resume.handle(), 0, VK_WHOLE_SIZE, 0);
-    }
-    record_near(cmd, m, slot_begin, slot_end);
+    if (!m.exact) clustered.record_refit(cmd, m.cluster_tree, m, timer);
+    near.record(cmd, m.near_lists, m, m.grids, slot_begin, slot_end);
     mark("t_m near field");
     if (m.exact) {
-        const auto& kernel = exact_kernel(m.variant, dev::study_of(s).tm_float64_sums);
-        for (uint32_t begin = 0; begin < n; begin += kExactSourcesPerDispatch) {
-            ExactPush push{n, begin, std::min(n, begin + kExactSourcesPerDispatch)};
-            kernel.dispatch(cmd, n, push,
-                            {m.profiles, m.point_texels, m.partial_sum, m.partial_comp, m.tm, m.normal_sum});
-            gpu::compute_barrier(cmd);
-        }
+        exact.record(cmd, m, dev::study_of(s).tm_float64_sums);
         mark("t_m far field (all pairs)");
         return;
     }
-    const auto& kernel = cluster_kernel(m.variant);
-    // Every thread visits each node and each source at most once: this many dispatches finish
-    // every traversal; threads that are done return at once.
-    const uint32_t dispatches = (m.node_count + n) / kClusterWorkPerDispatch + 1;
-    ClusterPush push{n, m.node_count, s.tm_opening_ratio, kClusterWorkPerDispatch, m.first_point, slot_begin, slot_end};
-    for (uint32_t d = 0; d < dispatches; ++d) {
-        kernel.dispatch(
-            cmd, slot_end - slot_begin, push,
-            {m.profiles, m.tree_texels, m.point_order, m.resume, m.partial_sum, m.partial_comp, m.tm, m.normal_sum});
-        gpu::compute_barrier(cmd);
-    }
+    clustered.record(cmd, m.cluster_tree, m, s.tm_opening_ratio, slot_begin, slot_end);
     mark("t_m far field (clustered)");
 }
 
