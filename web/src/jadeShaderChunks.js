@@ -174,13 +174,8 @@ bool jadeMayTransmit(vec3 direction, bool point, vec3 centre)
 }
 `;
 
-export const vertexShader = /* glsl */ `
-#include <common>
-${commonChunk}
-attribute vec3 jadeTm;
-attribute float jadeThickness;
-attribute vec3 jadeScatteringNormal;
-attribute vec3 jadeNormalSpread;
+// What the vertex shader hands the fragment shader, declared once for both.
+const varyings = /* glsl */ `
 varying vec3 vJadePosition;
 varying vec3 vJadeNormal;
 varying vec3 vJadeScatteringNormal;
@@ -195,7 +190,16 @@ varying float vJadePathDir[NUM_DIR_LIGHTS];  // JADE_PATH_PER_VERTEX: transmitte
 varying float vJadeLobePoint[NUM_POINT_LIGHTS];
 varying float vJadePathPoint[NUM_POINT_LIGHTS];
 #endif
+`;
 
+export const vertexShader = /* glsl */ `
+#include <common>
+${commonChunk}
+attribute vec3 jadeTm;
+attribute float jadeThickness;
+attribute vec3 jadeScatteringNormal;
+attribute vec3 jadeNormalSpread;
+${varyings}
 // variance (shading.glsl): t = t_m (strength + spreadStrength spread), clamped to the LUT's
 // range t_max = 25 rad^2 (LutLayout::kMaxVariance).
 vec3 jadeVariance(vec3 tm, vec3 spread)
@@ -265,21 +269,7 @@ void main()
 export const fragmentShader = /* glsl */ `
 #include <common>
 ${commonChunk}
-varying vec3 vJadePosition;
-varying vec3 vJadeNormal;
-varying vec3 vJadeScatteringNormal;
-varying vec3 vJadeVariance;
-varying float vJadeThickness;
-varying vec3 vJadeCentre;  // the bounding sphere's centre, view space (the same at every vertex)
-#if NUM_DIR_LIGHTS > 0
-varying float vJadeLobeDir[NUM_DIR_LIGHTS];
-varying float vJadePathDir[NUM_DIR_LIGHTS];  // JADE_PATH_PER_VERTEX: transmitter_path per vertex
-#endif
-#if NUM_POINT_LIGHTS > 0
-varying float vJadeLobePoint[NUM_POINT_LIGHTS];
-varying float vJadePathPoint[NUM_POINT_LIGHTS];
-#endif
-
+${varyings}
 // Translucency (translucency.glsl, EVAL = kEvalAlu, SMALL_SIGMA = 0.3): what one fragment needs
 // of t, per channel. JADE_TERMS Fourier terms and JADE_SMALL_T (the closed form for small t) are
 // chosen per mesh as Jade's choose_terms does (JadeTranslucentMaterial.setSmallestVariance).
