@@ -38,13 +38,9 @@ jade::flip::Image load_png(const std::filesystem::path& path)
 // Runs a shell command; its exit status, stdout and stderr together in `output`.
 int run(const std::string& command, std::string& output)
 {
-    FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-    if (!pipe) return -1;
-    std::array<char, 4096> buf;
-    size_t n;
-    while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) output.append(buf.data(), n);
-    const int status = pclose(pipe);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    const jade::test::CliResult r = jade::test::run_shell(command);
+    output += r.output;
+    return r.exit_code;
 }
 
 nlohmann::json read_json(const std::filesystem::path& path)

@@ -1,5 +1,7 @@
 #include "gltf_reader.hpp"
 
+#include "test_support.hpp"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -180,19 +182,10 @@ std::optional<std::vector<ValidatorReport>> run_gltf_validator(const std::vector
 {
     const std::filesystem::path source = JADE_DEFAULT_SOURCE_DIR,
                                 folder = std::filesystem::path(JADE_DEFAULT_BINARY_DIR) / "gltf-validator";
-    auto run = [](const std::string& cmd, std::string& output) {
-        FILE* pipe = popen(cmd.c_str(), "r");
-        if (!pipe) return -1;
-        std::array<char, 4096> buf;
-        size_t n;
-        while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) output.append(buf.data(), n);
-        const int status = pclose(pipe);
-        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    };
-    std::string output;
-    const int rc =
-        run("bash '" + (source / "third_party/install_gltf_validator.sh").string() + "' '" + folder.string() + "' 2>&1",
-            output);
+    const auto install = test::run_shell("bash '" + (source / "third_party/install_gltf_validator.sh").string() +
+                                         "' '" + folder.string() + "'");
+    const int rc = install.exit_code;
+    std::string output = install.output;
     if (rc == 77) {
         *skip = output;
         return std::nullopt;
@@ -205,8 +198,9 @@ std::optional<std::vector<ValidatorReport>> run_gltf_validator(const std::vector
     std::string cmd =
         "GLTF_VALIDATOR='" + folder.string() + "' node '" + (source / "tests/support/validate_gltf.js").string() + "'";
     for (const auto& f : files) cmd += " '" + f.string() + "'";
-    output.clear();
-    if (run(cmd + " 2>&1", output) != 0) {
+    const auto validated = test::run_shell(cmd);
+    output = validated.output;
+    if (validated.exit_code != 0) {
         *skip = "the glTF Validator failed: " + output;
         return reports;
     }

@@ -86,7 +86,12 @@ CliResult run_cli(const std::vector<std::string>& args)
 {
     std::string cmd = shell_quote(env_path("JADE_CLI").string());
     for (const auto& a : args) cmd += " " + shell_quote(a);
-    cmd += " 2>&1";
+    return run_shell(cmd);
+}
+
+CliResult run_shell(const std::string& command)
+{
+    const std::string cmd = command + " 2>&1";
     CliResult r;
     FILE* pipe = popen(cmd.c_str(), "r");
     if (!pipe) return r;

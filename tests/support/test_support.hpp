@@ -32,6 +32,9 @@ struct CliResult {
 };
 /// The `jade` command-line sample's executable (JADE_CLI).
 std::filesystem::path cli();
+/// Runs `command` in the shell: its exit status (128 + the signal if one ended it), stdout and
+/// stderr together.
+CliResult run_shell(const std::string& command);
 /// Runs the `jade` command-line sample with the given arguments (no shell quoting needed).
 CliResult run_cli(const std::vector<std::string>& args);
 
