@@ -114,12 +114,16 @@ vec3 soft_shadow_visibility(uint tile, vec3 position, vec3 n, vec3 l)
     bool front = c >= 0.0;
     // Most points lie far from any shadow's edge: where the centre and the four outermost taps
     // (the largest radii, spread round the disk by the golden angle) agree, so does the kernel.
+    const uint kOuter = JADE_SOFT_SHADOW_TAPS - 4u;
     bool first = soft_shadow_tap_visible(vec4(0.0), q0, q1, q2, turn, tolerance, t, front), agree = true;
-    for (uint i = JADE_SOFT_SHADOW_TAPS - 4u; i < JADE_SOFT_SHADOW_TAPS; ++i)
-        agree = agree && soft_shadow_tap_visible(data.soft_shadow_taps[i], q0, q1, q2, turn, tolerance, t, front) == first;
+    vec3 lit = vec3(0.0);  // the outer taps' share, then the rest's
+    for (uint i = kOuter; i < JADE_SOFT_SHADOW_TAPS; ++i) {
+        bool visible = soft_shadow_tap_visible(data.soft_shadow_taps[i], q0, q1, q2, turn, tolerance, t, front);
+        agree = agree && visible == first;
+        if (visible) lit += data.soft_shadow_weights[i].rgb;
+    }
     if (agree) return vec3(first ? 1.0 : 0.0);
-    vec3 lit = vec3(0.0);
-    for (uint i = 0u; i < JADE_SOFT_SHADOW_TAPS; ++i)
+    for (uint i = 0u; i < kOuter; ++i)
         if (soft_shadow_tap_visible(data.soft_shadow_taps[i], q0, q1, q2, turn, tolerance, t, front))
             lit += data.soft_shadow_weights[i].rgb;
     return lit;
