@@ -91,7 +91,7 @@ void front_and_side_lit_scenes_are_closer_than_lambert_and_curvature_everywhere(
     EXPECT_GE(not_worse_than_tm, 22) << "measured: all but bunny_jewel_side, bunny_wax_side, hand_jade_side and "
                                         "hand_jewel_side";
     EXPECT_LT(ours["front"] / 13.0, 0.17) << "measured 0.164";
-    EXPECT_LT(ours["side"] / 13.0, 0.265) << "measured 0.258";
+    EXPECT_LT(ours["side"] / 13.0, 0.265) << "measured 0.259";
 }
 
 void thin_parts_lit_from_behind_carry_the_path_tracers_radiance()

@@ -42,8 +42,8 @@ struct LightLoad {
 
 /// Texture and buffer fetches per shaded pixel, by construction (the shaders as written; a
 /// pixel is one fragment, MSAA shades once per pixel): per light with a shadow tile 9 (shadow.glsl:
-/// 3 × 3 taps of the RGBA32F tile, both layers in one fetch), and in tm (soft_shadow_visibility,
-/// where the profile spans a texel) 5 where the centre and the 4 outermost taps agree, 21 near a
+/// 3 × 3 taps of the RGBA32F tile, both layers in one fetch), and in tm (soft_shadow_visibility)
+/// 5 where the centre and the 4 outermost taps agree, 21 near a
 /// shadow's edge (the count below takes the 5); curvature 1 per light (its LUT);
 /// tm 3 per light with the LUT paths (1 for a grey material; 0 with the ALU path that lavapipe
 /// takes), and per transmitting light 4 depth-tile fetches for the light's path (per fragment; 0

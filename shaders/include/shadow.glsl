@@ -66,8 +66,9 @@ float shadow_visibility(uint tile, vec3 position, vec3 n, vec3 l)
 // offsets and weights are the material's, computed once (shading::soft_shadow_kernel). The
 // points are projected into the tile through its derivative at the point (exact for a
 // directional light's orthographic tile, to first order in r/distance for a point light's).
-// Where the kernel's median radius is under a texel of the tile the map cannot show the
-// softening: shadow_visibility's filter instead.
+// Where the kernel's median radius is under a texel of the tile, the map cannot show the
+// softening: the kernel is widened to a median radius of one texel, a filter of about the width
+// of shadow_visibility's, so that no branch picks between two filters (see the loop below).
 // A tap counts as shadowed only where the occluder is nearer to the light than the tap by more
 // than kSoftShadowTolerance times the tap's radius: the tangent plane of a lit convex body runs
 // behind the body's own silhouette as seen from the light, within about its radius of it, and the
@@ -95,22 +96,22 @@ vec3 soft_shadow_visibility(uint tile, vec3 position, vec3 n, vec3 l)
     uint t = tile - 1u;
     vec4 origin = data.light_tiles[t].origin, depth = data.light_tiles[t].depth;
     float texel = depth.z * (origin.w > 0.5 ? length(position - origin.xyz) : 1.0);
-    float median = data.soft_shadow.x;
-    if (median <= texel) return vec3(shadow_visibility(tile, position, n, l));
     float c = dot(n, l);
     float sin_theta = sqrt(max(1.0 - c * c, 0.0));
     vec3 towards = c >= 0.0 ? n : -n;
     vec3 lifted = position + towards * (texel * (kShadowOffset + kShadowSlope * sin_theta));
-    // An orthonormal basis of the tangent plane (Duff et al. 2017), and its image in the tile.
+    // An orthonormal basis of the tangent plane (Duff et al. 2017), and its image in the tile,
+    // per mesh unit of the kernel widened to a median radius of a texel where it is narrower.
     float sign_z = n.z >= 0.0 ? 1.0 : -1.0;
     float a = -1.0 / (sign_z + n.z), b = n.x * n.y * a;
     vec3 t1 = vec3(1.0 + sign_z * n.x * n.x * a, sign_z * b, -sign_z * n.x), t2 = vec3(b, sign_z + n.y * n.y * a, -n.y);
+    float median = data.soft_shadow.x, widen = max(texel / median, 1.0), reach = median * widen;
     vec3 q0 = light_tile_coords(t, lifted);
-    vec3 q1 = (light_tile_coords(t, lifted + median * t1) - q0) / median;
-    vec3 q2 = (light_tile_coords(t, lifted + median * t2) - q0) / median;
+    vec3 q1 = (light_tile_coords(t, lifted + reach * t1) - q0) / median;
+    vec3 q2 = (light_tile_coords(t, lifted + reach * t2) - q0) / median;
     float rotation = 2.0 * JADE_PI * fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
     vec2 turn = vec2(cos(rotation), sin(rotation));
-    float tolerance = kSoftShadowTolerance / depth.y;
+    float tolerance = kSoftShadowTolerance * widen / depth.y;
     bool front = c >= 0.0;
     // Most points lie far from any shadow's edge: where the centre and the four outermost taps
     // (the largest radii, spread round the disk by the golden angle) agree, so does the kernel.
@@ -122,11 +123,14 @@ vec3 soft_shadow_visibility(uint tile, vec3 position, vec3 n, vec3 l)
         agree = agree && visible == first;
         if (visible) lit += data.soft_shadow_weights[i].rgb;
     }
-    if (agree) return vec3(first ? 1.0 : 0.0);
-    for (uint i = 0u; i < kOuter; ++i)
+    // The other taps in a loop that runs no step where those agree, not after an early return:
+    // lavapipe (llvmpipe) shades fragments in SIMD lanes and runs the body of every `if` for the
+    // whole group, masked, even when no lane takes it, but it leaves a loop as soon as no lane
+    // goes on. (A GPU skips a branch that no thread of a wave takes, and runs this loop alike.)
+    for (uint i = 0u, inner = agree ? 0u : kOuter; i < inner; ++i)
         if (soft_shadow_tap_visible(data.soft_shadow_taps[i], q0, q1, q2, turn, tolerance, t, front))
             lit += data.soft_shadow_weights[i].rgb;
-    return lit;
+    return agree ? vec3(first ? 1.0 : 0.0) : lit;
 }
 
 #endif

@@ -106,7 +106,7 @@ float jadeShadowVisibility(sampler2D layers, JadeTile t, vec3 position, vec3 n, 
 // profile, per channel: 16 taps at the radii of the widest channel's Burley inverse CDF
 // (jadeSoftShadowRadius, view-space units) on a golden-angle disk rotated per pixel, each
 // weighing R_c(r)/pdf(r); an occluder counts only when nearer than twice the tap's radius. Where
-// the kernel's median radius is under a texel, the 3 x 3 filter.
+// the kernel's median radius is under a texel, the kernel widened to a texel (its weights kept).
 uniform vec4 jadeSoftShadow;              // Burley d per channel, w the sampled d (0: off)
 uniform float jadeSoftShadowRadius[16];
 uniform float jadeSoftShadowMedian;       // the sampled shape's median radius
@@ -122,8 +122,8 @@ bool jadeSoftShadowTapVisible(sampler2D layers, JadeTile t, vec3 lifted, float r
 vec3 jadeSoftShadowVisibility(sampler2D layers, JadeTile t, vec3 position, vec3 n, vec3 l, vec2 pixel)
 {
     float texel = t.depth.z * (t.info.z > 1.5 ? length(position - t.origin) : 1.0);
-    if (jadeSoftShadow.w <= 0.0 || jadeSoftShadowMedian <= texel)
-        return vec3(jadeShadowVisibility(layers, t, position, n, l));
+    if (jadeSoftShadow.w <= 0.0) return vec3(jadeShadowVisibility(layers, t, position, n, l));
+    float widen = max(texel / jadeSoftShadowMedian, 1.0);
     float c = dot(n, l);
     float sin_theta = sqrt(max(1.0 - c * c, 0.0));
     vec3 towards = c >= 0.0 ? n : -n;
@@ -137,7 +137,7 @@ vec3 jadeSoftShadowVisibility(sampler2D layers, JadeTile t, vec3 position, vec3 
     bool first = jadeSoftShadowTapVisible(layers, t, lifted, 0.0, 0.0, t1, t2, front), agree = true;
     for (int i = 12; i < 16; ++i) {
         float angle = float(i) * 2.39996322972865332 + rotation;
-        agree = agree && jadeSoftShadowTapVisible(layers, t, lifted, jadeSoftShadowRadius[i], angle, t1, t2, front) == first;
+        agree = agree && jadeSoftShadowTapVisible(layers, t, lifted, widen * jadeSoftShadowRadius[i], angle, t1, t2, front) == first;
     }
     if (agree) return vec3(first ? 1.0 : 0.0);
     vec3 lit = vec3(0.0), weight = vec3(0.0);
@@ -146,7 +146,7 @@ vec3 jadeSoftShadowVisibility(sampler2D layers, JadeTile t, vec3 position, vec3 
         float angle = float(i) * 2.39996322972865332 + rotation;
         vec3 w = jadeSoftShadowProfile(jadeSoftShadow.rgb, r) / jadeSoftShadowProfile(jadeSoftShadow.www, r).x;
         weight += w;
-        if (jadeSoftShadowTapVisible(layers, t, lifted, r, angle, t1, t2, front)) lit += w;
+        if (jadeSoftShadowTapVisible(layers, t, lifted, widen * r, angle, t1, t2, front)) lit += w;
     }
     return lit / max(weight, vec3(1e-30));
 }

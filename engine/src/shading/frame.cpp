@@ -112,21 +112,43 @@ FilamentSubsurface filament_subsurface(const Material& m)
 
 namespace jade::shading {
 
-SoftShadowKernel soft_shadow_kernel(const Material& m)
+namespace {
+
+const double kGoldenAngle = std::numbers::pi * (3.0 - std::sqrt(5.0));
+
+/// Equal weights on a golden-angle disk of uniform density, median radius 1: the kernel of a
+/// material without a profile, which the shader widens to a texel (a plain filter of the tile).
+SoftShadowKernel uniform_disk_kernel()
 {
     SoftShadowKernel k;
-    if (m.opaque) return k;
+    for (uint32_t i = 0; i < JADE_SOFT_SHADOW_TAPS; ++i) {
+        const double r = std::sqrt(2.0 * (i + 0.5) / JADE_SOFT_SHADOW_TAPS);
+        k.taps[i] =
+            glm::vec4(float(r * std::cos(i * kGoldenAngle)), float(r * std::sin(i * kGoldenAngle)), float(r), 0.0f);
+        k.weights[i] = glm::vec4(glm::vec3(1.0f / JADE_SOFT_SHADOW_TAPS), 0.0f);
+    }
+    k.median = 1.0f;
+    return k;
+}
+
+}  // namespace
+
+SoftShadowKernel soft_shadow_kernel(const Material& m)
+{
+    if (m.opaque) return uniform_disk_kernel();
     const glm::dvec3 shape = burley_shapes(m);
     const double sampled = std::max({shape.x, shape.y, shape.z});
-    if (!(sampled > 0.0) || !std::isfinite(sampled) || !(std::min({shape.x, shape.y, shape.z}) > 0.0)) return k;
+    if (!(sampled > 0.0) || !std::isfinite(sampled) || !(std::min({shape.x, shape.y, shape.z}) > 0.0))
+        return uniform_disk_kernel();
     // R(r) = (e^{−r/d} + e^{−r/(3d)}) / (8π d r): the 8π r cancels in the ratio to the sampled one.
     const auto burley = [](double d, double r) { return (std::exp(-r / d) + std::exp(-r / (3.0 * d))) / d; };
-    const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+    SoftShadowKernel k;
     glm::dvec3 sum(0.0);
     std::array<glm::dvec3, JADE_SOFT_SHADOW_TAPS> w{};
     for (uint32_t i = 0; i < JADE_SOFT_SHADOW_TAPS; ++i) {
         const double r = burley_sample_radius((i + 0.5) / JADE_SOFT_SHADOW_TAPS, sampled);
-        k.taps[i] = glm::vec4(float(r * std::cos(i * golden)), float(r * std::sin(i * golden)), float(r), 0.0f);
+        k.taps[i] =
+            glm::vec4(float(r * std::cos(i * kGoldenAngle)), float(r * std::sin(i * kGoldenAngle)), float(r), 0.0f);
         for (int c = 0; c < 3; ++c) w[i][c] = burley(shape[c], r) / burley(sampled, r);
         sum += w[i];
     }

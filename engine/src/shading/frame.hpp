@@ -32,7 +32,8 @@ FramePush frame_push(const Camera& cam, glm::vec3 bbox_min, glm::vec3 bbox_max, 
 /// at the radii of its exact inverse CDF at (i + ½)/JADE_SOFT_SHADOW_TAPS, tap i at i times the
 /// golden angle; each tap weighing R_c(r)/pdf(r) per channel (the Burley profile of the channel's
 /// shape over the sampled one's), normalised per channel. An opaque material, or one without a
-/// profile, gets median 0: the plain filter.
+/// profile, gets equal weights on a uniform disk of median radius 1. The shader widens any kernel
+/// whose median radius is under a texel of the light's tile to a texel.
 struct SoftShadowKernel {
     float median = 0.0f;
     glm::vec4 taps[JADE_SOFT_SHADOW_TAPS]{};
