@@ -5,6 +5,7 @@
 #include "test_support.hpp"
 
 #include <jade/deform.hpp>
+#include <jade/dev/names.hpp>
 #include <jade/error.hpp>
 #include <jade/io.hpp>
 #include <jade/mesh.hpp>
@@ -157,7 +158,7 @@ TEST_F(DeformGpu, ProceduralDeformersMatchFloat64OnSeveralFrames)
             for (uint32_t axis : {0u, 1u, 2u}) {
                 ProceduralDeformer d = ProceduralDeformer::fit(kind, rest, axis);
                 for (double t : {0.0, 0.3, 0.85, 1.55}) {
-                    SCOPED_TRACE(std::string(which) + " " + std::string(deformer_name(kind)) + " axis " +
+                    SCOPED_TRACE(std::string(which) + " " + std::string(dev::deformer_name(kind)) + " axis " +
                                  std::to_string(axis) + " t " + std::to_string(t));
                     const DeformTimings timings = deformer.deform(d, t);
                     EXPECT_GE(timings.deform_ms, 0.0);
@@ -341,8 +342,8 @@ TEST_F(DeformGpu, RejectsBadParameters)
     d.axis = 3;
     EXPECT_THROW(deformer.deform(d, 0.1), Error);
     EXPECT_THROW(deformer.deform(Pose{}), Error);  // no skin set
-    EXPECT_THROW(parse_deformer("spin"), Error);
-    EXPECT_EQ(parse_deformer("twist"), DeformerKind::Twist);
+    EXPECT_THROW(dev::parse_deformer("spin"), Error);
+    EXPECT_EQ(dev::parse_deformer("twist"), DeformerKind::Twist);
 }
 
 // ------------------------------------------------------------------ glTF animation, CPU side --

@@ -8,6 +8,7 @@
 #include "bake/far_field.hpp"
 
 #include <jade/bake.hpp>
+#include <jade/dev/names.hpp>
 #include <jade/io.hpp>
 
 #include <algorithm>
@@ -85,7 +86,7 @@ TEST_F(GpuTest, AutoFarFieldIsTheSameInTheBakeAndInItsBufferPlan)
         const std::vector<float> ao(c.mesh.vertex_count(), 0.0f);
         const TmMethod baked = baker.bake_tm(c.mesh, ao, material, settings).method_used;
         const TmMethod planned = method_of(bake::estimate_buffers(c.mesh, material, settings, false, false));
-        EXPECT_EQ(tm_method_name(planned), std::string(tm_method_name(baked))) << c.name;
+        EXPECT_EQ(dev::tm_method_name(planned), std::string(dev::tm_method_name(baked))) << c.name;
         // The grids alone fit the dense patch (not coarsened): its long near lists decide, the
         // part of the rule that the estimate once left out.
         const bake::GridPlan plan = bake::plan_grid(c.mesh, material, 3, settings.tm_grid_resolution, false,
@@ -95,7 +96,7 @@ TEST_F(GpuTest, AutoFarFieldIsTheSameInTheBakeAndInItsBufferPlan)
             EXPECT_EQ(baked, TmMethod::Clustered);
         }
         std::printf("%-26s %6zu vertices: %s (grids coarsened: %d)\n", c.name.c_str(), c.mesh.vertex_count(),
-                    tm_method_name(baked), int(plan.coarsened));
+                    dev::tm_method_name(baked), int(plan.coarsened));
         seen.insert(baked);
     }
     EXPECT_EQ(seen.size(), 3u) << "the meshes reach all pairs, the grid and the clustered far field";

@@ -5,6 +5,7 @@
 #include <jade/dev/bake.hpp>
 #include <jade/dev/context.hpp>
 #include <jade/bake.hpp>
+#include <jade/dev/names.hpp>
 #include <jade/io.hpp>
 #include <jade/dev/reference.hpp>
 
@@ -154,7 +155,7 @@ TEST_P(TmAccuracy, DragonAgainstFloat64)
             expect_finite_nonnegative(r.tm);
             e = relative_error(r.tm, ref, at);
             EXPECT_LE(e.max, q == Quality::High ? 1e-3 : 1e-2)
-                << tm_method_name(method) << ", " << (q == Quality::High ? "high" : "default") << " quality, rms "
+                << dev::tm_method_name(method) << ", " << (q == Quality::High ? "high" : "default") << " quality, rms "
                 << e.rms;
             // The grid carries the normal's sums exactly as t_m's; the clustered far field takes
             // each accepted node's normal sum as a monopole, whose error the sum's cancellation
@@ -164,10 +165,13 @@ TEST_P(TmAccuracy, DragonAgainstFloat64)
             const double angle = max_angle(r.scattering_normal, ref_normal, at);
             const double bound =
                 method == TmMethod::Grid ? (q == Quality::High ? 1e-3 : 5e-3) : (q == Quality::High ? 1.5e-2 : 0.15);
-            EXPECT_LE(angle, bound) << tm_method_name(method) << ", " << quality_name(q) << ": the scattering normal";
+            EXPECT_LE(angle, bound) << dev::tm_method_name(method) << ", " << dev::quality_name(q)
+                                    << ": the scattering normal";
             const double spread = max_abs_error(r.normal_spread, ref_scattering.spread, at);
-            std::printf("%s %s: angle %.2e spread %.2e\n", tm_method_name(method), quality_name(q), angle, spread);
-            EXPECT_LE(spread, bound) << tm_method_name(method) << ", " << quality_name(q) << ": the normal spread";
+            std::printf("%s %s: angle %.2e spread %.2e\n", dev::tm_method_name(method), dev::quality_name(q), angle,
+                        spread);
+            EXPECT_LE(spread, bound) << dev::tm_method_name(method) << ", " << dev::quality_name(q)
+                                     << ": the normal spread";
         }
 }
 
@@ -199,7 +203,7 @@ TEST_F(GpuTest, EveryProfileKindAgreesWithFloat64OnALargeMesh)
             expect_finite_nonnegative(r.tm);
             const RelError e = relative_error(r.tm, ref, at);
             EXPECT_LE(e.max, method == TmMethod::Exact ? 1e-4 : 1e-2)
-                << name << ", " << tm_method_name(method) << ": rms " << e.rms;
+                << name << ", " << dev::tm_method_name(method) << ": rms " << e.rms;
         }
     }
 }
@@ -342,7 +346,7 @@ TEST_F(GpuTest, ExtremeProfileWidthsReachTheirLimits)
             nearest[a] = std::min(nearest[a], len), nearest[b] = std::min(nearest[b], len);
         }
     for (TmMethod method : {TmMethod::Exact, TmMethod::Clustered, TmMethod::Grid}) {
-        SCOPED_TRACE(tm_method_name(method));
+        SCOPED_TRACE(dev::tm_method_name(method));
         BakeSettings s;
         s.method = method;
         for (double rel : {1e-6, 1e-8}) {

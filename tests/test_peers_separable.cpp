@@ -12,6 +12,7 @@
 #include "test_support.hpp"
 
 #include <jade/dev/burley_diffusion.hpp>
+#include <jade/dev/names.hpp>
 #include <jade/render.hpp>
 #include <jade/dev/separable.hpp>
 
@@ -360,7 +361,7 @@ TEST_F(PeersSeparable, ASlabLitFromBehindTransmitsItsProfilesTail)
             std::printf("channel %d: %.5f, expected %.5f (T(h) alone %.5f)\n", c, got, expected, at_h);
             // Measured within 2e-5 of it (the table's 128 quadratic steps, the layer's float32 depth);
             // T(h) without the texel is 3 to 8 % off, so the bound also checks the shrink: 0.2 %.
-            EXPECT_NEAR(got, expected, 0.002 * expected) << shading_mode_name(mode) << ", channel " << c;
+            EXPECT_NEAR(got, expected, 0.002 * expected) << dev::shading_mode_name(mode) << ", channel " << c;
         }
     }
 }

@@ -4,6 +4,7 @@
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 
+#include <jade/dev/names.hpp>
 #include <jade/dev/renderer.hpp>
 #include <jade/bake.hpp>
 #include <jade/io.hpp>
@@ -320,7 +321,7 @@ TEST_F(Render, BadInputIsAnErrorNamingIt)
     Camera bad = kFront;
     bad.target = bad.eye;
     EXPECT_NE(message([&] { r.render(bad, lights, settings(32, ShadingMode::Tm)); }).find("camera"), std::string::npos);
-    EXPECT_THROW(parse_shading_mode("phong"), Error);
+    EXPECT_THROW(dev::parse_shading_mode("phong"), Error);
 }
 
 // The four modes in one test: the bunny is baked once (ctest runs each test in its own process).
@@ -338,7 +339,7 @@ TEST_F(Render, GoldenBunnyInFourModesUnderFigure1Lights)
         s.mode = mode;
         // A fixed colour-map range: the mesh's extreme values move with every bake change.
         s.false_color_min = 0.6f, s.false_color_max = 1.2f;
-        std::string name = "bunny_" + std::string(shading_mode_name(mode));
+        std::string name = "bunny_" + std::string(dev::shading_mode_name(mode));
         std::replace(name.begin(), name.end(), '-', '_');
         SCOPED_TRACE(name);
         expect_matches_golden(r.render(camera, figure1_lights(camera), s), name);

@@ -7,6 +7,7 @@
 #include "gpu_fixture.hpp"
 
 #include <jade/bake.hpp>
+#include <jade/dev/names.hpp>
 #include <jade/error.hpp>
 #include <jade/dev/lut.hpp>
 #include <jade/dev/reference.hpp>
@@ -260,7 +261,8 @@ TEST_F(GpuTest, ScatteringDistanceFromTinyToHugeStaysFiniteAndReachesItsLimits)
         const Material m = burley_material(glm::dvec3(d), glm::vec3(0.8f));
         const auto reference = reference_tm(mesh, ao, m);
         for (int method = 0; method < 3; ++method) {
-            SCOPED_TRACE(std::string(tm_method_name(methods[method])) + ", d = 1e" + std::to_string(k) + " x diagonal");
+            SCOPED_TRACE(std::string(dev::tm_method_name(methods[method])) + ", d = 1e" + std::to_string(k) +
+                         " x diagonal");
             BakeSettings s = BakeSettings::preset(Quality::Default);
             s.method = methods[method];
             const auto tm = baker.bake_tm(mesh, ao, m, s).tm;

@@ -4,6 +4,7 @@
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 
+#include <jade/dev/names.hpp>
 #include <jade/dev/renderer.hpp>
 #include <jade/bake.hpp>
 #include <jade/io.hpp>
@@ -224,7 +225,7 @@ TEST_F(Thickness, LightPathCountsTheMediumAndNotTheAirBetweenParts)
     for (LightPathSampling sampling : {LightPathSampling::PerFragment, LightPathSampling::PerVertex})
         for (const Light& light : {Light::directional({0.0f, 0.0f, -1.0f}, glm::vec3(1.0f)),
                                    Light::point({0.0f, 0.0f, -12.0f}, glm::vec3(150.0f))}) {
-            SCOPED_TRACE(std::string(light_path_sampling_name(sampling)) +
+            SCOPED_TRACE(std::string(dev::light_path_sampling_name(sampling)) +
                          (light.type == Light::Type::Point ? ", point light" : ", directional light"));
             Renderer renderer(context(), RendererOptions{.light_path = sampling});
             renderer.set_material(m);
@@ -270,8 +271,8 @@ TEST_F(Thickness, LightPathAutoFollowsTheMeshResolution)
     EXPECT_EQ(sampling("bunny00.off", 512), LightPathSampling::PerVertex);
     EXPECT_EQ(sampling("hand.off", 512), LightPathSampling::PerFragment);
     EXPECT_EQ(sampling("bunny00.off", 4096), LightPathSampling::PerFragment);
-    EXPECT_EQ(parse_light_path_sampling("vertex"), LightPathSampling::PerVertex);
-    EXPECT_THROW(parse_light_path_sampling("pixel"), Error);
+    EXPECT_EQ(dev::parse_light_path_sampling("vertex"), LightPathSampling::PerVertex);
+    EXPECT_THROW(dev::parse_light_path_sampling("pixel"), Error);
 }
 
 TEST_F(Thickness, ExtremeThicknessAndExtinctionStayFinite)

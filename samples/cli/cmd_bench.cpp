@@ -8,6 +8,7 @@
 #include <jade/dev/context.hpp>
 #include <jade/dev/clock.hpp>
 #include <jade/cache.hpp>
+#include <jade/dev/names.hpp>
 #include <jade/io.hpp>
 #include <jade/dev/reference.hpp>
 #include <jade/scene.hpp>
@@ -125,7 +126,8 @@ int bench_bake(const Args& args)
     std::printf("\n");
     compare_ao_with_embree(baker, p, s.ao, std::max(5u, reps));
     std::printf("\nmax relative t_m error vs float64 on %zu vertices: %s %.2e, all-pairs %.2e\n", at.size(),
-                tm_method_name(best.method_used), max_rel_error(best.tm, ref_tm, at), max_rel_error(ex.tm, ref_tm, at));
+                dev::tm_method_name(best.method_used), max_rel_error(best.tm, ref_tm, at),
+                max_rel_error(ex.tm, ref_tm, at));
     compare_far_fields(baker, p, best.ao, m, s, std::max(5u, reps), ref_tm, at);
     return 0;
 }

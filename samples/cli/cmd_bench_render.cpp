@@ -6,6 +6,7 @@
 #include "deform_sweep.hpp"
 #include "render_setup.hpp"
 
+#include <jade/dev/names.hpp>
 #include <jade/dev/renderer.hpp>
 #include <jade/bake.hpp>
 #include <jade/deform.hpp>
@@ -103,17 +104,17 @@ std::vector<Config> configs_from_args(const Args& args)
     if (const auto mode = args.get("shadow-cost")) {
         ShadingMode m{};
         try {
-            m = parse_shading_mode(*mode);
+            m = dev::parse_shading_mode(*mode);
         } catch (const Error& e) {
             args.fail(std::string("--shadow-cost: ") + e.what());
         }
-        return {{std::string(shading_mode_name(m)) + "/noshadow", m, false}, {std::string(*mode), m, true}};
+        return {{std::string(dev::shading_mode_name(m)) + "/noshadow", m, false}, {std::string(*mode), m, true}};
     }
     std::stringstream list(args.get_or("modes", "lambert,curvature,tm,filament,separable,burley"));
     for (std::string word; std::getline(list, word, ',');) {
         ShadingMode m{};
         try {
-            m = parse_shading_mode(word);
+            m = dev::parse_shading_mode(word);
         } catch (const Error& e) {
             args.fail(std::string("--modes: ") + e.what());
         }
@@ -191,7 +192,7 @@ int cmd_bench_render(int argc, char** argv)
         scene.material.name.c_str(), scene.material.grey() ? "grey: 1 channel" : "RGB: 3 channels",
         transmits ? "on where a light is behind" : "off",
         std::string(tm_evaluation_name(dev::tm_evaluation(renderer))).c_str(),
-        std::string(light_path_sampling_name(renderer.light_path())).c_str(), ctx->device_info().name.c_str());
+        std::string(dev::light_path_sampling_name(renderer.light_path())).c_str(), ctx->device_info().name.c_str());
     // The presets' lights are all directional (each gets a tile); figure1 and back have one light behind.
     const std::string preset = args.get_or("lights", "default");
     const LightLoad load{uint32_t(lights.size()), uint32_t(std::min<size_t>(lights.size(), 4)),

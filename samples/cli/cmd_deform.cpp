@@ -13,6 +13,7 @@
 
 #include <jade/dev/clock.hpp>
 #include <jade/deform.hpp>
+#include <jade/dev/names.hpp>
 #include <jade/io.hpp>
 #include <jade/render.hpp>
 
@@ -87,7 +88,7 @@ int cmd_deform(int argc, char** argv)
     std::optional<DeformerKind> kind;
     if (!gltf) {
         try {
-            kind = parse_deformer(kind_name);
+            kind = dev::parse_deformer(kind_name);
         } catch (const Error& e) {
             args.fail(std::string("--deformer: ") + e.what() + " or gltf");
         }

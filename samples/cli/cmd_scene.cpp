@@ -5,6 +5,7 @@
 
 #include <jade/dev/context.hpp>
 #include <jade/cache.hpp>
+#include <jade/dev/names.hpp>
 #include <jade/io.hpp>
 #include <jade/scene.hpp>
 
@@ -24,7 +25,7 @@ SceneSettings scene_settings_from_args(const Args& args)
     SceneSettings s;
     s.bake = bake_settings_from_args(args);
     try {
-        s.mode = parse_shading_mode(args.get_or("mode", "tm"));
+        s.mode = dev::parse_shading_mode(args.get_or("mode", "tm"));
     } catch (const Error& e) {
         args.fail(std::string("--mode: ") + e.what());
     }

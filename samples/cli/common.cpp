@@ -1,5 +1,6 @@
 #include "commands.hpp"
 
+#include <jade/dev/names.hpp>
 #include <jade/io.hpp>
 
 #include <algorithm>
@@ -203,7 +204,7 @@ BakeSettings bake_settings_from_args(const Args& args)
     const std::string q = args.get_or("quality", "default");
     Quality quality = Quality::Default;
     try {
-        quality = parse_quality(q);
+        quality = dev::parse_quality(q);
     } catch (const Error&) {
         args.fail("--quality: '" + q + "' is not one of draft, default, high");
     }
@@ -215,7 +216,7 @@ BakeSettings bake_settings_from_args(const Args& args)
     s.ao.seed = args.count("seed", s.ao.seed, 0, 0xffffffffu);
     const std::string method = args.get_or("method", "auto");
     try {
-        s.method = parse_tm_method(method);
+        s.method = dev::parse_tm_method(method);
     } catch (const Error&) {
         args.fail("--method: '" + method + "' is not one of auto, exact, clustered, grid");
     }

@@ -3,6 +3,7 @@
 // with its bake (read from a baked file or baked now).
 #include "render_setup.hpp"
 
+#include <jade/dev/names.hpp>
 #include <jade/dev/renderer.hpp>
 #include <jade/bake.hpp>
 #include <jade/io.hpp>
@@ -65,7 +66,7 @@ RendererOptions renderer_options(const Args& args)
         args.fail(std::string("--eval: ") + e.what());
     }
     try {
-        o.light_path = parse_light_path_sampling(args.get_or("light-path", "auto"));
+        o.light_path = dev::parse_light_path_sampling(args.get_or("light-path", "auto"));
     } catch (const Error& e) {
         args.fail(std::string("--light-path: ") + e.what());
     }

@@ -10,6 +10,7 @@
 
 #include <jade/dev/bake.hpp>
 #include <jade/dev/clock.hpp>
+#include <jade/dev/names.hpp>
 #include <jade/dev/reference.hpp>
 
 #include <algorithm>
@@ -249,7 +250,8 @@ void add_tm_steps(Session& s, MeshState& st, std::vector<Step>& steps)
                                     grid, labels[k]));
         }
         for (Quality q : kQualities)
-            steps.push_back(tm_step(s, st, k, "tm_auto", quality_name(q), "auto", BakeSettings::preset(q), labels[k]));
+            steps.push_back(
+                tm_step(s, st, k, "tm_auto", dev::quality_name(q), "auto", BakeSettings::preset(q), labels[k]));
     }
 }
 
@@ -258,14 +260,14 @@ void add_quality_steps(Session& s, MeshState& st, std::vector<Step>& steps)
 {
     const std::string label = material_labels(s.plan).front();
     for (Quality q : kQualities) {
-        steps.push_back({std::string("bake, preset ") + quality_name(q) + " (" + label + ")",
+        steps.push_back({std::string("bake, preset ") + dev::quality_name(q) + " (" + label + ")",
                          [&s, &st, q] {
             const MaterialCase& mc = st.materials.front();
             BakeSettings settings = BakeSettings::preset(q);
             BakeResult b = s.baker.bake(st.mesh, mc.material, settings);
             Row r{st.label,
                   "quality",
-                  quality_name(q),
+                  dev::quality_name(q),
                   "bake auto (" + mc.label + ")",
                   b.timings.gpu_total_ms,
                   b.timings.wall_ms,
@@ -276,8 +278,8 @@ void add_quality_steps(Session& s, MeshState& st, std::vector<Step>& steps)
             r.notes = strf(
                 "t_m relative vs float64 on %zu vertices (%u-ray AO); this bake: %u AO rays (AO RMS %.3g), eps=%g, %s",
                 st.sample.size(), s.plan.ao_reference_rays, settings.ao.rays, ao.rms, double(settings.tm_opening_ratio),
-                tm_method_name(b.method_used));
-            st.quality[quality_name(q)] = std::move(b);
+                dev::tm_method_name(b.method_used));
+            st.quality[dev::quality_name(q)] = std::move(b);
             return r;
                          }});
     }

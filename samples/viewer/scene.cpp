@@ -35,13 +35,8 @@ jade::TriangleMesh load(const std::string& arg)
 
 const std::vector<std::string>& deformation_names()
 {
-    static const std::vector<std::string> names = [] {
-        std::vector<std::string> n{"none"};
-        for (auto k : {jade::DeformerKind::Bend, jade::DeformerKind::Twist, jade::DeformerKind::Squash,
-                       jade::DeformerKind::Wave})
-            n.emplace_back(jade::deformer_name(k));
-        return n;
-    }();
+    // "none", then one label per jade::DeformerKind in the enum's order (index - 1 is the kind).
+    static const std::vector<std::string> names = {"none", "bend", "twist", "squash", "wave"};
     return names;
 }
 

@@ -32,7 +32,6 @@
 #include <cstdint>
 #include <memory>
 #include <string>
-#include <string_view>
 #include <utility>
 #include <span>
 #include <vector>
@@ -78,20 +77,12 @@ enum class TmMethod {
     Grid,       ///< the profile's smooth part on 3-D grids, the rest exact nearby: O(n + cells)
 };
 
-/// "auto", "exact", "clustered", "grid"; parse_tm_method throws jade::Error on anything else.
-const char* tm_method_name(TmMethod method);
-TmMethod parse_tm_method(std::string_view name);
-
 /// Quality presets: the AO ray count and the clustered far field's opening ratio θ
 /// (BakeSettings::tm_opening_ratio, shaders/tm_cluster.comp).
 ///   Draft: 16 rays, θ = 1.6   Default: 64 rays, θ = 1.2   High: 256 rays, θ = 0.4
 /// (θ's max relative t_m error on the bunny, Burley RGB with d at 1 %, 5 %, 20 % of the diagonal:
 /// 1.6 → 8.4e-3, 1.2 → 2.5e-3, 0.8 → 8e-4; tests assert default ≤ 1 %, high ≤ 0.1 %.)
 enum class Quality { Draft, Default, High };
-
-/// "draft", "default", "high"; parse_quality throws jade::Error on anything else.
-const char* quality_name(Quality quality);
-Quality parse_quality(std::string_view name);
 
 struct BakeSettings {
     AoSettings ao;

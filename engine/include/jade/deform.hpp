@@ -24,7 +24,6 @@
 #include <cstdint>
 #include <memory>
 #include <string>
-#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -35,10 +34,6 @@ class Context;
 // ------------------------------------------------------------------- procedural deformers --
 
 enum class DeformerKind : uint32_t { Bend = 0, Twist = 1, Squash = 2, Wave = 3 };
-/// "bend", "twist", "squash", "wave".
-std::string_view deformer_name(DeformerKind kind);
-/// The inverse of deformer_name; throws jade::Error listing the names.
-DeformerKind parse_deformer(std::string_view name);
 
 /// A procedural deformation along a chosen axis, driven by a time t (seconds).
 ///

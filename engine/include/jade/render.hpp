@@ -32,7 +32,6 @@
 #include <memory>
 #include <span>
 #include <string>
-#include <string_view>
 #include <vector>
 
 namespace jade {
@@ -56,10 +55,6 @@ enum class ShadingMode : uint32_t {
     /// irradiance target, one pass of importance-sampled taps (docs/peers_separable.md).
     Burley = 6,
 };
-/// "lambert", "curvature", "tm", "tm-false-color", "filament", "separable", "burley".
-std::string_view shading_mode_name(ShadingMode mode);
-/// The inverse of shading_mode_name; throws jade::Error listing the names.
-ShadingMode parse_shading_mode(std::string_view name);
 
 /// Host-side tone mapping of render()'s result (never applied by record()).
 enum class ToneMap : uint32_t {
@@ -67,8 +62,6 @@ enum class ToneMap : uint32_t {
     Reinhard = 1,    ///< x / (1 + x) per channel
     AcesFitted = 2,  ///< Narkowicz's fit of the ACES filmic curve, clamped to [0, 1]
 };
-/// "none", "reinhard", "aces"; throws jade::Error listing the names.
-ToneMap parse_tone_map(std::string_view name);
 
 /// An RGBA float image, rows top to bottom, 4 floats per pixel.
 struct RenderedImage {
@@ -125,10 +118,6 @@ enum class LightPathSampling : uint32_t {
     PerVertex = 1,    ///< in the vertex shader, interpolated
     PerFragment = 2,  ///< per fragment, bilinear between the four nearest texels
 };
-/// "auto", "vertex", "fragment".
-std::string_view light_path_sampling_name(LightPathSampling sampling);
-/// The inverse of light_path_sampling_name; throws jade::Error listing the names.
-LightPathSampling parse_light_path_sampling(std::string_view name);
 
 namespace dev {
 struct RendererStudy;  // jade/dev/renderer.hpp: LUT sizes and evaluation paths, for studies

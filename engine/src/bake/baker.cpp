@@ -18,6 +18,8 @@
 // drivers reset a GPU that runs one dispatch for seconds.
 #include "bake/baker_impl.hpp"
 
+#include <jade/dev/names.hpp>
+
 namespace jade {
 
 const dev::BakeStudy& dev::study_of(const BakeSettings& settings)
@@ -48,7 +50,7 @@ BakeSettings BakeSettings::preset(Quality q)
     return s;
 }
 
-const char* quality_name(Quality quality)
+const char* dev::quality_name(Quality quality)
 {
     switch (quality) {
     case Quality::Draft: return "draft";
@@ -58,14 +60,14 @@ const char* quality_name(Quality quality)
     return "default";
 }
 
-Quality parse_quality(std::string_view name)
+Quality dev::parse_quality(std::string_view name)
 {
     for (Quality q : {Quality::Draft, Quality::Default, Quality::High})
-        if (name == quality_name(q)) return q;
+        if (name == dev::quality_name(q)) return q;
     throw Error("unknown quality '" + std::string(name) + "' (draft, default or high)");
 }
 
-const char* tm_method_name(TmMethod method)
+const char* dev::tm_method_name(TmMethod method)
 {
     switch (method) {
     case TmMethod::Exact: return "exact";
@@ -76,10 +78,10 @@ const char* tm_method_name(TmMethod method)
     return "auto";
 }
 
-TmMethod parse_tm_method(std::string_view name)
+TmMethod dev::parse_tm_method(std::string_view name)
 {
     for (TmMethod m : {TmMethod::Auto, TmMethod::Exact, TmMethod::Clustered, TmMethod::Grid})
-        if (name == tm_method_name(m)) return m;
+        if (name == dev::tm_method_name(m)) return m;
     throw Error("unknown t_m method '" + std::string(name) + "' (auto, exact, clustered or grid)");
 }
 

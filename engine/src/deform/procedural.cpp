@@ -1,6 +1,7 @@
 // deform/procedural.cpp - the procedural deformers' parameters (their per-vertex work is
 // shaders/deform_procedural.comp, driven by deform/mesh_deformer.cpp).
 #include <jade/deform.hpp>
+#include <jade/dev/names.hpp>
 #include <jade/error.hpp>
 
 #include <cmath>
@@ -12,9 +13,9 @@ namespace {
 constexpr std::string_view kNames[] = {"bend", "twist", "squash", "wave"};
 }
 
-std::string_view deformer_name(DeformerKind kind) { return kNames[uint32_t(kind) % 4]; }
+std::string_view dev::deformer_name(DeformerKind kind) { return kNames[uint32_t(kind) % 4]; }
 
-DeformerKind parse_deformer(std::string_view name)
+DeformerKind dev::parse_deformer(std::string_view name)
 {
     for (uint32_t k = 0; k < 4; ++k)
         if (name == kNames[k]) return DeformerKind(k);
@@ -43,7 +44,9 @@ ProceduralDeformer ProceduralDeformer::fit(DeformerKind kind, const PreparedMesh
 
 void ProceduralDeformer::validate() const
 {
-    auto bad = [&](const std::string& what) { throw Error(std::string(deformer_name(kind)) + " deformer: " + what); };
+    auto bad = [&](const std::string& what) {
+        throw Error(std::string(dev::deformer_name(kind)) + " deformer: " + what);
+    };
     if (uint32_t(kind) > 3) bad("unknown kind " + std::to_string(uint32_t(kind)));
     if (axis > 2) bad("axis " + std::to_string(axis) + " is not 0 (x), 1 (y) or 2 (z)");
     for (int c = 0; c < 3; ++c)

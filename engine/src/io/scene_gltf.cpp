@@ -5,6 +5,7 @@
 // table). Node extras {"jade": {"deform": "bend"}} (or twist, squash, wave; optional "axis"
 // 0..2) make the node's objects deforming, with ProceduralDeformer::fit.
 #include <jade/cache.hpp>
+#include <jade/dev/names.hpp>
 #include <jade/io.hpp>
 #include <jade/scene.hpp>
 
@@ -43,7 +44,7 @@ std::optional<ProceduralDeformer> node_deformer(const std::string& file, const t
     }
     DeformerKind kind;
     try {
-        kind = parse_deformer(d.Get<std::string>());
+        kind = dev::parse_deformer(d.Get<std::string>());
     } catch (const Error& e) {
         warn(std::string("extras.jade.deform: ") + e.what() + "; the node is static");
         return std::nullopt;

@@ -5,6 +5,7 @@
 // rather than known; deform/buffer_estimate.hpp; shading/buffer_estimate.hpp). The plan only
 // puts them together. Images (the LUTs) are listed but are not buffers; host-visible staging
 // is not counted.
+#include <jade/dev/names.hpp>
 #include <jade/dev/renderer.hpp>  // dev::study_of: the LUT size
 #include <jade/scene.hpp>
 
@@ -130,7 +131,8 @@ std::string ScenePlan::describe() const
             << ", "
             << (o.opaque ? std::string("no t_m")
                          : std::to_string(o.channels) + (o.channels == 1 ? " channel (grey)" : " channels"))
-            << "\n  shader variant: mode " << shading_mode_name(o.variant.mode) << ", CHANNELS=" << o.variant.channels;
+            << "\n  shader variant: mode " << dev::shading_mode_name(o.variant.mode)
+            << ", CHANNELS=" << o.variant.channels;
         if (o.runs(PassKind::SharedBake)) {
             out << "\n  static bake: shared with an earlier instance (no bake will run)";
         } else if (!o.opaque && !o.deforming) {
@@ -183,7 +185,7 @@ StaticBakeSource never_baked()
 ScenePlan plan_scene(const Scene& scene, const SceneSettings& settings, const StaticBakeSource& source)
 {
     if (settings.mode != ShadingMode::Tm && settings.mode != ShadingMode::TmFalseColor)
-        throw Error("scene settings: mode " + std::string(shading_mode_name(settings.mode)) +
+        throw Error("scene settings: mode " + std::string(dev::shading_mode_name(settings.mode)) +
                     " is not a scene mode (tm or tm-false-color; opaque objects use lambert)");
     if (scene.objects.empty()) throw Error(scene.name + ": the scene has no objects");
     ScenePlan plan;

@@ -6,6 +6,7 @@
 // Deforming objects also keep a MeshDeformer and a DynamicBake. render() runs the per-frame
 // passes, then records every object's draw into one set of targets (the first clears them,
 // the others load them) and reads the image back.
+#include <jade/dev/names.hpp>
 #include <jade/dev/overlay.hpp>
 #include <jade/dev/clock.hpp>
 #include <jade/scene.hpp>
@@ -188,9 +189,9 @@ struct SceneRenderer::Impl {
             targets.copy_out(cmd);
         });
         for (const ObjectPlan& o : plan.objects)
-            passes.push_back(
-                {o.name, PassKind::Draw, 0,
-                 std::string(shading_mode_name(o.variant.mode)) + ", CHANNELS=" + std::to_string(o.variant.channels)});
+            passes.push_back({o.name, PassKind::Draw, 0,
+                              std::string(dev::shading_mode_name(o.variant.mode)) +
+                                  ", CHANNELS=" + std::to_string(o.variant.channels)});
         RenderedImage img;
         img.width = s.width, img.height = s.height;
         img.rgba = targets.read_rgba();

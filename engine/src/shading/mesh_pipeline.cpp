@@ -5,6 +5,7 @@
 #include "gpu/context.hpp"
 #include "shading/separable.hpp"
 
+#include <jade/dev/names.hpp>
 #include <jade/dev/renderer.hpp>
 #include <jade/error.hpp>
 
@@ -37,7 +38,7 @@ TmEvaluation parse_tm_evaluation(std::string_view name)
     throw Error("unknown t_m evaluation '" + std::string(name) + "' (known: auto, lut, lut16, alu)");
 }
 
-std::string_view light_path_sampling_name(LightPathSampling sampling)
+std::string_view dev::light_path_sampling_name(LightPathSampling sampling)
 {
     switch (sampling) {
     case LightPathSampling::Auto: return "auto";
@@ -47,10 +48,10 @@ std::string_view light_path_sampling_name(LightPathSampling sampling)
     return "unknown";
 }
 
-LightPathSampling parse_light_path_sampling(std::string_view name)
+LightPathSampling dev::parse_light_path_sampling(std::string_view name)
 {
     for (LightPathSampling s : {LightPathSampling::Auto, LightPathSampling::PerVertex, LightPathSampling::PerFragment})
-        if (name == light_path_sampling_name(s)) return s;
+        if (name == dev::light_path_sampling_name(s)) return s;
     throw Error("unknown light path sampling '" + std::string(name) + "' (known: auto, vertex, fragment)");
 }
 
