@@ -9,6 +9,7 @@
 
 #include <jade/bake.hpp>
 #include <jade/dev/names.hpp>
+#include <jade/dev/scene.hpp>
 #include <jade/io.hpp>
 
 #include <algorithm>
@@ -24,10 +25,11 @@ namespace {
 
 // What the estimate's buffers say the bake will run: the grid's cells, the cluster tree, or
 // neither (all pairs).
-TmMethod method_of(const std::vector<BufferEstimate>& buffers)
+TmMethod method_of(const std::vector<dev::BufferEstimate>& buffers)
 {
     auto has = [&](const std::string& name) {
-        return std::any_of(buffers.begin(), buffers.end(), [&](const BufferEstimate& b) { return b.name == name; });
+        return std::any_of(buffers.begin(), buffers.end(),
+                           [&](const dev::BufferEstimate& b) { return b.name == name; });
     };
     if (has("t_m grid")) return TmMethod::Grid;
     if (has("point tree nodes")) return TmMethod::Clustered;

@@ -11,6 +11,7 @@
 #include <jade/dev/names.hpp>
 #include <jade/io.hpp>
 #include <jade/dev/reference.hpp>
+#include <jade/dev/scene.hpp>
 #include <jade/scene.hpp>
 
 #include <algorithm>
@@ -151,13 +152,13 @@ int bench_render_scene(const Args& args)
     {
         SceneRenderer fill(*ctx, scene, settings, cached_bakes(cache));  // bakes what the cache lacks
         size_t baked = 0;
-        for (const auto& p : fill.passes_run()) baked += p.kind == PassKind::StaticBake;
+        for (const auto& p : dev::passes_run(fill)) baked += p.kind == dev::PassKind::StaticBake;
         std::printf("cache %s: %zu static bakes were missing and ran now\n", dir.string().c_str(), baked);
     }
     const ObjectCounts before = dev::created_objects(*ctx);
     SceneRenderer cached(*ctx, scene, settings, cached_bakes(cache));
     const ObjectCounts after = dev::created_objects(*ctx);
-    SceneRenderer unbaked(*ctx, scene, settings, never_baked());
+    SceneRenderer unbaked(*ctx, scene, settings, dev::never_baked());
     std::printf(
         "cached scene set-up created %llu compute pipelines (%zu objects: the one shared LUT's builder and each "
         "transmitting object's attenuation table, no bake kernel) and %llu buffers (%.2f MiB device-local: the draws' "

@@ -7,6 +7,7 @@
 #include <jade/cache.hpp>
 #include <jade/dev/names.hpp>
 #include <jade/io.hpp>
+#include <jade/dev/scene.hpp>
 #include <jade/scene.hpp>
 
 #include <cstdio>
@@ -130,14 +131,14 @@ int cmd_scene(int argc, char** argv)
     save_image(out, int(img.width), int(img.height), img.rgba);
     // A cache entry that was there but could not be used (stale, corrupt) is said even without
     // --verbose: the next run will read the entry just stored.
-    for (const PassRecord& p : renderer.passes_run())
-        if (cache && p.kind == PassKind::StaticBake && !p.note.empty() && p.note != "missing")
+    for (const dev::PassRecord& p : dev::passes_run(renderer))
+        if (cache && p.kind == dev::PassKind::StaticBake && !p.note.empty() && p.note != "missing")
             std::fprintf(stderr, "jade scene: %s: cache entry not used (%s); baked again and stored\n",
                          p.object.c_str(), p.note.c_str());
     if (args.flag("verbose")) {
         std::printf("passes run:\n");
-        for (const PassRecord& p : renderer.passes_run())
-            std::printf("  %-24s %-13s %10s  %s\n", p.object.c_str(), std::string(pass_kind_name(p.kind)).c_str(),
+        for (const dev::PassRecord& p : dev::passes_run(renderer))
+            std::printf("  %-24s %-13s %10s  %s\n", p.object.c_str(), std::string(dev::pass_kind_name(p.kind)).c_str(),
                         p.wall_ms > 0 ? format_ms(p.wall_ms).c_str() : "", p.note.c_str());
         const ObjectCounts c = dev::created_objects(*ctx);
         std::printf("GPU objects created: %llu compute pipelines, %llu graphics pipelines, %llu buffers (%.2f MiB "

@@ -53,7 +53,7 @@ constexpr VkDeviceSize kTriangleBytes = sizeof(glm::vec4);
 }  // namespace
 
 // The buffers of MeshDeformer::Impl's constructor below, in its order.
-std::vector<BufferEstimate> deform::estimate_buffers(size_t n, size_t tris)
+std::vector<dev::BufferEstimate> deform::estimate_buffers(size_t n, size_t tris)
 {
     auto bytes = [](size_t b) { return std::max<uint64_t>(gpu::kMinBufferBytes, b); };
     const size_t vec3 = sizeof(glm::vec3), word = sizeof(uint32_t);
