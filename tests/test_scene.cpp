@@ -4,8 +4,8 @@
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 
+#include <jade/dev/cache.hpp>
 #include <jade/dev/context.hpp>
-#include <jade/cache.hpp>
 #include <jade/io.hpp>
 #include <jade/error.hpp>
 #include <jade/dev/scene.hpp>
@@ -329,10 +329,10 @@ TEST_F(SceneGpuTest, StaticSceneSecondRunReadsTheCacheAndCreatesNoBakeObjects)
                         burley_material({0.4, 0.2, 0.1}, glm::vec3(0.8f))),
                  // over 2048 vertices: the clustered far field (cluster tree buffers)
                  object("big", procedural::sphere(1.0f, 40, 80), burley_material({0.1, 0.05, 0.03}, glm::vec3(0.8f)))}};
-    BakeCache cache(dir);
+    dev::BakeCache cache(dir);
     const ObjectCounts c0 = dev::created_objects(context());
     {
-        SceneRenderer first(context(), scene, settings, cached_bakes(cache));
+        SceneRenderer first(context(), scene, settings, dev::cached_bakes(cache));
         EXPECT_FALSE(dev::plan_details(first.plan()).objects[0].cached);
         for (const auto& p : dev::passes_run(first)) EXPECT_EQ(p.kind, dev::PassKind::StaticBake);
         // What the static bakes allocated (all of it freed at the end of the constructor)
@@ -351,7 +351,7 @@ TEST_F(SceneGpuTest, StaticSceneSecondRunReadsTheCacheAndCreatesNoBakeObjects)
         SceneRenderer never(context(), scene, settings, dev::never_baked());
     }
     const ObjectCounts c2 = dev::created_objects(context());
-    SceneRenderer second(context(), scene, settings, cached_bakes(BakeCache(dir)));
+    SceneRenderer second(context(), scene, settings, dev::cached_bakes(dev::BakeCache(dir)));
     const ObjectCounts c3 = dev::created_objects(context());
     for (const auto& o : dev::plan_details(second.plan()).objects) EXPECT_TRUE(o.cached);
     ASSERT_EQ(dev::passes_run(second).size(), 3u);
@@ -425,9 +425,9 @@ TEST_F(SceneGpuTest, GreyMaterialIsDrawnWithOneFetchAndMatchesTheThreeChannelDra
 TEST_F(SceneGpuTest, MixedSceneRunsThePlannedPassesPerFrame)
 {
     const Scene scene = load_scene(test::data("scene_mixed.gltf"));
-    BakeCache cache(dir);
+    dev::BakeCache cache(dir);
     const ObjectCounts c0 = dev::created_objects(context());
-    SceneRenderer renderer(context(), scene, settings, cached_bakes(cache));
+    SceneRenderer renderer(context(), scene, settings, dev::cached_bakes(cache));
     // What the constructor allocated besides the draws (whose bytes are exact: the LUT would
     // hide the rest): static bakes, deformer, dynamic bake, against the plan's estimate.
     uint64_t estimate = 0;

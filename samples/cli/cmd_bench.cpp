@@ -5,9 +5,9 @@
 #include "commands.hpp"
 #include "embree_ao.hpp"
 
+#include <jade/dev/cache.hpp>
 #include <jade/dev/context.hpp>
 #include <jade/dev/clock.hpp>
-#include <jade/cache.hpp>
 #include <jade/dev/names.hpp>
 #include <jade/io.hpp>
 #include <jade/dev/reference.hpp>
@@ -143,20 +143,20 @@ int bench_render_scene(const Args& args)
     SceneSettings settings = scene_settings_from_args(args);
     const std::filesystem::path dir =
         args.get_or("cache", (std::filesystem::temp_directory_path() / "jade-bench-cache").string());
-    const BakeCache cache(dir);
+    const dev::BakeCache cache(dir);
     const uint32_t repeat = args.count("repeat", 30, 1, 10000);
     RenderSettings rs;
     rs.width = rs.height = args.count("size", 512, 1, 16384);
     rs.samples = args.count("samples", 4, 1, 8);
     auto ctx = make_context(args);
     {
-        SceneRenderer fill(*ctx, scene, settings, cached_bakes(cache));  // bakes what the cache lacks
+        SceneRenderer fill(*ctx, scene, settings, dev::cached_bakes(cache));  // bakes what the cache lacks
         size_t baked = 0;
         for (const auto& p : dev::passes_run(fill)) baked += p.kind == dev::PassKind::StaticBake;
         std::printf("cache %s: %zu static bakes were missing and ran now\n", dir.string().c_str(), baked);
     }
     const ObjectCounts before = dev::created_objects(*ctx);
-    SceneRenderer cached(*ctx, scene, settings, cached_bakes(cache));
+    SceneRenderer cached(*ctx, scene, settings, dev::cached_bakes(cache));
     const ObjectCounts after = dev::created_objects(*ctx);
     SceneRenderer unbaked(*ctx, scene, settings, dev::never_baked());
     std::printf(

@@ -3,8 +3,8 @@
 // the planned passes (--verbose lists the passes that ran).
 #include "commands.hpp"
 
+#include <jade/dev/cache.hpp>
 #include <jade/dev/context.hpp>
-#include <jade/cache.hpp>
 #include <jade/dev/names.hpp>
 #include <jade/io.hpp>
 #include <jade/dev/scene.hpp>
@@ -44,9 +44,9 @@ Scene load_scene_arg(const Args& args)
     return scene;
 }
 
-std::optional<BakeCache> cache_from_args(const Args& args)
+std::optional<dev::BakeCache> cache_from_args(const Args& args)
 {
-    if (auto dir = args.get("cache")) return BakeCache(*dir);
+    if (auto dir = args.get("cache")) return dev::BakeCache(*dir);
     return std::nullopt;
 }
 
@@ -66,7 +66,7 @@ int cmd_plan(int argc, char** argv)
     const Scene scene = load_scene_arg(args);
     const SceneSettings settings = scene_settings_from_args(args);
     const auto cache = cache_from_args(args);
-    const ScenePlan plan = plan_scene(scene, settings, cache ? cached_bakes(*cache) : StaticBakeSource{});
+    const ScenePlan plan = plan_scene(scene, settings, cache ? dev::cached_bakes(*cache) : StaticBakeSource{});
     std::printf("scene %s%s\n%s", scene.name.c_str(),
                 cache ? (", cache " + cache->folder().string()).c_str()
                       : " (no --cache: static objects bake every run)",
@@ -104,7 +104,7 @@ int cmd_scene(int argc, char** argv)
     auto ctx = make_context(args);
     // Checked against the plan before anything of the scene is allocated: a scene that instances
     // a deforming mesh 100,000 times would otherwise run the machine out of memory.
-    const StaticBakeSource source = cache ? cached_bakes(*cache) : StaticBakeSource{};
+    const StaticBakeSource source = cache ? dev::cached_bakes(*cache) : StaticBakeSource{};
     const ScenePlan plan = plan_scene(scene, settings, source);
     const uint64_t need = plan.resident_bytes() + plan.transient_peak_bytes();
     const uint64_t heap = ctx->device_info().device_local_heap_bytes;

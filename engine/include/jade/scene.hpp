@@ -13,8 +13,9 @@
 // Objects are in world space, in mesh units (a glTF scene: metres).
 //
 // All of this header is in the core library jade::jade. Reading a scene file is jade::io's
-// (load_scene, jade/io.hpp), and so is the on-disk bake cache (cached_bakes, jade/cache.hpp). Threading and lifetime as jade::Renderer: one thread, destroy
-// before the Context. Errors: jade::Error naming the object and what is wrong.
+// (load_scene, jade/io.hpp). Where static bakes come from is the caller's (StaticBakeSource; the
+// CLI's on-disk cache is jade/dev/cache.hpp). Threading and lifetime as jade::Renderer: one
+// thread, destroy before the Context. Errors: jade::Error naming the object and what is wrong.
 #pragma once
 
 #include <jade/bake.hpp>
@@ -85,7 +86,7 @@ struct ScenePlan {
     std::shared_ptr<const dev::ScenePlanDetails> details;
 };
 
-/// Where a static bake came from (StaticBakeSource::bake, jade::io's bake_with_cache).
+/// Where a static bake came from (StaticBakeSource::bake).
 enum class BakeSource {
     Opaque,  ///< the material is opaque: nothing baked, `result` empty (Lambert needs no t_m)
     Cache,   ///< read from a cache: no GPU work, no bake pipelines or buffers
@@ -98,11 +99,11 @@ struct CachedBake {
     std::string note;  ///< why the cache was not used ("missing", "checksum mismatch", ...)
 };
 
-/// Where static bakes come from. Default (empty functions): never cached, baked each time.
-/// jade::io's cached_bakes(cache) (jade/cache.hpp) reads and fills a BakeCache.
+/// Where static bakes come from: a host's own store of bakes, or the default (empty functions):
+/// never cached, baked each time.
 struct StaticBakeSource {
     struct Lookup {
-        uint64_t key = 0;    ///< bake_key() of the bake
+        uint64_t key = 0;    ///< the store's key of the bake (0: none), for describe()
         bool holds = false;  ///< a valid entry is already there
     };
     /// Whether a bake of (mesh, material, settings) is already available (plan only).

@@ -1,10 +1,10 @@
-// io/scene_gltf.cpp - jade::load_scene: a glTF file as a Jade scene, and cached_bakes().
+// io/scene_gltf.cpp - jade::load_scene: a glTF file as a Jade scene, and dev::cached_bakes().
 //
 // Objects: one per triangle primitive of each mesh instance (io/gltf.cpp read_gltf_primitives),
 // in world space, with the material as io/gltf_materials.cpp maps it (docs/scene.md has the
 // table). Node extras {"jade": {"deform": "bend"}} (or twist, squash, wave; optional "axis"
 // 0..2) make the node's objects deforming, with ProceduralDeformer::fit.
-#include <jade/cache.hpp>
+#include <jade/dev/cache.hpp>
 #include <jade/dev/names.hpp>
 #include <jade/io.hpp>
 #include <jade/scene.hpp>
@@ -138,7 +138,7 @@ Scene load_scene(const std::filesystem::path& path, std::vector<std::string>* wa
     });
 }
 
-StaticBakeSource cached_bakes(const BakeCache& cache)
+StaticBakeSource dev::cached_bakes(const BakeCache& cache)
 {
     StaticBakeSource s;
     s.lookup = [&cache](const PreparedMesh& mesh, const Material& material, const BakeSettings& settings) {
