@@ -11,6 +11,7 @@
 #include <jade/mesh.hpp>
 #include <jade/bake.hpp>
 #include <jade/render.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -146,7 +147,7 @@ struct Case {
 PreparedMesh load_case_mesh(const std::string& which)
 {
     if (which == "bunny") return prepare_mesh(load_mesh(test::asset("bunny00.off")));
-    return prepare_mesh(procedural::box({-0.3f, 0.0f, -0.2f}, {0.3f, 2.0f, 0.2f}, 12));
+    return prepare_mesh(dev::procedural::box({-0.3f, 0.0f, -0.2f}, {0.3f, 2.0f, 0.2f}, 12));
 }
 
 TEST_F(DeformGpu, ProceduralDeformersMatchFloat64OnSeveralFrames)
@@ -283,7 +284,7 @@ TEST_F(DeformGpu, SquashPreservesVolumeAndBendPreservesAxisLength)
     EXPECT_NEAR(highest, -1.0 + 2.0 * 1.5, 1e-5);  // base at y = -1 stays, height 2 → 3
 
     // A thin bent grid: the distance along the arc from the base to the top stays the length.
-    TriangleMesh strip = procedural::grid(40, 0.05f);  // z = 0 plane, x, y in [-1, 1]
+    TriangleMesh strip = dev::procedural::grid(40, 0.05f);  // z = 0 plane, x, y in [-1, 1]
     const PreparedMesh flat = prepare_mesh(strip);
     MeshDeformer bend_deformer(context(), flat);
     ProceduralDeformer bend = ProceduralDeformer::fit(DeformerKind::Bend, flat, 1);
@@ -309,7 +310,7 @@ TEST_F(DeformGpu, TwoSidedSheetTakesTheLargestTrianglesNormal)
     // Each triangle of a grid also listed reversed: at every vertex the cross products cancel
     // exactly, and prepare_mesh's rule picks the largest adjacent triangle, the first one on
     // ties — here the front side (listed first), so after a wave every normal faces +z-ish.
-    TriangleMesh sheet = procedural::grid(16, 0.1f);
+    TriangleMesh sheet = dev::procedural::grid(16, 0.1f);
     const size_t front = sheet.indices.size();
     for (size_t t = 0; t < front; t += 3)
         sheet.indices.insert(sheet.indices.end(), {sheet.indices[t], sheet.indices[t + 2], sheet.indices[t + 1]});

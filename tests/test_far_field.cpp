@@ -11,6 +11,7 @@
 #include <jade/dev/names.hpp>
 #include <jade/dev/scene.hpp>
 #include <jade/io.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include <algorithm>
 #include <cstdio>
@@ -74,8 +75,8 @@ TEST_F(GpuTest, AutoFarFieldIsTheSameInTheBakeAndInItsBufferPlan)
     cases.push_back({"ChineseDragon-10kv.off", prepare_mesh(load_mesh(test::asset("ChineseDragon-10kv.off")))});
     cases.push_back({"sphere 16×32", prepare_mesh(procedural::sphere(1.0f, 16, 32))});
     cases.push_back({"sphere 64×128", prepare_mesh(procedural::sphere(1.0f, 64, 128))});
-    cases.push_back({"box 24", prepare_mesh(procedural::box(glm::vec3(-1.0f), glm::vec3(1.0f), 24))});
-    cases.push_back({"grid 80", prepare_mesh(procedural::grid(80, 0.05f))});
+    cases.push_back({"box 24", prepare_mesh(dev::procedural::box(glm::vec3(-1.0f), glm::vec3(1.0f), 24))});
+    cases.push_back({"grid 80", prepare_mesh(dev::procedural::grid(80, 0.05f))});
     cases.push_back({"two spheres far apart", prepare_mesh(far_apart_spheres())});
     cases.push_back({"sphere with a dense patch", prepare_mesh(sphere_with_a_dense_patch())});
 

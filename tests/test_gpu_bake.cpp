@@ -8,6 +8,7 @@
 #include <jade/dev/names.hpp>
 #include <jade/io.hpp>
 #include <jade/dev/reference.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include <glm/geometric.hpp>
 
@@ -376,7 +377,7 @@ TEST_F(GpuTest, ExtremeProfileWidthsReachTheirLimits)
 TEST_F(GpuTest, FlatGridIntegratesToOne)
 {
     const float spacing = 1.0f;
-    PreparedMesh grid = prepare_mesh(procedural::grid(160, spacing));
+    PreparedMesh grid = prepare_mesh(dev::procedural::grid(160, spacing));
     std::vector<float> open(grid.vertex_count(), 0.0f);
     Baker baker(context());
     auto tm = baker.bake_tm(grid, open, burley_material(glm::dvec3(spacing), glm::vec3(1))).tm;
@@ -393,7 +394,7 @@ TEST_F(GpuTest, FlatGridIntegratesToOne)
 // matches the float64 reference on the seam.
 TEST_F(GpuTest, NearlyCoincidentSeamVerticesStayFinite)
 {
-    TriangleMesh mesh = procedural::grid(40, 1.0f);
+    TriangleMesh mesh = dev::procedural::grid(40, 1.0f);
     const size_t n = mesh.positions.size();
     std::vector<uint32_t> copy(n, ~0u);
     float mid_x = 0;
@@ -438,7 +439,7 @@ TEST_F(GpuTest, ThinSlabIsMoreTranslucentThanThickBlock)
     Baker baker(context());
     Material m = burley_material(glm::dvec3(0.3), glm::vec3(1));
     auto top_centre_tm = [&](float thickness) {
-        PreparedMesh box = prepare_mesh(procedural::box({-2, -2, -thickness}, {2, 2, 0}, 24));
+        PreparedMesh box = prepare_mesh(dev::procedural::box({-2, -2, -thickness}, {2, 2, 0}, 24));
         auto r = baker.bake(box, m, BakeSettings::preset(Quality::Default));
         size_t best = 0;
         for (size_t i = 0; i < box.vertex_count(); ++i)

@@ -14,6 +14,7 @@
 #include <jade/error.hpp>
 #include <jade/io.hpp>
 #include <jade/dev/reference.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -23,7 +24,7 @@ using jade::test::GpuTest;
 
 TEST_F(GpuTest, MillionVertexMeshBakesInChunksAndMatchesTheFloat64Reference)
 {
-    const PreparedMesh mesh = prepare_mesh(procedural::subdivide(load_mesh(test::asset("bunny00.off")), 3));
+    const PreparedMesh mesh = prepare_mesh(dev::procedural::subdivide(load_mesh(test::asset("bunny00.off")), 3));
     ASSERT_GT(mesh.vertex_count(), 1'000'000u);
     const DeviceInfo& device = context().device_info();
     BakeSettings settings = BakeSettings::preset(Quality::Draft);

@@ -15,6 +15,7 @@
 #include <jade/dev/names.hpp>
 #include <jade/render.hpp>
 #include <jade/dev/separable.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -142,8 +143,8 @@ class PeersSeparable : public GpuTest {};
 TEST_F(PeersSeparable, AShadowEdgeGetsTheProfilesEdgeResponse)
 {
     TriangleMesh mesh;
-    for (const TriangleMesh& part : {procedural::box({-6.0f, -6.0f, -0.1f}, {6.0f, 6.0f, 0.0f}, 24),
-                                     procedural::box({-6.0f, -6.0f, 2.0f}, {0.0f, 6.0f, 2.2f}, 8)}) {
+    for (const TriangleMesh& part : {dev::procedural::box({-6.0f, -6.0f, -0.1f}, {6.0f, 6.0f, 0.0f}, 24),
+                                     dev::procedural::box({-6.0f, -6.0f, 2.0f}, {0.0f, 6.0f, 2.2f}, 8)}) {
         const uint32_t base = uint32_t(mesh.positions.size());
         mesh.positions.insert(mesh.positions.end(), part.positions.begin(), part.positions.end());
         for (uint32_t i : part.indices) mesh.indices.push_back(base + i);
@@ -337,7 +338,7 @@ TEST_F(PeersSeparable, ASlabLitFromBehindTransmitsItsProfilesTail)
     RendererOptions options;
     options.light_depth_size = 2048;
     Renderer r(context(), options);
-    r.set_mesh(prepare_mesh(procedural::box({-3.0f, -3.0f, -0.1f}, {3.0f, 3.0f, 0.0f}, 24)));
+    r.set_mesh(prepare_mesh(dev::procedural::box({-3.0f, -3.0f, -0.1f}, {3.0f, 3.0f, 0.0f}, 24)));
     const float albedo = 0.8f;
     Material m = burley_material(glm::dvec3(0.06, 0.04, 0.02), glm::vec3(albedo), "slab");
     m.specular = 0.0f;

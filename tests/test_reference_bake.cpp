@@ -13,6 +13,7 @@
 #include <jade/material.hpp>
 #include <jade/mesh.hpp>
 #include <jade/dev/reference.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -270,7 +271,7 @@ TEST(ReferenceAo, OpenSurfacesAreUnoccluded)
     tri.indices = {0, 1, 2};
     for (const auto& ao : reference_ao(prepare_mesh(tri), AoSettings{.rays = 256, .max_distance_rel = 10.0f}))
         EXPECT_EQ(ao, 0.0f);
-    const PreparedMesh plane = prepare_mesh(procedural::grid(16, 0.25f));
+    const PreparedMesh plane = prepare_mesh(dev::procedural::grid(16, 0.25f));
     for (bool ld : {true, false})
         for (const auto& ao :
              reference_ao(plane, AoSettings{.rays = 128, .low_discrepancy = ld, .max_distance_rel = 2.0f}))
@@ -279,7 +280,7 @@ TEST(ReferenceAo, OpenSurfacesAreUnoccluded)
 
 TEST(ReferenceAo, InsideClosedBoxEveryRayHits)
 {
-    TriangleMesh box = procedural::box({-1, -1, -1}, {1, 1, 1}, 4);
+    TriangleMesh box = dev::procedural::box({-1, -1, -1}, {1, 1, 1}, 4);
     for (size_t t = 0; t < box.indices.size(); t += 3) std::swap(box.indices[t + 1], box.indices[t + 2]);  // inward
     const PreparedMesh m = prepare_mesh(box);
     const uint32_t floor_centre = nearest_vertex(m, {0, 0, -1});
@@ -300,7 +301,7 @@ TEST(ReferenceAo, ParallelPlaneMatchesAnalyticFraction)
     // reaches the plane at distance (h − ε)/cos θ, so A_o = P(cos θ ≥ (h − ε)/L) = 1 − ((h − ε)/L)².
     const float h = 1.0f;
     const PreparedMesh m =
-        prepare_mesh(merged(procedural::grid(10, 1.0f), translated(procedural::grid(10, 1.0f), {0, 0, h})));
+        prepare_mesh(merged(dev::procedural::grid(10, 1.0f), translated(dev::procedural::grid(10, 1.0f), {0, 0, h})));
     const uint32_t centre = nearest_vertex(m, {0, 0, 0});
     for (float rel : {0.08f, 0.1f, 0.2f}) {
         const double L = double(rel) * m.diagonal, eps = 1e-4 * double(m.diagonal);
@@ -322,8 +323,8 @@ TEST(ReferenceAo, SubsetsDeterminismAndErrors)
     const AoSettings s{.rays = 64, .max_distance_rel = 0.5f};
     // A convex surface: rays leave it. Inside-out it occludes itself.
     for (float ao : reference_ao(m, s)) EXPECT_EQ(ao, 0.0f);
-    TriangleMesh bowl = procedural::box({-1, -1, 0}, {1, 1, 0.5f}, 6);
-    bowl = merged(bowl, translated(procedural::grid(6, 0.5f), {0, 0, 1.0f}));
+    TriangleMesh bowl = dev::procedural::box({-1, -1, 0}, {1, 1, 0.5f}, 6);
+    bowl = merged(bowl, translated(dev::procedural::grid(6, 0.5f), {0, 0, 1.0f}));
     const PreparedMesh b = prepare_mesh(bowl);
     const std::vector<float> all = reference_ao(b, s);
     const std::vector<uint32_t> subset = {5, 0, 17, uint32_t(b.vertex_count() - 1), 17};
@@ -415,7 +416,7 @@ TEST(DiskIntegral, GaussLegendreAccuracyAndFarFieldSwitch)
 TEST(ReferenceTm, FlatGridIsOneAndBeatsThePointSum)
 {
     const double s = 1.0;  // spacing = d
-    const PreparedMesh m = prepare_mesh(procedural::grid(200, float(s)));
+    const PreparedMesh m = prepare_mesh(dev::procedural::grid(200, float(s)));
     const uint32_t centre = nearest_vertex(m, {0, 0, 0});
     const std::vector<float> ao(m.vertex_count(), 0.0f);
     const Material mat = burley_material(glm::dvec3(s), glm::vec3(0.8f));
@@ -438,7 +439,7 @@ TEST(ReferenceTm, FlatGridIsOneAndBeatsThePointSum)
 
 TEST(ReferenceTm, StiffAndSoftLimits)
 {
-    const PreparedMesh m = prepare_mesh(procedural::grid(20, 0.05f));
+    const PreparedMesh m = prepare_mesh(dev::procedural::grid(20, 0.05f));
     const std::vector<float> ao = ao_pattern(m.vertex_count());
     const double diag = m.diagonal;
     // d → 0: only the self disk counts, fully: t_m = 1 − A_o.
@@ -455,7 +456,7 @@ TEST(ReferenceTm, StiffAndSoftLimits)
 
 TEST(ReferenceTm, ScaleInvariantForEveryProfileKind)
 {
-    const TriangleMesh grid = procedural::grid(16, 0.1f);
+    const TriangleMesh grid = dev::procedural::grid(16, 0.1f);
     const PreparedMesh m = prepare_mesh(grid);
     const std::vector<float> ao = ao_pattern(m.vertex_count());
     const double w[3] = {0.3, 0.5, 0.2}, v[3] = {0.001, 0.01, 0.05};
@@ -488,7 +489,7 @@ TEST(ReferenceTm, ThinSlabIsMoreTranslucentThanThickBlock)
     const double d = 0.2, thickness = 0.2;  // Burley d equal to the slab thickness
     const Material mat = burley_material(glm::dvec3(d), glm::vec3(0.8f));
     auto top_centre_tm = [&](float bottom) {
-        const PreparedMesh m = prepare_mesh(procedural::box({-4, -4, bottom}, {4, 4, 0}, 40));
+        const PreparedMesh m = prepare_mesh(dev::procedural::box({-4, -4, bottom}, {4, 4, 0}, 40));
         const std::vector<float> ao = reference_ao(m, AoSettings{.rays = 64});
         return reference_tm(m, ao, mat, std::vector<uint32_t>{nearest_vertex(m, {0, 0, 0})})[0].x;
     };

@@ -10,6 +10,7 @@
 #include <jade/error.hpp>
 #include <jade/dev/scene.hpp>
 #include <jade/scene.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -325,7 +326,7 @@ TEST_F(SceneGpuTest, StaticSceneSecondRunReadsTheCacheAndCreatesNoBakeObjects)
 {
     Scene scene{"static",
                 {object("grey", procedural::sphere(1.0f, 10, 14), burley_material(glm::dvec3(0.2), glm::vec3(0.8f))),
-                 object("red", procedural::box({1.5f, -1, -1}, {3.5f, 1, 1}, 5),
+                 object("red", dev::procedural::box({1.5f, -1, -1}, {3.5f, 1, 1}, 5),
                         burley_material({0.4, 0.2, 0.1}, glm::vec3(0.8f))),
                  // over 2048 vertices: the clustered far field (cluster tree buffers)
                  object("big", procedural::sphere(1.0f, 40, 80), burley_material({0.1, 0.05, 0.03}, glm::vec3(0.8f)))}};
@@ -543,8 +544,8 @@ TEST_F(SceneGpuTest, LaterObjectsAreDepthTestedAgainstEarlierOnesWithMsaa)
     blue.albedo = {0.05f, 0.05f, 0.9f};
     red.specular = blue.specular = 0.0f;
     Scene scene{"depth",
-                {object("front", procedural::box({-1, -1, 0.5f}, {1, 1, 1}, 1), red),
-                 object("back", procedural::box({-2, -2, -1}, {2, 2, -0.5f}, 1), blue)}};
+                {object("front", dev::procedural::box({-1, -1, 0.5f}, {1, 1, 1}, 1), red),
+                 object("back", dev::procedural::box({-2, -2, -1}, {2, 2, -0.5f}, 1), blue)}};
     SceneRenderer renderer(context(), scene, settings);
     const Camera camera{{0.0f, 0.0f, 8.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 40.0f};
     const std::vector<Light> lights = {Light::directional({0, 0, 1}, glm::vec3(3.0f))};
@@ -643,7 +644,7 @@ TEST(SceneCli, BenchRenderSceneComparesCachedWithNeverBaked)
     const auto scene =
         write_gltf("bench_static",
                    {{procedural::sphere(0.05f, 8, 12), 0, {}},
-                    {procedural::box({-0.1f, -0.06f, -0.1f}, {0.1f, -0.05f, 0.1f}, 1), 1, {}}},
+                    {dev::procedural::box({-0.1f, -0.06f, -0.1f}, {0.1f, -0.05f, 0.1f}, 1), 1, {}}},
                    R"([{"extensions":{"KHR_materials_diffuse_transmission":{"diffuseTransmissionFactor":1}}},{}])");
     std::filesystem::remove_all(cache);
     r = test::run_cli({"bench", "render", "--scene", scene.string(), "--cache", cache.string(), "--repeat", "2",

@@ -9,6 +9,7 @@
 #include <jade/bake.hpp>
 #include <jade/dev/names.hpp>
 #include <jade/render.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
@@ -31,8 +32,8 @@ PreparedMesh plane_and_box()
 {
     TriangleMesh mesh;
     mesh.name = "plane and box";
-    for (const TriangleMesh& part : {procedural::box({-3.0f, -3.0f, -0.1f}, {3.0f, 3.0f, 0.0f}, 24),
-                                     procedural::box({-0.5f, -0.5f, 2.0f}, {0.5f, 0.5f, 3.0f}, 4)}) {
+    for (const TriangleMesh& part : {dev::procedural::box({-3.0f, -3.0f, -0.1f}, {3.0f, 3.0f, 0.0f}, 24),
+                                     dev::procedural::box({-0.5f, -0.5f, 2.0f}, {0.5f, 0.5f, 3.0f}, 4)}) {
         const uint32_t base = uint32_t(mesh.positions.size());
         mesh.positions.insert(mesh.positions.end(), part.positions.begin(), part.positions.end());
         for (uint32_t i : part.indices) mesh.indices.push_back(base + i);

@@ -12,6 +12,7 @@
 #include <jade/dev/lut.hpp>
 #include <jade/dev/reference.hpp>
 #include <jade/render.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include <glm/geometric.hpp>
 
@@ -50,8 +51,8 @@ TriangleMesh scaled(TriangleMesh m, float factor)
 /// other (AO well inside (0, 1)), the rest is open. 3 × 3 × 2.3 units, ~440 bake vertices.
 TriangleMesh box_under_lid()
 {
-    TriangleMesh m = merged(procedural::box({-1, -1, -1}, {1, 1, 1}, 6),
-                            procedural::box({-1.5f, -1.5f, 1.15f}, {1.5f, 1.5f, 1.3f}, 6));
+    TriangleMesh m = merged(dev::procedural::box({-1, -1, -1}, {1, 1, 1}, 6),
+                            dev::procedural::box({-1.5f, -1.5f, 1.15f}, {1.5f, 1.5f, 1.3f}, 6));
     m.name = "box under lid";
     return m;
 }
@@ -89,7 +90,7 @@ struct OddMesh {
 std::vector<OddMesh> odd_meshes()
 {
     std::vector<OddMesh> out;
-    const TriangleMesh box = procedural::box({-1, -1, -1}, {1, 1, 1}, 4);
+    const TriangleMesh box = dev::procedural::box({-1, -1, -1}, {1, 1, 1}, 4);
 
     {  // zero-area triangles: a repeated index, three collinear points, two coincident corners
         TriangleMesh m = box;
@@ -101,12 +102,12 @@ std::vector<OddMesh> odd_meshes()
         out.push_back({m.name, m});
     }
     {  // slivers: one column of a grid moved to 1e-5 spacing from its neighbour (aspect 1e5)
-        TriangleMesh m = procedural::grid(8, 0.25f);
+        TriangleMesh m = dev::procedural::grid(8, 0.25f);
         float left = 1e30f;
         for (auto& p : m.positions) left = std::min(left, p.x);
         for (auto& p : m.positions)
             if (std::abs(p.x - (left + 0.5f)) < 1e-3f) p.x = left + 0.25f + 1e-5f;
-        m = merged(m, procedural::box({-0.5f, -0.5f, -0.6f}, {0.5f, 0.5f, -0.1f}, 3));  // something to occlude
+        m = merged(m, dev::procedural::box({-0.5f, -0.5f, -0.6f}, {0.5f, 0.5f, -0.1f}, 3));  // something to occlude
         m.name = "sliver triangles";
         out.push_back({m.name, m});
     }
@@ -458,9 +459,10 @@ TEST_F(GpuTest, OddMeshesBakeFiniteAndMatchTheFloat64Reference)
         if (what == "degenerate triangles") {
             EXPECT_EQ(mesh.dropped_triangles, 3u);
         } else if (what == "duplicate vertices") {
-            EXPECT_EQ(mesh.vertex_count(), prepare_mesh(procedural::box({-1, -1, -1}, {1, 1, 1}, 4)).vertex_count());
+            EXPECT_EQ(mesh.vertex_count(),
+                      prepare_mesh(dev::procedural::box({-1, -1, -1}, {1, 1, 1}, 4)).vertex_count());
         } else if (what == "isolated vertices") {
-            const PreparedMesh plain = prepare_mesh(procedural::box({-1, -1, -1}, {1, 1, 1}, 4));
+            const PreparedMesh plain = prepare_mesh(dev::procedural::box({-1, -1, -1}, {1, 1, 1}, 4));
             ASSERT_EQ(mesh.vertex_count(), plain.vertex_count());
             EXPECT_EQ(mesh.unused_vertices, 3u);
             EXPECT_EQ(mesh.diagonal, plain.diagonal) << "unused vertices widened the bounds";

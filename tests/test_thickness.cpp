@@ -10,6 +10,7 @@
 #include <jade/io.hpp>
 #include <jade/dev/reference.hpp>
 #include <jade/render.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include <glm/geometric.hpp>
 
@@ -72,7 +73,7 @@ TEST_F(Thickness, MatchesTheFloat64ReferenceOnTheSameRays)
 TEST_F(Thickness, ASlabGivesItsThickness)
 {
     const float h = 0.1f;
-    const PreparedMesh slab = prepare_mesh(procedural::box({-5.0f, -5.0f, -0.5f * h}, {5.0f, 5.0f, 0.5f * h}, 64));
+    const PreparedMesh slab = prepare_mesh(dev::procedural::box({-5.0f, -5.0f, -0.5f * h}, {5.0f, 5.0f, 0.5f * h}, 64));
     Baker baker(context());
     const BakeResult r = baker.bake(slab, translucent(), settings(64));
     const double expected = slab_mean(h, 60.0);
@@ -105,7 +106,7 @@ TEST_F(Thickness, ASphereGivesItsMeanChord)
 
 TEST_F(Thickness, OpenMeshesCountMissesAsTheMaximumAndNoMediumMeansNoPass)
 {
-    const PreparedMesh grid = prepare_mesh(procedural::grid(16, 0.1f));
+    const PreparedMesh grid = prepare_mesh(dev::procedural::grid(16, 0.1f));
     Baker baker(context());
     BakeSettings s = settings(16);
     const BakeResult r = baker.bake(grid, translucent(), s);
@@ -143,7 +144,7 @@ TEST_F(Thickness, BackLitSlabShowsTheBallisticTransmittance)
     // the centre, so the pixel is weight · (n + 1)/(2π) · e^{−σ_t t̄} · E · (1 − F0)² (both
     // crossings of the boundary at normal incidence) with the diffuse and specular terms off.
     const float h = 0.1f;
-    const PreparedMesh slab = prepare_mesh(procedural::box({-5.0f, -5.0f, -0.5f * h}, {5.0f, 5.0f, 0.5f * h}, 64));
+    const PreparedMesh slab = prepare_mesh(dev::procedural::box({-5.0f, -5.0f, -0.5f * h}, {5.0f, 5.0f, 0.5f * h}, 64));
     Baker baker(context());
     Material m = translucent();
     m.albedo = glm::vec3(0.0f), m.specular = 0.0f;
@@ -212,7 +213,7 @@ TEST_F(Thickness, LightPathCountsTheMediumAndNotTheAirBetweenParts)
         TriangleMesh mesh;
         mesh.name = "slab stack";
         for (const auto& [lo, hi] : slabs) {
-            const TriangleMesh box = procedural::box({-5.0f, -5.0f, lo}, {5.0f, 5.0f, hi}, 16);
+            const TriangleMesh box = dev::procedural::box({-5.0f, -5.0f, lo}, {5.0f, 5.0f, hi}, 16);
             const uint32_t base = uint32_t(mesh.positions.size());
             mesh.positions.insert(mesh.positions.end(), box.positions.begin(), box.positions.end());
             for (uint32_t i : box.indices) mesh.indices.push_back(base + i);
@@ -277,7 +278,7 @@ TEST_F(Thickness, LightPathAutoFollowsTheMeshResolution)
 
 TEST_F(Thickness, ExtremeThicknessAndExtinctionStayFinite)
 {
-    const PreparedMesh slab = prepare_mesh(procedural::box({-1.0f, -1.0f, -0.1f}, {1.0f, 1.0f, 0.1f}, 8));
+    const PreparedMesh slab = prepare_mesh(dev::procedural::box({-1.0f, -1.0f, -0.1f}, {1.0f, 1.0f, 0.1f}, 8));
     Renderer renderer(context());
     Material m = translucent();
     Camera cam;
@@ -304,7 +305,7 @@ TEST_F(Thickness, BoundaryTransmittanceIsTheFresnelOfBothCrossings)
     // Diffuse light that enters at cos θ_l and leaves at cos θ_v is scaled by
     // T(θ_l)·T(θ_v), T(μ) = 1 − (F0 + (max(1 − α, F0) − F0)(1 − μ)^5): the slab's centre seen
     // head-on (μ_v = 1) under a light at 45°, t_m = 0 and strength 0 (so the rest is Lambert).
-    const PreparedMesh slab = prepare_mesh(procedural::box({-5.0f, -5.0f, -0.05f}, {5.0f, 5.0f, 0.05f}, 16));
+    const PreparedMesh slab = prepare_mesh(dev::procedural::box({-5.0f, -5.0f, -0.05f}, {5.0f, 5.0f, 0.05f}, 16));
     Renderer renderer(context());
     renderer.set_mesh(slab);
     Material m = translucent();

@@ -4,6 +4,7 @@
 
 #include <jade/dev/clock.hpp>
 #include <jade/io.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -72,12 +73,12 @@ void bake_asset(const Args& args, const std::filesystem::path& in, const std::fi
                      prepared.vertex_count(), material.name.c_str(), target.material_name.c_str(), target.space.c_str(),
                      format_ms(r.timings.wall_ms).c_str());
         BakedAttributes b;
-        b.ao = to_render_vertices(prepared, r.ao, 0.0f);
-        b.tm = to_render_vertices(prepared, r.tm, glm::vec3(0.0f));
-        if (!r.thickness.empty()) b.thickness = to_render_vertices(prepared, r.thickness, 0.0f);
+        b.ao = dev::to_render_vertices(prepared, r.ao, 0.0f);
+        b.tm = dev::to_render_vertices(prepared, r.tm, glm::vec3(0.0f));
+        if (!r.thickness.empty()) b.thickness = dev::to_render_vertices(prepared, r.thickness, 0.0f);
         if (!r.scattering_normal.empty()) {
-            b.scattering_normal = to_render_vertices(prepared, r.scattering_normal, glm::vec3(0.0f, 0.0f, 1.0f));
-            b.normal_spread = to_render_vertices(prepared, r.normal_spread, glm::vec3(0.0f));
+            b.scattering_normal = dev::to_render_vertices(prepared, r.scattering_normal, glm::vec3(0.0f, 0.0f, 1.0f));
+            b.normal_spread = dev::to_render_vertices(prepared, r.normal_spread, glm::vec3(0.0f));
         }
         b.material = material;
         baked.push_back(std::move(b));

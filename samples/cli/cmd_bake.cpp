@@ -4,6 +4,7 @@
 #include "commands.hpp"
 
 #include <jade/io.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include <cstdio>
 #include <sstream>
@@ -35,12 +36,12 @@ void bake_mesh(const Args& args, const std::string& in, const std::filesystem::p
     print_timings(r);
 
     BakedAttributes baked;
-    baked.ao = to_render_vertices(prepared, r.ao, 0.0f);
-    baked.tm = to_render_vertices(prepared, r.tm, glm::vec3(0.0f));
-    if (!r.thickness.empty()) baked.thickness = to_render_vertices(prepared, r.thickness, 0.0f);
+    baked.ao = dev::to_render_vertices(prepared, r.ao, 0.0f);
+    baked.tm = dev::to_render_vertices(prepared, r.tm, glm::vec3(0.0f));
+    if (!r.thickness.empty()) baked.thickness = dev::to_render_vertices(prepared, r.thickness, 0.0f);
     if (!r.scattering_normal.empty()) {
-        baked.scattering_normal = to_render_vertices(prepared, r.scattering_normal, glm::vec3(0.0f, 0.0f, 1.0f));
-        baked.normal_spread = to_render_vertices(prepared, r.normal_spread, glm::vec3(0.0f));
+        baked.scattering_normal = dev::to_render_vertices(prepared, r.scattering_normal, glm::vec3(0.0f, 0.0f, 1.0f));
+        baked.normal_spread = dev::to_render_vertices(prepared, r.normal_spread, glm::vec3(0.0f));
     }
     baked.material = material;
     std::ostringstream os;

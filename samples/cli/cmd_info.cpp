@@ -2,6 +2,7 @@
 #include "commands.hpp"
 
 #include <jade/io.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include <glm/common.hpp>
 #include <nlohmann/json.hpp>
@@ -106,7 +107,7 @@ static void print_mesh(const std::string& path, const ReadOptions& options)
     std::printf("bounding box      (%g, %g, %g) .. (%g, %g, %g) mesh units\n", p.bbox_min.x, p.bbox_min.y, p.bbox_min.z,
                 p.bbox_max.x, p.bbox_max.y, p.bbox_max.z);
     std::printf("diagonal          %g mesh units\n", p.diagonal);
-    std::printf("surface area      %g units^2\n", p.total_area());
+    std::printf("surface area      %g units^2\n", dev::total_area(p));
     // The range of the finite values, and how many are not finite (NaN or Inf), so that an
     // attribute full of NaN shows as such and a partial one is not hidden.
     auto range = [](const char* label, const float* v, size_t n, size_t stride, const char* unit) {
