@@ -11,6 +11,7 @@
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 
+#include <jade/dev/material.hpp>
 #include <jade/dev/burley_diffusion.hpp>
 #include <jade/dev/names.hpp>
 #include <jade/render.hpp>
@@ -37,12 +38,12 @@ double edge_response_reference(const ChannelProfile& p, double x)
 {
     if (x == 0.0) return 0.5;
     const double a = std::fabs(x);
-    const double r_max = std::max(p.radius_for_tail(1e-13), 2.0 * a);
+    const double r_max = std::max(dev::radius_for_tail(p, 1e-13), 2.0 * a);
     const int n = 40000;
     const double s_max = std::sqrt(r_max - a), h = s_max / n;
     auto f = [&](int k) {
         const double s = h * k, r = a + s * s;
-        return p.R(r) * std::acos(std::min(a / r, 1.0)) * r * 2.0 * s;  // dr = 2s ds
+        return dev::profile_value(p, r) * std::acos(std::min(a / r, 1.0)) * r * 2.0 * s;  // dr = 2s ds
     };
     double sum = f(0) + f(n);
     for (int k = 1; k < n; ++k) sum += (k % 2 ? 4.0 : 2.0) * f(k);
@@ -129,8 +130,8 @@ TEST(BurleySampling, InverseCdfAndPdfAgainstTheClosedForm)
     const glm::dvec3 d = burley_shapes(m);
     EXPECT_EQ(d.x, m.profile[0].d);
     for (int c = 1; c < 3; ++c) {
-        const double median = m.profile[size_t(c)].radius_for_tail(0.5);
-        EXPECT_NEAR(ChannelProfile::burley(d[c]).cdf(median), 0.5, 1e-6) << "channel " << c;
+        const double median = dev::radius_for_tail(m.profile[size_t(c)], 0.5);
+        EXPECT_NEAR(dev::profile_cdf(ChannelProfile::burley(d[c]), median), 0.5, 1e-6) << "channel " << c;
     }
 }
 

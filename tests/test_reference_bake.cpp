@@ -7,6 +7,7 @@
 
 #include "test_support.hpp"
 
+#include <jade/dev/material.hpp>
 #include <jade/bake.hpp>
 #include <jade/error.hpp>
 #include <jade/io.hpp>
@@ -346,12 +347,12 @@ namespace {
 /// The t-formula of disk_integral converged adaptively.
 double disk_adaptive(const ChannelProfile& p, double r, double rho)
 {
-    if (r == 0.0) return p.cdf(rho);
+    if (r == 0.0) return dev::profile_cdf(p, rho);
     auto g = [&](double t) {
         const double c = std::clamp((t * t + r * r - rho * rho) / (2 * t * r), -1.0, 1.0);
         return bake::radial_density(p, t) * std::acos(c) / kPi;
     };
-    return p.cdf(std::max(rho - r, 0.0)) + bake::integrate(g, std::abs(r - rho), r + rho, 1e-12, 1e-300);
+    return dev::profile_cdf(p, std::max(rho - r, 0.0)) + bake::integrate(g, std::abs(r - rho), r + rho, 1e-12, 1e-300);
 }
 
 /// The disk integral in polar coordinates about x: along direction ψ the disk spans the
@@ -361,7 +362,8 @@ double disk_polar(const ChannelProfile& p, double r, double rho)
     auto g = [&](double psi) {
         const double c = r * std::cos(psi),
                      root = std::sqrt(std::max(0.0, rho * rho - r * r * std::sin(psi) * std::sin(psi)));
-        return (p.cdf(std::max(c + root, 0.0)) - p.cdf(std::max(c - root, 0.0))) / kPi;  // ψ and −ψ
+        return (dev::profile_cdf(p, std::max(c + root, 0.0)) - dev::profile_cdf(p, std::max(c - root, 0.0))) /
+               kPi;  // ψ and −ψ
     };
     return bake::integrate(g, 0.0, r <= rho ? kPi : std::asin(rho / r), 1e-12, 1e-300);
 }
@@ -404,10 +406,10 @@ TEST(DiskIntegral, GaussLegendreAccuracyAndFarFieldSwitch)
             EXPECT_LT(std::abs(jump), rho <= 0.25 ? 0.02 : 1.0) << name << " ρ = " << rho;
         }
     const auto p = ChannelProfile::burley(1.0);
-    EXPECT_EQ(bake::disk_integral(p, 0.0, 0.7), p.cdf(0.7));
-    EXPECT_NEAR(bake::disk_integral(p, 1e-9, 0.7), p.cdf(0.7), 1e-12);
+    EXPECT_EQ(bake::disk_integral(p, 0.0, 0.7), dev::profile_cdf(p, 0.7));
+    EXPECT_NEAR(bake::disk_integral(p, 1e-9, 0.7), dev::profile_cdf(p, 0.7), 1e-12);
     EXPECT_EQ(bake::vertex_disk_term(p, 0.0, 0.0), 0.0);
-    EXPECT_DOUBLE_EQ(bake::vertex_disk_term(p, 10.0, 1.0), p.R(10.0));
+    EXPECT_DOUBLE_EQ(bake::vertex_disk_term(p, 10.0, 1.0), dev::profile_value(p, 10.0));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -425,10 +427,11 @@ TEST(ReferenceTm, FlatGridIsOneAndBeatsThePointSum)
     const double seconds = seconds_since(t0);
     // The point sum: self disk exact, every neighbour A_j·R(r).
     const ChannelProfile& p = mat.profile[0];
-    double point = p.cdf(std::sqrt(m.areas[centre] / kPi));
+    double point = dev::profile_cdf(p, std::sqrt(m.areas[centre] / kPi));
     for (uint32_t j = 0; j < m.vertex_count(); ++j)
         if (j != centre)
-            point += m.areas[j] * p.R(glm::distance(glm::dvec3(m.positions[j]), glm::dvec3(m.positions[centre])));
+            point += m.areas[j] *
+                     dev::profile_value(p, glm::distance(glm::dvec3(m.positions[j]), glm::dvec3(m.positions[centre])));
     std::printf(
         "flat grid 201x201, spacing = d: vertex-disk t_m = %.6f (%.3f %%), point sum %.6f (%.3f %%), %.1f Mpairs/s\n",
         tm, 100 * (tm - 1), point, 100 * (point - 1), m.vertex_count() / seconds * 1e-6);
@@ -496,7 +499,7 @@ TEST(ReferenceTm, ThinSlabIsMoreTranslucentThanThickBlock)
     const double slab = top_centre_tm(-float(thickness)), block = top_centre_tm(-8.0f);
     // Half-space: 1. Slab: the bottom face adds about ∫ R over a parallel plane at distance h,
     // 1 − cdf(h) (the vertex-disk rule measures it with in-plane distances, so only roughly).
-    const double bottom = 1.0 - mat.profile[0].cdf(thickness);
+    const double bottom = 1.0 - dev::profile_cdf(mat.profile[0], thickness);
     std::printf("top-face centre: slab t_m = %.4f, block t_m = %.4f, 1 + (1 - cdf(h)) = %.4f\n", slab, block,
                 1 + bottom);
     EXPECT_NEAR(block, 1.0, 0.02);

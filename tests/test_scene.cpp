@@ -4,6 +4,7 @@
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 
+#include <jade/dev/material.hpp>
 #include <jade/dev/cache.hpp>
 #include <jade/dev/context.hpp>
 #include <jade/io.hpp>
@@ -132,17 +133,17 @@ TEST(SceneMaterials, VolumeAndDiffuseTransmissionBecomeABurleyProfilePerChannel)
         const double mfp = 0.02 * T[c] / (1.0 - std::log(a[c]));  // metres
         EXPECT_EQ(m.profile[c].kind, ProfileKind::Burley);
         // The medium whose derived albedo is A (medium_from_appearance): R_d = A / albedo_scale.
-        const double rd = std::min(A[c] / MediumFit{}.albedo_scale, 1.0);
+        const double rd = std::min(A[c] / dev::MediumFit{}.albedo_scale, 1.0);
         EXPECT_NEAR(m.profile[c].d, mfp / burley_s(rd), 1e-6 * mfp) << "channel " << c;
-        const double forward = MediumFit{}.forward_extinction;
+        const double forward = dev::MediumFit{}.forward_extinction;
         EXPECT_NEAR(m.transmission.sigma_t[c], forward / mfp, 1e-5 / mfp) << "channel " << c;
         EXPECT_NEAR(m.albedo[c], A[c], 1e-6);
     }
     // e.g. red: ℓ = 0.02 / (1 + ln 2) = 11.81 mm, R_d = 0.5 / 0.9 = 0.556, s(0.556) = 1.396, d = 8.457 mm.
     EXPECT_NEAR(m.profile[0].d, 0.011812322 / (1.85 - 0.5 / 0.9 + 7.0 * std::pow(0.8 - 0.5 / 0.9, 3.0)), 1e-8);
     // diffuseTransmissionFactor × extras strength scales the medium's blur.
-    EXPECT_NEAR(m.strength, MediumFit{}.strength * 0.5 * 1.5, 1e-6);
-    EXPECT_NEAR(m.spread_strength, MediumFit{}.spread_strength * 0.5 * 1.5, 1e-6);
+    EXPECT_NEAR(m.strength, dev::MediumFit{}.strength * 0.5 * 1.5, 1e-6);
+    EXPECT_NEAR(m.spread_strength, dev::MediumFit{}.spread_strength * 0.5 * 1.5, 1e-6);
     EXPECT_NEAR(m.roughness, 0.3, 1e-6);
 }
 
@@ -218,7 +219,7 @@ TEST(SceneMaterials, BadValuesWarnNamingFileMaterialAndValueAndFallBack)
     EXPECT_TRUE(std::isfinite(huge.objects[0].material.spread_strength));
     w.clear();
     // The fallback multiplier 1 leaves the medium's blur as from_medium derives it.
-    EXPECT_FLOAT_EQ(range.objects[0].material.spread_strength, float(MediumFit{}.spread_strength));
+    EXPECT_FLOAT_EQ(range.objects[0].material.spread_strength, float(dev::MediumFit{}.spread_strength));
     EXPECT_NEAR(range.objects[0].material.profile[1].d, 0.01 * 1e-3 / burley_s(1.0), 1e-15);
 }
 

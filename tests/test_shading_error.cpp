@@ -12,6 +12,7 @@
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 
+#include <jade/dev/material.hpp>
 #include <jade/dev/renderer.hpp>
 #include <jade/bake.hpp>
 #include <jade/io.hpp>
@@ -72,7 +73,7 @@ glm::dvec3 attenuation(const Transmission& tr, double t, double lobe, double fol
         const double ballistic = std::exp(-double(tr.sigma_t[c]) * t);
         const double diffused =
             -std::expm1(-double(tr.sigma_s_reduced[c]) * h) *
-            slab_diffusion_transmittance(h, tr.sigma_tr[c], tr.source_depth[c], tr.extrapolation[c]);
+            dev::slab_diffusion_transmittance(h, tr.sigma_tr[c], tr.source_depth[c], tr.extrapolation[c]);
         out[c] = double(tr.weight) * ballistic * lobe * follow + double(tr.diffusion_weight) * diffused * behind / kPi;
     }
     return out;

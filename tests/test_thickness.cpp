@@ -4,6 +4,7 @@
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 
+#include <jade/dev/material.hpp>
 #include <jade/dev/names.hpp>
 #include <jade/dev/renderer.hpp>
 #include <jade/bake.hpp>
@@ -186,7 +187,7 @@ TEST_F(Thickness, BackLitSlabShowsTheBallisticTransmittance)
     for (int c = 0; c < 3; ++c) {
         const double s = m.transmission.sigma_s_reduced[c], tr = m.transmission.sigma_tr[c];
         const double slab =
-            slab_diffusion_transmittance(t, tr, m.transmission.source_depth[c], m.transmission.extrapolation[c]);
+            dev::slab_diffusion_transmittance(t, tr, m.transmission.source_depth[c], m.transmission.extrapolation[c]);
         const double expected = 0.5 / std::numbers::pi * (1.0 - std::exp(-s * t)) * slab * 2.0 * crossings;
         EXPECT_NEAR(diffused.pixel(16, 16)[c], expected, 0.01 * expected) << "diffused, channel " << c;
     }

@@ -4,6 +4,7 @@
 // `--components DIR` writes the separate terms the calibration (tools/groundtruth/fit.py) fits.
 #include "commands.hpp"
 
+#include <jade/dev/material.hpp>
 #include <jade/dev/renderer.hpp>
 #include <jade/io.hpp>
 #include <jade/render.hpp>
@@ -95,9 +96,9 @@ glm::dvec3 region_mean(const std::vector<float>& rgba, const std::vector<uint8_t
     return n ? sum / double(n) : sum;
 }
 
-MediumFit fit_from_args(const Args& args)
+dev::MediumFit fit_from_args(const Args& args)
 {
-    MediumFit fit;
+    dev::MediumFit fit;
     if (auto path = args.get("fit")) {
         const json j = read_json(*path);
         try {
@@ -191,7 +192,7 @@ int cmd_fidelity(int argc, char** argv)
     const std::string set = args.get_or("set", "all"), filter = args.get_or("scene", "");
     if (set != "train" && set != "validation" && set != "regimes" && set != "all")
         args.fail("--set: '" + set + "' is not train, validation, regimes or all");
-    const MediumFit fit = fit_from_args(args);
+    const dev::MediumFit fit = fit_from_args(args);
     const std::vector<const Mode*> modes = modes_from_args(args);
     const std::vector<bool> shadows = shadow_states(args);
     BakeSettings bake_settings = bake_settings_from_args(args);
@@ -236,7 +237,7 @@ int cmd_fidelity(int argc, char** argv)
         const json& rec = ref.record;
         const std::string key = rec.at("mesh").get<std::string>() + "/" + rec.at("medium_name").get<std::string>();
         const Medium medium = medium_of(rec);
-        const Material material = Material::from_medium(medium, fit, rec.at("medium_name").get<std::string>());
+        const Material material = dev::from_medium(medium, fit, rec.at("medium_name").get<std::string>());
         if (!baked.count(key)) {
             BakedMesh b;
             // The record's path from the repository root, else the same file in JADE_ASSETS.
@@ -327,9 +328,9 @@ int cmd_fidelity(int argc, char** argv)
             save_image(std::filesystem::path(*components) / (ref.name + "__" + term + ".exr"), int(img.width),
                        int(img.height), img.rgba);
         };
-        MediumFit unit = fit;
+        dev::MediumFit unit = fit;
         unit.albedo_scale = 1.0, unit.transmission_weight = 1.0, unit.diffusion_weight = 1.0;
-        Material base = Material::from_medium(medium, unit);
+        Material base = dev::from_medium(medium, unit);
         for (double s : strengths) {
             Material m = base;
             m.strength = float(s), m.specular = 0.0f;

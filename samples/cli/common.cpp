@@ -1,5 +1,6 @@
 #include "commands.hpp"
 
+#include <jade/dev/material.hpp>
 #include <jade/dev/names.hpp>
 #include <jade/io.hpp>
 
@@ -142,7 +143,7 @@ void check_profile_scale(const Args& args, const Material& m, double diagonal, d
 {
     if (!(diagonal > 0.0) || !std::isfinite(diagonal)) return;  // the mesh checks name that
     for (int c = 0; c < 3; ++c) {
-        const double radius = m.profile[c].radius_for_tail(0.5);  // the median scattering radius
+        const double radius = dev::radius_for_tail(m.profile[c], 0.5);  // the median scattering radius
         const double ratio = radius / diagonal;
         if (ratio >= kMinProfileRatio && ratio <= kMaxProfileRatio) continue;
         char text[320];
@@ -174,7 +175,7 @@ Material material_from_args(const Args& args, double diagonal, const std::option
         args.fail("--ior and --roughness describe a --medium's boundary; give --medium too");
     try {
         if (args.get("medium"))
-            m = Material::from_medium(medium_from_args(args), {}, "medium");
+            m = Material::from_medium(medium_from_args(args), "medium");
         else if (baked && !args.get("material") && !args.get("mm-per-unit"))
             m = *baked;
         else
