@@ -3,6 +3,7 @@
 #include "bake_record.hpp"
 
 #include <jade/dev/clock.hpp>
+#include <jade/dev/io.hpp>
 #include <jade/io.hpp>
 #include <jade/dev/mesh.hpp>
 
@@ -48,13 +49,13 @@ void bake_asset(const Args& args, const std::filesystem::path& in, const std::fi
     for (const auto& w : warnings) std::fprintf(stderr, "jade: warning: %s\n", w.c_str());
     // The output replaces one file: never one the asset is read from (its buffer or an image),
     // or the asset would no longer load. Compared as files (links, `..`, hard links), not names.
-    for (size_t i = 1; i < asset.files().size(); ++i) {
+    for (size_t i = 1; i < dev::asset_files(asset).size(); ++i) {
         std::error_code ec;
-        if (std::filesystem::exists(out, ec) && std::filesystem::equivalent(out, asset.files()[i], ec))
-            throw Error("--out " + out.string() + ": is " + asset.files()[i].string() + ", a file that " +
-                        asset.name() + " reads (its buffer or image); writing there would break the input");
+        if (std::filesystem::exists(out, ec) && std::filesystem::equivalent(out, dev::asset_files(asset)[i], ec))
+            throw Error("--out " + out.string() + ": is " + dev::asset_files(asset)[i].string() + ", a file that " +
+                        dev::asset_name(asset) + " reads (its buffer or image); writing there would break the input");
     }
-    if (asset.targets().empty()) throw Error(asset.name() + ": no mesh has triangles to bake");
+    if (asset.targets().empty()) throw Error(dev::asset_name(asset) + ": no mesh has triangles to bake");
     const Material fallback = material_from_args(args, asset_diagonal(asset));
 
     auto ctx = make_context(args);

@@ -4,6 +4,7 @@
 // `--components DIR` writes the separate terms the calibration (tools/groundtruth/fit.py) fits.
 #include "commands.hpp"
 
+#include <jade/dev/io.hpp>
 #include <jade/dev/material.hpp>
 #include <jade/dev/renderer.hpp>
 #include <jade/io.hpp>
@@ -50,7 +51,7 @@ json read_json(const std::filesystem::path& path)
 struct Reference {
     std::string name, set, mesh, light;
     json record;
-    LoadedImage image;                // linear (from the EXR)
+    dev::LoadedImage image;           // linear (from the EXR)
     flip::Image srgb;                 // the 8-bit PNG, for FLIP
     std::vector<uint8_t> mask, thin;  // object and thin-region masks, 0/1 per pixel
     std::vector<uint8_t> away;        // surfaces facing away from the light, not thin (empty: none given)
@@ -58,7 +59,7 @@ struct Reference {
 
 std::vector<uint8_t> read_mask(const std::filesystem::path& path, int width, int height)
 {
-    const LoadedImage m = load_image(path);
+    const dev::LoadedImage m = dev::load_image(path);
     if (m.width != width || m.height != height) throw Error(path.string() + ": mask size differs from the reference");
     std::vector<uint8_t> out(size_t(width) * height);
     for (size_t i = 0; i < out.size(); ++i) out[i] = m.rgba[4 * i] > 0.5f ? 1 : 0;
@@ -73,8 +74,8 @@ Reference load_reference(const std::filesystem::path& dir, const std::filesystem
         r.name = r.record.at("scene"), r.set = r.record.at("set"), r.mesh = r.record.at("mesh"),
         r.light = r.record.at("light_name");
         const json& files = r.record.at("files");
-        r.image = load_image(dir / files.at("exr").get<std::string>());
-        const LoadedImage png = load_image(dir / files.at("png").get<std::string>());
+        r.image = dev::load_image(dir / files.at("exr").get<std::string>());
+        const dev::LoadedImage png = dev::load_image(dir / files.at("png").get<std::string>());
         r.srgb = flip::from_linear(uint32_t(png.width), uint32_t(png.height), png.rgba.data(), 4);
         r.mask = read_mask(dir / files.at("mask").get<std::string>(), r.image.width, r.image.height);
         r.thin = read_mask(dir / files.at("thin").get<std::string>(), r.image.width, r.image.height);
@@ -368,7 +369,7 @@ int cmd_fidelity(int argc, char** argv)
     }
     if (out.empty()) throw Error("--references " + dir.string() + ": no reference scene matched");
     if (auto path = args.get("markdown"))
-        write_file_atomically(*path, fidelity_markdown(out, modes, shadows, ctx->device_info().name));
+        dev::write_file_atomically(*path, fidelity_markdown(out, modes, shadows, ctx->device_info().name));
     if (auto path = args.get("json")) {
         const json doc = {{"fit",
                            {{"albedo_scale", fit.albedo_scale},
@@ -380,7 +381,7 @@ int cmd_fidelity(int argc, char** argv)
                             {"normal_mix", fit.normal_mix},
                             {"forward_extinction", fit.forward_extinction}}},
                           {"scenes", out}};
-        write_file_atomically(*path, doc.dump(1));
+        dev::write_file_atomically(*path, doc.dump(1));
     }
     return 0;
 }

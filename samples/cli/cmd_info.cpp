@@ -1,6 +1,7 @@
 // jade info [MESH]: the device, or a mesh after preparation.
 #include "commands.hpp"
 
+#include <jade/dev/io.hpp>
 #include <jade/io.hpp>
 #include <jade/dev/mesh.hpp>
 
@@ -37,7 +38,7 @@ static void print_bake_record(const std::string& path, const ReadOptions& option
     std::string ext = std::filesystem::path(path).extension().string();
     for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
     if (ext != ".glb" && ext != ".gltf") return;
-    const std::string text = GltfAsset::load(path, nullptr, options).asset_extras_json();
+    const std::string text = dev::asset_extras_json(GltfAsset::load(path, nullptr, options));
     const auto extras = nlohmann::json::parse(text.empty() ? "{}" : text, nullptr, false);
     if (!extras.is_object() || !extras.contains("jade") || !extras["jade"].is_object()) {
         std::printf("baked by jade     no (no asset.extras.jade)\n");

@@ -1,5 +1,6 @@
 #include "commands.hpp"
 
+#include <jade/dev/io.hpp>
 #include <jade/dev/material.hpp>
 #include <jade/dev/names.hpp>
 #include <jade/io.hpp>
@@ -278,7 +279,7 @@ std::string lower(std::string s)
 void probe_writable(const std::string& flag, const std::filesystem::path& path, const std::filesystem::path& folder)
 {
     try {
-        check_writable(path);
+        dev::check_writable(path);
     } catch (const Error& e) {
         throw Error("--" + flag + " " + path.string() + ": cannot create a file in folder '" + folder.string() +
                     "': " + e.what());

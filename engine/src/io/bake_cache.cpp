@@ -3,6 +3,7 @@
 #include <jade/dev/bake.hpp>
 #include <jade/dev/cache.hpp>
 #include <jade/error.hpp>
+#include <jade/dev/io.hpp>
 #include <jade/io.hpp>
 
 #include <cmath>
