@@ -109,7 +109,7 @@ void check_ao_against_reference(Context& ctx, const PreparedMesh& mesh, uint32_t
 
 TEST_F(GpuTest, DeviceIsCreatedWithValidation)
 {
-    const DeviceInfo& info = context().device_info();
+    const dev::DeviceInfo& info = dev::device_info(context());
     EXPECT_FALSE(info.name.empty());
     EXPECT_GE(info.api_version, (1u << 22) | (3u << 12)) << info.api_version_string();  // Vulkan 1.3
     EXPECT_GT(info.max_storage_buffer_range, 0u);
@@ -216,7 +216,7 @@ TEST_F(GpuTest, EveryProfileKindAgreesWithFloat64OnALargeMesh)
 // dragon's t_m comes out bit-identical).
 TEST_F(GpuTest, Float64SumsAgreeWithCompensatedFloat32Sums)
 {
-    if (!context().device_info().float64) GTEST_SKIP() << "the device has no shaderFloat64";
+    if (!dev::device_info(context()).float64) GTEST_SKIP() << "the device has no shaderFloat64";
     const PreparedMesh& mesh = dragon();
     const Material m = burley_material(glm::dvec3(0.2 * mesh.diagonal), glm::vec3(0.8f));
     Baker baker(context());

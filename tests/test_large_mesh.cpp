@@ -10,6 +10,7 @@
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 
+#include <jade/dev/context.hpp>
 #include <jade/bake.hpp>
 #include <jade/error.hpp>
 #include <jade/io.hpp>
@@ -26,7 +27,7 @@ TEST_F(GpuTest, MillionVertexMeshBakesInChunksAndMatchesTheFloat64Reference)
 {
     const PreparedMesh mesh = prepare_mesh(dev::procedural::subdivide(load_mesh(test::asset("bunny00.off")), 3));
     ASSERT_GT(mesh.vertex_count(), 1'000'000u);
-    const DeviceInfo& device = context().device_info();
+    const dev::DeviceInfo& device = dev::device_info(context());
     BakeSettings settings = BakeSettings::preset(Quality::Draft);
     settings.ao.rays = 4;
     // The AO dispatch alone needs more work groups than one dimension allows.

@@ -9,6 +9,7 @@
 #include "gpu/buffer.hpp"
 #include "gpu/context.hpp"
 
+#include <jade/dev/context.hpp>
 #include <jade/bake.hpp>
 #include <jade/context.hpp>
 #include <jade/render.hpp>
@@ -50,7 +51,7 @@ Outcome fill_twice(bool sync_validation, bool barrier)
         }
         vkCmdFillBuffer(cmd, buffer.handle(), 0, VK_WHOLE_SIZE, 2u);
     });
-    out.messages = ctx.validation_messages();
+    out.messages = jade::dev::validation_messages(ctx);
     return out;
 }
 

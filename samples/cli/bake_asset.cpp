@@ -2,6 +2,7 @@
 // instance rule of jade::GltfAsset) and the asset written back whole with the attributes.
 #include "bake_record.hpp"
 
+#include <jade/dev/context.hpp>
 #include <jade/dev/clock.hpp>
 #include <jade/dev/io.hpp>
 #include <jade/io.hpp>
@@ -59,7 +60,7 @@ void bake_asset(const Args& args, const std::filesystem::path& in, const std::fi
     const Material fallback = material_from_args(args, asset_diagonal(asset));
 
     auto ctx = make_context(args);
-    if (args.flag("verbose")) std::fprintf(stderr, "jade: device %s\n", ctx->device_info().name.c_str());
+    if (args.flag("verbose")) std::fprintf(stderr, "jade: device %s\n", dev::device_info(*ctx).name.c_str());
     Baker baker(*ctx);
     std::vector<BakedAttributes> baked;
     std::map<std::string, size_t> material_index;  // record: each distinct material once

@@ -3,6 +3,7 @@
 #include "bake_record.hpp"
 #include "commands.hpp"
 
+#include <jade/dev/context.hpp>
 #include <jade/io.hpp>
 #include <jade/dev/mesh.hpp>
 
@@ -27,7 +28,7 @@ void bake_mesh(const Args& args, const std::string& in, const std::filesystem::p
     TriangleMesh mesh = load_mesh_arg(in, read_options(args));
     Material material = material_from_args(args, diagonal(mesh));
     auto ctx = make_context(args);
-    if (args.flag("verbose")) std::fprintf(stderr, "jade: device %s\n", ctx->device_info().name.c_str());
+    if (args.flag("verbose")) std::fprintf(stderr, "jade: device %s\n", dev::device_info(*ctx).name.c_str());
     Baker baker(*ctx);
     std::fprintf(stderr, "jade: baking %zu vertices, %u AO rays each, material %s ...\n", mesh.positions.size(),
                  settings.ao.rays, material.name.c_str());

@@ -79,7 +79,7 @@ int bench_bake(const Args& args)
     Baker baker(*ctx);
     const double n = double(p.vertex_count());
     std::printf("mesh %s: %zu vertices, %zu triangles; device %s\n", mesh.name.c_str(), p.vertex_count(),
-                p.triangle_count(), ctx->device_info().name.c_str());
+                p.triangle_count(), dev::device_info(*ctx).name.c_str());
     std::printf("material %s, %u AO rays, t_m epsilon %g\n\n", m.name.c_str(), s.ao.rays, s.tm_opening_ratio);
 
     baker.bake(p, m, s);  // warm-up: pipelines, caches
@@ -169,7 +169,7 @@ int bench_render_scene(const Args& args)
     std::printf("scene %s: %zu objects; %ux%u, %ux MSAA, %u iterations of one frame each (rotating order) after 2 "
                 "warm-up ones, device %s\n",
                 scene.name.c_str(), scene.objects.size(), rs.width, rs.height, rs.samples, repeat,
-                ctx->device_info().name.c_str());
+                dev::device_info(*ctx).name.c_str());
     const Camera camera = Camera::framing(cached.bbox_min(), cached.bbox_max(), 1.0f, glm::vec3(0.35f, 0.45f, 1.0f));
     const auto lights = default_lights(camera);
     // For reference only: every material opaque (Lambert, no t_m at all).

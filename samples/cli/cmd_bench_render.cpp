@@ -6,6 +6,7 @@
 #include "deform_sweep.hpp"
 #include "render_setup.hpp"
 
+#include <jade/dev/context.hpp>
 #include <jade/dev/names.hpp>
 #include <jade/dev/renderer.hpp>
 #include <jade/bake.hpp>
@@ -192,7 +193,7 @@ int cmd_bench_render(int argc, char** argv)
         scene.material.name.c_str(), scene.material.grey() ? "grey: 1 channel" : "RGB: 3 channels",
         transmits ? "on where a light is behind" : "off",
         std::string(tm_evaluation_name(dev::tm_evaluation(renderer))).c_str(),
-        std::string(dev::light_path_sampling_name(renderer.light_path())).c_str(), ctx->device_info().name.c_str());
+        std::string(dev::light_path_sampling_name(renderer.light_path())).c_str(), dev::device_info(*ctx).name.c_str());
     // The presets' lights are all directional (each gets a tile); figure1 and back have one light behind.
     const std::string preset = args.get_or("lights", "default");
     const LightLoad load{uint32_t(lights.size()), uint32_t(std::min<size_t>(lights.size(), 4)),

@@ -4,6 +4,7 @@
 // `--components DIR` writes the separate terms the calibration (tools/groundtruth/fit.py) fits.
 #include "commands.hpp"
 
+#include <jade/dev/context.hpp>
 #include <jade/dev/io.hpp>
 #include <jade/dev/material.hpp>
 #include <jade/dev/renderer.hpp>
@@ -369,7 +370,7 @@ int cmd_fidelity(int argc, char** argv)
     }
     if (out.empty()) throw Error("--references " + dir.string() + ": no reference scene matched");
     if (auto path = args.get("markdown"))
-        dev::write_file_atomically(*path, fidelity_markdown(out, modes, shadows, ctx->device_info().name));
+        dev::write_file_atomically(*path, fidelity_markdown(out, modes, shadows, dev::device_info(*ctx).name));
     if (auto path = args.get("json")) {
         const json doc = {{"fit",
                            {{"albedo_scale", fit.albedo_scale},

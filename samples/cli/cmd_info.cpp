@@ -1,6 +1,7 @@
 // jade info [MESH]: the device, or a mesh after preparation.
 #include "commands.hpp"
 
+#include <jade/dev/context.hpp>
 #include <jade/dev/io.hpp>
 #include <jade/io.hpp>
 #include <jade/dev/mesh.hpp>
@@ -17,7 +18,7 @@
 
 namespace jade::cli {
 
-static void print_device(const DeviceInfo& d)
+static void print_device(const dev::DeviceInfo& d)
 {
     std::printf("device            %s (%s)\n", d.name.c_str(), d.type.c_str());
     std::printf("driver            %s\n", d.driver.c_str());
@@ -170,8 +171,8 @@ int cmd_info(int argc, char** argv)
         return 0;
     }
     auto ctx = make_context(args);
-    print_device(ctx->device_info());
-    auto all = Context::list_devices();
+    print_device(dev::device_info(*ctx));
+    auto all = dev::list_devices();
     if (all.size() > 1) {
         std::printf("all devices      ");
         for (auto& n : all) std::printf(" [%s]", n.c_str());

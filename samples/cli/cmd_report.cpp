@@ -4,6 +4,7 @@
 // through samples/report/plot_report.py, DIR/*.png.
 #include "report.hpp"
 
+#include <jade/dev/context.hpp>
 #include <jade/dev/clock.hpp>
 #include <jade/dev/io.hpp>
 #include <jade/io.hpp>
@@ -186,7 +187,7 @@ int cmd_report(int argc, char** argv)
     if (args.flag("summary-only")) {
         auto ctx = make_context(args);
         dev::write_file_atomically(dir / "summary.md",
-                                   summary_markdown(read_csv(dir / "report.csv"), plan, ctx->device_info().name));
+                                   summary_markdown(read_csv(dir / "report.csv"), plan, dev::device_info(*ctx).name));
         if (!args.flag("no-plot")) run_plots(dir);
         return 0;
     }
@@ -210,7 +211,7 @@ int cmd_report(int argc, char** argv)
     add_lut_steps(session, steps);
 
     std::fprintf(stderr, "jade report: %zu steps (plan %s) on %s; writing %s\n", steps.size(), plan.name.c_str(),
-                 ctx->device_info().name.c_str(), dir.string().c_str());
+                 dev::device_info(*ctx).name.c_str(), dir.string().c_str());
     warm_up(session);
     std::vector<Row> rows;
     const auto t0 = Clock::now();
@@ -222,7 +223,7 @@ int cmd_report(int argc, char** argv)
         dev::write_file_atomically(dir / "report.csv", csv(rows));
     }
     steps.clear();
-    dev::write_file_atomically(dir / "summary.md", summary_markdown(rows, plan, ctx->device_info().name));
+    dev::write_file_atomically(dir / "summary.md", summary_markdown(rows, plan, dev::device_info(*ctx).name));
     std::fprintf(stderr, "jade report: %zu configurations in %s: %s, %s\n", rows.size(),
                  format_ms(ms_since(t0)).c_str(), (dir / "report.csv").string().c_str(),
                  (dir / "summary.md").string().c_str());

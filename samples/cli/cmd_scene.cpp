@@ -107,7 +107,7 @@ int cmd_scene(int argc, char** argv)
     const StaticBakeSource source = cache ? dev::cached_bakes(*cache) : StaticBakeSource{};
     const ScenePlan plan = plan_scene(scene, settings, source);
     const uint64_t need = plan.resident_bytes() + plan.transient_peak_bytes();
-    const uint64_t heap = ctx->device_info().device_local_heap_bytes;
+    const uint64_t heap = dev::device_info(*ctx).device_local_heap_bytes;
     auto mib = [](double bytes) {
         char b[48];
         if (bytes >= double(1ull << 30))

@@ -8,6 +8,7 @@
 // end (their own AO), against the same reference.
 #include "report.hpp"
 
+#include <jade/dev/context.hpp>
 #include <jade/dev/bake.hpp>
 #include <jade/dev/clock.hpp>
 #include <jade/dev/names.hpp>
@@ -232,7 +233,7 @@ void add_tm_steps(Session& s, MeshState& st, std::vector<Step>& steps)
         BakeSettings exact;
         exact.method = TmMethod::Exact;
         steps.push_back(tm_step(s, st, k, "tm_exact", "all pairs", "exact", exact, labels[k]));
-        if (s.context.device_info().float64) {  // float32 against float64 accumulation
+        if (dev::device_info(s.context).float64) {  // float32 against float64 accumulation
             dev::set_study(exact, {.tm_float64_sums = true});
             steps.push_back(tm_step(s, st, k, "tm_exact", "all pairs, float64 sums", "exact", exact, labels[k]));
         }
