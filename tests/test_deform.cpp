@@ -6,6 +6,7 @@
 
 #include <jade/deform.hpp>
 #include <jade/dev/names.hpp>
+#include <jade/dev/renderer.hpp>
 #include <jade/error.hpp>
 #include <jade/io.hpp>
 #include <jade/mesh.hpp>
@@ -214,7 +215,7 @@ TEST_F(DeformGpu, GpuVertexUpdateRendersLikeTheHostPath)
     // bounds set_mesh saw, the rest pose's here and the deformed pose's in the host path, so
     // the two tiles' texels differ (by up to ~0.01 at this size).
     RendererOptions options;
-    options.light_path = LightPathSampling::PerVertex;
+    dev::set_study(options, {.light_path = dev::LightPathSampling::PerVertex});
     Renderer gpu_path(context(), options);
     gpu_path.set_material(material);
     gpu_path.set_mesh(rest);

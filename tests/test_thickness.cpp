@@ -224,12 +224,14 @@ TEST_F(Thickness, LightPathCountsTheMediumAndNotTheAirBetweenParts)
     Baker baker(context());
     const Material m = translucent();
     // Both samplings of the path: the slabs are flat where the camera looks, so they agree.
-    for (LightPathSampling sampling : {LightPathSampling::PerFragment, LightPathSampling::PerVertex})
+    for (dev::LightPathSampling sampling : {dev::LightPathSampling::PerFragment, dev::LightPathSampling::PerVertex})
         for (const Light& light : {Light::directional({0.0f, 0.0f, -1.0f}, glm::vec3(1.0f)),
                                    Light::point({0.0f, 0.0f, -12.0f}, glm::vec3(150.0f))}) {
             SCOPED_TRACE(std::string(dev::light_path_sampling_name(sampling)) +
                          (light.type == Light::Type::Point ? ", point light" : ", directional light"));
-            Renderer renderer(context(), RendererOptions{.light_path = sampling});
+            RendererOptions options;
+            dev::set_study(options, {.light_path = sampling});
+            Renderer renderer(context(), options);
             renderer.set_material(m);
             Camera cam;
             cam.eye = {0.0f, 0.0f, 3.0f}, cam.target = {0.0f, 0.0f, 0.0f}, cam.fov_y_degrees = 10.0f;
@@ -254,7 +256,7 @@ TEST_F(Thickness, LightPathCountsTheMediumAndNotTheAirBetweenParts)
             // meets; after them, the 0.3 of air and the 0.1 of the front slab count.
             const double three_parts = centre_path(stack({{0.0f, 0.1f}, {-0.5f, -0.3f}, {-0.75f, -0.7f}}));
             EXPECT_NEAR(three_parts, 0.05 + 0.2 + 0.3 + 0.1, 1e-3);
-            EXPECT_EQ(renderer.light_path(), sampling);
+            EXPECT_EQ(dev::light_path(renderer), sampling);
         }
 }
 
@@ -266,14 +268,14 @@ TEST_F(Thickness, LightPathAutoFollowsTheMeshResolution)
     auto sampling = [&](const char* name, uint32_t tile) {
         const PreparedMesh mesh = prepare_mesh(load_mesh(test::asset(name)));
         Renderer renderer(context(), RendererOptions{.light_depth_size = tile});
-        EXPECT_EQ(renderer.light_path(), LightPathSampling::PerFragment) << "before set_mesh";
+        EXPECT_EQ(dev::light_path(renderer), dev::LightPathSampling::PerFragment) << "before set_mesh";
         renderer.set_mesh(mesh);
-        return renderer.light_path();
+        return dev::light_path(renderer);
     };
-    EXPECT_EQ(sampling("bunny00.off", 512), LightPathSampling::PerVertex);
-    EXPECT_EQ(sampling("hand.off", 512), LightPathSampling::PerFragment);
-    EXPECT_EQ(sampling("bunny00.off", 4096), LightPathSampling::PerFragment);
-    EXPECT_EQ(dev::parse_light_path_sampling("vertex"), LightPathSampling::PerVertex);
+    EXPECT_EQ(sampling("bunny00.off", 512), dev::LightPathSampling::PerVertex);
+    EXPECT_EQ(sampling("hand.off", 512), dev::LightPathSampling::PerFragment);
+    EXPECT_EQ(sampling("bunny00.off", 4096), dev::LightPathSampling::PerFragment);
+    EXPECT_EQ(dev::parse_light_path_sampling("vertex"), dev::LightPathSampling::PerVertex);
     EXPECT_THROW(dev::parse_light_path_sampling("pixel"), Error);
 }
 

@@ -54,7 +54,7 @@ struct LightLoad {
 /// pass, two passes; burley 1 per light with a tile and 1 + samples (docs/peers_separable.md).
 /// Returns the count and its formula.
 std::pair<uint32_t, std::string> fetches(ShadingMode mode, const LightLoad& l, bool shadows, TmEvaluation eval,
-                                         bool grey, LightPathSampling path, const RenderSettings& s)
+                                         bool grey, dev::LightPathSampling path, const RenderSettings& s)
 {
     const bool soft = mode == ShadingMode::Tm;
     const uint32_t shadow = shadows ? (soft ? 5 : 9) * l.shadowed : 0;
@@ -66,7 +66,7 @@ std::pair<uint32_t, std::string> fetches(ShadingMode mode, const LightLoad& l, b
         const uint32_t per_light = eval == TmEvaluation::Alu ? 0 : grey ? 1 : 3;
         n += per_light * l.lights;
         if (per_light) plus(std::to_string(per_light) + "/light");
-        const uint32_t per_transmitter = path == LightPathSampling::PerVertex ? 2 : 6;
+        const uint32_t per_transmitter = path == dev::LightPathSampling::PerVertex ? 2 : 6;
         n += per_transmitter * l.transmitting;
         if (l.transmitting) plus(std::to_string(per_transmitter) + "/transmitting light");
     }
@@ -193,7 +193,8 @@ int cmd_bench_render(int argc, char** argv)
         scene.material.name.c_str(), scene.material.grey() ? "grey: 1 channel" : "RGB: 3 channels",
         transmits ? "on where a light is behind" : "off",
         std::string(tm_evaluation_name(dev::tm_evaluation(renderer))).c_str(),
-        std::string(dev::light_path_sampling_name(renderer.light_path())).c_str(), dev::device_info(*ctx).name.c_str());
+        std::string(dev::light_path_sampling_name(dev::light_path(renderer))).c_str(),
+        dev::device_info(*ctx).name.c_str());
     // The presets' lights are all directional (each gets a tile); figure1 and back have one light behind.
     const std::string preset = args.get_or("lights", "default");
     const LightLoad load{uint32_t(lights.size()), uint32_t(std::min<size_t>(lights.size(), 4)),
@@ -235,7 +236,7 @@ int cmd_bench_render(int argc, char** argv)
         }
         for (size_t k = 0; k < n; ++k) {
             const auto [count, formula] = fetches(config[k].mode, load, config[k].shadows, dev::tm_evaluation(renderer),
-                                                  scene.material.grey(), renderer.light_path(), s);
+                                                  scene.material.grey(), dev::light_path(renderer), s);
             char size[32], ratio[64], cpu_r[64];
             std::snprintf(size, sizeof size, "%ux%u", width, height);
             std::snprintf(ratio, sizeof ratio, "%.3fx (%.2f-%.2f)", quantile(gpu_ratio[k], 0.5),

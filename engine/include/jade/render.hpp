@@ -109,24 +109,13 @@ struct RenderSettings {
     uint32_t burley_samples = 40;
 };
 
-/// Where the Tm mode reads a back light's path inside the object (Transmission: the medium along
-/// the light's line, from its depth tile; docs/shading.md "Transmission"). Per vertex saves four
-/// gathers per fragment and transmitting light; on a coarse mesh it loses the edges of what the
-/// body shadows from the light within a triangle.
-enum class LightPathSampling : uint32_t {
-    Auto = 0,         ///< PerVertex where the mesh's median edge spans ≤ 8 texels of the tile, else PerFragment
-    PerVertex = 1,    ///< in the vertex shader, interpolated
-    PerFragment = 2,  ///< per fragment, bilinear between the four nearest texels
-};
-
 namespace dev {
-struct RendererStudy;  // jade/dev/renderer.hpp: LUT sizes and evaluation paths, for studies
+struct RendererStudy;  // jade/dev/renderer.hpp: LUT sizes, evaluation paths and light path sampling, for studies
 struct RendererAccess;
 }  // namespace dev
 
 /// Fixed at Renderer construction.
 struct RendererOptions {
-    LightPathSampling light_path = LightPathSampling::Auto;  ///< Renderer::light_path() says what Auto chose
     /// Mean curvature smoothing: iterations of 1-ring averaging after the cotangent Laplacian.
     uint32_t curvature_smoothing = 2;
     /// Transmission and shadows: texels of one light's depth tile (how far light travels inside
@@ -244,10 +233,6 @@ public:
     /// when the GPU has finished the work submitted to that queue before them, never waiting.
     void record(VkCommandBuffer cmd, const RenderTarget& target, const Camera& camera, std::span<const Light> lights,
                 const RenderSettings& settings);
-
-    /// Where RendererOptions::light_path resolved to for the current mesh (never Auto; PerFragment
-    /// before set_mesh).
-    LightPathSampling light_path() const;
 
 private:
     friend struct dev::RendererAccess;  // the introspection of jade/dev/renderer.hpp

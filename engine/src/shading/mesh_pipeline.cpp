@@ -41,16 +41,17 @@ TmEvaluation parse_tm_evaluation(std::string_view name)
 std::string_view dev::light_path_sampling_name(LightPathSampling sampling)
 {
     switch (sampling) {
-    case LightPathSampling::Auto: return "auto";
-    case LightPathSampling::PerVertex: return "vertex";
-    case LightPathSampling::PerFragment: return "fragment";
+    case dev::LightPathSampling::Auto: return "auto";
+    case dev::LightPathSampling::PerVertex: return "vertex";
+    case dev::LightPathSampling::PerFragment: return "fragment";
     }
     return "unknown";
 }
 
-LightPathSampling dev::parse_light_path_sampling(std::string_view name)
+dev::LightPathSampling dev::parse_light_path_sampling(std::string_view name)
 {
-    for (LightPathSampling s : {LightPathSampling::Auto, LightPathSampling::PerVertex, LightPathSampling::PerFragment})
+    for (LightPathSampling s :
+         {dev::LightPathSampling::Auto, dev::LightPathSampling::PerVertex, dev::LightPathSampling::PerFragment})
         if (name == dev::light_path_sampling_name(s)) return s;
     throw Error("unknown light path sampling '" + std::string(name) + "' (known: auto, vertex, fragment)");
 }
@@ -97,12 +98,13 @@ TmEvaluation resolve_evaluation(TmEvaluation requested, const gpu::Context& ctx)
     return resolve_evaluation(requested, p.deviceType);
 }
 
-LightPathSampling resolve_light_path(LightPathSampling requested, double median_edge, double radius, uint32_t tile_size)
+dev::LightPathSampling resolve_light_path(dev::LightPathSampling requested, double median_edge, double radius,
+                                          uint32_t tile_size)
 {
-    if (requested != LightPathSampling::Auto) return requested;
+    if (requested != dev::LightPathSampling::Auto) return requested;
     const double texel = 2.0 * double(LightDepth::kMargin) * radius / double(std::max(tile_size, 1u));
-    return median_edge <= kLightPathVertexTexels * texel ? LightPathSampling::PerVertex
-                                                         : LightPathSampling::PerFragment;
+    return median_edge <= kLightPathVertexTexels * texel ? dev::LightPathSampling::PerVertex
+                                                         : dev::LightPathSampling::PerFragment;
 }
 
 const gpu::GraphicsPipeline& MeshPipelines::get(const MeshVariant& v, VkFormat format, uint32_t samples)

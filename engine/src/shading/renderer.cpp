@@ -52,7 +52,7 @@ void Renderer::set_mesh(const PreparedMesh& mesh, std::span<const glm::vec3> tm,
     m.has_mesh = true;
     ++m.geometry_version;
     m.has_thickness = !thickness.empty();
-    m.light_path = shading::resolve_light_path(m.options.light_path, double(built.median_edge),
+    m.light_path = shading::resolve_light_path(dev::study_of(m.options).light_path, double(built.median_edge),
                                                double(m.bounding_radius()), m.options.light_depth_size);
 }
 
@@ -117,8 +117,6 @@ RenderedImage Renderer::render(const Camera& camera, std::span<const Light> ligh
 {
     return impl_->render(camera, lights, settings, uint32_t(settings.mode));
 }
-
-LightPathSampling Renderer::light_path() const { return impl_->light_path; }
 
 void Renderer::record(VkCommandBuffer cmd, const RenderTarget& target, const Camera& camera,
                       std::span<const Light> lights, const RenderSettings& settings)

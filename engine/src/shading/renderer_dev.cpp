@@ -29,6 +29,7 @@ ShadingInputs shading_inputs(Renderer& renderer, const Camera& camera, std::span
 }
 
 TmEvaluation tm_evaluation(const Renderer& renderer) { return RendererAccess::impl(renderer).evaluation; }
+LightPathSampling light_path(const Renderer& renderer) { return RendererAccess::impl(renderer).light_path; }
 const LutLayout& lut_layout(const Renderer& renderer) { return RendererAccess::impl(renderer).lut->layout(); }
 
 std::vector<float> read_lut(Renderer& renderer)

@@ -75,7 +75,7 @@ struct Renderer::Impl {
     float tm_min_mean = 0.0f, tm_max_mean = 0.0f;  // range of mean(t_m) over the vertices
     glm::vec3 tm_min{0.0f};  // per channel over the vertices; 0 after record_vertex_update (not known)
     bool has_mesh = false, has_thickness = false;
-    LightPathSampling light_path = LightPathSampling::PerFragment;  // resolved for this mesh
+    dev::LightPathSampling light_path = dev::LightPathSampling::PerFragment;  // resolved for this mesh
     uint64_t geometry_version = 0;  // changes with set_mesh and record_vertex_update (light-depth reuse)
 
     std::optional<shading::LightDepth> light_depth;  // made on the first draw with transmission or shadows
@@ -119,7 +119,7 @@ struct Renderer::Impl {
         if (mode != uint32_t(ShadingMode::Tm) && mode < shading::kInputsMode) return v;
         v.channels = material->grey() ? 1 : 3;
         v.transmission = transmitters;
-        v.path_per_vertex = transmitters > 0 && light_path == LightPathSampling::PerVertex;
+        v.path_per_vertex = transmitters > 0 && light_path == dev::LightPathSampling::PerVertex;
         if (mode >= shading::kInputsMode) return v;
         v.evaluation = evaluation;
         const float smallest = v.channels == 1 ? tm_min.x : std::min({tm_min.x, tm_min.y, tm_min.z});

@@ -1,6 +1,6 @@
 // jade/dev/names.hpp - the names of the core's enums as the CLI's flags, reports and tests spell
-// them, and their parsers (a host names its own settings). The plan's pass kinds are named in
-// jade/dev/scene.hpp. Declared for jade::dev, defined in jade::jade.
+// them, and their parsers (a host names its own settings). The dev enums are named next to them
+// (jade/dev/renderer.hpp, jade/dev/scene.hpp). Declared for jade::dev, defined in jade::jade.
 #pragma once
 
 #include <jade/bake.hpp>
@@ -31,10 +31,5 @@ ShadingMode parse_shading_mode(std::string_view name);
 
 /// "none", "reinhard", "aces"; throws jade::Error listing the names.
 ToneMap parse_tone_map(std::string_view name);
-
-/// "auto", "vertex", "fragment".
-std::string_view light_path_sampling_name(LightPathSampling sampling);
-/// The inverse of light_path_sampling_name; throws jade::Error listing the names.
-LightPathSampling parse_light_path_sampling(std::string_view name);
 
 }  // namespace jade::dev
