@@ -6,6 +6,7 @@
 #include "embed/scene.hpp"  // the sample's frame size, ground and camera
 #include "vk_instance.hpp"  // samples/common: the hosts' instance and device choice
 
+#include <jade/dev/bake.hpp>
 #include <jade/dev/context.hpp>
 #include <jade/bake.hpp>
 #include <jade/context.hpp>
@@ -156,7 +157,10 @@ TEST_F(Embed, GridSplatWithoutInt64AtomicsBakesTheSameBits)
         Context context(o);
         if (!dev::device_info(context).int64_atomics)
             GTEST_SKIP() << dev::device_info(context).name << " has no 64-bit buffer atomics";
-        packed = Baker(context).bake_tm(sphere, ao, material, settings);
+        packed = [&] {
+            Baker baker(context);
+            return dev::bake_tm(baker, sphere, ao, material, settings);
+        }();
         EXPECT_EQ(dev::validation_messages(context), 0u);
     }
     Host host(true);  // Jade's required features only: no shaderInt64, no 64-bit atomics
@@ -164,7 +168,10 @@ TEST_F(Embed, GridSplatWithoutInt64AtomicsBakesTheSameBits)
     {
         Context context(host.adopted());
         EXPECT_FALSE(dev::device_info(context).int64_atomics);
-        four = Baker(context).bake_tm(sphere, ao, material, settings);
+        four = [&] {
+            Baker baker(context);
+            return dev::bake_tm(baker, sphere, ao, material, settings);
+        }();
     }
     ASSERT_EQ(packed.method_used, TmMethod::Grid);
     ASSERT_EQ(four.method_used, TmMethod::Grid);

@@ -7,6 +7,7 @@
 #include "bake/buffer_estimate.hpp"
 #include "bake/far_field.hpp"
 
+#include <jade/dev/bake.hpp>
 #include <jade/bake.hpp>
 #include <jade/dev/names.hpp>
 #include <jade/dev/scene.hpp>
@@ -87,7 +88,7 @@ TEST_F(GpuTest, AutoFarFieldIsTheSameInTheBakeAndInItsBufferPlan)
         const BakeSettings settings = BakeSettings::preset(Quality::Default);
         ASSERT_EQ(settings.method, TmMethod::Auto);
         const std::vector<float> ao(c.mesh.vertex_count(), 0.0f);
-        const TmMethod baked = baker.bake_tm(c.mesh, ao, material, settings).method_used;
+        const TmMethod baked = dev::bake_tm(baker, c.mesh, ao, material, settings).method_used;
         const TmMethod planned = method_of(bake::estimate_buffers(c.mesh, material, settings, false, false));
         EXPECT_EQ(dev::tm_method_name(planned), std::string(dev::tm_method_name(baked))) << c.name;
         // The grids alone fit the dense patch (not coarsened): its long near lists decide, the

@@ -10,6 +10,7 @@
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 
+#include <jade/dev/bake.hpp>
 #include <jade/dev/context.hpp>
 #include <jade/bake.hpp>
 #include <jade/error.hpp>
@@ -73,7 +74,7 @@ TEST_F(GpuTest, MillionVertexMeshBakesInChunksAndMatchesTheFloat64Reference)
     BakeSettings grid = settings;
     grid.method = TmMethod::Grid;
     try {
-        baker.bake_tm(mesh, r.ao, material, grid);
+        dev::bake_tm(baker, mesh, r.ao, material, grid);
         ADD_FAILURE() << "the grid far field accepted a plan beyond its memory limit";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("use the clustered far field"), std::string::npos) << e.what();

@@ -6,6 +6,7 @@
 // (The > 1 M-vertex case, which needs chunked passes, is tests/test_large_mesh.cpp.)
 #include "gpu_fixture.hpp"
 
+#include <jade/dev/bake.hpp>
 #include <jade/bake.hpp>
 #include <jade/dev/names.hpp>
 #include <jade/error.hpp>
@@ -204,10 +205,10 @@ TEST_F(GpuTest, ScaledMeshWithScaledDistanceGivesTheSameResult)
     Baker baker(context());
     const auto reference = baker.bake(unit, burley_material(glm::dvec3(d), glm::vec3(0.8f)), exact_settings(rays));
     ASSERT_TRUE(finite_nonnegative(reference.ao, reference.tm));
-    const auto clustered_reference = baker
-                                         .bake_tm(unit, reference.ao, burley_material(glm::dvec3(d), glm::vec3(0.8f)),
-                                                  BakeSettings::preset(Quality::Default))
-                                         .tm;
+    const auto clustered_reference =
+        dev::bake_tm(baker, unit, reference.ao, burley_material(glm::dvec3(d), glm::vec3(0.8f)),
+                     BakeSettings::preset(Quality::Default))
+            .tm;
     double worst_ao_fraction = 0, worst_tm = 0;
     for (double s : {1e-4, 1e-3, 1e-2, 1e-1, 1e1, 1e2, 1e3, 1e4}) {
         const PreparedMesh mesh = prepare_mesh(scaled(base, float(s)));
@@ -225,8 +226,8 @@ TEST_F(GpuTest, ScaledMeshWithScaledDistanceGivesTheSameResult)
         worst_ao_fraction = std::max(worst_ao_fraction, fraction);
 
         // t_m from the unscaled A_o: only the t_m pass's scale invariance is measured.
-        const auto exact = baker.bake_tm(mesh, reference.ao, m, exact_settings(rays)).tm;
-        const auto clustered = baker.bake_tm(mesh, reference.ao, m, BakeSettings::preset(Quality::Default)).tm;
+        const auto exact = dev::bake_tm(baker, mesh, reference.ao, m, exact_settings(rays)).tm;
+        const auto clustered = dev::bake_tm(baker, mesh, reference.ao, m, BakeSettings::preset(Quality::Default)).tm;
         ASSERT_TRUE(finite_nonnegative(reference.ao, exact));
         ASSERT_TRUE(finite_nonnegative(reference.ao, clustered));
         const double e = max_relative(exact, widened(reference.tm)),
@@ -253,7 +254,7 @@ TEST_F(GpuTest, ScatteringDistanceFromTinyToHugeStaysFiniteAndReachesItsLimits)
     Baker baker(context());
     AoSettings ao_settings;
     ao_settings.rays = 32;
-    const auto ao = baker.bake_ao(mesh, ao_settings);
+    const auto ao = dev::bake_ao(baker, mesh, ao_settings);
     const TmMethod methods[3] = {TmMethod::Exact, TmMethod::Clustered, TmMethod::Grid};
     std::vector<glm::vec3> at_1e5[3];
     double worst[3] = {0, 0, 0};
@@ -266,7 +267,7 @@ TEST_F(GpuTest, ScatteringDistanceFromTinyToHugeStaysFiniteAndReachesItsLimits)
                          " x diagonal");
             BakeSettings s = BakeSettings::preset(Quality::Default);
             s.method = methods[method];
-            const auto tm = baker.bake_tm(mesh, ao, m, s).tm;
+            const auto tm = dev::bake_tm(baker, mesh, ao, m, s).tm;
             ASSERT_TRUE(finite_nonnegative(ao, tm));
             const double e = max_relative(tm, reference, 1e-30);
             EXPECT_LE(e, method == 0 ? 1e-4 : 1e-2);
@@ -443,13 +444,13 @@ TEST_F(GpuTest, OddMeshesBakeFiniteAndMatchTheFloat64Reference)
         EXPECT_LE(exact_error, 1e-4);
         BakeSettings clustered = BakeSettings::preset(Quality::Default);
         clustered.method = TmMethod::Clustered;  // Auto would choose Exact on meshes this small
-        const auto def = baker.bake_tm(mesh, r.ao, m, clustered).tm;
+        const auto def = dev::bake_tm(baker, mesh, r.ao, m, clustered).tm;
         ASSERT_TRUE(finite_nonnegative(r.ao, def));
         const double default_error = max_relative(def, ref_tm, 1e-12);
         EXPECT_LE(default_error, 1e-2);
         BakeSettings grid = clustered;
         grid.method = TmMethod::Grid;
-        const auto by_grid = baker.bake_tm(mesh, r.ao, m, grid).tm;
+        const auto by_grid = dev::bake_tm(baker, mesh, r.ao, m, grid).tm;
         ASSERT_TRUE(finite_nonnegative(r.ao, by_grid));
         const double grid_error = max_relative(by_grid, ref_tm, 1e-12);
         EXPECT_LE(grid_error, 1e-2);

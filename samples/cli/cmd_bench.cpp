@@ -5,6 +5,7 @@
 #include "commands.hpp"
 #include "embree_ao.hpp"
 
+#include <jade/dev/bake.hpp>
 #include <jade/dev/cache.hpp>
 #include <jade/dev/context.hpp>
 #include <jade/dev/clock.hpp>
@@ -46,12 +47,12 @@ void compare_far_fields(Baker& baker, const PreparedMesh& p, const std::vector<f
     BakeSettings clustered = s, grid = s;
     clustered.method = TmMethod::Clustered;
     grid.method = TmMethod::Grid;
-    baker.bake_tm(p, ao, m, grid);  // warm-up: the grid pipelines
+    dev::bake_tm(baker, p, ao, m, grid);  // warm-up: the grid pipelines
     std::vector<double> tc, tg, ratio;
     BakeResult rc, rg;
     for (uint32_t i = 0; i < pairs; ++i) {
-        rc = baker.bake_tm(p, ao, m, clustered);
-        rg = baker.bake_tm(p, ao, m, grid);
+        rc = dev::bake_tm(baker, p, ao, m, clustered);
+        rg = dev::bake_tm(baker, p, ao, m, grid);
         tc.push_back(rc.timings.gpu_total_ms);
         tg.push_back(rg.timings.gpu_total_ms);
         ratio.push_back(tc.back() / tg.back());
@@ -103,7 +104,7 @@ int bench_bake(const Args& args)
 
     BakeSettings exact = s;
     exact.method = TmMethod::Exact;
-    BakeResult ex = baker.bake_tm(p, best.ao, m, exact);
+    BakeResult ex = dev::bake_tm(baker, p, best.ao, m, exact);
     double ex_ms = ex.timings.gpu_total_ms;
     std::printf("\nall-pairs GPU t_m     %10s   %.1f Mpairs/s   (clustered is %.1fx faster)\n",
                 format_ms(ex_ms).c_str(), n * n / (ex_ms * 1e3), ex_ms / tm_ms);

@@ -52,7 +52,7 @@ std::vector<float> timed_ao(Session& s, const MeshState& st, const AoSettings& a
     std::vector<float> out;
     for (int rep = 0; rep < 3; ++rep) {
         BakeTimings t;
-        out = s.baker.bake_ao(st.mesh, ao, &t);
+        out = dev::bake_ao(s.baker, st.mesh, ao, &t);
         if (rep == 0 || t.gpu_total_ms < best.gpu_total_ms) best = t;
         if (best.gpu_total_ms >= 300) break;
     }
@@ -115,7 +115,7 @@ void add_ao_steps(Session& s, MeshState& st, std::vector<Step>& steps)
         steps.push_back({strf("AO reference %u rays %s", reference.rays, distance_case(d).c_str()),
                          [&s, &st, reference] {
             BakeTimings t;
-            auto& ao = st.ao_reference[reference.max_distance_rel] = s.baker.bake_ao(st.mesh, reference, &t);
+            auto& ao = st.ao_reference[reference.max_distance_rel] = dev::bake_ao(s.baker, st.mesh, reference, &t);
             double mean = 0;
             for (float a : ao) mean += a / double(ao.size());
             Row r;
@@ -181,7 +181,7 @@ Step tm_step(Session& s, MeshState& st, size_t k, std::string knob, std::string 
     return {what, [&s, &st, k, knob, value, method, settings, label] {
                 MaterialCase& mc = st.materials[k];
                 const auto& ao = st.ao_reference.at(s.plan.ao_default_distance);
-                BakeResult b = s.baker.bake_tm(st.mesh, ao, mc.material, settings);
+                BakeResult b = dev::bake_tm(s.baker, st.mesh, ao, mc.material, settings);
                 Row r{st.label,
                       knob,
                       value,

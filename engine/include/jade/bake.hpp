@@ -67,6 +67,7 @@ class Context;
 
 namespace dev {
 struct BakeStudy;  // jade/dev/bake.hpp: variants of the passes, for measuring them
+struct BakerAccess;
 }  // namespace dev
 
 /// How t_m's far field is summed.
@@ -150,15 +151,11 @@ public:
     /// AO, the thickness (when settings.thickness.enabled()) then t_m (the material's profiles,
     /// per channel; one channel when grey()).
     BakeResult bake(const PreparedMesh& mesh, const Material& material, const BakeSettings& settings = {});
-    /// t_m only, from given AO (one value per bake vertex).
-    BakeResult bake_tm(const PreparedMesh& mesh, std::span<const float> ao, const Material& material,
-                       const BakeSettings& settings = {});
-    /// AO only, one value in [0, 1] per bake vertex; `timings` (optional) receives GPU/wall times.
-    std::vector<float> bake_ao(const PreparedMesh& mesh, const AoSettings& settings, BakeTimings* timings = nullptr);
 
 private:
     struct Impl;
     friend class DynamicBake;
+    friend struct dev::BakerAccess;  // the partial bakes of jade/dev/bake.hpp (AO only, t_m from given AO)
     std::unique_ptr<Impl> impl_;
 };
 
