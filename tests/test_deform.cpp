@@ -4,6 +4,8 @@
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 
+#include "../engine/src/deform/animation.hpp"  // deform::sample: the channels one by one
+
 #include <jade/deform.hpp>
 #include <jade/dev/names.hpp>
 #include <jade/dev/renderer.hpp>
@@ -200,7 +202,7 @@ TEST_F(DeformGpu, GpuVertexUpdateRendersLikeTheHostPath)
     Baker baker(context());
     DynamicBake rebake(baker, rest, material, BakeSettings::preset(Quality::Draft));
     const BakeResult baked =
-        rebake.bake(deformer.positions_buffer(), deformer.normals_buffer(), deformer.areas_buffer());
+        rebake.bake(deformer.buffers().positions, deformer.buffers().normals, deformer.buffers().areas);
 
     Camera camera = Camera::framing(rest.bbox_min - glm::vec3(0.5f), rest.bbox_max + glm::vec3(0.5f));
     camera.near_plane = 0.1f, camera.far_plane = 50.0f;  // the same planes for both paths
@@ -220,7 +222,7 @@ TEST_F(DeformGpu, GpuVertexUpdateRendersLikeTheHostPath)
     gpu_path.set_material(material);
     gpu_path.set_mesh(rest);
     const RenderedImage before = gpu_path.render(camera, lights, settings);
-    gpu_path.update_vertices(deformer.positions_buffer(), deformer.normals_buffer(), rebake.buffers().tm,
+    gpu_path.update_vertices(deformer.buffers().positions, deformer.buffers().normals, rebake.buffers().tm,
                              rebake.buffers().thickness, rebake.buffers().scattering_normal);
     const RenderedImage gpu_image = gpu_path.render(camera, lights, settings);
 
@@ -238,7 +240,7 @@ TEST_F(DeformGpu, GpuVertexUpdateRendersLikeTheHostPath)
     }
     EXPECT_LE(worst, 1e-3f) << "GPU-updated vertices against the host path (RGBA16F target)";
     EXPECT_GT(moved, 0.1f) << "the update must change the picture";
-    EXPECT_THROW(gpu_path.update_vertices(VK_NULL_HANDLE, deformer.normals_buffer(), rebake.buffers().tm), Error);
+    EXPECT_THROW(gpu_path.update_vertices(VK_NULL_HANDLE, deformer.buffers().normals, rebake.buffers().tm), Error);
 }
 
 TEST_F(DeformGpu, NormalsAndAreasMatchPrepareMeshOfTheDeformedPositions)
@@ -383,7 +385,7 @@ TEST(DeformAnimation, LinearRotationIsSlerpAtKeysAndBetween)
     const AnimationChannel& c = channel(mesh, AnimationPath::Rotation);
     EXPECT_EQ(c.interpolation, Interpolation::Linear);
     auto expect_angle = [&](double t, double degrees) {
-        const auto q = c.sample(t);  // about z: (0, 0, sin(α/2), cos(α/2))
+        const auto q = deform::sample(c, t);  // about z: (0, 0, sin(α/2), cos(α/2))
         const double half = degrees * kPi / 360.0;
         EXPECT_NEAR(q[0], 0.0, 1e-7);
         EXPECT_NEAR(q[1], 0.0, 1e-7);
@@ -403,11 +405,11 @@ TEST(DeformAnimation, StepHoldsTheKeyAtOrBefore)
     const AnimatedMesh mesh = load_test_asset();
     const AnimationChannel& c = channel(mesh, AnimationPath::Translation);
     EXPECT_EQ(c.interpolation, Interpolation::Step);
-    EXPECT_EQ(c.sample(0.0), (std::vector<float>{0, 0, 0}));
-    EXPECT_EQ(c.sample(0.49), (std::vector<float>{0, 0, 0}));
-    EXPECT_EQ(c.sample(0.5), (std::vector<float>{1, 0, 0}));
-    EXPECT_EQ(c.sample(0.75), (std::vector<float>{1, 0, 0}));
-    EXPECT_EQ(c.sample(1.0), (std::vector<float>{2, 0, 0}));
+    EXPECT_EQ(deform::sample(c, 0.0), (std::vector<float>{0, 0, 0}));
+    EXPECT_EQ(deform::sample(c, 0.49), (std::vector<float>{0, 0, 0}));
+    EXPECT_EQ(deform::sample(c, 0.5), (std::vector<float>{1, 0, 0}));
+    EXPECT_EQ(deform::sample(c, 0.75), (std::vector<float>{1, 0, 0}));
+    EXPECT_EQ(deform::sample(c, 1.0), (std::vector<float>{2, 0, 0}));
 }
 
 TEST(DeformAnimation, CubicSplineIsHermiteWithScaledTangents)
@@ -417,9 +419,9 @@ TEST(DeformAnimation, CubicSplineIsHermiteWithScaledTangents)
     EXPECT_EQ(c.interpolation, Interpolation::CubicSpline);
     // p(s) = (2s³−3s²+1)·0 + (s³−2s²+s)·1·2 + (−2s³+3s²)·1 + (s³−s²)·1·0
     auto expected = [](double s) { return 2.0 * (s * s * s - 2 * s * s + s) + (-2 * s * s * s + 3 * s * s); };
-    for (double t : {0.0, 0.25, 0.5, 0.9, 1.0}) EXPECT_NEAR(c.sample(t)[0], expected(t), 1e-6) << "t = " << t;
-    EXPECT_NEAR(c.sample(0.5)[0], 0.75, 1e-6);
-    EXPECT_NEAR(c.sample(0.25)[0], 0.4375, 1e-6);
+    for (double t : {0.0, 0.25, 0.5, 0.9, 1.0}) EXPECT_NEAR(deform::sample(c, t)[0], expected(t), 1e-6) << "t = " << t;
+    EXPECT_NEAR(deform::sample(c, 0.5)[0], 0.75, 1e-6);
+    EXPECT_NEAR(deform::sample(c, 0.25)[0], 0.4375, 1e-6);
 }
 
 /// The joint matrices of the test asset at time t, by hand (see make_test_data.py).

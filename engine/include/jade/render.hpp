@@ -184,7 +184,7 @@ public:
                   std::span<const glm::vec3> normal_spread_per_render_vertex = {});
     /// A deforming mesh, kept on the GPU: records a compute pass that copies new positions,
     /// normals and t_m - tightly packed float3 per bake vertex of the mesh given to set_mesh,
-    /// in storage buffers such as MeshDeformer::positions_buffer()/normals_buffer() and
+    /// in storage buffers such as MeshDeformer::buffers().positions/normals and
     /// DynamicBake::buffers().tm - into the renderer's vertex buffer. t_m is clamped to
     /// [0, 3e38] (NaN to 0). What set_mesh computed on the host stays: the curvature, the bounds
     /// that fit the near/far planes, the false-colour range. Synchronisation, in `cmd`: a barrier

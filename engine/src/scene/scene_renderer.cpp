@@ -146,12 +146,10 @@ struct SceneRenderer::Impl {
             const auto t0 = Clock::now();
             gpu_of(context).submit_and_wait([&](VkCommandBuffer cmd) {
                 o.mesh_deformer->record(cmd, *o.deformer, t);
-                o.dynamic_bake->record(cmd, o.mesh_deformer->positions_buffer(), o.mesh_deformer->normals_buffer(),
-                                       o.mesh_deformer->areas_buffer());
-                o.renderer->record_vertex_update(cmd, o.mesh_deformer->positions_buffer(),
-                                                 o.mesh_deformer->normals_buffer(), o.dynamic_bake->buffers().tm,
-                                                 o.dynamic_bake->buffers().thickness,
-                                                 o.dynamic_bake->buffers().scattering_normal);
+                const MeshDeformer::Buffers d = o.mesh_deformer->buffers();
+                const DynamicBake::Buffers b = o.dynamic_bake->buffers();
+                o.dynamic_bake->record(cmd, d.positions, d.normals, d.areas);
+                o.renderer->record_vertex_update(cmd, d.positions, d.normals, b.tm, b.thickness, b.scattering_normal);
             });
             const double deform_and_bake_ms = ms_since(t0);
             passes.push_back({planned[k].name, PassKind::Deform, 0, "t = " + std::to_string(t) + " s"});
