@@ -4,6 +4,7 @@
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 
+#include <jade/dev/material.hpp>
 #include <jade/dev/names.hpp>
 #include <jade/dev/renderer.hpp>
 #include <jade/bake.hpp>
@@ -261,12 +262,12 @@ TEST_F(Render, GreyMaterialMatchesThreeChannelPath)
     r.set_mesh(unit_sphere(), std::vector<glm::vec3>(unit_sphere().vertex_count(), glm::vec3(0.7f)));
     const auto lights = figure1_lights(kFront);
     Material grey = matte();
-    ASSERT_TRUE(grey.grey());
+    ASSERT_TRUE(dev::is_grey(grey));
     r.set_material(grey);
     RenderedImage one = r.render(kFront, lights, settings(64, ShadingMode::Tm));
     Material rgb = grey;
     rgb.profile[2] = ChannelProfile::burley(0.1 * (1 + 1e-12));  // not grey, same t_m and LUT
-    ASSERT_FALSE(rgb.grey());
+    ASSERT_FALSE(dev::is_grey(rgb));
     r.set_material(rgb);
     RenderedImage three = r.render(kFront, lights, settings(64, ShadingMode::Tm));
     for (size_t i = 0; i < one.rgba.size(); ++i) ASSERT_NEAR(one.rgba[i], three.rgba[i], 1e-6) << "float " << i;

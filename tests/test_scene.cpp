@@ -126,7 +126,7 @@ TEST(SceneMaterials, VolumeAndDiffuseTransmissionBecomeABurleyProfilePerChannel)
     ASSERT_EQ(s.objects.size(), 1u);
     const Material& m = s.objects[0].material;
     EXPECT_FALSE(m.opaque);
-    EXPECT_FALSE(m.grey());
+    EXPECT_FALSE(dev::is_grey(m));
     EXPECT_EQ(m.name, "jelly");
     const double A[3] = {0.5, 0.8, 0.9}, T[3] = {1, 0.5, 0.25}, a[3] = {0.5, 1, 0.25};
     for (int c = 0; c < 3; ++c) {
@@ -155,7 +155,7 @@ TEST(SceneMaterials, WhiteAttenuationIsGreyAndPresetsComeFromExtras)
         "KHR_materials_volume":{"thicknessFactor":1,"attenuationDistance":0.01}}})",
                      &warnings);
     EXPECT_TRUE(warnings.empty());
-    EXPECT_TRUE(grey.objects[0].material.grey());
+    EXPECT_TRUE(dev::is_grey(grey.objects[0].material));
     EXPECT_FALSE(grey.objects[0].material.opaque);
     EXPECT_NEAR(grey.objects[0].material.profile[0].d, 0.01 / burley_s(1.0), 1e-12);  // default base colour white
 
@@ -395,8 +395,8 @@ TEST_F(SceneGpuTest, GreyMaterialIsDrawnWithOneFetchAndMatchesTheThreeChannelDra
     grey.strength = 2.0f;
     Material rgb = grey;  // the same profile, made "coloured" by a relative 1e-7 in green
     rgb.profile[1] = ChannelProfile::burley(0.3 * (1.0 + 1e-7));
-    ASSERT_TRUE(grey.grey());
-    ASSERT_FALSE(rgb.grey());
+    ASSERT_TRUE(dev::is_grey(grey));
+    ASSERT_FALSE(dev::is_grey(rgb));
     const TriangleMesh mesh = procedural::sphere(1.0f, 24, 32);
     SceneRenderer one(context(), {"grey", {object("grey", mesh, grey)}}, settings);
     SceneRenderer three(context(), {"rgb", {object("rgb", mesh, rgb)}}, settings);

@@ -92,11 +92,11 @@ glm::dvec3 reference_pixel(const ShadingInputs& in, size_t p, const Material& m,
     const double exit = m.boundary_transmittance ? boundary(glm::dot(n, v), f0, alpha) : 1.0;
     glm::dvec3 t;
     for (int c = 0; c < 3; ++c)
-        t[c] =
-            std::min(std::clamp(double(in.tm[p][m.grey() ? 0 : c]), 0.0, 3e38) *
-                         (double(m.strength) + double(m.spread_strength) *
-                                                   std::clamp(double(in.normal_spread[p][m.grey() ? 0 : c]), 0.0, 1.0)),
-                     LutLayout::kMaxVariance);
+        t[c] = std::min(
+            std::clamp(double(in.tm[p][dev::is_grey(m) ? 0 : c]), 0.0, 3e38) *
+                (double(m.strength) + double(m.spread_strength) *
+                                          std::clamp(double(in.normal_spread[p][dev::is_grey(m) ? 0 : c]), 0.0, 1.0)),
+            LutLayout::kMaxVariance);
     const size_t pixels = size_t(in.width) * in.height;
     glm::dvec3 color(0.0);
     for (size_t k = 0; k < lights.size(); ++k) {

@@ -140,7 +140,7 @@ int bench_render_scene(const Args& args)
     const Scene scene = load_scene(*args.get("scene"), &warnings);
     for (const auto& w : warnings) std::fprintf(stderr, "jade: warning: %s\n", w.c_str());
     for (const auto& o : scene.objects)
-        if (o.deforming()) args.fail("--scene: object '" + o.name + "' deforms; the benchmark compares static scenes");
+        if (o.deformer) args.fail("--scene: object '" + o.name + "' deforms; the benchmark compares static scenes");
     SceneSettings settings = scene_settings_from_args(args);
     const std::filesystem::path dir =
         args.get_or("cache", (std::filesystem::temp_directory_path() / "jade-bench-cache").string());

@@ -6,6 +6,7 @@
 #include "deform_sweep.hpp"
 #include "render_setup.hpp"
 
+#include <jade/dev/material.hpp>
 #include <jade/dev/context.hpp>
 #include <jade/dev/names.hpp>
 #include <jade/dev/renderer.hpp>
@@ -190,7 +191,7 @@ int cmd_bench_render(int argc, char** argv)
         "mesh %s: %zu vertices, %zu triangles; material %s (%s; transmission %s); tm evaluation %s, light path per %s; "
         "device %s\n",
         scene.mesh.name.c_str(), scene.prepared.vertex_count(), scene.prepared.triangle_count(),
-        scene.material.name.c_str(), scene.material.grey() ? "grey: 1 channel" : "RGB: 3 channels",
+        scene.material.name.c_str(), dev::is_grey(scene.material) ? "grey: 1 channel" : "RGB: 3 channels",
         transmits ? "on where a light is behind" : "off",
         std::string(tm_evaluation_name(dev::tm_evaluation(renderer))).c_str(),
         std::string(dev::light_path_sampling_name(dev::light_path(renderer))).c_str(),
@@ -236,7 +237,7 @@ int cmd_bench_render(int argc, char** argv)
         }
         for (size_t k = 0; k < n; ++k) {
             const auto [count, formula] = fetches(config[k].mode, load, config[k].shadows, dev::tm_evaluation(renderer),
-                                                  scene.material.grey(), dev::light_path(renderer), s);
+                                                  dev::is_grey(scene.material), dev::light_path(renderer), s);
             char size[32], ratio[64], cpu_r[64];
             std::snprintf(size, sizeof size, "%ux%u", width, height);
             std::snprintf(ratio, sizeof ratio, "%.3fx (%.2f-%.2f)", quantile(gpu_ratio[k], 0.5),

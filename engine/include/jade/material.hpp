@@ -166,8 +166,6 @@ struct Material {
     /// roughness outside [0, 1].
     static Material from_medium(const Medium& medium, std::string name = "medium");
 
-    /// True when the three channels have the same profile: one channel is baked and fetched.
-    bool grey() const { return profile[0] == profile[1] && profile[1] == profile[2]; }
     Material scaled(double factor) const;  ///< profiles for a mesh scaled by factor
 };
 

@@ -59,7 +59,6 @@ struct SceneObject {
     /// Set by load_scene for the second and later instances of a glTF primitive whose nodes move
     /// it rigidly (no scale) and keep its material; clear it to bake each instance on its own.
     std::optional<InstanceOf> instance_of;
-    bool deforming() const { return deformer.has_value(); }
 };
 
 struct Scene {

@@ -307,7 +307,7 @@ ReferenceSums reference_sums(const PreparedMesh& mesh, std::span<const float> ao
         weight[j] = 1.0 - double(ao[j]);
         if (weight[j] > 0.0 && mesh.areas[j] > 0.0f) sources.push_back(uint32_t(j));
     }
-    const int channels = material.grey() ? 1 : 3;
+    const int channels = dev::is_grey(material) ? 1 : 3;
     const auto& profile = material.profile;
 
     ReferenceSums out{list, std::vector<glm::dvec3>(list.size()), std::vector<std::array<glm::dvec3, 3>>(list.size())};

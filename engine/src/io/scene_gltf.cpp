@@ -125,7 +125,7 @@ Scene load_scene(const std::filesystem::path& path, std::vector<std::string>* wa
             const auto key = std::make_tuple(p.mesh_index, p.primitive, p.material);
             if (auto it = first_instance.find(key); it != first_instance.end()) {
                 const SceneObject& first = scene.objects[it->second];
-                if (!o.deforming() && !first.deforming())
+                if (!o.deformer && !first.deformer)
                     if (auto r = rigid_rotation(first.mesh.positions, o.mesh.positions))
                         o.instance_of = {it->second, *r, o.mesh.positions[0] - *r * first.mesh.positions[0]};
             } else {

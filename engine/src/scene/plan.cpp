@@ -5,6 +5,7 @@
 // rather than known; deform/buffer_estimate.hpp; shading/buffer_estimate.hpp). The plan only
 // puts them together. Images (the LUTs) are listed but are not buffers; host-visible staging
 // is not counted.
+#include <jade/dev/material.hpp>
 #include <jade/dev/names.hpp>
 #include <jade/dev/renderer.hpp>  // dev::study_of: the LUT size
 #include <jade/dev/scene.hpp>
@@ -63,7 +64,7 @@ bool shares_bake(const Scene& scene, size_t k, const ScenePlanDetails& plan)
                     std::to_string(j) + ", not an earlier one");
     const ObjectPlan& source = plan.objects[j];
     return !source.opaque && !source.deforming && scene.objects[j].mesh.positions.size() == obj.mesh.positions.size() &&
-           source.channels == (obj.material.grey() ? 1u : 3u);
+           source.channels == (dev::is_grey(obj.material) ? 1u : 3u);
 }
 
 }  // namespace
@@ -218,7 +219,7 @@ ScenePlan plan_scene(const Scene& scene, const SceneSettings& settings, const St
         o.bake_vertices = prepared.vertex_count();
         o.triangles = prepared.triangle_count();
         o.opaque = obj.material.opaque;
-        o.deforming = obj.deforming() && !o.opaque;
+        o.deforming = obj.deformer.has_value() && !o.opaque;
         const size_t n = o.bake_vertices, tris = o.triangles;
         if (o.opaque) {
             // Lambert needs neither AO nor t_m: no bake, and a deformer would move an
@@ -226,7 +227,7 @@ ScenePlan plan_scene(const Scene& scene, const SceneSettings& settings, const St
             o.channels = 0;
             o.variant = {ShadingMode::Lambert, 3};
         } else {
-            o.channels = obj.material.grey() ? 1 : 3;
+            o.channels = dev::is_grey(obj.material) ? 1 : 3;
             o.variant = {settings.mode, settings.mode == ShadingMode::Tm ? o.channels : 3};
             if (o.deforming) {
                 o.passes.push_back({PassKind::Deform, true, true, deform::estimate_buffers(n, tris)});

@@ -187,7 +187,7 @@ std::vector<glm::vec4> CurvatureLut::evaluate(const Material& material, uint32_t
 {
     check_size(width, height, "curvature LUT");
     const double scale = length_scale(material);
-    const bool grey = material.grey();
+    const bool grey = dev::is_grey(material);
     std::vector<glm::vec4> texels(size_t(width) * height);
     auto row = [&](uint32_t j) {
         const double v = double(j) / double(height - 1);

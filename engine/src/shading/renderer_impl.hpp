@@ -25,6 +25,7 @@
 #include "shading/separable.hpp"
 #include "shading/transmission_table.hpp"
 
+#include <jade/dev/material.hpp>
 #include <jade/dev/clock.hpp>
 #include <jade/dev/overlay.hpp>
 #include <jade/dev/renderer.hpp>
@@ -117,7 +118,7 @@ struct Renderer::Impl {
         v.mode = mode;
         v.shadows = shadows;
         if (mode != uint32_t(ShadingMode::Tm) && mode < shading::kInputsMode) return v;
-        v.channels = material->grey() ? 1 : 3;
+        v.channels = dev::is_grey(*material) ? 1 : 3;
         v.transmission = transmitters;
         v.path_per_vertex = transmitters > 0 && light_path == dev::LightPathSampling::PerVertex;
         if (mode >= shading::kInputsMode) return v;

@@ -22,6 +22,13 @@ double profile_cdf(const ChannelProfile& profile, double r);
 /// The smallest r with 1 − cdf(r) ≤ tail (0 for tail ≥ 1). Throws jade::Error for tail ≤ 0.
 double radius_for_tail(const ChannelProfile& profile, double tail);
 
+/// True when the three channels have the same profile: one channel is baked and fetched (the
+/// renderer's and the bake's choice; docs/scene.md "grey materials").
+inline bool is_grey(const Material& material)
+{
+    return material.profile[0] == material.profile[1] && material.profile[1] == material.profile[2];
+}
+
 /// The constants of Material::from_medium that the model leaves free, fitted to a volumetric path
 /// tracer (Mitsuba 3) on the training scenes of tools/groundtruth (27 scenes: bunny, dragon, camel
 /// × jewel, marble, wax × front, side, back light; fit and validation: docs/fidelity.md). The
