@@ -4,8 +4,8 @@
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 
+#include <jade/dev/cache.hpp>
 #include <jade/dev/context.hpp>
-#include <jade/cache.hpp>
 #include <jade/context.hpp>
 
 #include <jade/error.hpp>
@@ -39,17 +39,17 @@ size_t files_in(const std::filesystem::path& dir)
 
 TEST_F(BakeCacheTest, SecondRunReadsTheCacheAndCreatesNoBakeObjects)
 {
-    BakeCache cache(dir);
-    const CachedBake first = bake_with_cache(context(), cache, sphere, material, settings);
+    dev::BakeCache cache(dir);
+    const CachedBake first = dev::bake_with_cache(context(), cache, sphere, material, settings);
     EXPECT_EQ(first.source, BakeSource::Baked);
     EXPECT_EQ(first.note, "missing");
     ASSERT_EQ(first.result.tm.size(), sphere.vertex_count());
-    EXPECT_TRUE(std::filesystem::exists(cache.entry_path(bake_key(sphere, material, settings))));
+    EXPECT_TRUE(std::filesystem::exists(cache.entry_path(dev::bake_key(sphere, material, settings))));
     EXPECT_EQ(files_in(dir), 1u);  // no temporary file left behind
 
     const ObjectCounts before = dev::created_objects(context());
     // A new BakeCache on the same folder: what a restarted process sees.
-    const CachedBake second = bake_with_cache(context(), BakeCache(dir), sphere, material, settings);
+    const CachedBake second = dev::bake_with_cache(context(), dev::BakeCache(dir), sphere, material, settings);
     const ObjectCounts after = dev::created_objects(context());
     EXPECT_EQ(second.source, BakeSource::Cache);
     EXPECT_EQ(after.compute_pipelines, before.compute_pipelines);
@@ -65,7 +65,7 @@ TEST_F(BakeCacheTest, SecondRunReadsTheCacheAndCreatesNoBakeObjects)
     // The counters do count: a miss creates pipelines and buffers.
     BakeSettings other = settings;
     other.ao.seed = 7;
-    const CachedBake third = bake_with_cache(context(), cache, sphere, material, other);
+    const CachedBake third = dev::bake_with_cache(context(), cache, sphere, material, other);
     EXPECT_EQ(third.source, BakeSource::Baked);
     EXPECT_GT(dev::created_objects(context()).compute_pipelines, after.compute_pipelines);
     EXPECT_GT(dev::created_objects(context()).buffers, after.buffers);
@@ -73,32 +73,32 @@ TEST_F(BakeCacheTest, SecondRunReadsTheCacheAndCreatesNoBakeObjects)
 
 TEST_F(BakeCacheTest, KeyCoversMeshProfilesAndSettingsButNotShadingParameters)
 {
-    const uint64_t key = bake_key(sphere, material, settings);
-    EXPECT_EQ(key, bake_key(sphere, material, settings));
+    const uint64_t key = dev::bake_key(sphere, material, settings);
+    EXPECT_EQ(key, dev::bake_key(sphere, material, settings));
     Material shading_only = material;
     shading_only.albedo = glm::vec3(0.1f);
     shading_only.strength = 3.0f;
     shading_only.roughness = 0.9f;
-    EXPECT_EQ(bake_key(sphere, shading_only, settings), key);
+    EXPECT_EQ(dev::bake_key(sphere, shading_only, settings), key);
     Material other_profile = material;
     other_profile.profile[1] = ChannelProfile::burley(0.21);
-    EXPECT_NE(bake_key(sphere, other_profile, settings), key);
+    EXPECT_NE(dev::bake_key(sphere, other_profile, settings), key);
     BakeSettings more_rays = settings;
     more_rays.ao.rays += 1;
-    EXPECT_NE(bake_key(sphere, material, more_rays), key);
+    EXPECT_NE(dev::bake_key(sphere, material, more_rays), key);
     BakeSettings eps = settings;
     eps.tm_opening_ratio *= 0.5f;
-    EXPECT_NE(bake_key(sphere, material, eps), key);
+    EXPECT_NE(dev::bake_key(sphere, material, eps), key);
     PreparedMesh moved = sphere;
     moved.positions[5].x += 1e-6f;
-    EXPECT_NE(bake_key(moved, material, settings), key);
+    EXPECT_NE(dev::bake_key(moved, material, settings), key);
 }
 
 TEST_F(BakeCacheTest, CorruptOrStaleEntriesAreDetectedAndRebaked)
 {
-    BakeCache cache(dir);
-    const uint64_t key = bake_key(sphere, material, settings);
-    const CachedBake good = bake_with_cache(context(), cache, sphere, material, settings);
+    dev::BakeCache cache(dir);
+    const uint64_t key = dev::bake_key(sphere, material, settings);
+    const CachedBake good = dev::bake_with_cache(context(), cache, sphere, material, settings);
     const auto path = cache.entry_path(key);
     const auto size = std::filesystem::file_size(path);
     EXPECT_EQ(size, 40 + sphere.vertex_count() * (16 + 24))
@@ -114,39 +114,39 @@ TEST_F(BakeCacheTest, CorruptOrStaleEntriesAreDetectedAndRebaked)
     patch(40 + 123, 0x5a);
     EXPECT_FALSE(cache.load(key, sphere.vertex_count(), &why));
     EXPECT_EQ(why, "checksum mismatch");
-    const CachedBake rebaked = bake_with_cache(context(), cache, sphere, material, settings);
+    const CachedBake rebaked = dev::bake_with_cache(context(), cache, sphere, material, settings);
     EXPECT_EQ(rebaked.source, BakeSource::Baked);
     EXPECT_EQ(rebaked.note, "checksum mismatch");
     ASSERT_TRUE(cache.load(key, sphere.vertex_count(), &why)) << why;  // replaced by a valid entry
     EXPECT_EQ(cache.load(key, sphere.vertex_count())->tm, good.result.tm);
 
     // Another format version (byte 8: the version's low byte).
-    patch(8, char(kBakeCacheVersion + 1));
+    patch(8, char(dev::kBakeCacheVersion + 1));
     EXPECT_FALSE(cache.load(key, sphere.vertex_count(), &why));
-    EXPECT_EQ(why,
-              "version " + std::to_string(kBakeCacheVersion + 1) + ", expected " + std::to_string(kBakeCacheVersion));
-    EXPECT_EQ(bake_with_cache(context(), cache, sphere, material, settings).source, BakeSource::Baked);
+    EXPECT_EQ(why, "version " + std::to_string(dev::kBakeCacheVersion + 1) + ", expected " +
+                       std::to_string(dev::kBakeCacheVersion));
+    EXPECT_EQ(dev::bake_with_cache(context(), cache, sphere, material, settings).source, BakeSource::Baked);
 
     // Truncated (a crash of a writer that did not use temp + rename), and a wrong vertex count.
     std::filesystem::resize_file(path, size - 8);
     EXPECT_FALSE(cache.load(key, sphere.vertex_count(), &why));
     EXPECT_EQ(why, "truncated");
-    EXPECT_EQ(bake_with_cache(context(), cache, sphere, material, settings).source, BakeSource::Baked);
+    EXPECT_EQ(dev::bake_with_cache(context(), cache, sphere, material, settings).source, BakeSource::Baked);
     EXPECT_FALSE(cache.load(key, sphere.vertex_count() + 1, &why));
     EXPECT_NE(why.find("vertex count"), std::string::npos) << why;
     // Garbage in place of the entry.
     std::ofstream(path, std::ios::binary | std::ios::trunc) << "not a bake";
     EXPECT_FALSE(cache.load(key, sphere.vertex_count(), &why));
-    EXPECT_EQ(bake_with_cache(context(), cache, sphere, material, settings).source, BakeSource::Baked);
+    EXPECT_EQ(dev::bake_with_cache(context(), cache, sphere, material, settings).source, BakeSource::Baked);
     EXPECT_TRUE(cache.load(key, sphere.vertex_count()));
     EXPECT_EQ(files_in(dir), 1u);
 }
 
 TEST_F(BakeCacheTest, AnEntryWithNonFiniteValuesUnderAValidChecksumIsStaleAndRebaked)
 {
-    BakeCache cache(dir);
-    const uint64_t key = bake_key(sphere, material, settings);
-    bake_with_cache(context(), cache, sphere, material, settings);
+    dev::BakeCache cache(dir);
+    const uint64_t key = dev::bake_key(sphere, material, settings);
+    dev::bake_with_cache(context(), cache, sphere, material, settings);
     const auto path = cache.entry_path(key);
     std::string bytes;
     {
@@ -166,7 +166,7 @@ TEST_F(BakeCacheTest, AnEntryWithNonFiniteValuesUnderAValidChecksumIsStaleAndReb
     std::string why;
     EXPECT_FALSE(cache.load(key, sphere.vertex_count(), &why));
     EXPECT_EQ(why, "stale: values of vertex 1 are not finite");
-    const CachedBake rebaked = bake_with_cache(context(), cache, sphere, material, settings);
+    const CachedBake rebaked = dev::bake_with_cache(context(), cache, sphere, material, settings);
     EXPECT_EQ(rebaked.source, BakeSource::Baked);
     EXPECT_EQ(rebaked.note, why);
     ASSERT_TRUE(cache.load(key, sphere.vertex_count(), &why)) << why;  // replaced by a sound entry
@@ -180,11 +180,11 @@ TEST_F(BakeCacheTest, AnEntryWithNonFiniteValuesUnderAValidChecksumIsStaleAndReb
 
 TEST_F(BakeCacheTest, OpaqueMaterialBakesNothing)
 {
-    BakeCache cache(dir);
+    dev::BakeCache cache(dir);
     Material opaque = material;
     opaque.opaque = true;
     const ObjectCounts before = dev::created_objects(context());
-    const CachedBake r = bake_with_cache(context(), cache, sphere, opaque, settings);
+    const CachedBake r = dev::bake_with_cache(context(), cache, sphere, opaque, settings);
     const ObjectCounts after = dev::created_objects(context());
     EXPECT_EQ(r.source, BakeSource::Opaque);
     EXPECT_TRUE(r.result.tm.empty());
@@ -198,7 +198,7 @@ TEST_F(BakeCacheTest, UnwritableFolderIsAnErrorNamingIt)
     const auto file = test::out("bake_cache/plain_file");
     std::ofstream(file) << "x";
     try {
-        BakeCache cache(file / "sub");
+        dev::BakeCache cache(file / "sub");
         FAIL() << "expected jade::Error";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("plain_file"), std::string::npos) << e.what();

@@ -3,6 +3,7 @@
 // reads back bit for bit and refuses bad values naming file, material and property; the
 // thickness map of a UV-mapped asset holds the per-vertex thickness interpolated over the UV
 // layout; the Khronos glTF Validator accepts both outputs.
+#include <jade/dev/io.hpp>
 #include <jade/io.hpp>
 
 #include "flip.hpp"
@@ -31,7 +32,7 @@ std::filesystem::path folder()
 
 jade::flip::Image load_png(const std::filesystem::path& path)
 {
-    const jade::LoadedImage img = jade::load_image(path);
+    const jade::dev::LoadedImage img = jade::dev::load_image(path);
     return jade::flip::from_linear(uint32_t(img.width), uint32_t(img.height), img.rgba.data(), 4);
 }
 
@@ -267,7 +268,7 @@ TEST(BakedAsset, ThicknessMapHoldsTheInterpolatedThickness)
         const float v = float(c) / 255.0f;
         ASSERT_EQ(code(v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f)), c);
     }
-    const jade::LoadedImage img = jade::load_image(png);
+    const jade::dev::LoadedImage img = jade::dev::load_image(png);
     ASSERT_EQ(img.width, img.height);
     const int size = img.width;
     EXPECT_TRUE(size >= 16 && size <= 1024 && (size & (size - 1)) == 0) << size;

@@ -7,6 +7,7 @@
 
 #include "gpu_fixture.hpp"
 
+#include <jade/dev/context.hpp>
 #include <jade/error.hpp>
 
 #include <gtest/gtest.h>
@@ -71,7 +72,7 @@ TEST_F(buffer_limits_device, LimitsComeFromTheDevice)
 {
     // The limits read for lavapipe are the device's: the storage range is the one DeviceInfo
     // reports, the allocation and heap limits are non-zero, and host-visible memory exists.
-    const auto& info = context().device_info();
+    const auto& info = jade::dev::device_info(context());
     for (bool host_visible : {false, true}) {
         const BufferLimits l = jade::gpu::buffer_limits(context(), host_visible);
         EXPECT_EQ(l.max_storage_range, info.max_storage_buffer_range);

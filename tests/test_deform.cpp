@@ -4,12 +4,17 @@
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 
+#include "../engine/src/deform/animation.hpp"  // deform::sample: the channels one by one
+
 #include <jade/deform.hpp>
+#include <jade/dev/names.hpp>
+#include <jade/dev/renderer.hpp>
 #include <jade/error.hpp>
 #include <jade/io.hpp>
 #include <jade/mesh.hpp>
 #include <jade/bake.hpp>
 #include <jade/render.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -145,7 +150,7 @@ struct Case {
 PreparedMesh load_case_mesh(const std::string& which)
 {
     if (which == "bunny") return prepare_mesh(load_mesh(test::asset("bunny00.off")));
-    return prepare_mesh(procedural::box({-0.3f, 0.0f, -0.2f}, {0.3f, 2.0f, 0.2f}, 12));
+    return prepare_mesh(dev::procedural::box({-0.3f, 0.0f, -0.2f}, {0.3f, 2.0f, 0.2f}, 12));
 }
 
 TEST_F(DeformGpu, ProceduralDeformersMatchFloat64OnSeveralFrames)
@@ -157,7 +162,7 @@ TEST_F(DeformGpu, ProceduralDeformersMatchFloat64OnSeveralFrames)
             for (uint32_t axis : {0u, 1u, 2u}) {
                 ProceduralDeformer d = ProceduralDeformer::fit(kind, rest, axis);
                 for (double t : {0.0, 0.3, 0.85, 1.55}) {
-                    SCOPED_TRACE(std::string(which) + " " + std::string(deformer_name(kind)) + " axis " +
+                    SCOPED_TRACE(std::string(which) + " " + std::string(dev::deformer_name(kind)) + " axis " +
                                  std::to_string(axis) + " t " + std::to_string(t));
                     const DeformTimings timings = deformer.deform(d, t);
                     EXPECT_GE(timings.deform_ms, 0.0);
@@ -197,7 +202,7 @@ TEST_F(DeformGpu, GpuVertexUpdateRendersLikeTheHostPath)
     Baker baker(context());
     DynamicBake rebake(baker, rest, material, BakeSettings::preset(Quality::Draft));
     const BakeResult baked =
-        rebake.bake(deformer.positions_buffer(), deformer.normals_buffer(), deformer.areas_buffer());
+        rebake.bake(deformer.buffers().positions, deformer.buffers().normals, deformer.buffers().areas);
 
     Camera camera = Camera::framing(rest.bbox_min - glm::vec3(0.5f), rest.bbox_max + glm::vec3(0.5f));
     camera.near_plane = 0.1f, camera.far_plane = 50.0f;  // the same planes for both paths
@@ -212,12 +217,12 @@ TEST_F(DeformGpu, GpuVertexUpdateRendersLikeTheHostPath)
     // bounds set_mesh saw, the rest pose's here and the deformed pose's in the host path, so
     // the two tiles' texels differ (by up to ~0.01 at this size).
     RendererOptions options;
-    options.light_path = LightPathSampling::PerVertex;
+    dev::set_study(options, {.light_path = dev::LightPathSampling::PerVertex});
     Renderer gpu_path(context(), options);
     gpu_path.set_material(material);
     gpu_path.set_mesh(rest);
     const RenderedImage before = gpu_path.render(camera, lights, settings);
-    gpu_path.update_vertices(deformer.positions_buffer(), deformer.normals_buffer(), rebake.buffers().tm,
+    gpu_path.update_vertices(deformer.buffers().positions, deformer.buffers().normals, rebake.buffers().tm,
                              rebake.buffers().thickness, rebake.buffers().scattering_normal);
     const RenderedImage gpu_image = gpu_path.render(camera, lights, settings);
 
@@ -235,7 +240,7 @@ TEST_F(DeformGpu, GpuVertexUpdateRendersLikeTheHostPath)
     }
     EXPECT_LE(worst, 1e-3f) << "GPU-updated vertices against the host path (RGBA16F target)";
     EXPECT_GT(moved, 0.1f) << "the update must change the picture";
-    EXPECT_THROW(gpu_path.update_vertices(VK_NULL_HANDLE, deformer.normals_buffer(), rebake.buffers().tm), Error);
+    EXPECT_THROW(gpu_path.update_vertices(VK_NULL_HANDLE, deformer.buffers().normals, rebake.buffers().tm), Error);
 }
 
 TEST_F(DeformGpu, NormalsAndAreasMatchPrepareMeshOfTheDeformedPositions)
@@ -282,7 +287,7 @@ TEST_F(DeformGpu, SquashPreservesVolumeAndBendPreservesAxisLength)
     EXPECT_NEAR(highest, -1.0 + 2.0 * 1.5, 1e-5);  // base at y = -1 stays, height 2 → 3
 
     // A thin bent grid: the distance along the arc from the base to the top stays the length.
-    TriangleMesh strip = procedural::grid(40, 0.05f);  // z = 0 plane, x, y in [-1, 1]
+    TriangleMesh strip = dev::procedural::grid(40, 0.05f);  // z = 0 plane, x, y in [-1, 1]
     const PreparedMesh flat = prepare_mesh(strip);
     MeshDeformer bend_deformer(context(), flat);
     ProceduralDeformer bend = ProceduralDeformer::fit(DeformerKind::Bend, flat, 1);
@@ -308,7 +313,7 @@ TEST_F(DeformGpu, TwoSidedSheetTakesTheLargestTrianglesNormal)
     // Each triangle of a grid also listed reversed: at every vertex the cross products cancel
     // exactly, and prepare_mesh's rule picks the largest adjacent triangle, the first one on
     // ties — here the front side (listed first), so after a wave every normal faces +z-ish.
-    TriangleMesh sheet = procedural::grid(16, 0.1f);
+    TriangleMesh sheet = dev::procedural::grid(16, 0.1f);
     const size_t front = sheet.indices.size();
     for (size_t t = 0; t < front; t += 3)
         sheet.indices.insert(sheet.indices.end(), {sheet.indices[t], sheet.indices[t + 2], sheet.indices[t + 1]});
@@ -341,8 +346,8 @@ TEST_F(DeformGpu, RejectsBadParameters)
     d.axis = 3;
     EXPECT_THROW(deformer.deform(d, 0.1), Error);
     EXPECT_THROW(deformer.deform(Pose{}), Error);  // no skin set
-    EXPECT_THROW(parse_deformer("spin"), Error);
-    EXPECT_EQ(parse_deformer("twist"), DeformerKind::Twist);
+    EXPECT_THROW(dev::parse_deformer("spin"), Error);
+    EXPECT_EQ(dev::parse_deformer("twist"), DeformerKind::Twist);
 }
 
 // ------------------------------------------------------------------ glTF animation, CPU side --
@@ -380,7 +385,7 @@ TEST(DeformAnimation, LinearRotationIsSlerpAtKeysAndBetween)
     const AnimationChannel& c = channel(mesh, AnimationPath::Rotation);
     EXPECT_EQ(c.interpolation, Interpolation::Linear);
     auto expect_angle = [&](double t, double degrees) {
-        const auto q = c.sample(t);  // about z: (0, 0, sin(α/2), cos(α/2))
+        const auto q = deform::sample(c, t);  // about z: (0, 0, sin(α/2), cos(α/2))
         const double half = degrees * kPi / 360.0;
         EXPECT_NEAR(q[0], 0.0, 1e-7);
         EXPECT_NEAR(q[1], 0.0, 1e-7);
@@ -400,11 +405,11 @@ TEST(DeformAnimation, StepHoldsTheKeyAtOrBefore)
     const AnimatedMesh mesh = load_test_asset();
     const AnimationChannel& c = channel(mesh, AnimationPath::Translation);
     EXPECT_EQ(c.interpolation, Interpolation::Step);
-    EXPECT_EQ(c.sample(0.0), (std::vector<float>{0, 0, 0}));
-    EXPECT_EQ(c.sample(0.49), (std::vector<float>{0, 0, 0}));
-    EXPECT_EQ(c.sample(0.5), (std::vector<float>{1, 0, 0}));
-    EXPECT_EQ(c.sample(0.75), (std::vector<float>{1, 0, 0}));
-    EXPECT_EQ(c.sample(1.0), (std::vector<float>{2, 0, 0}));
+    EXPECT_EQ(deform::sample(c, 0.0), (std::vector<float>{0, 0, 0}));
+    EXPECT_EQ(deform::sample(c, 0.49), (std::vector<float>{0, 0, 0}));
+    EXPECT_EQ(deform::sample(c, 0.5), (std::vector<float>{1, 0, 0}));
+    EXPECT_EQ(deform::sample(c, 0.75), (std::vector<float>{1, 0, 0}));
+    EXPECT_EQ(deform::sample(c, 1.0), (std::vector<float>{2, 0, 0}));
 }
 
 TEST(DeformAnimation, CubicSplineIsHermiteWithScaledTangents)
@@ -414,9 +419,9 @@ TEST(DeformAnimation, CubicSplineIsHermiteWithScaledTangents)
     EXPECT_EQ(c.interpolation, Interpolation::CubicSpline);
     // p(s) = (2s³−3s²+1)·0 + (s³−2s²+s)·1·2 + (−2s³+3s²)·1 + (s³−s²)·1·0
     auto expected = [](double s) { return 2.0 * (s * s * s - 2 * s * s + s) + (-2 * s * s * s + 3 * s * s); };
-    for (double t : {0.0, 0.25, 0.5, 0.9, 1.0}) EXPECT_NEAR(c.sample(t)[0], expected(t), 1e-6) << "t = " << t;
-    EXPECT_NEAR(c.sample(0.5)[0], 0.75, 1e-6);
-    EXPECT_NEAR(c.sample(0.25)[0], 0.4375, 1e-6);
+    for (double t : {0.0, 0.25, 0.5, 0.9, 1.0}) EXPECT_NEAR(deform::sample(c, t)[0], expected(t), 1e-6) << "t = " << t;
+    EXPECT_NEAR(deform::sample(c, 0.5)[0], 0.75, 1e-6);
+    EXPECT_NEAR(deform::sample(c, 0.25)[0], 0.4375, 1e-6);
 }
 
 /// The joint matrices of the test asset at time t, by hand (see make_test_data.py).

@@ -4,6 +4,7 @@
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 
+#include <jade/dev/bake.hpp>
 #include <jade/bake.hpp>
 #include <jade/error.hpp>
 #include <jade/io.hpp>
@@ -120,7 +121,7 @@ TEST_F(GpuTest, GridReBakeOfAStillMeshIsBitIdentical)
     const BakeResult b = dynamic.bake(rest.positions, rest.normals, rest.areas);
     EXPECT_EQ(a.method_used, TmMethod::Grid);
     EXPECT_EQ(a.tm, b.tm);
-    const BakeResult fresh = baker.bake_tm(rest, a.ao, material, settings);
+    const BakeResult fresh = dev::bake_tm(baker, rest, a.ao, material, settings);
     double apart = 0;
     for (size_t i = 0; i < a.tm.size(); ++i)
         apart = std::max(apart, double(std::abs(a.tm[i].x - fresh.tm[i].x) / fresh.tm[i].x));

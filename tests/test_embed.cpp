@@ -6,6 +6,8 @@
 #include "embed/scene.hpp"  // the sample's frame size, ground and camera
 #include "vk_instance.hpp"  // samples/common: the hosts' instance and device choice
 
+#include <jade/dev/bake.hpp>
+#include <jade/dev/context.hpp>
 #include <jade/bake.hpp>
 #include <jade/context.hpp>
 #include <jade/render.hpp>
@@ -113,7 +115,7 @@ TEST_F(Embed, AdoptedContextBakesLikeAnOwnedOneAndLeavesTheDeviceAlive)
         o.validation = true;
         Context context(o);
         owned = Baker(context).bake(sphere, material, settings);
-        EXPECT_EQ(context.validation_messages(), 0u);
+        EXPECT_EQ(dev::validation_messages(context), 0u);
     }
     Host host(true);
     BakeResult adopted;
@@ -153,17 +155,23 @@ TEST_F(Embed, GridSplatWithoutInt64AtomicsBakesTheSameBits)
         ContextOptions o;
         o.validation = true;
         Context context(o);
-        if (!context.device_info().int64_atomics)
-            GTEST_SKIP() << context.device_info().name << " has no 64-bit buffer atomics";
-        packed = Baker(context).bake_tm(sphere, ao, material, settings);
-        EXPECT_EQ(context.validation_messages(), 0u);
+        if (!dev::device_info(context).int64_atomics)
+            GTEST_SKIP() << dev::device_info(context).name << " has no 64-bit buffer atomics";
+        packed = [&] {
+            Baker baker(context);
+            return dev::bake_tm(baker, sphere, ao, material, settings);
+        }();
+        EXPECT_EQ(dev::validation_messages(context), 0u);
     }
     Host host(true);  // Jade's required features only: no shaderInt64, no 64-bit atomics
     BakeResult four;
     {
         Context context(host.adopted());
-        EXPECT_FALSE(context.device_info().int64_atomics);
-        four = Baker(context).bake_tm(sphere, ao, material, settings);
+        EXPECT_FALSE(dev::device_info(context).int64_atomics);
+        four = [&] {
+            Baker baker(context);
+            return dev::bake_tm(baker, sphere, ao, material, settings);
+        }();
     }
     ASSERT_EQ(packed.method_used, TmMethod::Grid);
     ASSERT_EQ(four.method_used, TmMethod::Grid);

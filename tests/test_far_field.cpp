@@ -7,8 +7,12 @@
 #include "bake/buffer_estimate.hpp"
 #include "bake/far_field.hpp"
 
+#include <jade/dev/bake.hpp>
 #include <jade/bake.hpp>
+#include <jade/dev/names.hpp>
+#include <jade/dev/scene.hpp>
 #include <jade/io.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include <algorithm>
 #include <cstdio>
@@ -23,10 +27,11 @@ namespace {
 
 // What the estimate's buffers say the bake will run: the grid's cells, the cluster tree, or
 // neither (all pairs).
-TmMethod method_of(const std::vector<BufferEstimate>& buffers)
+TmMethod method_of(const std::vector<dev::BufferEstimate>& buffers)
 {
     auto has = [&](const std::string& name) {
-        return std::any_of(buffers.begin(), buffers.end(), [&](const BufferEstimate& b) { return b.name == name; });
+        return std::any_of(buffers.begin(), buffers.end(),
+                           [&](const dev::BufferEstimate& b) { return b.name == name; });
     };
     if (has("t_m grid")) return TmMethod::Grid;
     if (has("point tree nodes")) return TmMethod::Clustered;
@@ -71,8 +76,8 @@ TEST_F(GpuTest, AutoFarFieldIsTheSameInTheBakeAndInItsBufferPlan)
     cases.push_back({"ChineseDragon-10kv.off", prepare_mesh(load_mesh(test::asset("ChineseDragon-10kv.off")))});
     cases.push_back({"sphere 16×32", prepare_mesh(procedural::sphere(1.0f, 16, 32))});
     cases.push_back({"sphere 64×128", prepare_mesh(procedural::sphere(1.0f, 64, 128))});
-    cases.push_back({"box 24", prepare_mesh(procedural::box(glm::vec3(-1.0f), glm::vec3(1.0f), 24))});
-    cases.push_back({"grid 80", prepare_mesh(procedural::grid(80, 0.05f))});
+    cases.push_back({"box 24", prepare_mesh(dev::procedural::box(glm::vec3(-1.0f), glm::vec3(1.0f), 24))});
+    cases.push_back({"grid 80", prepare_mesh(dev::procedural::grid(80, 0.05f))});
     cases.push_back({"two spheres far apart", prepare_mesh(far_apart_spheres())});
     cases.push_back({"sphere with a dense patch", prepare_mesh(sphere_with_a_dense_patch())});
 
@@ -83,9 +88,9 @@ TEST_F(GpuTest, AutoFarFieldIsTheSameInTheBakeAndInItsBufferPlan)
         const BakeSettings settings = BakeSettings::preset(Quality::Default);
         ASSERT_EQ(settings.method, TmMethod::Auto);
         const std::vector<float> ao(c.mesh.vertex_count(), 0.0f);
-        const TmMethod baked = baker.bake_tm(c.mesh, ao, material, settings).method_used;
+        const TmMethod baked = dev::bake_tm(baker, c.mesh, ao, material, settings).method_used;
         const TmMethod planned = method_of(bake::estimate_buffers(c.mesh, material, settings, false, false));
-        EXPECT_EQ(tm_method_name(planned), std::string(tm_method_name(baked))) << c.name;
+        EXPECT_EQ(dev::tm_method_name(planned), std::string(dev::tm_method_name(baked))) << c.name;
         // The grids alone fit the dense patch (not coarsened): its long near lists decide, the
         // part of the rule that the estimate once left out.
         const bake::GridPlan plan = bake::plan_grid(c.mesh, material, 3, settings.tm_grid_resolution, false,
@@ -95,7 +100,7 @@ TEST_F(GpuTest, AutoFarFieldIsTheSameInTheBakeAndInItsBufferPlan)
             EXPECT_EQ(baked, TmMethod::Clustered);
         }
         std::printf("%-26s %6zu vertices: %s (grids coarsened: %d)\n", c.name.c_str(), c.mesh.vertex_count(),
-                    tm_method_name(baked), int(plan.coarsened));
+                    dev::tm_method_name(baked), int(plan.coarsened));
         seen.insert(baked);
     }
     EXPECT_EQ(seen.size(), 3u) << "the meshes reach all pairs, the grid and the clustered far field";

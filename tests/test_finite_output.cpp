@@ -4,6 +4,7 @@
 // asset, written back as read), and EXR pixels saturate at half's largest value.
 #include "test_support.hpp"
 
+#include <jade/dev/io.hpp>
 #include <jade/io.hpp>
 
 #include <gtest/gtest.h>
@@ -120,19 +121,19 @@ TEST(finite_output, ExrPixelsSaturateAtHalfsLargestValueAndNaNIsStoredAsZero)
     fs::create_directories(dir);
     std::vector<float> rgba = {1e6f, -1e9f, kInf, 1.0f, 0.5f, 70000.0f, -kInf, 1.0f};
     jade::save_image(dir / "bright.exr", 2, 1, rgba);
-    const jade::LoadedImage img = jade::load_image(dir / "bright.exr");
+    const jade::dev::LoadedImage img = jade::dev::load_image(dir / "bright.exr");
     const std::vector<float> expected = {65504.0f, -65504.0f, 65504.0f, 1.0f, 0.5f, 65504.0f, -65504.0f, 1.0f};
     EXPECT_EQ(img.rgba, expected);
 
     rgba[5] = kNaN;  // stored as 0, as PNG stores it
     jade::save_image(dir / "nan.exr", 2, 1, rgba);
-    EXPECT_EQ(jade::load_image(dir / "nan.exr").rgba[5], 0.0f);
+    EXPECT_EQ(jade::dev::load_image(dir / "nan.exr").rgba[5], 0.0f);
 
     // The example: a render under a huge exposure.
     const auto r = run_cli({"render", sphere_off(dir).string(), "--exposure", "1e6", "--size", "32x32", "--quality",
                             "draft", "--ao-rays", "4", "--out", (dir / "render.exr").string()});
     ASSERT_EQ(r.exit_code, 0) << r.output;
-    const jade::LoadedImage render = jade::load_image(dir / "render.exr");
+    const jade::dev::LoadedImage render = jade::dev::load_image(dir / "render.exr");
     for (float v : render.rgba) ASSERT_TRUE(std::isfinite(v) && std::abs(v) <= 65504.0f) << v;
 }
 
@@ -249,7 +250,7 @@ TEST(finite_output, AHugeFiniteTmRendersFiniteNonNegativePixels)
     const fs::path baked = baked_sphere_with_tm(dir, 1e38f);
     const auto r = run_cli({"render", baked.string(), "--size", "64x64", "--out", (dir / "huge.exr").string()});
     ASSERT_EQ(r.exit_code, 0) << r.output;
-    const jade::LoadedImage img = jade::load_image(dir / "huge.exr");
+    const jade::dev::LoadedImage img = jade::dev::load_image(dir / "huge.exr");
     float lo = INFINITY, hi = -INFINITY;
     for (float v : img.rgba) lo = std::min(lo, v), hi = std::max(hi, v);
     EXPECT_GE(lo, 0.0f);

@@ -5,8 +5,10 @@
 #include <jade/dev/bake.hpp>
 #include <jade/dev/context.hpp>
 #include <jade/bake.hpp>
+#include <jade/dev/names.hpp>
 #include <jade/io.hpp>
 #include <jade/dev/reference.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include <glm/geometric.hpp>
 
@@ -90,7 +92,7 @@ void check_ao_against_reference(Context& ctx, const PreparedMesh& mesh, uint32_t
     AoSettings s;
     s.rays = rays;
     Baker baker(ctx);
-    auto gpu = baker.bake_ao(mesh, s);
+    auto gpu = dev::bake_ao(baker, mesh, s);
     auto ref = reference_ao(mesh, s);
     ASSERT_EQ(gpu.size(), ref.size());
     size_t same = 0;
@@ -107,7 +109,7 @@ void check_ao_against_reference(Context& ctx, const PreparedMesh& mesh, uint32_t
 
 TEST_F(GpuTest, DeviceIsCreatedWithValidation)
 {
-    const DeviceInfo& info = context().device_info();
+    const dev::DeviceInfo& info = dev::device_info(context());
     EXPECT_FALSE(info.name.empty());
     EXPECT_GE(info.api_version, (1u << 22) | (3u << 12)) << info.api_version_string();  // Vulkan 1.3
     EXPECT_GT(info.max_storage_buffer_range, 0u);
@@ -129,7 +131,7 @@ TEST_P(TmAccuracy, DragonAgainstFloat64)
     Baker baker(context());
     AoSettings ao_settings;
     ao_settings.rays = 32;
-    auto ao = baker.bake_ao(mesh, ao_settings);
+    auto ao = dev::bake_ao(baker, mesh, ao_settings);
     auto at = sample_vertices(mesh.vertex_count(), 400);
     auto ref = reference_tm(mesh, ao, m, at);
     const ReferenceScattering ref_scattering = reference_scattering(mesh, ao, m, at);
@@ -137,24 +139,24 @@ TEST_P(TmAccuracy, DragonAgainstFloat64)
 
     BakeSettings exact;
     exact.method = TmMethod::Exact;
-    const BakeResult x = baker.bake_tm(mesh, ao, m, exact);
+    const BakeResult x = dev::bake_tm(baker, mesh, ao, m, exact);
     auto e = relative_error(x.tm, ref, at);
     EXPECT_LE(e.max, 1e-4) << "exact pass, rms " << e.rms;
     EXPECT_LE(max_angle(x.scattering_normal, ref_normal, at), 2e-3) << "exact pass: the scattering normal";
     EXPECT_LE(max_abs_error(x.normal_spread, ref_scattering.spread, at), 2e-3) << "exact pass: the normal spread";
 
-    EXPECT_EQ(baker.bake_tm(mesh, ao, m, BakeSettings::preset(Quality::Default)).method_used, TmMethod::Grid)
+    EXPECT_EQ(dev::bake_tm(baker, mesh, ao, m, BakeSettings::preset(Quality::Default)).method_used, TmMethod::Grid)
         << "auto: the grid far field";
     for (TmMethod method : {TmMethod::Clustered, TmMethod::Grid})
         for (Quality q : {Quality::Default, Quality::High}) {
             BakeSettings settings = BakeSettings::preset(q);
             settings.method = method;
-            const BakeResult r = baker.bake_tm(mesh, ao, m, settings);
+            const BakeResult r = dev::bake_tm(baker, mesh, ao, m, settings);
             EXPECT_EQ(r.method_used, method);
             expect_finite_nonnegative(r.tm);
             e = relative_error(r.tm, ref, at);
             EXPECT_LE(e.max, q == Quality::High ? 1e-3 : 1e-2)
-                << tm_method_name(method) << ", " << (q == Quality::High ? "high" : "default") << " quality, rms "
+                << dev::tm_method_name(method) << ", " << (q == Quality::High ? "high" : "default") << " quality, rms "
                 << e.rms;
             // The grid carries the normal's sums exactly as t_m's; the clustered far field takes
             // each accepted node's normal sum as a monopole, whose error the sum's cancellation
@@ -164,10 +166,13 @@ TEST_P(TmAccuracy, DragonAgainstFloat64)
             const double angle = max_angle(r.scattering_normal, ref_normal, at);
             const double bound =
                 method == TmMethod::Grid ? (q == Quality::High ? 1e-3 : 5e-3) : (q == Quality::High ? 1.5e-2 : 0.15);
-            EXPECT_LE(angle, bound) << tm_method_name(method) << ", " << quality_name(q) << ": the scattering normal";
+            EXPECT_LE(angle, bound) << dev::tm_method_name(method) << ", " << dev::quality_name(q)
+                                    << ": the scattering normal";
             const double spread = max_abs_error(r.normal_spread, ref_scattering.spread, at);
-            std::printf("%s %s: angle %.2e spread %.2e\n", tm_method_name(method), quality_name(q), angle, spread);
-            EXPECT_LE(spread, bound) << tm_method_name(method) << ", " << quality_name(q) << ": the normal spread";
+            std::printf("%s %s: angle %.2e spread %.2e\n", dev::tm_method_name(method), dev::quality_name(q), angle,
+                        spread);
+            EXPECT_LE(spread, bound) << dev::tm_method_name(method) << ", " << dev::quality_name(q)
+                                     << ": the normal spread";
         }
 }
 
@@ -195,11 +200,11 @@ TEST_F(GpuTest, EveryProfileKindAgreesWithFloat64OnALargeMesh)
         for (TmMethod method : {TmMethod::Exact, TmMethod::Clustered, TmMethod::Grid}) {
             BakeSettings settings = BakeSettings::preset(Quality::Default);
             settings.method = method;
-            const BakeResult r = baker.bake_tm(mesh, ao, m, settings);
+            const BakeResult r = dev::bake_tm(baker, mesh, ao, m, settings);
             expect_finite_nonnegative(r.tm);
             const RelError e = relative_error(r.tm, ref, at);
             EXPECT_LE(e.max, method == TmMethod::Exact ? 1e-4 : 1e-2)
-                << name << ", " << tm_method_name(method) << ": rms " << e.rms;
+                << name << ", " << dev::tm_method_name(method) << ": rms " << e.rms;
         }
     }
 }
@@ -211,7 +216,7 @@ TEST_F(GpuTest, EveryProfileKindAgreesWithFloat64OnALargeMesh)
 // dragon's t_m comes out bit-identical).
 TEST_F(GpuTest, Float64SumsAgreeWithCompensatedFloat32Sums)
 {
-    if (!context().device_info().float64) GTEST_SKIP() << "the device has no shaderFloat64";
+    if (!dev::device_info(context()).float64) GTEST_SKIP() << "the device has no shaderFloat64";
     const PreparedMesh& mesh = dragon();
     const Material m = burley_material(glm::dvec3(0.2 * mesh.diagonal), glm::vec3(0.8f));
     Baker baker(context());
@@ -220,9 +225,9 @@ TEST_F(GpuTest, Float64SumsAgreeWithCompensatedFloat32Sums)
     f32.method = TmMethod::Exact;
     BakeSettings f64 = f32;
     dev::set_study(f64, {.tm_float64_sums = true});
-    const auto a = baker.bake_tm(mesh, ao, m, f32).tm;
+    const auto a = dev::bake_tm(baker, mesh, ao, m, f32).tm;
     const uint64_t pipelines = dev::created_objects(context()).compute_pipelines;
-    const auto b = baker.bake_tm(mesh, ao, m, f64).tm;
+    const auto b = dev::bake_tm(baker, mesh, ao, m, f64).tm;
     EXPECT_EQ(dev::created_objects(context()).compute_pipelines, pipelines + 1)
         << "the float64 variant is a kernel of its own";
     auto at = sample_vertices(mesh.vertex_count(), 200);
@@ -258,13 +263,13 @@ TEST_P(GridAccuracy, BunnyAgainstFloat64)
     Baker baker(context());
     AoSettings ao_settings;
     ao_settings.rays = 16;
-    const auto ao = baker.bake_ao(mesh, ao_settings);
+    const auto ao = dev::bake_ao(baker, mesh, ao_settings);
     const auto at = sample_vertices(mesh.vertex_count(), 200);
     const auto ref = reference_tm(mesh, ao, m, at);
     for (Quality q : {Quality::Default, Quality::High}) {
         BakeSettings grid = BakeSettings::preset(q);
         grid.method = TmMethod::Grid;
-        const BakeResult g = baker.bake_tm(mesh, ao, m, grid);
+        const BakeResult g = dev::bake_tm(baker, mesh, ao, m, grid);
         expect_finite_nonnegative(g.tm);
         const auto e = relative_error(g.tm, ref, at);
         EXPECT_LE(e.max, q == Quality::High ? 1e-3 : 1e-2)
@@ -312,13 +317,13 @@ TEST_F(GpuTest, GridOnALongThinMeshStaysSmallAndRight)
     Baker baker(context());
     BakeSettings grid = BakeSettings::preset(Quality::Default);
     grid.method = TmMethod::Grid;
-    const BakeResult g = baker.bake_tm(mesh, ao, m, grid);
+    const BakeResult g = dev::bake_tm(baker, mesh, ao, m, grid);
     EXPECT_LT(g.tm_bytes, 64u << 20) << "device memory of the t_m passes";
     const auto at = sample_vertices(mesh.vertex_count(), 200);
     EXPECT_LE(relative_error(g.tm, reference_tm(mesh, ao, m, at), at).max, 1e-2);
     // A profile within the near field's reach needs no grid at all.
     const Material stiff = burley_material(glm::dvec3(1e-3), glm::vec3(0.8f));
-    const BakeResult s = baker.bake_tm(mesh, ao, stiff, grid);
+    const BakeResult s = dev::bake_tm(baker, mesh, ao, stiff, grid);
     EXPECT_LT(s.tm_bytes, 16u << 20);
     EXPECT_LE(relative_error(s.tm, reference_tm(mesh, ao, stiff, at), at).max, 1e-4);
 }
@@ -333,7 +338,7 @@ TEST_F(GpuTest, ExtremeProfileWidthsReachTheirLimits)
     Baker baker(context());
     AoSettings ao_settings;
     ao_settings.rays = 16;
-    auto ao = baker.bake_ao(mesh, ao_settings);
+    auto ao = dev::bake_ao(baker, mesh, ao_settings);
     std::vector<float> nearest(mesh.vertex_count(), 1e30f);
     for (size_t t = 0; t < mesh.triangle_count(); ++t)
         for (int e = 0; e < 3; ++e) {
@@ -342,12 +347,12 @@ TEST_F(GpuTest, ExtremeProfileWidthsReachTheirLimits)
             nearest[a] = std::min(nearest[a], len), nearest[b] = std::min(nearest[b], len);
         }
     for (TmMethod method : {TmMethod::Exact, TmMethod::Clustered, TmMethod::Grid}) {
-        SCOPED_TRACE(tm_method_name(method));
+        SCOPED_TRACE(dev::tm_method_name(method));
         BakeSettings s;
         s.method = method;
         for (double rel : {1e-6, 1e-8}) {
             double d = rel * mesh.diagonal;
-            auto stiff = baker.bake_tm(mesh, ao, burley_material(glm::dvec3(d), glm::vec3(1)), s).tm;
+            auto stiff = dev::bake_tm(baker, mesh, ao, burley_material(glm::dvec3(d), glm::vec3(1)), s).tm;
             expect_finite_nonnegative(stiff);
             size_t checked = 0;
             for (size_t i = 0; i < mesh.vertex_count(); ++i) {
@@ -358,8 +363,8 @@ TEST_F(GpuTest, ExtremeProfileWidthsReachTheirLimits)
             EXPECT_GE(checked, mesh.vertex_count() * 99 / 100);
         }
         double d = 1e6 * mesh.diagonal;
-        auto huge = baker.bake_tm(mesh, ao, burley_material(glm::dvec3(d), glm::vec3(1)), s).tm;
-        auto huger = baker.bake_tm(mesh, ao, burley_material(glm::dvec3(10 * d), glm::vec3(1)), s).tm;
+        auto huge = dev::bake_tm(baker, mesh, ao, burley_material(glm::dvec3(d), glm::vec3(1)), s).tm;
+        auto huger = dev::bake_tm(baker, mesh, ao, burley_material(glm::dvec3(10 * d), glm::vec3(1)), s).tm;
         expect_finite_nonnegative(huge);
         for (size_t i = 0; i < mesh.vertex_count(); i += 97) {
             ASSERT_GT(huge[i].x, 0.0f);
@@ -372,10 +377,10 @@ TEST_F(GpuTest, ExtremeProfileWidthsReachTheirLimits)
 TEST_F(GpuTest, FlatGridIntegratesToOne)
 {
     const float spacing = 1.0f;
-    PreparedMesh grid = prepare_mesh(procedural::grid(160, spacing));
+    PreparedMesh grid = prepare_mesh(dev::procedural::grid(160, spacing));
     std::vector<float> open(grid.vertex_count(), 0.0f);
     Baker baker(context());
-    auto tm = baker.bake_tm(grid, open, burley_material(glm::dvec3(spacing), glm::vec3(1))).tm;
+    auto tm = dev::bake_tm(baker, grid, open, burley_material(glm::dvec3(spacing), glm::vec3(1))).tm;
     size_t centre = 0;
     for (size_t i = 0; i < grid.vertex_count(); ++i)
         if (glm::length(grid.positions[i]) < glm::length(grid.positions[centre])) centre = i;
@@ -389,7 +394,7 @@ TEST_F(GpuTest, FlatGridIntegratesToOne)
 // matches the float64 reference on the seam.
 TEST_F(GpuTest, NearlyCoincidentSeamVerticesStayFinite)
 {
-    TriangleMesh mesh = procedural::grid(40, 1.0f);
+    TriangleMesh mesh = dev::procedural::grid(40, 1.0f);
     const size_t n = mesh.positions.size();
     std::vector<uint32_t> copy(n, ~0u);
     float mid_x = 0;
@@ -417,7 +422,7 @@ TEST_F(GpuTest, NearlyCoincidentSeamVerticesStayFinite)
     Baker baker(context());
     BakeSettings exact;
     exact.method = TmMethod::Exact;
-    const auto tm = baker.bake_tm(grid, open, m, exact).tm;
+    const auto tm = dev::bake_tm(baker, grid, open, m, exact).tm;
     std::vector<uint32_t> seam;
     for (uint32_t i = 0; i < grid.vertex_count(); ++i)
         if (std::abs(grid.positions[i].x - mid_x) < 1e-3f && std::abs(grid.positions[i].y) < 10.0f) seam.push_back(i);
@@ -434,7 +439,7 @@ TEST_F(GpuTest, ThinSlabIsMoreTranslucentThanThickBlock)
     Baker baker(context());
     Material m = burley_material(glm::dvec3(0.3), glm::vec3(1));
     auto top_centre_tm = [&](float thickness) {
-        PreparedMesh box = prepare_mesh(procedural::box({-2, -2, -thickness}, {2, 2, 0}, 24));
+        PreparedMesh box = prepare_mesh(dev::procedural::box({-2, -2, -thickness}, {2, 2, 0}, 24));
         auto r = baker.bake(box, m, BakeSettings::preset(Quality::Default));
         size_t best = 0;
         for (size_t i = 0; i < box.vertex_count(); ++i)

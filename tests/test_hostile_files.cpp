@@ -4,6 +4,7 @@
 // that bake use a tiny asset.
 #include "test_support.hpp"
 
+#include <jade/dev/io.hpp>
 #include <jade/io.hpp>
 
 #include <gtest/gtest.h>
@@ -91,9 +92,9 @@ TEST(hostile_links, ALinkToAFileOutsideTheFolderIsRefusedNamingTheUri)
     jade::ReadOptions allow;
     allow.allow_outside_links = true;
     const jade::GltfAsset a = jade::GltfAsset::load(asset, nullptr, allow);
-    ASSERT_EQ(a.files().size(), 3u);
-    EXPECT_EQ(a.files()[0], asset);
-    EXPECT_TRUE(fs::equivalent(a.files()[2], elsewhere / "CesiumLogoFlat.png"));
+    ASSERT_EQ(jade::dev::asset_files(a).size(), 3u);
+    EXPECT_EQ(jade::dev::asset_files(a)[0], asset);
+    EXPECT_TRUE(fs::equivalent(jade::dev::asset_files(a)[2], elsewhere / "CesiumLogoFlat.png"));
     EXPECT_NO_THROW(jade::load_mesh(asset, allow));
 }
 
@@ -163,7 +164,7 @@ TEST(hostile_writes, APlantedLinkAtTheTemporaryNameIsNeverFollowed)
     // The name the writer used to take, and names of the new form: links to the victim.
     fs::create_symlink(victim, dir / ("out.glb.tmp-" + std::to_string(::getpid())));
     fs::create_symlink(victim, dir / ("out.glb.tmp-" + std::to_string(::getpid()) + "-000000000000"));
-    jade::write_file_atomically(target, "new bytes");
+    jade::dev::write_file_atomically(target, "new bytes");
     EXPECT_EQ(read_all(victim), "precious\n");
     EXPECT_EQ(read_all(target), "new bytes");
     EXPECT_TRUE(fs::is_symlink(dir / ("out.glb.tmp-" + std::to_string(::getpid()))));
@@ -171,7 +172,7 @@ TEST(hostile_writes, APlantedLinkAtTheTemporaryNameIsNeverFollowed)
     // A link at the output itself is replaced by the file; what it pointed to is left alone.
     fs::remove(target);
     fs::create_symlink(victim, target);
-    jade::write_file_atomically(target, "replaced");
+    jade::dev::write_file_atomically(target, "replaced");
     EXPECT_FALSE(fs::is_symlink(target));
     EXPECT_EQ(read_all(target), "replaced");
     EXPECT_EQ(read_all(victim), "precious\n");
@@ -194,12 +195,12 @@ TEST(hostile_writes, ReplacingAFileKeepsItsMode)
     const fs::path file = dir / "private.bin";
     write(file, "old");
     ASSERT_EQ(::chmod(file.c_str(), 0600), 0);
-    jade::write_file_atomically(file, "new");
+    jade::dev::write_file_atomically(file, "new");
     struct stat st {};
     ASSERT_EQ(::stat(file.c_str(), &st), 0);
     EXPECT_EQ(st.st_mode & 07777, 0600u);
     ASSERT_EQ(::chmod(file.c_str(), 0640), 0);
-    jade::write_file_atomically(file, "newer");
+    jade::dev::write_file_atomically(file, "newer");
     ASSERT_EQ(::stat(file.c_str(), &st), 0);
     EXPECT_EQ(st.st_mode & 07777, 0640u);
 

@@ -10,10 +10,13 @@
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 
+#include <jade/dev/bake.hpp>
+#include <jade/dev/context.hpp>
 #include <jade/bake.hpp>
 #include <jade/error.hpp>
 #include <jade/io.hpp>
 #include <jade/dev/reference.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -23,9 +26,9 @@ using jade::test::GpuTest;
 
 TEST_F(GpuTest, MillionVertexMeshBakesInChunksAndMatchesTheFloat64Reference)
 {
-    const PreparedMesh mesh = prepare_mesh(procedural::subdivide(load_mesh(test::asset("bunny00.off")), 3));
+    const PreparedMesh mesh = prepare_mesh(dev::procedural::subdivide(load_mesh(test::asset("bunny00.off")), 3));
     ASSERT_GT(mesh.vertex_count(), 1'000'000u);
-    const DeviceInfo& device = context().device_info();
+    const dev::DeviceInfo& device = dev::device_info(context());
     BakeSettings settings = BakeSettings::preset(Quality::Draft);
     settings.ao.rays = 4;
     // The AO dispatch alone needs more work groups than one dimension allows.
@@ -71,7 +74,7 @@ TEST_F(GpuTest, MillionVertexMeshBakesInChunksAndMatchesTheFloat64Reference)
     BakeSettings grid = settings;
     grid.method = TmMethod::Grid;
     try {
-        baker.bake_tm(mesh, r.ao, material, grid);
+        dev::bake_tm(baker, mesh, r.ao, material, grid);
         ADD_FAILURE() << "the grid far field accepted a plan beyond its memory limit";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("use the clustered far field"), std::string::npos) << e.what();

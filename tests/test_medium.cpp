@@ -3,6 +3,7 @@
 // lobe's normalisation, limits and extreme media, and the errors bad values give.
 #include "test_support.hpp"
 
+#include <jade/dev/material.hpp>
 #include <jade/error.hpp>
 #include <jade/material.hpp>
 
@@ -49,15 +50,15 @@ TEST(Medium, DiffuseReflectanceIsTheIntegralOfTheDipoleProfile)
 {
     for (double eta : {1.0, 1.3, 1.5, 2.0})
         for (double alpha : {0.05, 0.3, 0.7, 0.9, 0.99, 0.999}) {
-            const double closed = diffuse_reflectance(alpha, eta), integral = dipole_integral(alpha, eta);
+            const double closed = dev::diffuse_reflectance(alpha, eta), integral = dipole_integral(alpha, eta);
             EXPECT_NEAR(closed, integral, 2e-5 * std::max(integral, 1e-3)) << "alpha' " << alpha << ", eta " << eta;
         }
-    EXPECT_EQ(diffuse_reflectance(0.0, 1.5), 0.0);
-    EXPECT_NEAR(diffuse_reflectance(1.0, 1.5), 1.0, 1e-12);  // nothing absorbed: all light returns
+    EXPECT_EQ(dev::diffuse_reflectance(0.0, 1.5), 0.0);
+    EXPECT_NEAR(dev::diffuse_reflectance(1.0, 1.5), 1.0, 1e-12);  // nothing absorbed: all light returns
     // Monotone in the albedo.
     double last = -1.0;
     for (double alpha = 0.0; alpha <= 1.0; alpha += 0.01) {
-        const double r = diffuse_reflectance(alpha, 1.4);
+        const double r = dev::diffuse_reflectance(alpha, 1.4);
         EXPECT_GT(r, last);
         last = r;
     }
@@ -69,11 +70,11 @@ TEST(Medium, DerivesEveryParameterFromTheCoefficients)
     m.sigma_s = {12.0, 15.0, 19.6};
     m.sigma_a = {8.0, 5.0, 0.4};
     m.g = 0.0, m.ior = 1.5, m.roughness = 0.6;
-    MediumFit fit;
-    const Material mat = Material::from_medium(m, fit, "jewel");
+    dev::MediumFit fit;
+    const Material mat = dev::from_medium(m, fit, "jewel");
     for (int c = 0; c < 3; ++c) {
         const double alpha = m.sigma_s[c] / (m.sigma_s[c] + m.sigma_a[c]);
-        const double rd = diffuse_reflectance(alpha, 1.5);
+        const double rd = dev::diffuse_reflectance(alpha, 1.5);
         EXPECT_NEAR(mat.albedo[c], fit.albedo_scale * rd, 1e-6);
         const double s = 1.85 - rd + 7.0 * std::pow(std::abs(rd - 0.8), 3.0);
         EXPECT_EQ(mat.profile[c].kind, ProfileKind::Burley);
@@ -142,23 +143,23 @@ TEST(Medium, SlabDiffusionTransmittanceSolvesTheDiffusionEquation)
         for (double t : {0.5, 1.0, 3.0}) {
             const double z0 = 0.1, zb = 0.2;
             const double expected = slab_flux_numerical(t, sigma, z0, zb);
-            EXPECT_NEAR(slab_diffusion_transmittance(t, sigma, z0 + zb, zb), expected, 2e-3 * expected + 1e-9)
+            EXPECT_NEAR(dev::slab_diffusion_transmittance(t, sigma, z0 + zb, zb), expected, 2e-3 * expected + 1e-9)
                 << "σ_tr " << sigma << ", t " << t;
         }
     // No absorption: T = z_s/(t + 2z_b) and the reflected rest R = (t + z_b − z0)/(t + 2z_b) sum to 1.
-    EXPECT_NEAR(slab_diffusion_transmittance(2.0, 0.0, 0.3, 0.2), 0.3 / 2.4, 1e-15);
+    EXPECT_NEAR(dev::slab_diffusion_transmittance(2.0, 0.0, 0.3, 0.2), 0.3 / 2.4, 1e-15);
     // Thick: ∝ e^{−σ_tr t}.
     const double r =
-        slab_diffusion_transmittance(11.0, 2.0, 0.3, 0.2) / slab_diffusion_transmittance(10.0, 2.0, 0.3, 0.2);
+        dev::slab_diffusion_transmittance(11.0, 2.0, 0.3, 0.2) / dev::slab_diffusion_transmittance(10.0, 2.0, 0.3, 0.2);
     EXPECT_NEAR(r, std::exp(-2.0), 1e-9);
     // Extremes: finite and in [0, 1]; t = ∞ and z_s = 0 give 0.
     for (double s : {0.0, 1e-6, 1e-3, 1.0, 1e3, 1e6, 3e38, double(INFINITY)})
         for (double t : {0.0, 1e-6, 0.1, 1.0, 1e6, double(INFINITY)}) {
-            const double v = slab_diffusion_transmittance(t, s, 0.3, 0.2);
+            const double v = dev::slab_diffusion_transmittance(t, s, 0.3, 0.2);
             EXPECT_TRUE(std::isfinite(v) && v >= 0.0 && v <= 1.0) << "σ_tr " << s << ", t " << t << ": " << v;
         }
-    EXPECT_EQ(slab_diffusion_transmittance(INFINITY, 1.0, 0.3, 0.2), 0.0);
-    EXPECT_EQ(slab_diffusion_transmittance(1.0, 1.0, 0.0, 0.0), 0.0);
+    EXPECT_EQ(dev::slab_diffusion_transmittance(INFINITY, 1.0, 0.3, 0.2), 0.0);
+    EXPECT_EQ(dev::slab_diffusion_transmittance(1.0, 1.0, 0.0, 0.0), 0.0);
 }
 
 TEST(Medium, ExtremeMediaGiveFiniteDocumentedResults)
@@ -174,7 +175,7 @@ TEST(Medium, ExtremeMediaGiveFiniteDocumentedResults)
     };
     Medium m;
     m.sigma_s = glm::dvec3(5.0), m.sigma_a = glm::dvec3(0.0);  // no absorption: albedo 1 behind the boundary
-    Material a = Material::from_medium(m, {1.0});
+    Material a = dev::from_medium(m, {1.0});
     finite(a);
     EXPECT_NEAR(a.albedo.r, 1.0f, 1e-6f);
     m.sigma_s = glm::dvec3(0.0), m.sigma_a = glm::dvec3(5.0);  // no scattering: black diffuse, only transmission
@@ -198,9 +199,9 @@ TEST(Medium, ExtremeMediaGiveFiniteDocumentedResults)
 
 TEST(Medium, BadValuesNameTheField)
 {
-    auto message = [](const Medium& m, const MediumFit& fit = {}) {
+    auto message = [](const Medium& m, const dev::MediumFit& fit = {}) {
         try {
-            Material::from_medium(m, fit, "glass");
+            dev::from_medium(m, fit, "glass");
         } catch (const Error& e) {
             return std::string(e.what());
         }
@@ -220,10 +221,10 @@ TEST(Medium, BadValuesNameTheField)
     EXPECT_NE(message(bad).find("ior"), std::string::npos);
     bad = m, bad.roughness = 2.0;
     EXPECT_NE(message(bad).find("roughness"), std::string::npos);
-    MediumFit fit;
+    dev::MediumFit fit;
     fit.albedo_scale = 1.5;
     EXPECT_NE(message(m, fit).find("albedo_scale"), std::string::npos);
-    EXPECT_THROW(diffuse_reflectance(1.5, 1.3), Error);
+    EXPECT_THROW(dev::diffuse_reflectance(1.5, 1.3), Error);
 }
 
 TEST(Medium, PresetsWithAMediumHaveTransmission)
@@ -246,7 +247,7 @@ TEST(MediumFit, DefaultsAreTheFitResult)
     std::ifstream file(JADE_FIT_RESULT);
     ASSERT_TRUE(file) << "cannot read " << JADE_FIT_RESULT;
     const nlohmann::json fit = nlohmann::json::parse(file);
-    const MediumFit defaults;
+    const dev::MediumFit defaults;
     const std::pair<const char*, double> fields[] = {
         {"albedo_scale", defaults.albedo_scale},
         {"strength", defaults.strength},

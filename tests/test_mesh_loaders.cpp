@@ -3,6 +3,7 @@
 #include <jade/error.hpp>
 #include <jade/io.hpp>
 #include <jade/mesh.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include "test_support.hpp"
 
@@ -64,7 +65,7 @@ void expect_unit_cube_surface(const jade::TriangleMesh& mesh)
 {
     expect_outward(mesh, glm::vec3(0.5f));
     const auto p = jade::prepare_mesh(mesh);
-    EXPECT_FLOAT_EQ(p.total_area(), 6.0f) << mesh.name;
+    EXPECT_FLOAT_EQ(jade::dev::total_area(p), 6.0f) << mesh.name;
     EXPECT_TRUE(closed_and_oriented(p)) << mesh.name;
 }
 
@@ -84,10 +85,10 @@ TEST(io_load_off, BunnyLoadsWithAllVerticesAndTriangles)
     EXPECT_EQ(p.bbox_min, glm::vec3(-0.498959f, -0.493434f, -0.38649f));
     EXPECT_EQ(p.bbox_max, glm::vec3(0.49922f, 0.493767f, 0.386086f));
     EXPECT_NEAR(p.diagonal, 1.602436f, 1e-6f);
-    EXPECT_NEAR(p.total_area(), 2.354300f, 1e-6f);
+    EXPECT_NEAR(jade::dev::total_area(p), 2.354300f, 1e-6f);
     double area_sum = 0.0;
     for (float a : p.areas) area_sum += a;
-    EXPECT_NEAR(area_sum, p.total_area(), 1e-6 * p.total_area());
+    EXPECT_NEAR(area_sum, jade::dev::total_area(p), 1e-6 * jade::dev::total_area(p));
     for (const auto& n : p.normals) ASSERT_NEAR(glm::length(n), 1.0f, 1e-5f);
 }
 
@@ -124,7 +125,7 @@ TEST(io_load_off, NoffNormalsAreRead)
     ASSERT_EQ(mesh.normals.size(), 4u);
     expect_vec3_near(mesh.normals[1], glm::vec3(1, -1, -1) / std::sqrt(3.0f), 1e-6f);
     const auto p = jade::prepare_mesh(mesh);
-    EXPECT_NEAR(p.total_area(), 8.0f * std::sqrt(3.0f), 1e-5f);
+    EXPECT_NEAR(jade::dev::total_area(p), 8.0f * std::sqrt(3.0f), 1e-5f);
     EXPECT_TRUE(closed_and_oriented(p));
     expect_outward(mesh, glm::vec3(0.0f));
 }
@@ -213,7 +214,7 @@ TEST(io_load_gltf, CubeSplitAtSeamsWeldsToEightVertices)
     EXPECT_EQ(p.triangle_count(), 12u);
     EXPECT_EQ(p.welded_vertices, 16u);
     EXPECT_EQ(p.dropped_triangles, 0u);
-    EXPECT_FLOAT_EQ(p.total_area(), 24.0f);
+    EXPECT_FLOAT_EQ(jade::dev::total_area(p), 24.0f);
     EXPECT_TRUE(closed_and_oriented(p));
     for (size_t v = 0; v < 24; ++v) EXPECT_EQ(p.positions[p.render_to_bake[v]], mesh.positions[v]);
     double area_sum = 0.0;
@@ -249,7 +250,7 @@ TEST(io_load_gltf, TriangleStripAndFanAreConverted)
         EXPECT_GT(glm::cross(b - a, c - a).z, 0.0f) << "triangle " << t << " is clockwise";
     }
     const auto p = jade::prepare_mesh(mesh);
-    EXPECT_NEAR(p.total_area(), 2.0f + 1.5f * std::sqrt(3.0f), 1e-5f);  // 1×2 strip + unit hexagon
+    EXPECT_NEAR(jade::dev::total_area(p), 2.0f + 1.5f * std::sqrt(3.0f), 1e-5f);  // 1×2 strip + unit hexagon
 }
 
 TEST(io_load_gltf, SparseAccessorsAreExpanded)
@@ -341,7 +342,7 @@ TEST(io_save_gltf, GltfRoundTripsAndStoresExtrasAndBounds)
 TEST(io_save_gltf, WithoutAttributesWritesPlainGeometry)
 {
     const auto path = out("save/plain.glb");
-    jade::save_baked_gltf(path, jade::procedural::grid(2, 1.0f), {});
+    jade::save_baked_gltf(path, jade::dev::procedural::grid(2, 1.0f), {});
     const auto loaded = jade::load_mesh(path);
     EXPECT_EQ(loaded.triangle_count(), 8u);
     EXPECT_TRUE(loaded.baked_ao.empty());

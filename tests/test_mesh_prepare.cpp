@@ -2,6 +2,7 @@
 // vertices, area-weighted normals and their fallbacks, vertex areas, bounds, error messages.
 #include <jade/error.hpp>
 #include <jade/mesh.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include "test_support.hpp"
 
@@ -63,7 +64,7 @@ TEST(mesh_prepare, WeldsVerticesSplitAtASeam)
     EXPECT_EQ(p.render_to_bake, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));
     EXPECT_EQ(p.positions, (std::vector<glm::vec3>{a, b, c, d}));
     EXPECT_EQ(p.indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));
-    EXPECT_FLOAT_EQ(p.total_area(), 1.0f);
+    EXPECT_FLOAT_EQ(jade::dev::total_area(p), 1.0f);
     expect_stats_consistent(p);
 }
 
@@ -119,7 +120,7 @@ TEST(mesh_prepare, ToRenderVerticesFillsUnusedVertices)
 {
     const auto p =
         jade::prepare_mesh(make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {9, 9, 9}, {0, 0, 0}}, {0, 1, 2, 4, 1, 2}));
-    const auto values = jade::to_render_vertices(p, std::vector<float>{10.0f, 20.0f, 30.0f}, -1.0f);
+    const auto values = jade::dev::to_render_vertices(p, std::vector<float>{10.0f, 20.0f, 30.0f}, -1.0f);
     EXPECT_EQ(values, (std::vector<float>{10.0f, 20.0f, 30.0f, -1.0f, 10.0f}));
 }
 
@@ -140,7 +141,7 @@ TEST(mesh_prepare, NormalsAreAreaWeightedAndAreasAreAThirdOfEachTriangle)
     EXPECT_FLOAT_EQ(p.areas[1], 1.0f / 3.0f);
     EXPECT_FLOAT_EQ(p.areas[2], 0.5f);
     EXPECT_FLOAT_EQ(p.areas[3], 1.0f / 6.0f);
-    EXPECT_FLOAT_EQ(p.total_area(), 1.5f);
+    EXPECT_FLOAT_EQ(jade::dev::total_area(p), 1.5f);
 }
 
 TEST(mesh_prepare, CancellingNormalsFallBackToTheLargestAdjacentTriangle)
@@ -222,7 +223,7 @@ TEST(mesh_procedural, SphereIsClosedAndItsAreaApproaches4PiR2)
         EXPECT_EQ(p.vertex_count(), mesh.positions.size());
         EXPECT_EQ(p.dropped_triangles, 0u);
         EXPECT_TRUE(closed_and_oriented(p)) << rings << " rings";
-        const double error = (exact - p.total_area()) / exact;  // inscribed: always a little less
+        const double error = (exact - jade::dev::total_area(p)) / exact;  // inscribed: always a little less
         EXPECT_GT(error, 0.0);
         EXPECT_LT(error, previous_error / 10.0) << rings << " rings";  // O(1/n²) convergence
         previous_error = error;
@@ -241,14 +242,14 @@ TEST(mesh_procedural, BoxAreaIsExactAndItIsClosedAfterWelding)
 {
     const glm::vec3 lo(-1, -2, -3), hi(2, 1, 0.5f);
     const uint32_t n = 3;
-    const auto mesh = jade::procedural::box(lo, hi, n);
+    const auto mesh = jade::dev::procedural::box(lo, hi, n);
     EXPECT_EQ(mesh.positions.size(), 6u * (n + 1) * (n + 1));
     EXPECT_EQ(mesh.triangle_count(), 12u * n * n);
     const auto p = jade::prepare_mesh(mesh);
     EXPECT_EQ(p.vertex_count(), 6u * n * n + 2);  // the lattice on the surface of a cube
     EXPECT_EQ(p.dropped_triangles, 0u);
     EXPECT_TRUE(closed_and_oriented(p));
-    EXPECT_FLOAT_EQ(p.total_area(), 2.0f * (3 * 3 + 3 * 3.5f + 3.5f * 3));
+    EXPECT_FLOAT_EQ(jade::dev::total_area(p), 2.0f * (3 * 3 + 3 * 3.5f + 3.5f * 3));
     double area_sum = 0.0;
     for (float a : p.areas) area_sum += a;
     EXPECT_NEAR(area_sum, 60.0, 1e-4);
@@ -262,10 +263,10 @@ TEST(mesh_procedural, GridAreaIsExactAndInteriorVerticesHaveSpacingSquared)
 {
     const uint32_t n = 8;
     const float spacing = 0.25f;
-    const auto p = jade::prepare_mesh(jade::procedural::grid(n, spacing));
+    const auto p = jade::prepare_mesh(jade::dev::procedural::grid(n, spacing));
     EXPECT_EQ(p.vertex_count(), size_t(n + 1) * (n + 1));
     EXPECT_EQ(p.triangle_count(), 2u * n * n);
-    EXPECT_FLOAT_EQ(p.total_area(), 4.0f);
+    EXPECT_FLOAT_EQ(jade::dev::total_area(p), 4.0f);
     EXPECT_EQ(p.bbox_min, glm::vec3(-1, -1, 0));
     EXPECT_EQ(p.bbox_max, glm::vec3(1, 1, 0));
     size_t interior = 0;
@@ -283,8 +284,8 @@ TEST(mesh_procedural, GridAreaIsExactAndInteriorVerticesHaveSpacingSquared)
 
 TEST(mesh_procedural, GridWithInexactSpacingStillSumsToItsArea)
 {
-    const auto p = jade::prepare_mesh(jade::procedural::grid(10, 0.1f));
-    EXPECT_NEAR(p.total_area(), 1.0f, 1e-5f);
+    const auto p = jade::prepare_mesh(jade::dev::procedural::grid(10, 0.1f));
+    EXPECT_NEAR(jade::dev::total_area(p), 1.0f, 1e-5f);
     EXPECT_NEAR(p.areas[5 * 11 + 5], 0.01f, 1e-7f);
 }
 
@@ -293,11 +294,11 @@ TEST(mesh_procedural, RejectsBadParameters)
     EXPECT_THROW(jade::procedural::sphere(1.0f, 1, 8), jade::Error);
     EXPECT_THROW(jade::procedural::sphere(1.0f, 4, 2), jade::Error);
     EXPECT_THROW(jade::procedural::sphere(-1.0f, 4, 8), jade::Error);
-    EXPECT_THROW(jade::procedural::box({0, 0, 0}, {1, 0, 1}, 1), jade::Error);
-    EXPECT_THROW(jade::procedural::box({0, 0, 0}, {1, 1, 1}, 0), jade::Error);
-    EXPECT_THROW(jade::procedural::grid(0, 1.0f), jade::Error);
-    EXPECT_THROW(jade::procedural::grid(4, 0.0f), jade::Error);
-    EXPECT_THROW(jade::procedural::grid(1u << 20, 1.0f), jade::Error);  // 2^40 vertices
+    EXPECT_THROW(jade::dev::procedural::box({0, 0, 0}, {1, 0, 1}, 1), jade::Error);
+    EXPECT_THROW(jade::dev::procedural::box({0, 0, 0}, {1, 1, 1}, 0), jade::Error);
+    EXPECT_THROW(jade::dev::procedural::grid(0, 1.0f), jade::Error);
+    EXPECT_THROW(jade::dev::procedural::grid(4, 0.0f), jade::Error);
+    EXPECT_THROW(jade::dev::procedural::grid(1u << 20, 1.0f), jade::Error);  // 2^40 vertices
     EXPECT_NE(error_of([] { jade::procedural::sphere(1.0f, 1, 8); }).find("procedural::sphere: rings"),
               std::string::npos);
 }

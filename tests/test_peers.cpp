@@ -5,6 +5,7 @@
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 
+#include <jade/dev/names.hpp>
 #include <jade/dev/renderer.hpp>
 #include <jade/bake.hpp>
 #include <jade/material.hpp>
@@ -208,8 +209,8 @@ TEST_F(Peers, FilamentThicknessOutsideItsRangeIsRefused)
     s.width = s.height = 16, s.mode = ShadingMode::Filament, s.filament_thickness = 1.5f;
     const std::string what = test::error_of([&] { r.render(Camera{}, {&light, 1}, s); });
     EXPECT_NE(what.find("filament_thickness"), std::string::npos) << what;
-    EXPECT_EQ(parse_shading_mode("filament"), ShadingMode::Filament);
-    EXPECT_EQ(shading_mode_name(ShadingMode::Filament), "filament");
+    EXPECT_EQ(dev::parse_shading_mode("filament"), ShadingMode::Filament);
+    EXPECT_EQ(dev::shading_mode_name(ShadingMode::Filament), "filament");
 }
 
 // `jade bench render` times every mode in one run, each with its ratio to Lambert and its

@@ -11,9 +11,12 @@
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 
+#include <jade/dev/material.hpp>
 #include <jade/dev/burley_diffusion.hpp>
+#include <jade/dev/names.hpp>
 #include <jade/render.hpp>
 #include <jade/dev/separable.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -35,12 +38,12 @@ double edge_response_reference(const ChannelProfile& p, double x)
 {
     if (x == 0.0) return 0.5;
     const double a = std::fabs(x);
-    const double r_max = std::max(p.radius_for_tail(1e-13), 2.0 * a);
+    const double r_max = std::max(dev::radius_for_tail(p, 1e-13), 2.0 * a);
     const int n = 40000;
     const double s_max = std::sqrt(r_max - a), h = s_max / n;
     auto f = [&](int k) {
         const double s = h * k, r = a + s * s;
-        return p.R(r) * std::acos(std::min(a / r, 1.0)) * r * 2.0 * s;  // dr = 2s ds
+        return dev::profile_value(p, r) * std::acos(std::min(a / r, 1.0)) * r * 2.0 * s;  // dr = 2s ds
     };
     double sum = f(0) + f(n);
     for (int k = 1; k < n; ++k) sum += (k % 2 ? 4.0 : 2.0) * f(k);
@@ -127,8 +130,8 @@ TEST(BurleySampling, InverseCdfAndPdfAgainstTheClosedForm)
     const glm::dvec3 d = burley_shapes(m);
     EXPECT_EQ(d.x, m.profile[0].d);
     for (int c = 1; c < 3; ++c) {
-        const double median = m.profile[size_t(c)].radius_for_tail(0.5);
-        EXPECT_NEAR(ChannelProfile::burley(d[c]).cdf(median), 0.5, 1e-6) << "channel " << c;
+        const double median = dev::radius_for_tail(m.profile[size_t(c)], 0.5);
+        EXPECT_NEAR(dev::profile_cdf(ChannelProfile::burley(d[c]), median), 0.5, 1e-6) << "channel " << c;
     }
 }
 
@@ -141,8 +144,8 @@ class PeersSeparable : public GpuTest {};
 TEST_F(PeersSeparable, AShadowEdgeGetsTheProfilesEdgeResponse)
 {
     TriangleMesh mesh;
-    for (const TriangleMesh& part : {procedural::box({-6.0f, -6.0f, -0.1f}, {6.0f, 6.0f, 0.0f}, 24),
-                                     procedural::box({-6.0f, -6.0f, 2.0f}, {0.0f, 6.0f, 2.2f}, 8)}) {
+    for (const TriangleMesh& part : {dev::procedural::box({-6.0f, -6.0f, -0.1f}, {6.0f, 6.0f, 0.0f}, 24),
+                                     dev::procedural::box({-6.0f, -6.0f, 2.0f}, {0.0f, 6.0f, 2.2f}, 8)}) {
         const uint32_t base = uint32_t(mesh.positions.size());
         mesh.positions.insert(mesh.positions.end(), part.positions.begin(), part.positions.end());
         for (uint32_t i : part.indices) mesh.indices.push_back(base + i);
@@ -336,7 +339,7 @@ TEST_F(PeersSeparable, ASlabLitFromBehindTransmitsItsProfilesTail)
     RendererOptions options;
     options.light_depth_size = 2048;
     Renderer r(context(), options);
-    r.set_mesh(prepare_mesh(procedural::box({-3.0f, -3.0f, -0.1f}, {3.0f, 3.0f, 0.0f}, 24)));
+    r.set_mesh(prepare_mesh(dev::procedural::box({-3.0f, -3.0f, -0.1f}, {3.0f, 3.0f, 0.0f}, 24)));
     const float albedo = 0.8f;
     Material m = burley_material(glm::dvec3(0.06, 0.04, 0.02), glm::vec3(albedo), "slab");
     m.specular = 0.0f;
@@ -360,7 +363,7 @@ TEST_F(PeersSeparable, ASlabLitFromBehindTransmitsItsProfilesTail)
             std::printf("channel %d: %.5f, expected %.5f (T(h) alone %.5f)\n", c, got, expected, at_h);
             // Measured within 2e-5 of it (the table's 128 quadratic steps, the layer's float32 depth);
             // T(h) without the texel is 3 to 8 % off, so the bound also checks the shrink: 0.2 %.
-            EXPECT_NEAR(got, expected, 0.002 * expected) << shading_mode_name(mode) << ", channel " << c;
+            EXPECT_NEAR(got, expected, 0.002 * expected) << dev::shading_mode_name(mode) << ", channel " << c;
         }
     }
 }

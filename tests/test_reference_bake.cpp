@@ -7,12 +7,14 @@
 
 #include "test_support.hpp"
 
+#include <jade/dev/material.hpp>
 #include <jade/bake.hpp>
 #include <jade/error.hpp>
 #include <jade/io.hpp>
 #include <jade/material.hpp>
 #include <jade/mesh.hpp>
 #include <jade/dev/reference.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -270,7 +272,7 @@ TEST(ReferenceAo, OpenSurfacesAreUnoccluded)
     tri.indices = {0, 1, 2};
     for (const auto& ao : reference_ao(prepare_mesh(tri), AoSettings{.rays = 256, .max_distance_rel = 10.0f}))
         EXPECT_EQ(ao, 0.0f);
-    const PreparedMesh plane = prepare_mesh(procedural::grid(16, 0.25f));
+    const PreparedMesh plane = prepare_mesh(dev::procedural::grid(16, 0.25f));
     for (bool ld : {true, false})
         for (const auto& ao :
              reference_ao(plane, AoSettings{.rays = 128, .low_discrepancy = ld, .max_distance_rel = 2.0f}))
@@ -279,7 +281,7 @@ TEST(ReferenceAo, OpenSurfacesAreUnoccluded)
 
 TEST(ReferenceAo, InsideClosedBoxEveryRayHits)
 {
-    TriangleMesh box = procedural::box({-1, -1, -1}, {1, 1, 1}, 4);
+    TriangleMesh box = dev::procedural::box({-1, -1, -1}, {1, 1, 1}, 4);
     for (size_t t = 0; t < box.indices.size(); t += 3) std::swap(box.indices[t + 1], box.indices[t + 2]);  // inward
     const PreparedMesh m = prepare_mesh(box);
     const uint32_t floor_centre = nearest_vertex(m, {0, 0, -1});
@@ -300,7 +302,7 @@ TEST(ReferenceAo, ParallelPlaneMatchesAnalyticFraction)
     // reaches the plane at distance (h − ε)/cos θ, so A_o = P(cos θ ≥ (h − ε)/L) = 1 − ((h − ε)/L)².
     const float h = 1.0f;
     const PreparedMesh m =
-        prepare_mesh(merged(procedural::grid(10, 1.0f), translated(procedural::grid(10, 1.0f), {0, 0, h})));
+        prepare_mesh(merged(dev::procedural::grid(10, 1.0f), translated(dev::procedural::grid(10, 1.0f), {0, 0, h})));
     const uint32_t centre = nearest_vertex(m, {0, 0, 0});
     for (float rel : {0.08f, 0.1f, 0.2f}) {
         const double L = double(rel) * m.diagonal, eps = 1e-4 * double(m.diagonal);
@@ -322,8 +324,8 @@ TEST(ReferenceAo, SubsetsDeterminismAndErrors)
     const AoSettings s{.rays = 64, .max_distance_rel = 0.5f};
     // A convex surface: rays leave it. Inside-out it occludes itself.
     for (float ao : reference_ao(m, s)) EXPECT_EQ(ao, 0.0f);
-    TriangleMesh bowl = procedural::box({-1, -1, 0}, {1, 1, 0.5f}, 6);
-    bowl = merged(bowl, translated(procedural::grid(6, 0.5f), {0, 0, 1.0f}));
+    TriangleMesh bowl = dev::procedural::box({-1, -1, 0}, {1, 1, 0.5f}, 6);
+    bowl = merged(bowl, translated(dev::procedural::grid(6, 0.5f), {0, 0, 1.0f}));
     const PreparedMesh b = prepare_mesh(bowl);
     const std::vector<float> all = reference_ao(b, s);
     const std::vector<uint32_t> subset = {5, 0, 17, uint32_t(b.vertex_count() - 1), 17};
@@ -345,12 +347,12 @@ namespace {
 /// The t-formula of disk_integral converged adaptively.
 double disk_adaptive(const ChannelProfile& p, double r, double rho)
 {
-    if (r == 0.0) return p.cdf(rho);
+    if (r == 0.0) return dev::profile_cdf(p, rho);
     auto g = [&](double t) {
         const double c = std::clamp((t * t + r * r - rho * rho) / (2 * t * r), -1.0, 1.0);
         return bake::radial_density(p, t) * std::acos(c) / kPi;
     };
-    return p.cdf(std::max(rho - r, 0.0)) + bake::integrate(g, std::abs(r - rho), r + rho, 1e-12, 1e-300);
+    return dev::profile_cdf(p, std::max(rho - r, 0.0)) + bake::integrate(g, std::abs(r - rho), r + rho, 1e-12, 1e-300);
 }
 
 /// The disk integral in polar coordinates about x: along direction ψ the disk spans the
@@ -360,7 +362,8 @@ double disk_polar(const ChannelProfile& p, double r, double rho)
     auto g = [&](double psi) {
         const double c = r * std::cos(psi),
                      root = std::sqrt(std::max(0.0, rho * rho - r * r * std::sin(psi) * std::sin(psi)));
-        return (p.cdf(std::max(c + root, 0.0)) - p.cdf(std::max(c - root, 0.0))) / kPi;  // ψ and −ψ
+        return (dev::profile_cdf(p, std::max(c + root, 0.0)) - dev::profile_cdf(p, std::max(c - root, 0.0))) /
+               kPi;  // ψ and −ψ
     };
     return bake::integrate(g, 0.0, r <= rho ? kPi : std::asin(rho / r), 1e-12, 1e-300);
 }
@@ -403,10 +406,10 @@ TEST(DiskIntegral, GaussLegendreAccuracyAndFarFieldSwitch)
             EXPECT_LT(std::abs(jump), rho <= 0.25 ? 0.02 : 1.0) << name << " ρ = " << rho;
         }
     const auto p = ChannelProfile::burley(1.0);
-    EXPECT_EQ(bake::disk_integral(p, 0.0, 0.7), p.cdf(0.7));
-    EXPECT_NEAR(bake::disk_integral(p, 1e-9, 0.7), p.cdf(0.7), 1e-12);
+    EXPECT_EQ(bake::disk_integral(p, 0.0, 0.7), dev::profile_cdf(p, 0.7));
+    EXPECT_NEAR(bake::disk_integral(p, 1e-9, 0.7), dev::profile_cdf(p, 0.7), 1e-12);
     EXPECT_EQ(bake::vertex_disk_term(p, 0.0, 0.0), 0.0);
-    EXPECT_DOUBLE_EQ(bake::vertex_disk_term(p, 10.0, 1.0), p.R(10.0));
+    EXPECT_DOUBLE_EQ(bake::vertex_disk_term(p, 10.0, 1.0), dev::profile_value(p, 10.0));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -415,7 +418,7 @@ TEST(DiskIntegral, GaussLegendreAccuracyAndFarFieldSwitch)
 TEST(ReferenceTm, FlatGridIsOneAndBeatsThePointSum)
 {
     const double s = 1.0;  // spacing = d
-    const PreparedMesh m = prepare_mesh(procedural::grid(200, float(s)));
+    const PreparedMesh m = prepare_mesh(dev::procedural::grid(200, float(s)));
     const uint32_t centre = nearest_vertex(m, {0, 0, 0});
     const std::vector<float> ao(m.vertex_count(), 0.0f);
     const Material mat = burley_material(glm::dvec3(s), glm::vec3(0.8f));
@@ -424,10 +427,11 @@ TEST(ReferenceTm, FlatGridIsOneAndBeatsThePointSum)
     const double seconds = seconds_since(t0);
     // The point sum: self disk exact, every neighbour A_j·R(r).
     const ChannelProfile& p = mat.profile[0];
-    double point = p.cdf(std::sqrt(m.areas[centre] / kPi));
+    double point = dev::profile_cdf(p, std::sqrt(m.areas[centre] / kPi));
     for (uint32_t j = 0; j < m.vertex_count(); ++j)
         if (j != centre)
-            point += m.areas[j] * p.R(glm::distance(glm::dvec3(m.positions[j]), glm::dvec3(m.positions[centre])));
+            point += m.areas[j] *
+                     dev::profile_value(p, glm::distance(glm::dvec3(m.positions[j]), glm::dvec3(m.positions[centre])));
     std::printf(
         "flat grid 201x201, spacing = d: vertex-disk t_m = %.6f (%.3f %%), point sum %.6f (%.3f %%), %.1f Mpairs/s\n",
         tm, 100 * (tm - 1), point, 100 * (point - 1), m.vertex_count() / seconds * 1e-6);
@@ -438,7 +442,7 @@ TEST(ReferenceTm, FlatGridIsOneAndBeatsThePointSum)
 
 TEST(ReferenceTm, StiffAndSoftLimits)
 {
-    const PreparedMesh m = prepare_mesh(procedural::grid(20, 0.05f));
+    const PreparedMesh m = prepare_mesh(dev::procedural::grid(20, 0.05f));
     const std::vector<float> ao = ao_pattern(m.vertex_count());
     const double diag = m.diagonal;
     // d → 0: only the self disk counts, fully: t_m = 1 − A_o.
@@ -455,7 +459,7 @@ TEST(ReferenceTm, StiffAndSoftLimits)
 
 TEST(ReferenceTm, ScaleInvariantForEveryProfileKind)
 {
-    const TriangleMesh grid = procedural::grid(16, 0.1f);
+    const TriangleMesh grid = dev::procedural::grid(16, 0.1f);
     const PreparedMesh m = prepare_mesh(grid);
     const std::vector<float> ao = ao_pattern(m.vertex_count());
     const double w[3] = {0.3, 0.5, 0.2}, v[3] = {0.001, 0.01, 0.05};
@@ -488,14 +492,14 @@ TEST(ReferenceTm, ThinSlabIsMoreTranslucentThanThickBlock)
     const double d = 0.2, thickness = 0.2;  // Burley d equal to the slab thickness
     const Material mat = burley_material(glm::dvec3(d), glm::vec3(0.8f));
     auto top_centre_tm = [&](float bottom) {
-        const PreparedMesh m = prepare_mesh(procedural::box({-4, -4, bottom}, {4, 4, 0}, 40));
+        const PreparedMesh m = prepare_mesh(dev::procedural::box({-4, -4, bottom}, {4, 4, 0}, 40));
         const std::vector<float> ao = reference_ao(m, AoSettings{.rays = 64});
         return reference_tm(m, ao, mat, std::vector<uint32_t>{nearest_vertex(m, {0, 0, 0})})[0].x;
     };
     const double slab = top_centre_tm(-float(thickness)), block = top_centre_tm(-8.0f);
     // Half-space: 1. Slab: the bottom face adds about ∫ R over a parallel plane at distance h,
     // 1 − cdf(h) (the vertex-disk rule measures it with in-plane distances, so only roughly).
-    const double bottom = 1.0 - mat.profile[0].cdf(thickness);
+    const double bottom = 1.0 - dev::profile_cdf(mat.profile[0], thickness);
     std::printf("top-face centre: slab t_m = %.4f, block t_m = %.4f, 1 + (1 - cdf(h)) = %.4f\n", slab, block,
                 1 + bottom);
     EXPECT_NEAR(block, 1.0, 0.02);

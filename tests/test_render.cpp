@@ -4,6 +4,8 @@
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 
+#include <jade/dev/material.hpp>
+#include <jade/dev/names.hpp>
 #include <jade/dev/renderer.hpp>
 #include <jade/bake.hpp>
 #include <jade/io.hpp>
@@ -260,12 +262,12 @@ TEST_F(Render, GreyMaterialMatchesThreeChannelPath)
     r.set_mesh(unit_sphere(), std::vector<glm::vec3>(unit_sphere().vertex_count(), glm::vec3(0.7f)));
     const auto lights = figure1_lights(kFront);
     Material grey = matte();
-    ASSERT_TRUE(grey.grey());
+    ASSERT_TRUE(dev::is_grey(grey));
     r.set_material(grey);
     RenderedImage one = r.render(kFront, lights, settings(64, ShadingMode::Tm));
     Material rgb = grey;
     rgb.profile[2] = ChannelProfile::burley(0.1 * (1 + 1e-12));  // not grey, same t_m and LUT
-    ASSERT_FALSE(rgb.grey());
+    ASSERT_FALSE(dev::is_grey(rgb));
     r.set_material(rgb);
     RenderedImage three = r.render(kFront, lights, settings(64, ShadingMode::Tm));
     for (size_t i = 0; i < one.rgba.size(); ++i) ASSERT_NEAR(one.rgba[i], three.rgba[i], 1e-6) << "float " << i;
@@ -320,7 +322,7 @@ TEST_F(Render, BadInputIsAnErrorNamingIt)
     Camera bad = kFront;
     bad.target = bad.eye;
     EXPECT_NE(message([&] { r.render(bad, lights, settings(32, ShadingMode::Tm)); }).find("camera"), std::string::npos);
-    EXPECT_THROW(parse_shading_mode("phong"), Error);
+    EXPECT_THROW(dev::parse_shading_mode("phong"), Error);
 }
 
 // The four modes in one test: the bunny is baked once (ctest runs each test in its own process).
@@ -338,7 +340,7 @@ TEST_F(Render, GoldenBunnyInFourModesUnderFigure1Lights)
         s.mode = mode;
         // A fixed colour-map range: the mesh's extreme values move with every bake change.
         s.false_color_min = 0.6f, s.false_color_max = 1.2f;
-        std::string name = "bunny_" + std::string(shading_mode_name(mode));
+        std::string name = "bunny_" + std::string(dev::shading_mode_name(mode));
         std::replace(name.begin(), name.end(), '-', '_');
         SCOPED_TRACE(name);
         expect_matches_golden(r.render(camera, figure1_lights(camera), s), name);

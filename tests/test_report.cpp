@@ -4,6 +4,7 @@
 #include "test_support.hpp"
 
 #include <jade/mesh.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include <gtest/gtest.h>
 
@@ -23,7 +24,7 @@ namespace {
 // they face each other.
 fs::path write_scene()
 {
-    TriangleMesh slab = procedural::box({-1.0f, -1.0f, -0.2f}, {1.0f, 1.0f, 0.0f}, 8);
+    TriangleMesh slab = dev::procedural::box({-1.0f, -1.0f, -0.2f}, {1.0f, 1.0f, 0.0f}, 8);
     TriangleMesh ball = procedural::sphere(0.4f, 14, 28);
     std::ostringstream off;
     off << "OFF\n"

@@ -4,11 +4,14 @@
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 
+#include <jade/dev/material.hpp>
+#include <jade/dev/cache.hpp>
 #include <jade/dev/context.hpp>
-#include <jade/cache.hpp>
 #include <jade/io.hpp>
 #include <jade/error.hpp>
+#include <jade/dev/scene.hpp>
 #include <jade/scene.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -123,24 +126,24 @@ TEST(SceneMaterials, VolumeAndDiffuseTransmissionBecomeABurleyProfilePerChannel)
     ASSERT_EQ(s.objects.size(), 1u);
     const Material& m = s.objects[0].material;
     EXPECT_FALSE(m.opaque);
-    EXPECT_FALSE(m.grey());
+    EXPECT_FALSE(dev::is_grey(m));
     EXPECT_EQ(m.name, "jelly");
     const double A[3] = {0.5, 0.8, 0.9}, T[3] = {1, 0.5, 0.25}, a[3] = {0.5, 1, 0.25};
     for (int c = 0; c < 3; ++c) {
         const double mfp = 0.02 * T[c] / (1.0 - std::log(a[c]));  // metres
         EXPECT_EQ(m.profile[c].kind, ProfileKind::Burley);
         // The medium whose derived albedo is A (medium_from_appearance): R_d = A / albedo_scale.
-        const double rd = std::min(A[c] / MediumFit{}.albedo_scale, 1.0);
+        const double rd = std::min(A[c] / dev::MediumFit{}.albedo_scale, 1.0);
         EXPECT_NEAR(m.profile[c].d, mfp / burley_s(rd), 1e-6 * mfp) << "channel " << c;
-        const double forward = MediumFit{}.forward_extinction;
+        const double forward = dev::MediumFit{}.forward_extinction;
         EXPECT_NEAR(m.transmission.sigma_t[c], forward / mfp, 1e-5 / mfp) << "channel " << c;
         EXPECT_NEAR(m.albedo[c], A[c], 1e-6);
     }
     // e.g. red: ℓ = 0.02 / (1 + ln 2) = 11.81 mm, R_d = 0.5 / 0.9 = 0.556, s(0.556) = 1.396, d = 8.457 mm.
     EXPECT_NEAR(m.profile[0].d, 0.011812322 / (1.85 - 0.5 / 0.9 + 7.0 * std::pow(0.8 - 0.5 / 0.9, 3.0)), 1e-8);
     // diffuseTransmissionFactor × extras strength scales the medium's blur.
-    EXPECT_NEAR(m.strength, MediumFit{}.strength * 0.5 * 1.5, 1e-6);
-    EXPECT_NEAR(m.spread_strength, MediumFit{}.spread_strength * 0.5 * 1.5, 1e-6);
+    EXPECT_NEAR(m.strength, dev::MediumFit{}.strength * 0.5 * 1.5, 1e-6);
+    EXPECT_NEAR(m.spread_strength, dev::MediumFit{}.spread_strength * 0.5 * 1.5, 1e-6);
     EXPECT_NEAR(m.roughness, 0.3, 1e-6);
 }
 
@@ -152,7 +155,7 @@ TEST(SceneMaterials, WhiteAttenuationIsGreyAndPresetsComeFromExtras)
         "KHR_materials_volume":{"thicknessFactor":1,"attenuationDistance":0.01}}})",
                      &warnings);
     EXPECT_TRUE(warnings.empty());
-    EXPECT_TRUE(grey.objects[0].material.grey());
+    EXPECT_TRUE(dev::is_grey(grey.objects[0].material));
     EXPECT_FALSE(grey.objects[0].material.opaque);
     EXPECT_NEAR(grey.objects[0].material.profile[0].d, 0.01 / burley_s(1.0), 1e-12);  // default base colour white
 
@@ -216,7 +219,7 @@ TEST(SceneMaterials, BadValuesWarnNamingFileMaterialAndValueAndFallBack)
     EXPECT_TRUE(std::isfinite(huge.objects[0].material.spread_strength));
     w.clear();
     // The fallback multiplier 1 leaves the medium's blur as from_medium derives it.
-    EXPECT_FLOAT_EQ(range.objects[0].material.spread_strength, float(MediumFit{}.spread_strength));
+    EXPECT_FLOAT_EQ(range.objects[0].material.spread_strength, float(dev::MediumFit{}.spread_strength));
     EXPECT_NEAR(range.objects[0].material.profile[1].d, 0.01 * 1e-3 / burley_s(1.0), 1e-15);
 }
 
@@ -255,22 +258,23 @@ TEST(ScenePlan, MixedSceneGetsOnlyThePassesEachObjectNeeds)
     EXPECT_TRUE(warnings.empty());
     ASSERT_EQ(scene.objects.size(), 4u);
     const ScenePlan plan = plan_scene(scene, {});
-    const ObjectPlan &floor = plan.objects[0], &grey = plan.objects[1], &red = plan.objects[2], &bar = plan.objects[3];
+    const std::vector<dev::ObjectPlan>& objects = dev::plan_details(plan).objects;
+    const dev::ObjectPlan &floor = objects[0], &grey = objects[1], &red = objects[2], &bar = objects[3];
 
     EXPECT_TRUE(floor.opaque);
     EXPECT_EQ(floor.variant.mode, ShadingMode::Lambert);
     ASSERT_EQ(floor.passes.size(), 1u);
-    EXPECT_EQ(floor.passes[0].kind, PassKind::Draw);
+    EXPECT_EQ(floor.passes[0].kind, dev::PassKind::Draw);
     EXPECT_EQ(floor.transient_bytes(), 0u);
 
     EXPECT_EQ(grey.channels, 1u);
     EXPECT_EQ(grey.variant.mode, ShadingMode::Tm);
     EXPECT_EQ(grey.variant.channels, 1u);  // one LUT fetch
-    EXPECT_TRUE(grey.runs(PassKind::StaticBake));
-    EXPECT_FALSE(grey.runs(PassKind::DynamicBake));
+    EXPECT_TRUE(grey.runs(dev::PassKind::StaticBake));
+    EXPECT_FALSE(grey.runs(dev::PassKind::DynamicBake));
     EXPECT_EQ(red.channels, 3u);
     EXPECT_EQ(red.variant.channels, 3u);
-    for (const ObjectPlan* o : {&grey, &red}) {
+    for (const dev::ObjectPlan* o : {&grey, &red}) {
         EXPECT_FALSE(o->passes[0].resident);  // the bake's buffers are freed before drawing
         EXPECT_FALSE(o->passes[0].per_frame);
         EXPECT_GT(o->transient_bytes(), 0u);
@@ -278,8 +282,8 @@ TEST(ScenePlan, MixedSceneGetsOnlyThePassesEachObjectNeeds)
 
     EXPECT_TRUE(bar.deforming);
     ASSERT_EQ(bar.passes.size(), 3u);
-    EXPECT_EQ(bar.passes[0].kind, PassKind::Deform);
-    EXPECT_EQ(bar.passes[1].kind, PassKind::DynamicBake);
+    EXPECT_EQ(bar.passes[0].kind, dev::PassKind::Deform);
+    EXPECT_EQ(bar.passes[1].kind, dev::PassKind::DynamicBake);
     EXPECT_TRUE(bar.passes[0].per_frame && bar.passes[1].per_frame && bar.passes[1].resident);
     EXPECT_EQ(bar.variant.channels, 3u);
 
@@ -311,8 +315,8 @@ protected:
     }
     static uint64_t draw_buffer_bytes(const ScenePlan& plan)
     {
-        uint64_t sum = plan.shared_buffer_bytes();  // the one translucency LUT of the scene
-        for (const auto& o : plan.objects) sum += o.passes.back().buffer_bytes();
+        uint64_t sum = dev::plan_details(plan).shared_buffer_bytes();  // the one translucency LUT of the scene
+        for (const auto& o : dev::plan_details(plan).objects) sum += o.passes.back().buffer_bytes();
         return sum;
     }
 };
@@ -323,22 +327,22 @@ TEST_F(SceneGpuTest, StaticSceneSecondRunReadsTheCacheAndCreatesNoBakeObjects)
 {
     Scene scene{"static",
                 {object("grey", procedural::sphere(1.0f, 10, 14), burley_material(glm::dvec3(0.2), glm::vec3(0.8f))),
-                 object("red", procedural::box({1.5f, -1, -1}, {3.5f, 1, 1}, 5),
+                 object("red", dev::procedural::box({1.5f, -1, -1}, {3.5f, 1, 1}, 5),
                         burley_material({0.4, 0.2, 0.1}, glm::vec3(0.8f))),
                  // over 2048 vertices: the clustered far field (cluster tree buffers)
                  object("big", procedural::sphere(1.0f, 40, 80), burley_material({0.1, 0.05, 0.03}, glm::vec3(0.8f)))}};
-    BakeCache cache(dir);
+    dev::BakeCache cache(dir);
     const ObjectCounts c0 = dev::created_objects(context());
     {
-        SceneRenderer first(context(), scene, settings, cached_bakes(cache));
-        EXPECT_FALSE(first.plan().objects[0].cached);
-        for (const auto& p : first.passes_run()) EXPECT_EQ(p.kind, PassKind::StaticBake);
+        SceneRenderer first(context(), scene, settings, dev::cached_bakes(cache));
+        EXPECT_FALSE(dev::plan_details(first.plan()).objects[0].cached);
+        for (const auto& p : dev::passes_run(first)) EXPECT_EQ(p.kind, dev::PassKind::StaticBake);
         // What the static bakes allocated (all of it freed at the end of the constructor)
         // against the plan's estimate: the counted bytes minus the draws' exactly known ones.
         const uint64_t baked = dev::created_objects(context()).device_buffer_bytes - c0.device_buffer_bytes -
                                draw_buffer_bytes(first.plan());
         uint64_t estimate = 0;
-        for (const auto& o : first.plan().objects) estimate += o.passes[0].buffer_bytes();
+        for (const auto& o : dev::plan_details(first.plan()).objects) estimate += o.passes[0].buffer_bytes();
         std::printf("static bakes: %llu bytes allocated, %llu estimated (%.1f %%)\n", (unsigned long long)baked,
                     (unsigned long long)estimate, 100.0 * (double(estimate) / double(baked) - 1.0));
         EXPECT_NEAR(double(estimate) / double(baked), 1.0, 0.10);  // measured: +0.4 % here, -4.6 % on the bunny
@@ -346,41 +350,43 @@ TEST_F(SceneGpuTest, StaticSceneSecondRunReadsTheCacheAndCreatesNoBakeObjects)
     // A scene that never bakes (t_m = 0 given) is the reference for "only the draws".
     const ObjectCounts c1 = dev::created_objects(context());
     {
-        SceneRenderer never(context(), scene, settings, never_baked());
+        SceneRenderer never(context(), scene, settings, dev::never_baked());
     }
     const ObjectCounts c2 = dev::created_objects(context());
-    SceneRenderer second(context(), scene, settings, cached_bakes(BakeCache(dir)));
+    SceneRenderer second(context(), scene, settings, dev::cached_bakes(dev::BakeCache(dir)));
     const ObjectCounts c3 = dev::created_objects(context());
-    for (const auto& o : second.plan().objects) EXPECT_TRUE(o.cached);
-    ASSERT_EQ(second.passes_run().size(), 3u);
-    for (const auto& p : second.passes_run()) EXPECT_EQ(p.kind, PassKind::CacheRead);
+    for (const auto& o : dev::plan_details(second.plan()).objects) EXPECT_TRUE(o.cached);
+    ASSERT_EQ(dev::passes_run(second).size(), 3u);
+    for (const auto& p : dev::passes_run(second)) EXPECT_EQ(p.kind, dev::PassKind::CacheRead);
     // Exactly what the never-baked scene created: the one shared LUT (its builder and buffers),
     // each Renderer's vertex, index and frame buffers; no bake kernel, no bake buffer.
     EXPECT_EQ(c3.compute_pipelines - c2.compute_pipelines, c2.compute_pipelines - c1.compute_pipelines);
     EXPECT_EQ(c3.compute_pipelines - c2.compute_pipelines, 1u);  // one LUT builder for all the Renderers
     EXPECT_EQ(c3.buffers - c2.buffers, c2.buffers - c1.buffers);
     EXPECT_EQ(c3.device_buffer_bytes - c2.device_buffer_bytes, draw_buffer_bytes(second.plan()));
-    EXPECT_GT(second.tm(1)[0].x, 0.0f);
+    EXPECT_GT(dev::object_tm(second, 1)[0].x, 0.0f);
 }
 
 TEST_F(SceneGpuTest, OpaqueObjectAllocatesNoTmBuffers)
 {
     Scene scene{"opaque", {object("stone", procedural::sphere(1.0f, 10, 14), material_preset("opaque", 1.0))}};
     const ScenePlan plan = plan_scene(scene, settings);
-    ASSERT_EQ(plan.objects[0].passes.size(), 1u);
-    for (const auto& b : plan.objects[0].passes[0].buffers) EXPECT_EQ(b.name.find("t_m"), std::string::npos) << b.name;
+    ASSERT_EQ(dev::plan_details(plan).objects[0].passes.size(), 1u);
+    for (const auto& b : dev::plan_details(plan).objects[0].passes[0].buffers)
+        EXPECT_EQ(b.name.find("t_m"), std::string::npos) << b.name;
     const ObjectCounts c0 = dev::created_objects(context());
     SceneRenderer renderer(context(), scene, settings);
     const ObjectCounts c1 = dev::created_objects(context());
-    EXPECT_TRUE(renderer.passes_run().empty());
-    EXPECT_TRUE(renderer.tm(0).empty());
+    EXPECT_TRUE(dev::passes_run(renderer).empty());
+    EXPECT_TRUE(dev::object_tm(renderer, 0).empty());
     EXPECT_EQ(c1.compute_pipelines - c0.compute_pipelines, 1u);  // the Renderer's LUT builder only
     // vertices, indices, frame data, LUT quads, transmission table (device-local), the LUT build's
     // read-back and the 16-bit LUT's upload (host-visible)
     EXPECT_EQ(c1.buffers - c0.buffers, 7u);
     EXPECT_EQ(c1.device_buffer_bytes - c0.device_buffer_bytes,
-              plan.objects[0].passes[0].buffer_bytes() + plan.shared_buffer_bytes());
-    EXPECT_EQ(plan.objects[0].variant.mode, ShadingMode::Lambert);
+              dev::plan_details(plan).objects[0].passes[0].buffer_bytes() +
+                  dev::plan_details(plan).shared_buffer_bytes());
+    EXPECT_EQ(dev::plan_details(plan).objects[0].variant.mode, ShadingMode::Lambert);
 }
 
 TEST_F(SceneGpuTest, GreyMaterialIsDrawnWithOneFetchAndMatchesTheThreeChannelDraw)
@@ -389,14 +395,14 @@ TEST_F(SceneGpuTest, GreyMaterialIsDrawnWithOneFetchAndMatchesTheThreeChannelDra
     grey.strength = 2.0f;
     Material rgb = grey;  // the same profile, made "coloured" by a relative 1e-7 in green
     rgb.profile[1] = ChannelProfile::burley(0.3 * (1.0 + 1e-7));
-    ASSERT_TRUE(grey.grey());
-    ASSERT_FALSE(rgb.grey());
+    ASSERT_TRUE(dev::is_grey(grey));
+    ASSERT_FALSE(dev::is_grey(rgb));
     const TriangleMesh mesh = procedural::sphere(1.0f, 24, 32);
     SceneRenderer one(context(), {"grey", {object("grey", mesh, grey)}}, settings);
     SceneRenderer three(context(), {"rgb", {object("rgb", mesh, rgb)}}, settings);
-    EXPECT_EQ(one.plan().objects[0].variant.channels, 1u);
-    EXPECT_EQ(three.plan().objects[0].variant.channels, 3u);
-    EXPECT_EQ(one.plan().objects[0].channels, 1u);
+    EXPECT_EQ(dev::plan_details(one.plan()).objects[0].variant.channels, 1u);
+    EXPECT_EQ(dev::plan_details(three.plan()).objects[0].variant.channels, 3u);
+    EXPECT_EQ(dev::plan_details(one.plan()).objects[0].channels, 1u);
 
     const Camera camera = Camera::framing(one.bbox_min(), one.bbox_max(), 1.0f, {0.0f, 0.0f, 1.0f});
     const std::vector<Light> lights = {Light::directional({-1.0f, 0.3f, -1.0f}, glm::vec3(3.0f)),
@@ -415,20 +421,20 @@ TEST_F(SceneGpuTest, GreyMaterialIsDrawnWithOneFetchAndMatchesTheThreeChannelDra
     EXPECT_GT(lit, 1000u);  // the sphere is there and lit
     EXPECT_LT(max_diff, 1e-3 * max_value) << "grey (1 fetch) and RGB (3 fetches) renders differ";
     // The wrap of light around the sphere needs t_m: the grey render is not Lambert.
-    EXPECT_GT(one.tm(0)[0].x, 0.0f);
+    EXPECT_GT(dev::object_tm(one, 0)[0].x, 0.0f);
 }
 
 TEST_F(SceneGpuTest, MixedSceneRunsThePlannedPassesPerFrame)
 {
     const Scene scene = load_scene(test::data("scene_mixed.gltf"));
-    BakeCache cache(dir);
+    dev::BakeCache cache(dir);
     const ObjectCounts c0 = dev::created_objects(context());
-    SceneRenderer renderer(context(), scene, settings, cached_bakes(cache));
+    SceneRenderer renderer(context(), scene, settings, dev::cached_bakes(cache));
     // What the constructor allocated besides the draws (whose bytes are exact: the LUT would
     // hide the rest): static bakes, deformer, dynamic bake, against the plan's estimate.
     uint64_t estimate = 0;
-    for (const auto& o : renderer.plan().objects)
-        for (const auto& p : o.passes) estimate += p.kind == PassKind::Draw ? 0 : p.buffer_bytes();
+    for (const auto& o : dev::plan_details(renderer.plan()).objects)
+        for (const auto& p : o.passes) estimate += p.kind == dev::PassKind::Draw ? 0 : p.buffer_bytes();
     const double allocated = double(dev::created_objects(context()).device_buffer_bytes - c0.device_buffer_bytes -
                                     draw_buffer_bytes(renderer.plan()));
     std::printf("mixed scene without draws: %.0f bytes allocated, %llu estimated\n", allocated,
@@ -440,26 +446,26 @@ TEST_F(SceneGpuTest, MixedSceneRunsThePlannedPassesPerFrame)
     rs.samples = 1;
     const Camera camera = Camera::framing(renderer.bbox_min(), renderer.bbox_max());
     const std::vector<Light> lights = default_lights(camera);
-    const size_t before = renderer.passes_run().size();
+    const size_t before = dev::passes_run(renderer).size();
     renderer.render(0.25, camera, lights, rs);
     renderer.render(0.5, camera, lights, rs);
     size_t deform = 0, dynamic = 0, draws = 0, bakes = 0;
-    for (size_t i = 0; i < renderer.passes_run().size(); ++i) {
-        const PassRecord& p = renderer.passes_run()[i];
+    for (size_t i = 0; i < dev::passes_run(renderer).size(); ++i) {
+        const dev::PassRecord& p = dev::passes_run(renderer)[i];
         if (i < before) {
-            bakes += p.kind == PassKind::StaticBake;
+            bakes += p.kind == dev::PassKind::StaticBake;
             continue;
         }
-        deform += p.kind == PassKind::Deform;
-        dynamic += p.kind == PassKind::DynamicBake;
-        draws += p.kind == PassKind::Draw;
-        if (p.kind != PassKind::Draw) EXPECT_EQ(p.object, "bending_bar/0");  // only the deforming object
+        deform += p.kind == dev::PassKind::Deform;
+        dynamic += p.kind == dev::PassKind::DynamicBake;
+        draws += p.kind == dev::PassKind::Draw;
+        if (p.kind != dev::PassKind::Draw) EXPECT_EQ(p.object, "bending_bar/0");  // only the deforming object
     }
     EXPECT_EQ(bakes, 2u);  // the two static translucent spheres; not the floor
     EXPECT_EQ(deform, 2u);
     EXPECT_EQ(dynamic, 2u);
     EXPECT_EQ(draws, 8u);
-    EXPECT_GT(renderer.tm(3)[0].x, 0.0f);
+    EXPECT_GT(dev::object_tm(renderer, 3)[0].x, 0.0f);
 }
 
 TEST_F(SceneGpuTest, RigidInstancesOfAPrimitiveShareOneBake)
@@ -487,15 +493,15 @@ TEST_F(SceneGpuTest, RigidInstancesOfAPrimitiveShareOneBake)
     Scene separate = scene;
     separate.objects[4].instance_of.reset();
     SceneRenderer shared(context(), scene, settings), own(context(), separate, settings);
-    EXPECT_TRUE(shared.plan().objects[4].runs(PassKind::SharedBake));
-    EXPECT_FALSE(shared.plan().objects[4].runs(PassKind::StaticBake));
-    EXPECT_EQ(shared.plan().objects[4].transient_bytes(), 0u);
-    EXPECT_TRUE(own.plan().objects[4].runs(PassKind::StaticBake));
+    EXPECT_TRUE(dev::plan_details(shared.plan()).objects[4].runs(dev::PassKind::SharedBake));
+    EXPECT_FALSE(dev::plan_details(shared.plan()).objects[4].runs(dev::PassKind::StaticBake));
+    EXPECT_EQ(dev::plan_details(shared.plan()).objects[4].transient_bytes(), 0u);
+    EXPECT_TRUE(dev::plan_details(own.plan()).objects[4].runs(dev::PassKind::StaticBake));
     EXPECT_NE(shared.plan().describe().find("shared with an earlier instance"), std::string::npos);
     size_t bakes = 0;
-    for (const PassRecord& p : shared.passes_run()) bakes += p.kind == PassKind::StaticBake;
+    for (const dev::PassRecord& p : dev::passes_run(shared)) bakes += p.kind == dev::PassKind::StaticBake;
     EXPECT_EQ(bakes, 2u) << "the grey and the red sphere; not the copy";
-    EXPECT_EQ(shared.tm(4), shared.tm(1));
+    EXPECT_EQ(dev::object_tm(shared, 4), dev::object_tm(shared, 1));
 
     // Its own bake welds the turned vertices a little differently (389 bake vertices against 391)
     // and sends the AO rays in other directions against the mesh: the same t_m on average, and
@@ -505,7 +511,7 @@ TEST_F(SceneGpuTest, RigidInstancesOfAPrimitiveShareOneBake)
         for (const glm::vec3& t : v) sum += double(t.x);
         return sum / double(v.size());
     };
-    const double tm_shared = mean_tm(shared.tm(4)), tm_own = mean_tm(own.tm(4));
+    const double tm_shared = mean_tm(dev::object_tm(shared, 4)), tm_own = mean_tm(dev::object_tm(own, 4));
     std::printf("rigid instance: mean t_m shared %.5f, its own bake %.5f\n", tm_shared, tm_own);
     EXPECT_NEAR(tm_shared, tm_own, 0.01 * tm_own);
     RenderSettings rs;
@@ -539,8 +545,8 @@ TEST_F(SceneGpuTest, LaterObjectsAreDepthTestedAgainstEarlierOnesWithMsaa)
     blue.albedo = {0.05f, 0.05f, 0.9f};
     red.specular = blue.specular = 0.0f;
     Scene scene{"depth",
-                {object("front", procedural::box({-1, -1, 0.5f}, {1, 1, 1}, 1), red),
-                 object("back", procedural::box({-2, -2, -1}, {2, 2, -0.5f}, 1), blue)}};
+                {object("front", dev::procedural::box({-1, -1, 0.5f}, {1, 1, 1}, 1), red),
+                 object("back", dev::procedural::box({-2, -2, -1}, {2, 2, -0.5f}, 1), blue)}};
     SceneRenderer renderer(context(), scene, settings);
     const Camera camera{{0.0f, 0.0f, 8.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 40.0f};
     const std::vector<Light> lights = {Light::directional({0, 0, 1}, glm::vec3(3.0f))};
@@ -639,7 +645,7 @@ TEST(SceneCli, BenchRenderSceneComparesCachedWithNeverBaked)
     const auto scene =
         write_gltf("bench_static",
                    {{procedural::sphere(0.05f, 8, 12), 0, {}},
-                    {procedural::box({-0.1f, -0.06f, -0.1f}, {0.1f, -0.05f, 0.1f}, 1), 1, {}}},
+                    {dev::procedural::box({-0.1f, -0.06f, -0.1f}, {0.1f, -0.05f, 0.1f}, 1), 1, {}}},
                    R"([{"extensions":{"KHR_materials_diffuse_transmission":{"diffuseTransmissionFactor":1}}},{}])");
     std::filesystem::remove_all(cache);
     r = test::run_cli({"bench", "render", "--scene", scene.string(), "--cache", cache.string(), "--repeat", "2",

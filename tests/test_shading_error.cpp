@@ -12,6 +12,7 @@
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 
+#include <jade/dev/material.hpp>
 #include <jade/dev/renderer.hpp>
 #include <jade/bake.hpp>
 #include <jade/io.hpp>
@@ -72,7 +73,7 @@ glm::dvec3 attenuation(const Transmission& tr, double t, double lobe, double fol
         const double ballistic = std::exp(-double(tr.sigma_t[c]) * t);
         const double diffused =
             -std::expm1(-double(tr.sigma_s_reduced[c]) * h) *
-            slab_diffusion_transmittance(h, tr.sigma_tr[c], tr.source_depth[c], tr.extrapolation[c]);
+            dev::slab_diffusion_transmittance(h, tr.sigma_tr[c], tr.source_depth[c], tr.extrapolation[c]);
         out[c] = double(tr.weight) * ballistic * lobe * follow + double(tr.diffusion_weight) * diffused * behind / kPi;
     }
     return out;
@@ -91,11 +92,11 @@ glm::dvec3 reference_pixel(const ShadingInputs& in, size_t p, const Material& m,
     const double exit = m.boundary_transmittance ? boundary(glm::dot(n, v), f0, alpha) : 1.0;
     glm::dvec3 t;
     for (int c = 0; c < 3; ++c)
-        t[c] =
-            std::min(std::clamp(double(in.tm[p][m.grey() ? 0 : c]), 0.0, 3e38) *
-                         (double(m.strength) + double(m.spread_strength) *
-                                                   std::clamp(double(in.normal_spread[p][m.grey() ? 0 : c]), 0.0, 1.0)),
-                     LutLayout::kMaxVariance);
+        t[c] = std::min(
+            std::clamp(double(in.tm[p][dev::is_grey(m) ? 0 : c]), 0.0, 3e38) *
+                (double(m.strength) + double(m.spread_strength) *
+                                          std::clamp(double(in.normal_spread[p][dev::is_grey(m) ? 0 : c]), 0.0, 1.0)),
+            LutLayout::kMaxVariance);
     const size_t pixels = size_t(in.width) * in.height;
     glm::dvec3 color(0.0);
     for (size_t k = 0; k < lights.size(); ++k) {
@@ -188,16 +189,16 @@ TEST_F(ShadingError, EveryEvaluationPathKeepsTheFinal8BitImageWithinHalfALevel)
         std::string name;
         RendererOptions options;
     };
-    const auto options = [](TmEvaluation evaluation, LightPathSampling light_path = LightPathSampling::Auto) {
-        RendererOptions o{.light_path = light_path};
-        dev::set_study(o, {.tm_evaluation = evaluation});
+    const auto options = [](TmEvaluation evaluation, dev::LightPathSampling light_path = dev::LightPathSampling::Auto) {
+        RendererOptions o;
+        dev::set_study(o, {.tm_evaluation = evaluation, .light_path = light_path});
         return o;
     };
     const std::vector<Path> paths = {
         {"lut", options(TmEvaluation::Lut)},
         {"lut16", options(TmEvaluation::LutFiltered)},
         {"alu", options(TmEvaluation::Alu)},
-        {"alu, light path per fragment", options(TmEvaluation::Alu, LightPathSampling::PerFragment)}};
+        {"alu, light path per fragment", options(TmEvaluation::Alu, dev::LightPathSampling::PerFragment)}};
     std::vector<std::unique_ptr<Renderer>> renderers;
     for (const Path& p : paths) renderers.push_back(std::make_unique<Renderer>(context(), p.options));
     std::vector<ImageError> worst(paths.size());
@@ -212,7 +213,7 @@ TEST_F(ShadingError, EveryEvaluationPathKeepsTheFinal8BitImageWithinHalfALevel)
             const BakeResult bake = baker.bake(mesh.prepared, material, BakeSettings::preset(Quality::Draft));
             for (auto& r : renderers) r->set_mesh(mesh.prepared, bake);
             // Auto takes the path per vertex on both meshes; the last renderer per fragment.
-            ASSERT_EQ(renderers[2]->light_path(), LightPathSampling::PerVertex) << mesh.mesh;
+            ASSERT_EQ(dev::light_path(*renderers[2]), dev::LightPathSampling::PerVertex) << mesh.mesh;
             for (float strength : {0.25f, 0.5f, 1.0f, 2.0f, 4.0f}) {
                 material.strength = strength;
                 RenderSettings s;
@@ -221,17 +222,17 @@ TEST_F(ShadingError, EveryEvaluationPathKeepsTheFinal8BitImageWithinHalfALevel)
                 s.transparent_background = true;
                 s.shadows = false;  // the reference shades the inputs, which carry no visibility
                 // The inputs as each light-path sampling rasterises them.
-                std::map<LightPathSampling, ShadingInputs> inputs;
+                std::map<dev::LightPathSampling, ShadingInputs> inputs;
                 for (auto& r : renderers) {
                     r->set_material(material);
-                    if (!inputs.count(r->light_path()))
-                        inputs[r->light_path()] = dev::shading_inputs(*r, cam, lights, s);
+                    if (!inputs.count(dev::light_path(*r)))
+                        inputs[dev::light_path(*r)] = dev::shading_inputs(*r, cam, lights, s);
                 }
                 ASSERT_TRUE(material.transmission.enabled() == (inputs.begin()->second.transmits[1] == 1)) << preset;
                 for (size_t i = 0; i < paths.size(); ++i) {
                     Renderer& r = *renderers[i];
                     const ImageError err =
-                        compare(r.render(cam, lights, s), inputs.at(r.light_path()), material, cam, lights);
+                        compare(r.render(cam, lights, s), inputs.at(dev::light_path(r)), material, cam, lights);
                     ASSERT_GT(err.values, 3u * 4000u) << mesh.mesh;
                     SCOPED_TRACE(mesh.mesh + " " + preset + " strength " + std::to_string(strength) + " " +
                                  paths[i].name);

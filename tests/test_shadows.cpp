@@ -7,7 +7,9 @@
 #include "test_support.hpp"
 
 #include <jade/bake.hpp>
+#include <jade/dev/names.hpp>
 #include <jade/render.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
@@ -30,8 +32,8 @@ PreparedMesh plane_and_box()
 {
     TriangleMesh mesh;
     mesh.name = "plane and box";
-    for (const TriangleMesh& part : {procedural::box({-3.0f, -3.0f, -0.1f}, {3.0f, 3.0f, 0.0f}, 24),
-                                     procedural::box({-0.5f, -0.5f, 2.0f}, {0.5f, 0.5f, 3.0f}, 4)}) {
+    for (const TriangleMesh& part : {dev::procedural::box({-3.0f, -3.0f, -0.1f}, {3.0f, 3.0f, 0.0f}, 24),
+                                     dev::procedural::box({-0.5f, -0.5f, 2.0f}, {0.5f, 0.5f, 3.0f}, 4)}) {
         const uint32_t base = uint32_t(mesh.positions.size());
         mesh.positions.insert(mesh.positions.end(), part.positions.begin(), part.positions.end());
         for (uint32_t i : part.indices) mesh.indices.push_back(base + i);
@@ -158,7 +160,7 @@ TEST_F(RenderShadows, ABoxShadowsThePlaneUnderADirectionalLight)
         RenderSettings rs = lambert(true);
         rs.mode = mode;
         const RenderedImage shaded = r.render(camera(), {&light, 1}, rs);
-        EXPECT_LT(red_at(shaded, centre), 1e-3 * lit) << shading_mode_name(mode);
+        EXPECT_LT(red_at(shaded, centre), 1e-3 * lit) << dev::shading_mode_name(mode);
     }
 }
 
@@ -212,8 +214,8 @@ TEST_F(RenderShadows, ALitSphereHasNoAcne)
          {Light::directional({1.0f, 1.0f, 1.0f}, glm::vec3(1.0f)),
           Light::directional({1.0f, 0.2f, -0.1f}, glm::vec3(1.0f)), Light::point({3.0f, 2.0f, 3.0f}, glm::vec3(20.0f))})
         for (ShadingMode mode : {ShadingMode::Lambert, ShadingMode::Curvature, ShadingMode::Tm}) {
-            SCOPED_TRACE(std::string(shading_mode_name(mode)) + ", light at " + std::to_string(light.vector.x) + ", " +
-                         std::to_string(light.vector.y) + ", " + std::to_string(light.vector.z));
+            SCOPED_TRACE(std::string(dev::shading_mode_name(mode)) + ", light at " + std::to_string(light.vector.x) +
+                         ", " + std::to_string(light.vector.y) + ", " + std::to_string(light.vector.z));
             RenderSettings rs = lambert(true);
             rs.mode = mode, rs.width = rs.height = 128;
             const RenderedImage with = r.render(cam, {&light, 1}, rs);
@@ -228,6 +230,6 @@ TEST_F(RenderShadows, ALitSphereHasNoAcne)
                 differ += d > 1e-3f * peak ? 1 : 0;
             }
             EXPECT_LE(worst, 1e-3f * peak) << differ << " values differ by more than 1e-3 of the peak " << peak;
-            std::printf("%s: largest difference %.2e of the peak\n", shading_mode_name(mode).data(), worst / peak);
+            std::printf("%s: largest difference %.2e of the peak\n", dev::shading_mode_name(mode).data(), worst / peak);
         }
 }

@@ -6,11 +6,14 @@
 // (The > 1 M-vertex case, which needs chunked passes, is tests/test_large_mesh.cpp.)
 #include "gpu_fixture.hpp"
 
+#include <jade/dev/bake.hpp>
 #include <jade/bake.hpp>
+#include <jade/dev/names.hpp>
 #include <jade/error.hpp>
 #include <jade/dev/lut.hpp>
 #include <jade/dev/reference.hpp>
 #include <jade/render.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include <glm/geometric.hpp>
 
@@ -49,8 +52,8 @@ TriangleMesh scaled(TriangleMesh m, float factor)
 /// other (AO well inside (0, 1)), the rest is open. 3 × 3 × 2.3 units, ~440 bake vertices.
 TriangleMesh box_under_lid()
 {
-    TriangleMesh m = merged(procedural::box({-1, -1, -1}, {1, 1, 1}, 6),
-                            procedural::box({-1.5f, -1.5f, 1.15f}, {1.5f, 1.5f, 1.3f}, 6));
+    TriangleMesh m = merged(dev::procedural::box({-1, -1, -1}, {1, 1, 1}, 6),
+                            dev::procedural::box({-1.5f, -1.5f, 1.15f}, {1.5f, 1.5f, 1.3f}, 6));
     m.name = "box under lid";
     return m;
 }
@@ -88,7 +91,7 @@ struct OddMesh {
 std::vector<OddMesh> odd_meshes()
 {
     std::vector<OddMesh> out;
-    const TriangleMesh box = procedural::box({-1, -1, -1}, {1, 1, 1}, 4);
+    const TriangleMesh box = dev::procedural::box({-1, -1, -1}, {1, 1, 1}, 4);
 
     {  // zero-area triangles: a repeated index, three collinear points, two coincident corners
         TriangleMesh m = box;
@@ -100,12 +103,12 @@ std::vector<OddMesh> odd_meshes()
         out.push_back({m.name, m});
     }
     {  // slivers: one column of a grid moved to 1e-5 spacing from its neighbour (aspect 1e5)
-        TriangleMesh m = procedural::grid(8, 0.25f);
+        TriangleMesh m = dev::procedural::grid(8, 0.25f);
         float left = 1e30f;
         for (auto& p : m.positions) left = std::min(left, p.x);
         for (auto& p : m.positions)
             if (std::abs(p.x - (left + 0.5f)) < 1e-3f) p.x = left + 0.25f + 1e-5f;
-        m = merged(m, procedural::box({-0.5f, -0.5f, -0.6f}, {0.5f, 0.5f, -0.1f}, 3));  // something to occlude
+        m = merged(m, dev::procedural::box({-0.5f, -0.5f, -0.6f}, {0.5f, 0.5f, -0.1f}, 3));  // something to occlude
         m.name = "sliver triangles";
         out.push_back({m.name, m});
     }
@@ -202,10 +205,10 @@ TEST_F(GpuTest, ScaledMeshWithScaledDistanceGivesTheSameResult)
     Baker baker(context());
     const auto reference = baker.bake(unit, burley_material(glm::dvec3(d), glm::vec3(0.8f)), exact_settings(rays));
     ASSERT_TRUE(finite_nonnegative(reference.ao, reference.tm));
-    const auto clustered_reference = baker
-                                         .bake_tm(unit, reference.ao, burley_material(glm::dvec3(d), glm::vec3(0.8f)),
-                                                  BakeSettings::preset(Quality::Default))
-                                         .tm;
+    const auto clustered_reference =
+        dev::bake_tm(baker, unit, reference.ao, burley_material(glm::dvec3(d), glm::vec3(0.8f)),
+                     BakeSettings::preset(Quality::Default))
+            .tm;
     double worst_ao_fraction = 0, worst_tm = 0;
     for (double s : {1e-4, 1e-3, 1e-2, 1e-1, 1e1, 1e2, 1e3, 1e4}) {
         const PreparedMesh mesh = prepare_mesh(scaled(base, float(s)));
@@ -223,8 +226,8 @@ TEST_F(GpuTest, ScaledMeshWithScaledDistanceGivesTheSameResult)
         worst_ao_fraction = std::max(worst_ao_fraction, fraction);
 
         // t_m from the unscaled A_o: only the t_m pass's scale invariance is measured.
-        const auto exact = baker.bake_tm(mesh, reference.ao, m, exact_settings(rays)).tm;
-        const auto clustered = baker.bake_tm(mesh, reference.ao, m, BakeSettings::preset(Quality::Default)).tm;
+        const auto exact = dev::bake_tm(baker, mesh, reference.ao, m, exact_settings(rays)).tm;
+        const auto clustered = dev::bake_tm(baker, mesh, reference.ao, m, BakeSettings::preset(Quality::Default)).tm;
         ASSERT_TRUE(finite_nonnegative(reference.ao, exact));
         ASSERT_TRUE(finite_nonnegative(reference.ao, clustered));
         const double e = max_relative(exact, widened(reference.tm)),
@@ -251,7 +254,7 @@ TEST_F(GpuTest, ScatteringDistanceFromTinyToHugeStaysFiniteAndReachesItsLimits)
     Baker baker(context());
     AoSettings ao_settings;
     ao_settings.rays = 32;
-    const auto ao = baker.bake_ao(mesh, ao_settings);
+    const auto ao = dev::bake_ao(baker, mesh, ao_settings);
     const TmMethod methods[3] = {TmMethod::Exact, TmMethod::Clustered, TmMethod::Grid};
     std::vector<glm::vec3> at_1e5[3];
     double worst[3] = {0, 0, 0};
@@ -260,10 +263,11 @@ TEST_F(GpuTest, ScatteringDistanceFromTinyToHugeStaysFiniteAndReachesItsLimits)
         const Material m = burley_material(glm::dvec3(d), glm::vec3(0.8f));
         const auto reference = reference_tm(mesh, ao, m);
         for (int method = 0; method < 3; ++method) {
-            SCOPED_TRACE(std::string(tm_method_name(methods[method])) + ", d = 1e" + std::to_string(k) + " x diagonal");
+            SCOPED_TRACE(std::string(dev::tm_method_name(methods[method])) + ", d = 1e" + std::to_string(k) +
+                         " x diagonal");
             BakeSettings s = BakeSettings::preset(Quality::Default);
             s.method = methods[method];
-            const auto tm = baker.bake_tm(mesh, ao, m, s).tm;
+            const auto tm = dev::bake_tm(baker, mesh, ao, m, s).tm;
             ASSERT_TRUE(finite_nonnegative(ao, tm));
             const double e = max_relative(tm, reference, 1e-30);
             EXPECT_LE(e, method == 0 ? 1e-4 : 1e-2);
@@ -440,13 +444,13 @@ TEST_F(GpuTest, OddMeshesBakeFiniteAndMatchTheFloat64Reference)
         EXPECT_LE(exact_error, 1e-4);
         BakeSettings clustered = BakeSettings::preset(Quality::Default);
         clustered.method = TmMethod::Clustered;  // Auto would choose Exact on meshes this small
-        const auto def = baker.bake_tm(mesh, r.ao, m, clustered).tm;
+        const auto def = dev::bake_tm(baker, mesh, r.ao, m, clustered).tm;
         ASSERT_TRUE(finite_nonnegative(r.ao, def));
         const double default_error = max_relative(def, ref_tm, 1e-12);
         EXPECT_LE(default_error, 1e-2);
         BakeSettings grid = clustered;
         grid.method = TmMethod::Grid;
-        const auto by_grid = baker.bake_tm(mesh, r.ao, m, grid).tm;
+        const auto by_grid = dev::bake_tm(baker, mesh, r.ao, m, grid).tm;
         ASSERT_TRUE(finite_nonnegative(r.ao, by_grid));
         const double grid_error = max_relative(by_grid, ref_tm, 1e-12);
         EXPECT_LE(grid_error, 1e-2);
@@ -456,9 +460,10 @@ TEST_F(GpuTest, OddMeshesBakeFiniteAndMatchTheFloat64Reference)
         if (what == "degenerate triangles") {
             EXPECT_EQ(mesh.dropped_triangles, 3u);
         } else if (what == "duplicate vertices") {
-            EXPECT_EQ(mesh.vertex_count(), prepare_mesh(procedural::box({-1, -1, -1}, {1, 1, 1}, 4)).vertex_count());
+            EXPECT_EQ(mesh.vertex_count(),
+                      prepare_mesh(dev::procedural::box({-1, -1, -1}, {1, 1, 1}, 4)).vertex_count());
         } else if (what == "isolated vertices") {
-            const PreparedMesh plain = prepare_mesh(procedural::box({-1, -1, -1}, {1, 1, 1}, 4));
+            const PreparedMesh plain = prepare_mesh(dev::procedural::box({-1, -1, -1}, {1, 1, 1}, 4));
             ASSERT_EQ(mesh.vertex_count(), plain.vertex_count());
             EXPECT_EQ(mesh.unused_vertices, 3u);
             EXPECT_EQ(mesh.diagonal, plain.diagonal) << "unused vertices widened the bounds";

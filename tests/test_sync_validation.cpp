@@ -9,9 +9,11 @@
 #include "gpu/buffer.hpp"
 #include "gpu/context.hpp"
 
+#include <jade/dev/context.hpp>
 #include <jade/bake.hpp>
 #include <jade/context.hpp>
 #include <jade/render.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include <gtest/gtest.h>
 
@@ -49,7 +51,7 @@ Outcome fill_twice(bool sync_validation, bool barrier)
         }
         vkCmdFillBuffer(cmd, buffer.handle(), 0, VK_WHOLE_SIZE, 2u);
     });
-    out.messages = ctx.validation_messages();
+    out.messages = jade::dev::validation_messages(ctx);
     return out;
 }
 
@@ -83,7 +85,7 @@ TEST(SyncValidation, ShutdownLeavesNoVulkanObjectBehind)
         o.synchronization_validation = true;
         o.log = [&](std::string_view line) { log += std::string(line) + "\n"; };
         jade::Context ctx(o);
-        const jade::PreparedMesh box = jade::prepare_mesh(jade::procedural::box({-1, -1, -1}, {1, 1, 1}, 3));
+        const jade::PreparedMesh box = jade::prepare_mesh(jade::dev::procedural::box({-1, -1, -1}, {1, 1, 1}, 3));
         const jade::Material m = jade::burley_material(glm::dvec3(0.3), glm::vec3(0.8f));
         jade::Baker baker(ctx);
         const auto baked = baker.bake(box, m, jade::BakeSettings::preset(jade::Quality::Draft));

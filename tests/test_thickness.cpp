@@ -4,11 +4,14 @@
 #include "gpu_fixture.hpp"
 #include "test_support.hpp"
 
+#include <jade/dev/material.hpp>
+#include <jade/dev/names.hpp>
 #include <jade/dev/renderer.hpp>
 #include <jade/bake.hpp>
 #include <jade/io.hpp>
 #include <jade/dev/reference.hpp>
 #include <jade/render.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include <glm/geometric.hpp>
 
@@ -71,7 +74,7 @@ TEST_F(Thickness, MatchesTheFloat64ReferenceOnTheSameRays)
 TEST_F(Thickness, ASlabGivesItsThickness)
 {
     const float h = 0.1f;
-    const PreparedMesh slab = prepare_mesh(procedural::box({-5.0f, -5.0f, -0.5f * h}, {5.0f, 5.0f, 0.5f * h}, 64));
+    const PreparedMesh slab = prepare_mesh(dev::procedural::box({-5.0f, -5.0f, -0.5f * h}, {5.0f, 5.0f, 0.5f * h}, 64));
     Baker baker(context());
     const BakeResult r = baker.bake(slab, translucent(), settings(64));
     const double expected = slab_mean(h, 60.0);
@@ -104,7 +107,7 @@ TEST_F(Thickness, ASphereGivesItsMeanChord)
 
 TEST_F(Thickness, OpenMeshesCountMissesAsTheMaximumAndNoMediumMeansNoPass)
 {
-    const PreparedMesh grid = prepare_mesh(procedural::grid(16, 0.1f));
+    const PreparedMesh grid = prepare_mesh(dev::procedural::grid(16, 0.1f));
     Baker baker(context());
     BakeSettings s = settings(16);
     const BakeResult r = baker.bake(grid, translucent(), s);
@@ -142,7 +145,7 @@ TEST_F(Thickness, BackLitSlabShowsTheBallisticTransmittance)
     // the centre, so the pixel is weight · (n + 1)/(2π) · e^{−σ_t t̄} · E · (1 − F0)² (both
     // crossings of the boundary at normal incidence) with the diffuse and specular terms off.
     const float h = 0.1f;
-    const PreparedMesh slab = prepare_mesh(procedural::box({-5.0f, -5.0f, -0.5f * h}, {5.0f, 5.0f, 0.5f * h}, 64));
+    const PreparedMesh slab = prepare_mesh(dev::procedural::box({-5.0f, -5.0f, -0.5f * h}, {5.0f, 5.0f, 0.5f * h}, 64));
     Baker baker(context());
     Material m = translucent();
     m.albedo = glm::vec3(0.0f), m.specular = 0.0f;
@@ -184,7 +187,7 @@ TEST_F(Thickness, BackLitSlabShowsTheBallisticTransmittance)
     for (int c = 0; c < 3; ++c) {
         const double s = m.transmission.sigma_s_reduced[c], tr = m.transmission.sigma_tr[c];
         const double slab =
-            slab_diffusion_transmittance(t, tr, m.transmission.source_depth[c], m.transmission.extrapolation[c]);
+            dev::slab_diffusion_transmittance(t, tr, m.transmission.source_depth[c], m.transmission.extrapolation[c]);
         const double expected = 0.5 / std::numbers::pi * (1.0 - std::exp(-s * t)) * slab * 2.0 * crossings;
         EXPECT_NEAR(diffused.pixel(16, 16)[c], expected, 0.01 * expected) << "diffused, channel " << c;
     }
@@ -211,7 +214,7 @@ TEST_F(Thickness, LightPathCountsTheMediumAndNotTheAirBetweenParts)
         TriangleMesh mesh;
         mesh.name = "slab stack";
         for (const auto& [lo, hi] : slabs) {
-            const TriangleMesh box = procedural::box({-5.0f, -5.0f, lo}, {5.0f, 5.0f, hi}, 16);
+            const TriangleMesh box = dev::procedural::box({-5.0f, -5.0f, lo}, {5.0f, 5.0f, hi}, 16);
             const uint32_t base = uint32_t(mesh.positions.size());
             mesh.positions.insert(mesh.positions.end(), box.positions.begin(), box.positions.end());
             for (uint32_t i : box.indices) mesh.indices.push_back(base + i);
@@ -221,12 +224,14 @@ TEST_F(Thickness, LightPathCountsTheMediumAndNotTheAirBetweenParts)
     Baker baker(context());
     const Material m = translucent();
     // Both samplings of the path: the slabs are flat where the camera looks, so they agree.
-    for (LightPathSampling sampling : {LightPathSampling::PerFragment, LightPathSampling::PerVertex})
+    for (dev::LightPathSampling sampling : {dev::LightPathSampling::PerFragment, dev::LightPathSampling::PerVertex})
         for (const Light& light : {Light::directional({0.0f, 0.0f, -1.0f}, glm::vec3(1.0f)),
                                    Light::point({0.0f, 0.0f, -12.0f}, glm::vec3(150.0f))}) {
-            SCOPED_TRACE(std::string(light_path_sampling_name(sampling)) +
+            SCOPED_TRACE(std::string(dev::light_path_sampling_name(sampling)) +
                          (light.type == Light::Type::Point ? ", point light" : ", directional light"));
-            Renderer renderer(context(), RendererOptions{.light_path = sampling});
+            RendererOptions options;
+            dev::set_study(options, {.light_path = sampling});
+            Renderer renderer(context(), options);
             renderer.set_material(m);
             Camera cam;
             cam.eye = {0.0f, 0.0f, 3.0f}, cam.target = {0.0f, 0.0f, 0.0f}, cam.fov_y_degrees = 10.0f;
@@ -251,7 +256,7 @@ TEST_F(Thickness, LightPathCountsTheMediumAndNotTheAirBetweenParts)
             // meets; after them, the 0.3 of air and the 0.1 of the front slab count.
             const double three_parts = centre_path(stack({{0.0f, 0.1f}, {-0.5f, -0.3f}, {-0.75f, -0.7f}}));
             EXPECT_NEAR(three_parts, 0.05 + 0.2 + 0.3 + 0.1, 1e-3);
-            EXPECT_EQ(renderer.light_path(), sampling);
+            EXPECT_EQ(dev::light_path(renderer), sampling);
         }
 }
 
@@ -263,20 +268,20 @@ TEST_F(Thickness, LightPathAutoFollowsTheMeshResolution)
     auto sampling = [&](const char* name, uint32_t tile) {
         const PreparedMesh mesh = prepare_mesh(load_mesh(test::asset(name)));
         Renderer renderer(context(), RendererOptions{.light_depth_size = tile});
-        EXPECT_EQ(renderer.light_path(), LightPathSampling::PerFragment) << "before set_mesh";
+        EXPECT_EQ(dev::light_path(renderer), dev::LightPathSampling::PerFragment) << "before set_mesh";
         renderer.set_mesh(mesh);
-        return renderer.light_path();
+        return dev::light_path(renderer);
     };
-    EXPECT_EQ(sampling("bunny00.off", 512), LightPathSampling::PerVertex);
-    EXPECT_EQ(sampling("hand.off", 512), LightPathSampling::PerFragment);
-    EXPECT_EQ(sampling("bunny00.off", 4096), LightPathSampling::PerFragment);
-    EXPECT_EQ(parse_light_path_sampling("vertex"), LightPathSampling::PerVertex);
-    EXPECT_THROW(parse_light_path_sampling("pixel"), Error);
+    EXPECT_EQ(sampling("bunny00.off", 512), dev::LightPathSampling::PerVertex);
+    EXPECT_EQ(sampling("hand.off", 512), dev::LightPathSampling::PerFragment);
+    EXPECT_EQ(sampling("bunny00.off", 4096), dev::LightPathSampling::PerFragment);
+    EXPECT_EQ(dev::parse_light_path_sampling("vertex"), dev::LightPathSampling::PerVertex);
+    EXPECT_THROW(dev::parse_light_path_sampling("pixel"), Error);
 }
 
 TEST_F(Thickness, ExtremeThicknessAndExtinctionStayFinite)
 {
-    const PreparedMesh slab = prepare_mesh(procedural::box({-1.0f, -1.0f, -0.1f}, {1.0f, 1.0f, 0.1f}, 8));
+    const PreparedMesh slab = prepare_mesh(dev::procedural::box({-1.0f, -1.0f, -0.1f}, {1.0f, 1.0f, 0.1f}, 8));
     Renderer renderer(context());
     Material m = translucent();
     Camera cam;
@@ -303,7 +308,7 @@ TEST_F(Thickness, BoundaryTransmittanceIsTheFresnelOfBothCrossings)
     // Diffuse light that enters at cos θ_l and leaves at cos θ_v is scaled by
     // T(θ_l)·T(θ_v), T(μ) = 1 − (F0 + (max(1 − α, F0) − F0)(1 − μ)^5): the slab's centre seen
     // head-on (μ_v = 1) under a light at 45°, t_m = 0 and strength 0 (so the rest is Lambert).
-    const PreparedMesh slab = prepare_mesh(procedural::box({-5.0f, -5.0f, -0.05f}, {5.0f, 5.0f, 0.05f}, 16));
+    const PreparedMesh slab = prepare_mesh(dev::procedural::box({-5.0f, -5.0f, -0.05f}, {5.0f, 5.0f, 0.05f}, 16));
     Renderer renderer(context());
     renderer.set_mesh(slab);
     Material m = translucent();

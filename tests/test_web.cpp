@@ -9,6 +9,7 @@
 #include "gltf_reader.hpp"
 #include "test_support.hpp"
 
+#include <jade/dev/io.hpp>
 #include <jade/io.hpp>
 
 #include <gtest/gtest.h>
@@ -31,7 +32,7 @@ std::filesystem::path web(const std::string& name) { return std::filesystem::pat
 
 jade::flip::Image load_png(const std::filesystem::path& path)
 {
-    const jade::LoadedImage img = jade::load_image(path);
+    const jade::dev::LoadedImage img = jade::dev::load_image(path);
     return jade::flip::from_linear(uint32_t(img.width), uint32_t(img.height), img.rgba.data(), 4);
 }
 

@@ -2,8 +2,11 @@
 // instance rule of jade::GltfAsset) and the asset written back whole with the attributes.
 #include "bake_record.hpp"
 
+#include <jade/dev/context.hpp>
 #include <jade/dev/clock.hpp>
+#include <jade/dev/io.hpp>
 #include <jade/io.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -47,17 +50,17 @@ void bake_asset(const Args& args, const std::filesystem::path& in, const std::fi
     for (const auto& w : warnings) std::fprintf(stderr, "jade: warning: %s\n", w.c_str());
     // The output replaces one file: never one the asset is read from (its buffer or an image),
     // or the asset would no longer load. Compared as files (links, `..`, hard links), not names.
-    for (size_t i = 1; i < asset.files().size(); ++i) {
+    for (size_t i = 1; i < dev::asset_files(asset).size(); ++i) {
         std::error_code ec;
-        if (std::filesystem::exists(out, ec) && std::filesystem::equivalent(out, asset.files()[i], ec))
-            throw Error("--out " + out.string() + ": is " + asset.files()[i].string() + ", a file that " +
-                        asset.name() + " reads (its buffer or image); writing there would break the input");
+        if (std::filesystem::exists(out, ec) && std::filesystem::equivalent(out, dev::asset_files(asset)[i], ec))
+            throw Error("--out " + out.string() + ": is " + dev::asset_files(asset)[i].string() + ", a file that " +
+                        dev::asset_name(asset) + " reads (its buffer or image); writing there would break the input");
     }
-    if (asset.targets().empty()) throw Error(asset.name() + ": no mesh has triangles to bake");
+    if (asset.targets().empty()) throw Error(dev::asset_name(asset) + ": no mesh has triangles to bake");
     const Material fallback = material_from_args(args, asset_diagonal(asset));
 
     auto ctx = make_context(args);
-    if (args.flag("verbose")) std::fprintf(stderr, "jade: device %s\n", ctx->device_info().name.c_str());
+    if (args.flag("verbose")) std::fprintf(stderr, "jade: device %s\n", dev::device_info(*ctx).name.c_str());
     Baker baker(*ctx);
     std::vector<BakedAttributes> baked;
     std::map<std::string, size_t> material_index;  // record: each distinct material once
@@ -72,12 +75,12 @@ void bake_asset(const Args& args, const std::filesystem::path& in, const std::fi
                      prepared.vertex_count(), material.name.c_str(), target.material_name.c_str(), target.space.c_str(),
                      format_ms(r.timings.wall_ms).c_str());
         BakedAttributes b;
-        b.ao = to_render_vertices(prepared, r.ao, 0.0f);
-        b.tm = to_render_vertices(prepared, r.tm, glm::vec3(0.0f));
-        if (!r.thickness.empty()) b.thickness = to_render_vertices(prepared, r.thickness, 0.0f);
+        b.ao = dev::to_render_vertices(prepared, r.ao, 0.0f);
+        b.tm = dev::to_render_vertices(prepared, r.tm, glm::vec3(0.0f));
+        if (!r.thickness.empty()) b.thickness = dev::to_render_vertices(prepared, r.thickness, 0.0f);
         if (!r.scattering_normal.empty()) {
-            b.scattering_normal = to_render_vertices(prepared, r.scattering_normal, glm::vec3(0.0f, 0.0f, 1.0f));
-            b.normal_spread = to_render_vertices(prepared, r.normal_spread, glm::vec3(0.0f));
+            b.scattering_normal = dev::to_render_vertices(prepared, r.scattering_normal, glm::vec3(0.0f, 0.0f, 1.0f));
+            b.normal_spread = dev::to_render_vertices(prepared, r.normal_spread, glm::vec3(0.0f));
         }
         b.material = material;
         baked.push_back(std::move(b));

@@ -1,4 +1,5 @@
 // bake_record.cpp - the JSON that `jade bake` stores with what it baked; see bake_record.hpp.
+#include <jade/dev/names.hpp>
 #include "bake_record.hpp"
 
 #include <nlohmann/json.hpp>
@@ -72,8 +73,9 @@ std::string settings(const BakeSettings& s, const BakeResult& r)
     std::ostringstream os;
     os << "{\"ao_rays\":" << s.ao.rays << ",\"ao_low_discrepancy\":" << (s.ao.low_discrepancy ? "true" : "false")
        << ",\"ao_seed\":" << s.ao.seed << ",\"ao_max_distance_rel\":" << num(s.ao.max_distance_rel)
-       << ",\"ao_epsilon_rel\":" << num(s.ao.ray_offset_rel) << ",\"tm_method\":\"" << tm_method_name(r.method_used)
-       << "\",\"tm_epsilon\":" << num(s.tm_opening_ratio) << ",\"tm_grid_resolution\":" << num(s.tm_grid_resolution)
+       << ",\"ao_epsilon_rel\":" << num(s.ao.ray_offset_rel) << ",\"tm_method\":\""
+       << dev::tm_method_name(r.method_used) << "\",\"tm_epsilon\":" << num(s.tm_opening_ratio)
+       << ",\"tm_grid_resolution\":" << num(s.tm_grid_resolution)
        << ",\"thickness_rays\":" << (r.thickness.empty() ? 0 : s.thickness.rays) << "}";
     return os.str();
 }

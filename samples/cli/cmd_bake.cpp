@@ -3,7 +3,9 @@
 #include "bake_record.hpp"
 #include "commands.hpp"
 
+#include <jade/dev/context.hpp>
 #include <jade/io.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include <cstdio>
 #include <sstream>
@@ -26,7 +28,7 @@ void bake_mesh(const Args& args, const std::string& in, const std::filesystem::p
     TriangleMesh mesh = load_mesh_arg(in, read_options(args));
     Material material = material_from_args(args, diagonal(mesh));
     auto ctx = make_context(args);
-    if (args.flag("verbose")) std::fprintf(stderr, "jade: device %s\n", ctx->device_info().name.c_str());
+    if (args.flag("verbose")) std::fprintf(stderr, "jade: device %s\n", dev::device_info(*ctx).name.c_str());
     Baker baker(*ctx);
     std::fprintf(stderr, "jade: baking %zu vertices, %u AO rays each, material %s ...\n", mesh.positions.size(),
                  settings.ao.rays, material.name.c_str());
@@ -35,12 +37,12 @@ void bake_mesh(const Args& args, const std::string& in, const std::filesystem::p
     print_timings(r);
 
     BakedAttributes baked;
-    baked.ao = to_render_vertices(prepared, r.ao, 0.0f);
-    baked.tm = to_render_vertices(prepared, r.tm, glm::vec3(0.0f));
-    if (!r.thickness.empty()) baked.thickness = to_render_vertices(prepared, r.thickness, 0.0f);
+    baked.ao = dev::to_render_vertices(prepared, r.ao, 0.0f);
+    baked.tm = dev::to_render_vertices(prepared, r.tm, glm::vec3(0.0f));
+    if (!r.thickness.empty()) baked.thickness = dev::to_render_vertices(prepared, r.thickness, 0.0f);
     if (!r.scattering_normal.empty()) {
-        baked.scattering_normal = to_render_vertices(prepared, r.scattering_normal, glm::vec3(0.0f, 0.0f, 1.0f));
-        baked.normal_spread = to_render_vertices(prepared, r.normal_spread, glm::vec3(0.0f));
+        baked.scattering_normal = dev::to_render_vertices(prepared, r.scattering_normal, glm::vec3(0.0f, 0.0f, 1.0f));
+        baked.normal_spread = dev::to_render_vertices(prepared, r.normal_spread, glm::vec3(0.0f));
     }
     baked.material = material;
     std::ostringstream os;

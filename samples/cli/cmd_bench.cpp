@@ -5,11 +5,14 @@
 #include "commands.hpp"
 #include "embree_ao.hpp"
 
+#include <jade/dev/bake.hpp>
+#include <jade/dev/cache.hpp>
 #include <jade/dev/context.hpp>
 #include <jade/dev/clock.hpp>
-#include <jade/cache.hpp>
+#include <jade/dev/names.hpp>
 #include <jade/io.hpp>
 #include <jade/dev/reference.hpp>
+#include <jade/dev/scene.hpp>
 #include <jade/scene.hpp>
 
 #include <algorithm>
@@ -44,12 +47,12 @@ void compare_far_fields(Baker& baker, const PreparedMesh& p, const std::vector<f
     BakeSettings clustered = s, grid = s;
     clustered.method = TmMethod::Clustered;
     grid.method = TmMethod::Grid;
-    baker.bake_tm(p, ao, m, grid);  // warm-up: the grid pipelines
+    dev::bake_tm(baker, p, ao, m, grid);  // warm-up: the grid pipelines
     std::vector<double> tc, tg, ratio;
     BakeResult rc, rg;
     for (uint32_t i = 0; i < pairs; ++i) {
-        rc = baker.bake_tm(p, ao, m, clustered);
-        rg = baker.bake_tm(p, ao, m, grid);
+        rc = dev::bake_tm(baker, p, ao, m, clustered);
+        rg = dev::bake_tm(baker, p, ao, m, grid);
         tc.push_back(rc.timings.gpu_total_ms);
         tg.push_back(rg.timings.gpu_total_ms);
         ratio.push_back(tc.back() / tg.back());
@@ -77,7 +80,7 @@ int bench_bake(const Args& args)
     Baker baker(*ctx);
     const double n = double(p.vertex_count());
     std::printf("mesh %s: %zu vertices, %zu triangles; device %s\n", mesh.name.c_str(), p.vertex_count(),
-                p.triangle_count(), ctx->device_info().name.c_str());
+                p.triangle_count(), dev::device_info(*ctx).name.c_str());
     std::printf("material %s, %u AO rays, t_m epsilon %g\n\n", m.name.c_str(), s.ao.rays, s.tm_opening_ratio);
 
     baker.bake(p, m, s);  // warm-up: pipelines, caches
@@ -101,7 +104,7 @@ int bench_bake(const Args& args)
 
     BakeSettings exact = s;
     exact.method = TmMethod::Exact;
-    BakeResult ex = baker.bake_tm(p, best.ao, m, exact);
+    BakeResult ex = dev::bake_tm(baker, p, best.ao, m, exact);
     double ex_ms = ex.timings.gpu_total_ms;
     std::printf("\nall-pairs GPU t_m     %10s   %.1f Mpairs/s   (clustered is %.1fx faster)\n",
                 format_ms(ex_ms).c_str(), n * n / (ex_ms * 1e3), ex_ms / tm_ms);
@@ -125,7 +128,8 @@ int bench_bake(const Args& args)
     std::printf("\n");
     compare_ao_with_embree(baker, p, s.ao, std::max(5u, reps));
     std::printf("\nmax relative t_m error vs float64 on %zu vertices: %s %.2e, all-pairs %.2e\n", at.size(),
-                tm_method_name(best.method_used), max_rel_error(best.tm, ref_tm, at), max_rel_error(ex.tm, ref_tm, at));
+                dev::tm_method_name(best.method_used), max_rel_error(best.tm, ref_tm, at),
+                max_rel_error(ex.tm, ref_tm, at));
     compare_far_fields(baker, p, best.ao, m, s, std::max(5u, reps), ref_tm, at);
     return 0;
 }
@@ -136,26 +140,26 @@ int bench_render_scene(const Args& args)
     const Scene scene = load_scene(*args.get("scene"), &warnings);
     for (const auto& w : warnings) std::fprintf(stderr, "jade: warning: %s\n", w.c_str());
     for (const auto& o : scene.objects)
-        if (o.deforming()) args.fail("--scene: object '" + o.name + "' deforms; the benchmark compares static scenes");
+        if (o.deformer) args.fail("--scene: object '" + o.name + "' deforms; the benchmark compares static scenes");
     SceneSettings settings = scene_settings_from_args(args);
     const std::filesystem::path dir =
         args.get_or("cache", (std::filesystem::temp_directory_path() / "jade-bench-cache").string());
-    const BakeCache cache(dir);
+    const dev::BakeCache cache(dir);
     const uint32_t repeat = args.count("repeat", 30, 1, 10000);
     RenderSettings rs;
     rs.width = rs.height = args.count("size", 512, 1, 16384);
     rs.samples = args.count("samples", 4, 1, 8);
     auto ctx = make_context(args);
     {
-        SceneRenderer fill(*ctx, scene, settings, cached_bakes(cache));  // bakes what the cache lacks
+        SceneRenderer fill(*ctx, scene, settings, dev::cached_bakes(cache));  // bakes what the cache lacks
         size_t baked = 0;
-        for (const auto& p : fill.passes_run()) baked += p.kind == PassKind::StaticBake;
+        for (const auto& p : dev::passes_run(fill)) baked += p.kind == dev::PassKind::StaticBake;
         std::printf("cache %s: %zu static bakes were missing and ran now\n", dir.string().c_str(), baked);
     }
     const ObjectCounts before = dev::created_objects(*ctx);
-    SceneRenderer cached(*ctx, scene, settings, cached_bakes(cache));
+    SceneRenderer cached(*ctx, scene, settings, dev::cached_bakes(cache));
     const ObjectCounts after = dev::created_objects(*ctx);
-    SceneRenderer unbaked(*ctx, scene, settings, never_baked());
+    SceneRenderer unbaked(*ctx, scene, settings, dev::never_baked());
     std::printf(
         "cached scene set-up created %llu compute pipelines (%zu objects: the one shared LUT's builder and each "
         "transmitting object's attenuation table, no bake kernel) and %llu buffers (%.2f MiB device-local: the draws' "
@@ -166,7 +170,7 @@ int bench_render_scene(const Args& args)
     std::printf("scene %s: %zu objects; %ux%u, %ux MSAA, %u iterations of one frame each (rotating order) after 2 "
                 "warm-up ones, device %s\n",
                 scene.name.c_str(), scene.objects.size(), rs.width, rs.height, rs.samples, repeat,
-                ctx->device_info().name.c_str());
+                dev::device_info(*ctx).name.c_str());
     const Camera camera = Camera::framing(cached.bbox_min(), cached.bbox_max(), 1.0f, glm::vec3(0.35f, 0.45f, 1.0f));
     const auto lights = default_lights(camera);
     // For reference only: every material opaque (Lambert, no t_m at all).

@@ -5,6 +5,8 @@
 // deformed frame (jade::Baker::bake on the deformed mesh: a new BVH and cluster tree, the same
 // settings), so "full" shows what refitting costs in accuracy and the amortised rows what
 // re-baking a part per frame adds to it.
+#include <jade/dev/context.hpp>
+#include <jade/dev/names.hpp>
 #include "commands.hpp"
 #include "embree_ao.hpp"
 #include "deform_sweep.hpp"
@@ -38,7 +40,7 @@ void bench_mesh(const Args& args, Context& ctx, const std::string& path, const s
         settings.ao.rays = 32;  // a per-frame budget: 32 rays keep a re-bake within a frame or two
     DeformerKind kind{};
     try {
-        kind = parse_deformer(args.get_or("deformer", "twist"));
+        kind = dev::parse_deformer(args.get_or("deformer", "twist"));
     } catch (const Error& e) {
         args.fail(std::string("--deformer: ") + e.what());
     }
@@ -134,7 +136,7 @@ int cmd_bench_deform(int argc, char** argv)
         meshes = {"bunny", dragon.empty() ? std::string("assets/ChineseDragon-10kv.off") : dragon.string()};
     }
     auto ctx = make_context(args);
-    std::printf("jade bench deform on %s\n", ctx->device_info().name.c_str());
+    std::printf("jade bench deform on %s\n", dev::device_info(*ctx).name.c_str());
     for (const auto& path : meshes) bench_mesh(args, *ctx, path, slices);
     return 0;
 }

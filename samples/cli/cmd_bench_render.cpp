@@ -6,6 +6,9 @@
 #include "deform_sweep.hpp"
 #include "render_setup.hpp"
 
+#include <jade/dev/material.hpp>
+#include <jade/dev/context.hpp>
+#include <jade/dev/names.hpp>
 #include <jade/dev/renderer.hpp>
 #include <jade/bake.hpp>
 #include <jade/deform.hpp>
@@ -52,7 +55,7 @@ struct LightLoad {
 /// pass, two passes; burley 1 per light with a tile and 1 + samples (docs/peers_separable.md).
 /// Returns the count and its formula.
 std::pair<uint32_t, std::string> fetches(ShadingMode mode, const LightLoad& l, bool shadows, TmEvaluation eval,
-                                         bool grey, LightPathSampling path, const RenderSettings& s)
+                                         bool grey, dev::LightPathSampling path, const RenderSettings& s)
 {
     const bool soft = mode == ShadingMode::Tm;
     const uint32_t shadow = shadows ? (soft ? 5 : 9) * l.shadowed : 0;
@@ -64,7 +67,7 @@ std::pair<uint32_t, std::string> fetches(ShadingMode mode, const LightLoad& l, b
         const uint32_t per_light = eval == TmEvaluation::Alu ? 0 : grey ? 1 : 3;
         n += per_light * l.lights;
         if (per_light) plus(std::to_string(per_light) + "/light");
-        const uint32_t per_transmitter = path == LightPathSampling::PerVertex ? 2 : 6;
+        const uint32_t per_transmitter = path == dev::LightPathSampling::PerVertex ? 2 : 6;
         n += per_transmitter * l.transmitting;
         if (l.transmitting) plus(std::to_string(per_transmitter) + "/transmitting light");
     }
@@ -103,17 +106,17 @@ std::vector<Config> configs_from_args(const Args& args)
     if (const auto mode = args.get("shadow-cost")) {
         ShadingMode m{};
         try {
-            m = parse_shading_mode(*mode);
+            m = dev::parse_shading_mode(*mode);
         } catch (const Error& e) {
             args.fail(std::string("--shadow-cost: ") + e.what());
         }
-        return {{std::string(shading_mode_name(m)) + "/noshadow", m, false}, {std::string(*mode), m, true}};
+        return {{std::string(dev::shading_mode_name(m)) + "/noshadow", m, false}, {std::string(*mode), m, true}};
     }
     std::stringstream list(args.get_or("modes", "lambert,curvature,tm,filament,separable,burley"));
     for (std::string word; std::getline(list, word, ',');) {
         ShadingMode m{};
         try {
-            m = parse_shading_mode(word);
+            m = dev::parse_shading_mode(word);
         } catch (const Error& e) {
             args.fail(std::string("--modes: ") + e.what());
         }
@@ -188,10 +191,11 @@ int cmd_bench_render(int argc, char** argv)
         "mesh %s: %zu vertices, %zu triangles; material %s (%s; transmission %s); tm evaluation %s, light path per %s; "
         "device %s\n",
         scene.mesh.name.c_str(), scene.prepared.vertex_count(), scene.prepared.triangle_count(),
-        scene.material.name.c_str(), scene.material.grey() ? "grey: 1 channel" : "RGB: 3 channels",
+        scene.material.name.c_str(), dev::is_grey(scene.material) ? "grey: 1 channel" : "RGB: 3 channels",
         transmits ? "on where a light is behind" : "off",
         std::string(tm_evaluation_name(dev::tm_evaluation(renderer))).c_str(),
-        std::string(light_path_sampling_name(renderer.light_path())).c_str(), ctx->device_info().name.c_str());
+        std::string(dev::light_path_sampling_name(dev::light_path(renderer))).c_str(),
+        dev::device_info(*ctx).name.c_str());
     // The presets' lights are all directional (each gets a tile); figure1 and back have one light behind.
     const std::string preset = args.get_or("lights", "default");
     const LightLoad load{uint32_t(lights.size()), uint32_t(std::min<size_t>(lights.size(), 4)),
@@ -233,7 +237,7 @@ int cmd_bench_render(int argc, char** argv)
         }
         for (size_t k = 0; k < n; ++k) {
             const auto [count, formula] = fetches(config[k].mode, load, config[k].shadows, dev::tm_evaluation(renderer),
-                                                  scene.material.grey(), renderer.light_path(), s);
+                                                  dev::is_grey(scene.material), dev::light_path(renderer), s);
             char size[32], ratio[64], cpu_r[64];
             std::snprintf(size, sizeof size, "%ux%u", width, height);
             std::snprintf(ratio, sizeof ratio, "%.3fx (%.2f-%.2f)", quantile(gpu_ratio[k], 0.5),

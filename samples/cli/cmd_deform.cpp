@@ -13,6 +13,8 @@
 
 #include <jade/dev/clock.hpp>
 #include <jade/deform.hpp>
+#include <jade/dev/deform.hpp>
+#include <jade/dev/names.hpp>
 #include <jade/io.hpp>
 #include <jade/render.hpp>
 
@@ -87,7 +89,7 @@ int cmd_deform(int argc, char** argv)
     std::optional<DeformerKind> kind;
     if (!gltf) {
         try {
-            kind = parse_deformer(kind_name);
+            kind = dev::parse_deformer(kind_name);
         } catch (const Error& e) {
             args.fail(std::string("--deformer: ") + e.what() + " or gltf");
         }
@@ -133,7 +135,7 @@ int cmd_deform(int argc, char** argv)
         }
         procedural.wavelength = float(args.number("wavelength", 0.5, 1e-6, 1e6) * procedural.length);
         try {
-            procedural.validate();
+            dev::validate_deformer(procedural);
         } catch (const Error& e) {
             args.fail(std::string("--amplitude/--wavelength/--period: ") + e.what());
         }
@@ -197,11 +199,11 @@ int cmd_deform(int argc, char** argv)
         StageTimes st;
         const DeformTimings dt = deform_frame(f);
         st.deform = dt.deform_ms, st.normals = dt.normals_ms;
-        const BakeResult baked = rebake.bake(deformer.positions_buffer(), deformer.normals_buffer(),
-                                             deformer.areas_buffer(), /*read_back=*/false);
+        const MeshDeformer::Buffers d = deformer.buffers();
+        const BakeResult baked = rebake.bake(d.positions, d.normals, d.areas, /*read_back=*/false);
         for (const auto& [stage, ms] : baked.timings.gpu_stages) (stage == "ao" ? st.ao : st.tm) += ms;
-        renderer.update_vertices(deformer.positions_buffer(), deformer.normals_buffer(), rebake.buffers().tm,
-                                 rebake.buffers().thickness, rebake.buffers().scattering_normal);
+        renderer.update_vertices(d.positions, d.normals, rebake.buffers().tm, rebake.buffers().thickness,
+                                 rebake.buffers().scattering_normal);
         RenderedImage image = renderer.render(camera, lights, render_settings);
         st.draw = image.gpu_ms;
         char name[32];

@@ -4,6 +4,9 @@
 // `--components DIR` writes the separate terms the calibration (tools/groundtruth/fit.py) fits.
 #include "commands.hpp"
 
+#include <jade/dev/context.hpp>
+#include <jade/dev/io.hpp>
+#include <jade/dev/material.hpp>
 #include <jade/dev/renderer.hpp>
 #include <jade/io.hpp>
 #include <jade/render.hpp>
@@ -49,7 +52,7 @@ json read_json(const std::filesystem::path& path)
 struct Reference {
     std::string name, set, mesh, light;
     json record;
-    LoadedImage image;                // linear (from the EXR)
+    dev::LoadedImage image;           // linear (from the EXR)
     flip::Image srgb;                 // the 8-bit PNG, for FLIP
     std::vector<uint8_t> mask, thin;  // object and thin-region masks, 0/1 per pixel
     std::vector<uint8_t> away;        // surfaces facing away from the light, not thin (empty: none given)
@@ -57,7 +60,7 @@ struct Reference {
 
 std::vector<uint8_t> read_mask(const std::filesystem::path& path, int width, int height)
 {
-    const LoadedImage m = load_image(path);
+    const dev::LoadedImage m = dev::load_image(path);
     if (m.width != width || m.height != height) throw Error(path.string() + ": mask size differs from the reference");
     std::vector<uint8_t> out(size_t(width) * height);
     for (size_t i = 0; i < out.size(); ++i) out[i] = m.rgba[4 * i] > 0.5f ? 1 : 0;
@@ -72,8 +75,8 @@ Reference load_reference(const std::filesystem::path& dir, const std::filesystem
         r.name = r.record.at("scene"), r.set = r.record.at("set"), r.mesh = r.record.at("mesh"),
         r.light = r.record.at("light_name");
         const json& files = r.record.at("files");
-        r.image = load_image(dir / files.at("exr").get<std::string>());
-        const LoadedImage png = load_image(dir / files.at("png").get<std::string>());
+        r.image = dev::load_image(dir / files.at("exr").get<std::string>());
+        const dev::LoadedImage png = dev::load_image(dir / files.at("png").get<std::string>());
         r.srgb = flip::from_linear(uint32_t(png.width), uint32_t(png.height), png.rgba.data(), 4);
         r.mask = read_mask(dir / files.at("mask").get<std::string>(), r.image.width, r.image.height);
         r.thin = read_mask(dir / files.at("thin").get<std::string>(), r.image.width, r.image.height);
@@ -95,9 +98,9 @@ glm::dvec3 region_mean(const std::vector<float>& rgba, const std::vector<uint8_t
     return n ? sum / double(n) : sum;
 }
 
-MediumFit fit_from_args(const Args& args)
+dev::MediumFit fit_from_args(const Args& args)
 {
-    MediumFit fit;
+    dev::MediumFit fit;
     if (auto path = args.get("fit")) {
         const json j = read_json(*path);
         try {
@@ -191,7 +194,7 @@ int cmd_fidelity(int argc, char** argv)
     const std::string set = args.get_or("set", "all"), filter = args.get_or("scene", "");
     if (set != "train" && set != "validation" && set != "regimes" && set != "all")
         args.fail("--set: '" + set + "' is not train, validation, regimes or all");
-    const MediumFit fit = fit_from_args(args);
+    const dev::MediumFit fit = fit_from_args(args);
     const std::vector<const Mode*> modes = modes_from_args(args);
     const std::vector<bool> shadows = shadow_states(args);
     BakeSettings bake_settings = bake_settings_from_args(args);
@@ -236,7 +239,7 @@ int cmd_fidelity(int argc, char** argv)
         const json& rec = ref.record;
         const std::string key = rec.at("mesh").get<std::string>() + "/" + rec.at("medium_name").get<std::string>();
         const Medium medium = medium_of(rec);
-        const Material material = Material::from_medium(medium, fit, rec.at("medium_name").get<std::string>());
+        const Material material = dev::from_medium(medium, fit, rec.at("medium_name").get<std::string>());
         if (!baked.count(key)) {
             BakedMesh b;
             // The record's path from the repository root, else the same file in JADE_ASSETS.
@@ -327,9 +330,9 @@ int cmd_fidelity(int argc, char** argv)
             save_image(std::filesystem::path(*components) / (ref.name + "__" + term + ".exr"), int(img.width),
                        int(img.height), img.rgba);
         };
-        MediumFit unit = fit;
+        dev::MediumFit unit = fit;
         unit.albedo_scale = 1.0, unit.transmission_weight = 1.0, unit.diffusion_weight = 1.0;
-        Material base = Material::from_medium(medium, unit);
+        Material base = dev::from_medium(medium, unit);
         for (double s : strengths) {
             Material m = base;
             m.strength = float(s), m.specular = 0.0f;
@@ -367,7 +370,7 @@ int cmd_fidelity(int argc, char** argv)
     }
     if (out.empty()) throw Error("--references " + dir.string() + ": no reference scene matched");
     if (auto path = args.get("markdown"))
-        write_file_atomically(*path, fidelity_markdown(out, modes, shadows, ctx->device_info().name));
+        dev::write_file_atomically(*path, fidelity_markdown(out, modes, shadows, dev::device_info(*ctx).name));
     if (auto path = args.get("json")) {
         const json doc = {{"fit",
                            {{"albedo_scale", fit.albedo_scale},
@@ -379,7 +382,7 @@ int cmd_fidelity(int argc, char** argv)
                             {"normal_mix", fit.normal_mix},
                             {"forward_extinction", fit.forward_extinction}}},
                           {"scenes", out}};
-        write_file_atomically(*path, doc.dump(1));
+        dev::write_file_atomically(*path, doc.dump(1));
     }
     return 0;
 }

@@ -1,7 +1,10 @@
 // jade info [MESH]: the device, or a mesh after preparation.
 #include "commands.hpp"
 
+#include <jade/dev/context.hpp>
+#include <jade/dev/io.hpp>
 #include <jade/io.hpp>
+#include <jade/dev/mesh.hpp>
 
 #include <glm/common.hpp>
 #include <nlohmann/json.hpp>
@@ -15,7 +18,7 @@
 
 namespace jade::cli {
 
-static void print_device(const DeviceInfo& d)
+static void print_device(const dev::DeviceInfo& d)
 {
     std::printf("device            %s (%s)\n", d.name.c_str(), d.type.c_str());
     std::printf("driver            %s\n", d.driver.c_str());
@@ -36,7 +39,7 @@ static void print_bake_record(const std::string& path, const ReadOptions& option
     std::string ext = std::filesystem::path(path).extension().string();
     for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
     if (ext != ".glb" && ext != ".gltf") return;
-    const std::string text = GltfAsset::load(path, nullptr, options).asset_extras_json();
+    const std::string text = dev::asset_extras_json(GltfAsset::load(path, nullptr, options));
     const auto extras = nlohmann::json::parse(text.empty() ? "{}" : text, nullptr, false);
     if (!extras.is_object() || !extras.contains("jade") || !extras["jade"].is_object()) {
         std::printf("baked by jade     no (no asset.extras.jade)\n");
@@ -106,7 +109,7 @@ static void print_mesh(const std::string& path, const ReadOptions& options)
     std::printf("bounding box      (%g, %g, %g) .. (%g, %g, %g) mesh units\n", p.bbox_min.x, p.bbox_min.y, p.bbox_min.z,
                 p.bbox_max.x, p.bbox_max.y, p.bbox_max.z);
     std::printf("diagonal          %g mesh units\n", p.diagonal);
-    std::printf("surface area      %g units^2\n", p.total_area());
+    std::printf("surface area      %g units^2\n", dev::total_area(p));
     // The range of the finite values, and how many are not finite (NaN or Inf), so that an
     // attribute full of NaN shows as such and a partial one is not hidden.
     auto range = [](const char* label, const float* v, size_t n, size_t stride, const char* unit) {
@@ -168,8 +171,8 @@ int cmd_info(int argc, char** argv)
         return 0;
     }
     auto ctx = make_context(args);
-    print_device(ctx->device_info());
-    auto all = Context::list_devices();
+    print_device(dev::device_info(*ctx));
+    auto all = dev::list_devices();
     if (all.size() > 1) {
         std::printf("all devices      ");
         for (auto& n : all) std::printf(" [%s]", n.c_str());

@@ -3,6 +3,7 @@
 #include "commands.hpp"
 #include "render_setup.hpp"
 
+#include <jade/dev/names.hpp>
 #include <jade/io.hpp>
 #include <jade/dev/overlay.hpp>
 #include <jade/render.hpp>
@@ -42,12 +43,12 @@ int cmd_render(int argc, char** argv)
     RenderSettings settings;
     std::tie(settings.width, settings.height) = parse_size(args, "512x512");
     try {
-        settings.mode = parse_shading_mode(args.get_or("mode", "tm"));
+        settings.mode = dev::parse_shading_mode(args.get_or("mode", "tm"));
     } catch (const Error& e) {
         args.fail(std::string("--mode: ") + e.what());
     }
     try {
-        if (args.flag("tonemap")) settings.tone_map = parse_tone_map(args.get_or("tonemap-curve", "aces"));
+        if (args.flag("tonemap")) settings.tone_map = dev::parse_tone_map(args.get_or("tonemap-curve", "aces"));
     } catch (const Error& e) {
         args.fail(std::string("--tonemap-curve: ") + e.what());
     }
@@ -76,7 +77,7 @@ int cmd_render(int argc, char** argv)
     RenderedImage image = renderer.render(camera, lights, settings);
     save_image(out, int(image.width), int(image.height), image.rgba);
     std::printf("%s: %ux%u, %s, material %s, lights: %zu; GPU %s, wall %s\n", out.c_str(), image.width, image.height,
-                std::string(shading_mode_name(settings.mode)).c_str(), scene.material.name.c_str(), lights.size(),
+                std::string(dev::shading_mode_name(settings.mode)).c_str(), scene.material.name.c_str(), lights.size(),
                 format_ms(image.gpu_ms).c_str(), format_ms(image.wall_ms).c_str());
     return 0;
 }
@@ -133,7 +134,7 @@ int cmd_figure1(int argc, char** argv)
         blit(figure, panel, uint32_t(k) * w, 0);
         const int x = int(k * w) + (int(w) - text_width(labels[k], scale)) / 2;
         draw_text(figure, x, int(h) + 3 * scale, labels[k], glm::vec3(1.0f), scale);
-        std::printf("(%c) %-16s GPU %s\n", 'a' + k, std::string(shading_mode_name(modes[k])).c_str(),
+        std::printf("(%c) %-16s GPU %s\n", 'a' + k, std::string(dev::shading_mode_name(modes[k])).c_str(),
                     format_ms(panel.gpu_ms).c_str());
     }
     save_image(out, int(figure.width), int(figure.height), figure.rgba);

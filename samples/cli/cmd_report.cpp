@@ -4,7 +4,9 @@
 // through samples/report/plot_report.py, DIR/*.png.
 #include "report.hpp"
 
+#include <jade/dev/context.hpp>
 #include <jade/dev/clock.hpp>
+#include <jade/dev/io.hpp>
 #include <jade/io.hpp>
 
 #include <algorithm>
@@ -184,8 +186,8 @@ int cmd_report(int argc, char** argv)
 
     if (args.flag("summary-only")) {
         auto ctx = make_context(args);
-        write_file_atomically(dir / "summary.md",
-                              summary_markdown(read_csv(dir / "report.csv"), plan, ctx->device_info().name));
+        dev::write_file_atomically(dir / "summary.md",
+                                   summary_markdown(read_csv(dir / "report.csv"), plan, dev::device_info(*ctx).name));
         if (!args.flag("no-plot")) run_plots(dir);
         return 0;
     }
@@ -209,7 +211,7 @@ int cmd_report(int argc, char** argv)
     add_lut_steps(session, steps);
 
     std::fprintf(stderr, "jade report: %zu steps (plan %s) on %s; writing %s\n", steps.size(), plan.name.c_str(),
-                 ctx->device_info().name.c_str(), dir.string().c_str());
+                 dev::device_info(*ctx).name.c_str(), dir.string().c_str());
     warm_up(session);
     std::vector<Row> rows;
     const auto t0 = Clock::now();
@@ -218,10 +220,10 @@ int cmd_report(int argc, char** argv)
         std::fprintf(stderr, "[%zu/%zu] %s: %s\n", k + 1, steps.size(), steps[k].what.c_str(), describe(r).c_str());
         if (r.knob.empty()) continue;
         rows.push_back(std::move(r));
-        write_file_atomically(dir / "report.csv", csv(rows));
+        dev::write_file_atomically(dir / "report.csv", csv(rows));
     }
     steps.clear();
-    write_file_atomically(dir / "summary.md", summary_markdown(rows, plan, ctx->device_info().name));
+    dev::write_file_atomically(dir / "summary.md", summary_markdown(rows, plan, dev::device_info(*ctx).name));
     std::fprintf(stderr, "jade report: %zu configurations in %s: %s, %s\n", rows.size(),
                  format_ms(ms_since(t0)).c_str(), (dir / "report.csv").string().c_str(),
                  (dir / "summary.md").string().c_str());

@@ -3,9 +3,11 @@
 // the planned passes (--verbose lists the passes that ran).
 #include "commands.hpp"
 
+#include <jade/dev/cache.hpp>
 #include <jade/dev/context.hpp>
-#include <jade/cache.hpp>
+#include <jade/dev/names.hpp>
 #include <jade/io.hpp>
+#include <jade/dev/scene.hpp>
 #include <jade/scene.hpp>
 
 #include <cstdio>
@@ -24,7 +26,7 @@ SceneSettings scene_settings_from_args(const Args& args)
     SceneSettings s;
     s.bake = bake_settings_from_args(args);
     try {
-        s.mode = parse_shading_mode(args.get_or("mode", "tm"));
+        s.mode = dev::parse_shading_mode(args.get_or("mode", "tm"));
     } catch (const Error& e) {
         args.fail(std::string("--mode: ") + e.what());
     }
@@ -42,9 +44,9 @@ Scene load_scene_arg(const Args& args)
     return scene;
 }
 
-std::optional<BakeCache> cache_from_args(const Args& args)
+std::optional<dev::BakeCache> cache_from_args(const Args& args)
 {
-    if (auto dir = args.get("cache")) return BakeCache(*dir);
+    if (auto dir = args.get("cache")) return dev::BakeCache(*dir);
     return std::nullopt;
 }
 
@@ -64,7 +66,7 @@ int cmd_plan(int argc, char** argv)
     const Scene scene = load_scene_arg(args);
     const SceneSettings settings = scene_settings_from_args(args);
     const auto cache = cache_from_args(args);
-    const ScenePlan plan = plan_scene(scene, settings, cache ? cached_bakes(*cache) : StaticBakeSource{});
+    const ScenePlan plan = plan_scene(scene, settings, cache ? dev::cached_bakes(*cache) : StaticBakeSource{});
     std::printf("scene %s%s\n%s", scene.name.c_str(),
                 cache ? (", cache " + cache->folder().string()).c_str()
                       : " (no --cache: static objects bake every run)",
@@ -102,10 +104,10 @@ int cmd_scene(int argc, char** argv)
     auto ctx = make_context(args);
     // Checked against the plan before anything of the scene is allocated: a scene that instances
     // a deforming mesh 100,000 times would otherwise run the machine out of memory.
-    const StaticBakeSource source = cache ? cached_bakes(*cache) : StaticBakeSource{};
+    const StaticBakeSource source = cache ? dev::cached_bakes(*cache) : StaticBakeSource{};
     const ScenePlan plan = plan_scene(scene, settings, source);
     const uint64_t need = plan.resident_bytes() + plan.transient_peak_bytes();
-    const uint64_t heap = ctx->device_info().device_local_heap_bytes;
+    const uint64_t heap = dev::device_info(*ctx).device_local_heap_bytes;
     auto mib = [](double bytes) {
         char b[48];
         if (bytes >= double(1ull << 30))
@@ -129,14 +131,14 @@ int cmd_scene(int argc, char** argv)
     save_image(out, int(img.width), int(img.height), img.rgba);
     // A cache entry that was there but could not be used (stale, corrupt) is said even without
     // --verbose: the next run will read the entry just stored.
-    for (const PassRecord& p : renderer.passes_run())
-        if (cache && p.kind == PassKind::StaticBake && !p.note.empty() && p.note != "missing")
+    for (const dev::PassRecord& p : dev::passes_run(renderer))
+        if (cache && p.kind == dev::PassKind::StaticBake && !p.note.empty() && p.note != "missing")
             std::fprintf(stderr, "jade scene: %s: cache entry not used (%s); baked again and stored\n",
                          p.object.c_str(), p.note.c_str());
     if (args.flag("verbose")) {
         std::printf("passes run:\n");
-        for (const PassRecord& p : renderer.passes_run())
-            std::printf("  %-24s %-13s %10s  %s\n", p.object.c_str(), std::string(pass_kind_name(p.kind)).c_str(),
+        for (const dev::PassRecord& p : dev::passes_run(renderer))
+            std::printf("  %-24s %-13s %10s  %s\n", p.object.c_str(), std::string(dev::pass_kind_name(p.kind)).c_str(),
                         p.wall_ms > 0 ? format_ms(p.wall_ms).c_str() : "", p.note.c_str());
         const ObjectCounts c = dev::created_objects(*ctx);
         std::printf("GPU objects created: %llu compute pipelines, %llu graphics pipelines, %llu buffers (%.2f MiB "

@@ -1,5 +1,8 @@
 #include "commands.hpp"
 
+#include <jade/dev/io.hpp>
+#include <jade/dev/material.hpp>
+#include <jade/dev/names.hpp>
 #include <jade/io.hpp>
 
 #include <algorithm>
@@ -141,7 +144,7 @@ void check_profile_scale(const Args& args, const Material& m, double diagonal, d
 {
     if (!(diagonal > 0.0) || !std::isfinite(diagonal)) return;  // the mesh checks name that
     for (int c = 0; c < 3; ++c) {
-        const double radius = m.profile[c].radius_for_tail(0.5);  // the median scattering radius
+        const double radius = dev::radius_for_tail(m.profile[c], 0.5);  // the median scattering radius
         const double ratio = radius / diagonal;
         if (ratio >= kMinProfileRatio && ratio <= kMaxProfileRatio) continue;
         char text[320];
@@ -173,7 +176,7 @@ Material material_from_args(const Args& args, double diagonal, const std::option
         args.fail("--ior and --roughness describe a --medium's boundary; give --medium too");
     try {
         if (args.get("medium"))
-            m = Material::from_medium(medium_from_args(args), {}, "medium");
+            m = Material::from_medium(medium_from_args(args), "medium");
         else if (baked && !args.get("material") && !args.get("mm-per-unit"))
             m = *baked;
         else
@@ -203,7 +206,7 @@ BakeSettings bake_settings_from_args(const Args& args)
     const std::string q = args.get_or("quality", "default");
     Quality quality = Quality::Default;
     try {
-        quality = parse_quality(q);
+        quality = dev::parse_quality(q);
     } catch (const Error&) {
         args.fail("--quality: '" + q + "' is not one of draft, default, high");
     }
@@ -215,7 +218,7 @@ BakeSettings bake_settings_from_args(const Args& args)
     s.ao.seed = args.count("seed", s.ao.seed, 0, 0xffffffffu);
     const std::string method = args.get_or("method", "auto");
     try {
-        s.method = parse_tm_method(method);
+        s.method = dev::parse_tm_method(method);
     } catch (const Error&) {
         args.fail("--method: '" + method + "' is not one of auto, exact, clustered, grid");
     }
@@ -276,7 +279,7 @@ std::string lower(std::string s)
 void probe_writable(const std::string& flag, const std::filesystem::path& path, const std::filesystem::path& folder)
 {
     try {
-        check_writable(path);
+        dev::check_writable(path);
     } catch (const Error& e) {
         throw Error("--" + flag + " " + path.string() + ": cannot create a file in folder '" + folder.string() +
                     "': " + e.what());

@@ -51,8 +51,8 @@ SweepStats DeformSweep::run(const Amortisation& amortisation, Renderer* renderer
     SweepStats st;
     for (uint32_t f = 0; f < reference_.size(); ++f) {
         const DeformTimings dt = deformer_.deform(params_, step_ * f);
-        const BakeResult r =
-            rebake_.bake(deformer_.positions_buffer(), deformer_.normals_buffer(), deformer_.areas_buffer());
+        const MeshDeformer::Buffers d = deformer_.buffers();
+        const BakeResult r = rebake_.bake(d.positions, d.normals, d.areas);
         double draw_ms = 0;
         if (renderer) {
             renderer->set_mesh(deformed_mesh(rest_, deformer_.read()), r);

@@ -3,6 +3,7 @@
 
 #include "commands.hpp"
 
+#include <jade/dev/bake.hpp>
 #include <jade/dev/clock.hpp>
 #include <jade/error.hpp>
 
@@ -72,7 +73,7 @@ public:
         build_ms = ms_since(t0);
     }
 
-    /// A_o per bake vertex, as Baker::bake_ao; trace_ms: the queries' wall time.
+    /// A_o per bake vertex, as dev::bake_ao; trace_ms: the queries' wall time.
     std::vector<float> trace(const AoSettings& settings, double& trace_ms)
     {
         const size_t n = mesh_.vertex_count();
@@ -147,7 +148,7 @@ void compare_ao_with_embree(Baker& baker, const PreparedMesh& mesh, const AoSett
     std::vector<float> gpu_ao, cpu_ao;
     for (unsigned i = 0; i < std::max(1u, pairs); ++i) {
         BakeTimings timings;
-        gpu_ao = baker.bake_ao(mesh, settings, &timings);
+        gpu_ao = dev::bake_ao(baker, mesh, settings, &timings);
         double embree_ms = 0;
         cpu_ao = embree.trace(settings, embree_ms);
         gpu_ms.push_back(timings.gpu_total_ms);

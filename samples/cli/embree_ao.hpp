@@ -11,7 +11,7 @@
 
 namespace jade::cli {
 
-/// Times Baker::bake_ao (GPU timestamps) and Embree on the same rays alternately, `pairs`
+/// Times dev::bake_ao (GPU timestamps) and Embree on the same rays alternately, `pairs`
 /// times, and prints the medians, the median of the per-pair ratios GPU / Embree with its
 /// quartiles, and how many vertices' AO agree exactly. Embree is timed on the queries alone
 /// (its ray directions are made before the clock starts; the GPU pass's time includes making

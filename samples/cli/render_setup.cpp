@@ -3,6 +3,7 @@
 // with its bake (read from a baked file or baked now).
 #include "render_setup.hpp"
 
+#include <jade/dev/names.hpp>
 #include <jade/dev/renderer.hpp>
 #include <jade/bake.hpp>
 #include <jade/io.hpp>
@@ -58,17 +59,19 @@ std::vector<OptionSpec> render_options()
 
 RendererOptions renderer_options(const Args& args)
 {
-    RendererOptions o;
+    dev::RendererStudy study;
     try {
-        dev::set_study(o, {.tm_evaluation = parse_tm_evaluation(args.get_or("eval", "auto"))});
+        study.tm_evaluation = parse_tm_evaluation(args.get_or("eval", "auto"));
     } catch (const Error& e) {
         args.fail(std::string("--eval: ") + e.what());
     }
     try {
-        o.light_path = parse_light_path_sampling(args.get_or("light-path", "auto"));
+        study.light_path = dev::parse_light_path_sampling(args.get_or("light-path", "auto"));
     } catch (const Error& e) {
         args.fail(std::string("--light-path: ") + e.what());
     }
+    RendererOptions o;
+    dev::set_study(o, study);
     return o;
 }
 

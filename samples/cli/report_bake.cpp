@@ -8,8 +8,10 @@
 // end (their own AO), against the same reference.
 #include "report.hpp"
 
+#include <jade/dev/context.hpp>
 #include <jade/dev/bake.hpp>
 #include <jade/dev/clock.hpp>
+#include <jade/dev/names.hpp>
 #include <jade/dev/reference.hpp>
 
 #include <algorithm>
@@ -50,7 +52,7 @@ std::vector<float> timed_ao(Session& s, const MeshState& st, const AoSettings& a
     std::vector<float> out;
     for (int rep = 0; rep < 3; ++rep) {
         BakeTimings t;
-        out = s.baker.bake_ao(st.mesh, ao, &t);
+        out = dev::bake_ao(s.baker, st.mesh, ao, &t);
         if (rep == 0 || t.gpu_total_ms < best.gpu_total_ms) best = t;
         if (best.gpu_total_ms >= 300) break;
     }
@@ -113,7 +115,7 @@ void add_ao_steps(Session& s, MeshState& st, std::vector<Step>& steps)
         steps.push_back({strf("AO reference %u rays %s", reference.rays, distance_case(d).c_str()),
                          [&s, &st, reference] {
             BakeTimings t;
-            auto& ao = st.ao_reference[reference.max_distance_rel] = s.baker.bake_ao(st.mesh, reference, &t);
+            auto& ao = st.ao_reference[reference.max_distance_rel] = dev::bake_ao(s.baker, st.mesh, reference, &t);
             double mean = 0;
             for (float a : ao) mean += a / double(ao.size());
             Row r;
@@ -179,7 +181,7 @@ Step tm_step(Session& s, MeshState& st, size_t k, std::string knob, std::string 
     return {what, [&s, &st, k, knob, value, method, settings, label] {
                 MaterialCase& mc = st.materials[k];
                 const auto& ao = st.ao_reference.at(s.plan.ao_default_distance);
-                BakeResult b = s.baker.bake_tm(st.mesh, ao, mc.material, settings);
+                BakeResult b = dev::bake_tm(s.baker, st.mesh, ao, mc.material, settings);
                 Row r{st.label,
                       knob,
                       value,
@@ -231,7 +233,7 @@ void add_tm_steps(Session& s, MeshState& st, std::vector<Step>& steps)
         BakeSettings exact;
         exact.method = TmMethod::Exact;
         steps.push_back(tm_step(s, st, k, "tm_exact", "all pairs", "exact", exact, labels[k]));
-        if (s.context.device_info().float64) {  // float32 against float64 accumulation
+        if (dev::device_info(s.context).float64) {  // float32 against float64 accumulation
             dev::set_study(exact, {.tm_float64_sums = true});
             steps.push_back(tm_step(s, st, k, "tm_exact", "all pairs, float64 sums", "exact", exact, labels[k]));
         }
@@ -249,7 +251,8 @@ void add_tm_steps(Session& s, MeshState& st, std::vector<Step>& steps)
                                     grid, labels[k]));
         }
         for (Quality q : kQualities)
-            steps.push_back(tm_step(s, st, k, "tm_auto", quality_name(q), "auto", BakeSettings::preset(q), labels[k]));
+            steps.push_back(
+                tm_step(s, st, k, "tm_auto", dev::quality_name(q), "auto", BakeSettings::preset(q), labels[k]));
     }
 }
 
@@ -258,14 +261,14 @@ void add_quality_steps(Session& s, MeshState& st, std::vector<Step>& steps)
 {
     const std::string label = material_labels(s.plan).front();
     for (Quality q : kQualities) {
-        steps.push_back({std::string("bake, preset ") + quality_name(q) + " (" + label + ")",
+        steps.push_back({std::string("bake, preset ") + dev::quality_name(q) + " (" + label + ")",
                          [&s, &st, q] {
             const MaterialCase& mc = st.materials.front();
             BakeSettings settings = BakeSettings::preset(q);
             BakeResult b = s.baker.bake(st.mesh, mc.material, settings);
             Row r{st.label,
                   "quality",
-                  quality_name(q),
+                  dev::quality_name(q),
                   "bake auto (" + mc.label + ")",
                   b.timings.gpu_total_ms,
                   b.timings.wall_ms,
@@ -276,8 +279,8 @@ void add_quality_steps(Session& s, MeshState& st, std::vector<Step>& steps)
             r.notes = strf(
                 "t_m relative vs float64 on %zu vertices (%u-ray AO); this bake: %u AO rays (AO RMS %.3g), eps=%g, %s",
                 st.sample.size(), s.plan.ao_reference_rays, settings.ao.rays, ao.rms, double(settings.tm_opening_ratio),
-                tm_method_name(b.method_used));
-            st.quality[quality_name(q)] = std::move(b);
+                dev::tm_method_name(b.method_used));
+            st.quality[dev::quality_name(q)] = std::move(b);
             return r;
                          }});
     }

@@ -35,13 +35,8 @@ jade::TriangleMesh load(const std::string& arg)
 
 const std::vector<std::string>& deformation_names()
 {
-    static const std::vector<std::string> names = [] {
-        std::vector<std::string> n{"none"};
-        for (auto k : {jade::DeformerKind::Bend, jade::DeformerKind::Twist, jade::DeformerKind::Squash,
-                       jade::DeformerKind::Wave})
-            n.emplace_back(jade::deformer_name(k));
-        return n;
-    }();
+    // "none", then one label per jade::DeformerKind in the enum's order (index - 1 is the kind).
+    static const std::vector<std::string> names = {"none", "bend", "twist", "squash", "wave"};
     return names;
 }
 
@@ -135,12 +130,12 @@ void Scene::deform_and_rebake(const ViewState& state)
     if (rebake_) {
         // GPU-resident: the re-bake reads the deformer's buffers and the renderer's vertices are
         // updated from them and from the new t_m, with no read-back.
-        const jade::BakeResult r = rebake_->bake(deformer_->positions_buffer(), deformer_->normals_buffer(),
-                                                 deformer_->areas_buffer(), /*read_back=*/false);
+        const jade::MeshDeformer::Buffers d = deformer_->buffers();
+        const jade::BakeResult r = rebake_->bake(d.positions, d.normals, d.areas, /*read_back=*/false);
         for (const auto& [name, ms] : r.timings.gpu_stages) times_.stages.emplace_back("re-bake " + name, ms);
         const double t1 = now_ms();
-        renderer_.update_vertices(deformer_->positions_buffer(), deformer_->normals_buffer(), rebake_->buffers().tm,
-                                  rebake_->buffers().thickness, rebake_->buffers().scattering_normal);
+        renderer_.update_vertices(d.positions, d.normals, rebake_->buffers().tm, rebake_->buffers().thickness,
+                                  rebake_->buffers().scattering_normal);
         times_.stages.emplace_back("vertex update (wall)", now_ms() - t1);
     } else {  // opaque: no t_m, the deformed mesh as host data
         const double t1 = now_ms();

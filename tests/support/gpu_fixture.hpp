@@ -2,6 +2,7 @@
 // each test fails if the validation layer said anything during it.
 #pragma once
 
+#include <jade/dev/context.hpp>
 #include <jade/context.hpp>
 
 #include <gtest/gtest.h>
@@ -21,10 +22,10 @@ protected:
         }();
         return *ctx;
     }
-    void SetUp() override { messages_before_ = context().validation_messages(); }
+    void SetUp() override { messages_before_ = dev::validation_messages(context()); }
     void TearDown() override
     {
-        EXPECT_EQ(context().validation_messages(), messages_before_) << "Vulkan validation reported messages";
+        EXPECT_EQ(dev::validation_messages(context()), messages_before_) << "Vulkan validation reported messages";
     }
 
 private:

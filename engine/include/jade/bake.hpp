@@ -32,7 +32,6 @@
 #include <cstdint>
 #include <memory>
 #include <string>
-#include <string_view>
 #include <utility>
 #include <span>
 #include <vector>
@@ -68,6 +67,7 @@ class Context;
 
 namespace dev {
 struct BakeStudy;  // jade/dev/bake.hpp: variants of the passes, for measuring them
+struct BakerAccess;
 }  // namespace dev
 
 /// How t_m's far field is summed.
@@ -78,20 +78,12 @@ enum class TmMethod {
     Grid,       ///< the profile's smooth part on 3-D grids, the rest exact nearby: O(n + cells)
 };
 
-/// "auto", "exact", "clustered", "grid"; parse_tm_method throws jade::Error on anything else.
-const char* tm_method_name(TmMethod method);
-TmMethod parse_tm_method(std::string_view name);
-
 /// Quality presets: the AO ray count and the clustered far field's opening ratio θ
 /// (BakeSettings::tm_opening_ratio, shaders/tm_cluster.comp).
 ///   Draft: 16 rays, θ = 1.6   Default: 64 rays, θ = 1.2   High: 256 rays, θ = 0.4
 /// (θ's max relative t_m error on the bunny, Burley RGB with d at 1 %, 5 %, 20 % of the diagonal:
 /// 1.6 → 8.4e-3, 1.2 → 2.5e-3, 0.8 → 8e-4; tests assert default ≤ 1 %, high ≤ 0.1 %.)
 enum class Quality { Draft, Default, High };
-
-/// "draft", "default", "high"; parse_quality throws jade::Error on anything else.
-const char* quality_name(Quality quality);
-Quality parse_quality(std::string_view name);
 
 struct BakeSettings {
     AoSettings ao;
@@ -159,15 +151,11 @@ public:
     /// AO, the thickness (when settings.thickness.enabled()) then t_m (the material's profiles,
     /// per channel; one channel when grey()).
     BakeResult bake(const PreparedMesh& mesh, const Material& material, const BakeSettings& settings = {});
-    /// t_m only, from given AO (one value per bake vertex).
-    BakeResult bake_tm(const PreparedMesh& mesh, std::span<const float> ao, const Material& material,
-                       const BakeSettings& settings = {});
-    /// AO only, one value in [0, 1] per bake vertex; `timings` (optional) receives GPU/wall times.
-    std::vector<float> bake_ao(const PreparedMesh& mesh, const AoSettings& settings, BakeTimings* timings = nullptr);
 
 private:
     struct Impl;
     friend class DynamicBake;
+    friend struct dev::BakerAccess;  // the partial bakes of jade/dev/bake.hpp (AO only, t_m from given AO)
     std::unique_ptr<Impl> impl_;
 };
 

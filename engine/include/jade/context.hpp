@@ -30,7 +30,7 @@ struct ContextOptions {
     /// implementations such as lavapipe).
     std::string device;
     /// Enable VK_LAYER_KHRONOS_validation (also on when JADE_VALIDATION=1). Every warning or
-    /// error message is logged and counted (validation_messages()).
+    /// error message is logged (and counted for the tests: jade/dev/context.hpp).
     bool validation = false;
     /// Also enable the layer's synchronization validation (also JADE_SYNC_VALIDATION=1); implies
     /// `validation`. Logs "jade: Vulkan synchronization validation on" once.
@@ -51,8 +51,8 @@ struct ContextOptions {
 ///   VkPhysicalDeviceFeatures2 and/or VkPhysicalDeviceVulkan12Features/Vulkan13Features or the
 ///   matching single-feature structs): dynamicRendering, synchronization2, maintenance4,
 ///   scalarBlockLayout, hostQueryReset. Context::enable_required_features() sets them.
-/// Optional: shaderFloat64 (reported in DeviceInfo::float64), and shaderInt64 with
-/// shaderBufferInt64Atomics (DeviceInfo::int64_atomics: the grid far field's splat takes half the atomics).
+/// Optional: shaderFloat64 (float64 sums for measurements), and shaderInt64 with
+/// shaderBufferInt64Atomics (the grid far field's splat takes half the atomics).
 ///
 /// Function loading: the extension entry points Jade needs (vkCmdPushDescriptorSetKHR,
 /// vkSetDebugUtilsObjectNameEXT) are loaded through `get_device_proc_addr` /
@@ -111,22 +111,6 @@ struct HostDeviceSetup : private NonCopyable {
                           VkQueue queue) const;
 };
 
-/// What `jade info` prints and what code may want to know about the device.
-struct DeviceInfo {
-    std::string name, driver,
-        type;                  ///< device and driver names; type: "discrete", "integrated", "virtual", "cpu", "other"
-    uint32_t api_version = 0;  ///< VK_MAKE_API_VERSION encoded
-    uint64_t max_storage_buffer_range = 0;        ///< bytes
-    uint32_t max_workgroup_count[3] = {0, 0, 0};  ///< compute dispatch limits
-    uint32_t max_workgroup_invocations = 0;
-    uint32_t subgroup_size = 0;              ///< default subgroup size (8 on lavapipe)
-    bool float64 = false;                    ///< shaderFloat64
-    bool int64_atomics = false;              ///< shaderInt64 and shaderBufferInt64Atomics, both enabled
-    double timestamp_period_ns = 0;          ///< nanoseconds per timestamp tick
-    uint64_t device_local_heap_bytes = 0;    ///< size of the largest device-local heap
-    std::string api_version_string() const;  ///< "1.3.238"
-};
-
 /// The device Jade runs on; every other GPU object (Baker, Renderer) takes one and must be
 /// destroyed before it. Move-less and not copyable.
 class Context : NonCopyable {
@@ -137,16 +121,11 @@ public:
     /// Adopts the host's instance, device and queue (see AdoptedVulkan): creates only Jade's
     /// own command pool and fence on them. Throws jade::Error listing every missing version,
     /// queue capability, extension and feature. `options.device` and `options.validation` are
-    /// ignored (the host owns the instance and its layers; validation_messages() stays 0 — the
-    /// host's messenger sees Jade's messages); `log` and `verbose` apply.
+    /// ignored (the host owns the instance and its layers; the host's messenger sees Jade's
+    /// messages); `log` and `verbose` apply.
     Context(const AdoptedVulkan& host, const ContextOptions& options = {});
     ~Context();
 
-    const DeviceInfo& device_info() const;  ///< filled once at construction
-    /// Validation warnings and errors seen so far (0 when validation is off).
-    uint64_t validation_messages() const;
-    /// Names of the Vulkan devices present, best first (no context needed).
-    static std::vector<std::string> list_devices();
     /// True when this Context adopted the host's objects (and will not destroy them).
     bool adopted() const;
 

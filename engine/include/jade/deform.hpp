@@ -24,7 +24,6 @@
 #include <cstdint>
 #include <memory>
 #include <string>
-#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -35,10 +34,6 @@ class Context;
 // ------------------------------------------------------------------- procedural deformers --
 
 enum class DeformerKind : uint32_t { Bend = 0, Twist = 1, Squash = 2, Wave = 3 };
-/// "bend", "twist", "squash", "wave".
-std::string_view deformer_name(DeformerKind kind);
-/// The inverse of deformer_name; throws jade::Error listing the names.
-DeformerKind parse_deformer(std::string_view name);
 
 /// A procedural deformation along a chosen axis, driven by a time t (seconds).
 ///
@@ -69,8 +64,6 @@ struct ProceduralDeformer {
     /// `axis`, length = the box's extent; amplitudes that look good: bend 0.8 rad, twist 1.2 rad,
     /// squash 0.25, wave 4 % of the length with a wavelength of half the length.
     static ProceduralDeformer fit(DeformerKind kind, const PreparedMesh& mesh, uint32_t axis = 1);
-    /// Throws jade::Error naming the parameter when one is out of range or not finite.
-    void validate() const;
 };
 
 // ------------------------------------------------------------------ glTF skins, animations --
@@ -88,12 +81,6 @@ struct AnimationChannel {
     uint32_t width = 3;
     std::vector<float> times;  ///< seconds, strictly increasing
     std::vector<float> values;
-
-    /// The channel at time t (clamped to the first and last key): LINEAR interpolates
-    /// component-wise, rotations by slerp (shortest arc); STEP holds the key at or before t;
-    /// CUBICSPLINE is glTF's cubic Hermite with tangents scaled by the key interval (rotations
-    /// are normalised afterwards). Returns `width` floats.
-    std::vector<float> sample(double t) const;
 };
 
 struct Animation {
@@ -110,7 +97,6 @@ struct AnimatedNode {
     glm::vec3 scale{1.0f};
     bool has_matrix = false;
     glm::mat4 matrix{1.0f};
-    glm::mat4 local() const;
 };
 
 /// One animated mesh of a glTF file (see jade/io.hpp load_animated_gltf): the bind pose and
@@ -139,7 +125,11 @@ struct Pose {
 
 /// Samples `animation` (index into mesh.animations; none if mesh has none) at time t seconds
 /// and evaluates the node hierarchy: joint matrix = world(joint) · inverse_bind (glTF skinning;
-/// the mesh node's own transform is ignored for skinned meshes, as the spec says).
+/// the mesh node's own transform is ignored for skinned meshes, as the spec says). A channel at
+/// time t (clamped to the first and last key): LINEAR interpolates component-wise, rotations by
+/// slerp (shortest arc); STEP holds the key at or before t; CUBICSPLINE is glTF's cubic Hermite
+/// with tangents scaled by the key interval (rotations are normalised afterwards). A node's local
+/// transform is `matrix` when it has one, else translation · rotation · scale.
 Pose evaluate_pose(const AnimatedMesh& mesh, size_t animation, double t);
 
 /// Per-bake-vertex skin and morph data. Each bake vertex takes the attributes of the lowest
@@ -192,12 +182,14 @@ public:
 
     DeformedVertices read() const;
 
-    /// The GPU buffers, for passes that consume the deformed mesh without a read-back.
-    /// Layout: tightly packed float[3] per bake vertex (positions, normals), float (areas).
-    VkBuffer positions_buffer() const;
-    VkBuffer normals_buffer() const;
-    VkBuffer areas_buffer() const;
-    size_t vertex_count() const;
+    /// The GPU buffers, for passes that consume the deformed mesh without a read-back (e.g.
+    /// DynamicBake::record, Renderer::record_vertex_update). Layout: tightly packed float[3] per
+    /// bake vertex (positions, normals), float (areas).
+    struct Buffers {
+        VkBuffer positions, normals, areas;
+        size_t vertex_count;
+    };
+    Buffers buffers() const;
 
 private:
     struct Impl;

@@ -1,5 +1,8 @@
 // jade/io.hpp - file formats. Part of the separate target jade::io (links tinygltf,
 // tinyobjloader, OpenImageIO); the core library jade::jade reads and writes no files.
+// Every writer here is atomic: it writes a temporary file in the same folder, syncs it and
+// renames it over `path`, so a failure or a crash leaves the old file (or none) or the complete
+// new one (the writer itself: dev::write_file_atomically, jade/dev/io.hpp).
 #pragma once
 
 #include <jade/deform.hpp>
@@ -58,20 +61,6 @@ AnimatedMesh load_animated_gltf(const std::filesystem::path& path, const ReadOpt
 /// Atomic like save_image.
 void save_animation(const std::filesystem::path& path, int width, int height,
                     const std::vector<std::vector<float>>& frames, double fps);
-
-/// Writes `bytes` to `path` atomically, as every file writer here does: a temporary file
-/// "<path>.tmp-<pid>-<random>" in the same folder is created exclusively (never through a link
-/// planted under its name), written, given the mode (and where allowed the owner) of the file it
-/// replaces, synced to disk (fsync), renamed to `path` (a link at `path` is replaced, not
-/// followed) and the folder synced. A failure or a crash at any moment leaves the old file (or none) or
-/// the complete new one; a crash may leave the temporary file behind. Throws jade::Error
-/// naming the file.
-void write_file_atomically(const std::filesystem::path& path, std::string_view bytes);
-
-/// Creates and removes the temporary file that write_file_atomically would create for `path`,
-/// to learn before long work whether the write can happen (a read-only or full file system,
-/// a missing permission). Throws jade::Error with the reason.
-void check_writable(const std::filesystem::path& path);
 
 /// What `jade bake` stores next to the mesh: every per-vertex input of the default shading and
 /// the material it was baked with (docs/gltf.md).
@@ -135,14 +124,7 @@ public:
     GltfAsset& operator=(GltfAsset&&) noexcept;
     ~GltfAsset();
 
-    const std::string& name() const;  ///< the file name, for messages
-    /// Every file the asset was read from: the asset itself, then its external buffers and
-    /// images (as resolved, symbolic links followed), so that a writer can refuse to replace one.
-    const std::vector<std::filesystem::path>& files() const;
     const std::vector<BakeTarget>& targets() const;
-    /// The `asset.extras` JSON object of the file (empty when it has none), where `jade bake`
-    /// keeps what it baked with.
-    std::string asset_extras_json() const;
 
 private:
     struct Impl;
@@ -168,7 +150,7 @@ private:
 /// times) are added; materials that Jade maps translucent without KHR_materials_diffuse_transmission
 /// (an extras.jade.preset) get it and KHR_materials_volume with the preset's medium. Every value
 /// written is finite: a non-finite baked value is an error naming the file, mesh, primitive and
-/// vertex. Atomic (write_file_atomically): `path` may be the asset's own file.
+/// vertex. Atomic (the header comment): `path` may be the asset's own file.
 void save_baked_asset(const std::filesystem::path& path, const GltfAsset& asset,
                       const std::vector<BakedAttributes>& baked, const std::string& asset_extras_json);
 
@@ -176,18 +158,6 @@ void save_baked_asset(const std::filesystem::path& path, const GltfAsset& asset,
 /// `rgba` holds width*height*4 floats, rows top to bottom. Atomic like save_baked_gltf.
 /// Alpha is straight (not premultiplied) and stored linearly; PNG values are clamped to [0,1].
 void save_image(const std::filesystem::path& path, int width, int height, const std::vector<float>& rgba);
-
-/// An image read by load_image: linear RGBA floats, rows top to bottom.
-struct LoadedImage {
-    int width = 0, height = 0;
-    std::vector<float> rgba;  ///< width*height*4, linear (8-bit files are sRGB-decoded; alpha as stored)
-    bool srgb_8bit = false;   ///< the file held 8-bit sRGB values (PNG), decoded here
-};
-
-/// Reads a .png (8-bit sRGB, decoded to linear with the IEC 61966-2-1 curve) or .exr (linear)
-/// through OpenImageIO; 1 to 4 channels (grey is copied to RGB, missing alpha is 1). Throws
-/// jade::Error naming the file.
-LoadedImage load_image(const std::filesystem::path& path);
 
 /// A scene file (.gltf / .glb): one object per triangle primitive of each mesh instance of the
 /// default scene, in world space, with its material mapped as docs/scene.md says

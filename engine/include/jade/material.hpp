@@ -30,7 +30,8 @@ enum class ProfileKind : uint32_t {
 };
 
 /// The scattering profile of one colour channel. Singular at r = 0 for Burley (R ~ 1/r); the
-/// bake never point-samples it there but integrates it with cdf().
+/// bake never point-samples it there but integrates it with its closed-form cdf (R, cdf and the
+/// radius of a tail: jade/dev/material.hpp).
 struct ChannelProfile {
     static constexpr int kMaxGaussians = 6;
 
@@ -52,9 +53,6 @@ struct ChannelProfile {
     /// s = 1.85 − A + 7|A − 0.8|³ (searchlight configuration).
     static ChannelProfile burley_from_albedo(double albedo, double mean_free_path);
 
-    double R(double r) const;                    ///< profile value, 1/units²
-    double cdf(double r) const;                  ///< 2π∫_0^r R(ρ)ρ dρ ∈ [0,1], exact closed form
-    double radius_for_tail(double tail) const;   ///< smallest r with 1 − cdf(r) ≤ tail
     ChannelProfile scaled(double factor) const;  ///< the same profile for a mesh scaled by factor
     bool operator==(const ChannelProfile&) const = default;
 };
@@ -74,17 +72,15 @@ struct Medium {
     Medium scaled(double factor) const;
 };
 
-struct MediumFit;
-
 /// The medium an artist describes by its look (glTF's KHR_materials_volume and
 /// diffuse_transmission map here): the diffuse colour `albedo` ∈ [0, 1] that
-/// Material::from_medium(result, fit) gives back exactly (up to fit.albedo_scale · 1, the
+/// Material::from_medium(result) gives back exactly (up to the fitted albedo scale s · 1, the
 /// largest reachable), and the mean free path ℓ (mesh units) of the extinction, σ_t = 1/ℓ. The
-/// reduced albedo α' solves fit.albedo_scale · diffuse_reflectance(α', η) = albedo (bisection);
-/// σ_s = α'σ_t, σ_a = (1 − α')σ_t, g = 0. Throws jade::Error naming the value for an albedo
-/// outside [0, 1] or a non-positive mean free path.
-Medium medium_from_appearance(glm::dvec3 albedo, glm::dvec3 mean_free_path, double ior, double roughness,
-                              const MediumFit& fit);
+/// reduced albedo α' solves s · R_d(α', η) = albedo (bisection; R_d the diffuse reflectance of
+/// from_medium); σ_s = α'σ_t, σ_a = (1 − α')σ_t, g = 0. Throws jade::Error naming the value for
+/// an albedo outside [0, 1] or a non-positive mean free path. The fitted constants (s =
+/// MediumFit::albedo_scale) and R_d are jade/dev/material.hpp's.
+Medium medium_from_appearance(glm::dvec3 albedo, glm::dvec3 mean_free_path, double ior, double roughness);
 
 /// Light that crosses the object from a light behind it (thin parts glowing), evaluated per
 /// fragment from the path length t inside the object (mesh units): the longer of the per-vertex
@@ -96,11 +92,11 @@ Medium medium_from_appearance(glm::dvec3 albedo, glm::dvec3 mean_free_path, doub
 ///   lobe(μ) = (n + 1)/(2π) · max(μ, 0)^n,  μ = V·(−L),  n = `lobe`
 ///   h = min(t, max(t̄/ln 4, t·max(−N·L, 0)))
 /// The first part is the forward (low-order) transmittance of σ_t = k·(σ_s + σ_a), k =
-/// MediumFit::forward_extinction: grey when σ_s + σ_a is grey, as measured, so thin parts of a
+/// MediumFit::forward_extinction (jade/dev/material.hpp): grey when σ_s + σ_a is grey, as measured, so thin parts of a
 /// grey-σ_t medium glow white-grey whatever its colour; it leaves in a forward lobe (the rough
 /// boundary and forward scattering spread it), normalised over the hemisphere about −L. The
 /// second is light that scattered and then diffused through the part: T_d is the diffusion
-/// approximation's transmittance of a slab (slab_diffusion_transmittance), falling as 1/h in a
+/// approximation's transmittance of a slab (slab_diffusion_transmittance, jade/dev/material.hpp), falling as 1/h in a
 /// medium without absorption and as e^{−σ_tr·h} in a thick absorbing one, σ_tr =
 /// √(3σ_a(σ_a + σ_s')); it is coloured (red crosses skin furthest). Diffused light has forgotten
 /// its direction, so it leaves as a Lambertian emitter (1/π); it entered the far side with the
@@ -124,56 +120,6 @@ struct Transmission {
     float normal_mix = 0.3f;          ///< how much the term follows max(−N·L, 0), [0, 1]
     bool enabled() const { return weight > 0.0f || diffusion_weight > 0.0f; }
 };
-
-/// The diffusion approximation's transmittance T_d through a slab of thickness t (mesh units) lit
-/// on one side: light enters, becomes a planar isotropic source at depth z_0 = 1/σ_t' and
-/// diffuses (diffusion constant D = 1/(3σ_t')) between boundaries extrapolated by
-/// z_b = 2A·D, A = (1 + F_dr)/(1 − F_dr) as in diffuse_reflectance; T_d is the flux leaving the far
-/// side (the 1-D Green's function of the diffusion equation):
-///   T_d(t) = min(1, sinh(σ_tr z_s) cosh(σ_tr z_b) / sinh(σ_tr (t + 2z_b))),  z_s = z_0 + z_b.
-/// Without absorption (σ_tr = 0) it is z_s/(t + 2z_b), the slab's transmittance T with
-/// T + R = 1; thick, it falls as e^{−σ_tr t}. float64, finite for every σ_tr ≥ 0, z_b ≥ 0, z_s ≥ 0
-/// and t ≥ 0 (0 where z_s = 0, and for t = ∞); the home of attenuation.glsl's formula.
-double slab_diffusion_transmittance(double t, double sigma_tr, double source_depth, double extrapolation);
-
-/// The constants of Material::from_medium that the model leaves free, fitted to a volumetric path
-/// tracer (Mitsuba 3) on the training scenes of tools/groundtruth (27 scenes: bunny, dragon, camel
-/// × jewel, marble, wax × front, side, back light; fit and validation: docs/fidelity.md). The
-/// defaults are the fitted values; the validation scenes (hand, elephant) and the held-out
-/// regimes (skin at a head's scale, Jensen et al.'s media in millimetres, point lights) never
-/// took part in choosing them.
-struct MediumFit {
-    /// k_d = albedo_scale · R_d(α', η): fitted (stage 1, front and side light); the dipole's R_d
-    /// alone overestimates what leaves a rough dielectric.
-    double albedo_scale = 0.9;
-    /// Material::strength, rad² per unit t_m: the poster's scale-free blur. 0: the default's blur
-    /// comes from the spread alone, whose angle follows the medium's reach against the shape (a
-    /// scale-free one lit a back-lit head's face, where the path tracer has nothing).
-    double strength = 0.0;
-    /// Material::spread_strength, rad² per unit t_m · normal spread: fitted (front and side light,
-    /// 4.5 against 3, 6 and 12); the spread ≈ ⟨θ²⟩/2 of the normals within the profile's reach.
-    double spread_strength = 4.5;
-    double transmission_weight = 0.4;  ///< Transmission::weight: fitted (stage 2, back light)
-    /// Transmission::diffusion_weight: fitted on the training scenes' back light (0.1, 0.2, 0.35;
-    /// 1 would be the slab's own flux, which overestimates the light through a finite body,
-    /// whose sides the diffusing light also leaves by).
-    double diffusion_weight = 0.2;
-    double lobe = 16.0;        ///< Transmission::lobe: fitted (stage 2)
-    double normal_mix = 0.25;  ///< Transmission::normal_mix: fitted (stage 2)
-    /// Transmission::sigma_t = forward_extinction · (σ_s + σ_a), in (0, 1]: the forward light falls
-    /// slower than the unscattered light, since light scattered a little still leaves in the lobe
-    /// (fitted: 0.5, 0.6, 0.7, 0.85, 1).
-    double forward_extinction = 0.7;
-};
-
-/// The multiple-scattering (diffuse) reflectance of a semi-infinite medium behind a boundary of
-/// relative IOR η, from the reduced albedo α' = σ_s'/(σ_s' + σ_a), σ_s' = σ_s(1 − g): the
-/// classical dipole's total diffuse reflectance (Jensen et al. 2001, eq. 13, with the boundary
-/// term A = (1 + F_dr)/(1 − F_dr) and Egan–Hilgeman's F_dr):
-///   R_d = (α'/2) (1 + e^{−(4/3)A·√(3(1−α'))}) e^{−√(3(1−α'))}
-/// in [0, 1]; 0 for α' = 0, 1 for α' = 1 (no absorption). Throws jade::Error for α' ∉ [0, 1] or
-/// η out of (0.2, 5).
-double diffuse_reflectance(double reduced_albedo, double eta);
 
 /// A translucent (or opaque) material.
 struct Material {
@@ -201,7 +147,9 @@ struct Material {
     /// thin rim does not glow white, as it does not in the path tracer). from_medium sets it.
     bool boundary_transmittance = false;
 
-    /// Every parameter the renderer uses, derived from a physical medium (per mesh unit):
+    /// Every parameter the renderer uses, derived from a physical medium (per mesh unit), with
+    /// the constants `fit` fitted to a path tracer (MediumFit and R_d = diffuse_reflectance, the
+    /// dipole's diffuse reflectance: jade/dev/material.hpp, which takes other constants too):
     /// - albedo k_d = fit.albedo_scale · diffuse_reflectance(α', η) per channel;
     /// - profile: Burley per channel with d = ℓ/s(A), ℓ = 1/σ_t' the reduced mean free path,
     ///   A = diffuse_reflectance(α', η), s(A) = 1.85 − A + 7|A − 0.8|³ (Christensen & Burley
@@ -216,10 +164,8 @@ struct Material {
     /// σ_s = σ_a = 0 is a clear medium (k_d = 0, transmittance 1). Throws jade::Error naming the
     /// field for negative or non-finite coefficients, |g| ≥ 1, an IOR outside (0.2, 5) or a
     /// roughness outside [0, 1].
-    static Material from_medium(const Medium& medium, const MediumFit& fit = {}, std::string name = "medium");
+    static Material from_medium(const Medium& medium, std::string name = "medium");
 
-    /// True when the three channels have the same profile: one channel is baked and fetched.
-    bool grey() const { return profile[0] == profile[1] && profile[1] == profile[2]; }
     Material scaled(double factor) const;  ///< profiles for a mesh scaled by factor
 };
 

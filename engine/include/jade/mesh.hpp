@@ -61,46 +61,20 @@ struct PreparedMesh {
 
     size_t vertex_count() const { return positions.size(); }
     size_t triangle_count() const { return indices.size() / 3; }
-    float total_area() const;
 };
 
-/// Checks what every TriangleMesh must satisfy: an index count that is a multiple of 3, indices
-/// in range, finite positions, normals absent or one per position. Throws jade::Error naming
-/// mesh.name and the first offending element, e.g.
-/// "bunny.off: triangle 12 (vertex index 40912) out of range for 37706 vertices".
-void validate_mesh(const TriangleMesh& mesh);
-
 /// Welds, drops degenerate triangles, computes normals, vertex areas and bounds.
-/// Throws jade::Error (naming mesh.name) when the mesh is empty after preparation, an index is
-/// out of range, or a position is NaN or infinite.
+/// Throws jade::Error (naming mesh.name and the first offending element, e.g. "bunny.off:
+/// triangle 12 (vertex index 40912) out of range for 37706 vertices") when the mesh is empty
+/// after preparation, an index is out of range, the index count is not a multiple of 3, a
+/// position is NaN or infinite, or normals are given but not one per position.
 PreparedMesh prepare_mesh(const TriangleMesh& mesh);
 
-/// Expands per-bake-vertex values back to the render vertices (unused vertices get `fill`).
-template <class T>
-std::vector<T> to_render_vertices(const PreparedMesh& prepared, const std::vector<T>& per_bake, T fill = T{})
-{
-    std::vector<T> out(prepared.render_to_bake.size(), fill);
-    for (size_t i = 0; i < out.size(); ++i)
-        if (prepared.render_to_bake[i] != PreparedMesh::kUnused) out[i] = per_bake[prepared.render_to_bake[i]];
-    return out;
-}
-
-/// Procedural meshes: a scene that needs no download.
+/// A mesh that needs no download (the box, grid and subdivision of the tests: jade/dev/mesh.hpp).
 namespace procedural {
 /// UV sphere of the given radius centred at the origin; `rings` ≥ 2, `segments` ≥ 3.
-/// Like box and grid, throws jade::Error for counts or sizes out of range.
+/// Throws jade::Error for counts or sizes out of range.
 TriangleMesh sphere(float radius, uint32_t rings, uint32_t segments);
-/// Axis-aligned closed box from `lo` to `hi`, each face split into n×n quads (a thin slab or a
-/// thick block). n ≥ 1.
-TriangleMesh box(glm::vec3 lo, glm::vec3 hi, uint32_t n);
-/// Flat square grid in the z = 0 plane, centred at the origin, `n`×`n` quads of side `spacing`,
-/// normal +z. n ≥ 1.
-TriangleMesh grid(uint32_t n, float spacing);
-/// Midpoint subdivision, `levels` times: every triangle becomes four, each edge gets one new
-/// vertex at its midpoint (shared by both sides), the surface stays where it was. Vertices grow
-/// about 4× per level (the 37,706-vertex bunny: 150,776, 603,062, 2,412,206). Normals are
-/// dropped. Throws jade::Error past 2^27 triangles.
-TriangleMesh subdivide(const TriangleMesh& mesh, uint32_t levels);
 }  // namespace procedural
 
 }  // namespace jade

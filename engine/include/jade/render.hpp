@@ -32,7 +32,6 @@
 #include <memory>
 #include <span>
 #include <string>
-#include <string_view>
 #include <vector>
 
 namespace jade {
@@ -56,10 +55,6 @@ enum class ShadingMode : uint32_t {
     /// irradiance target, one pass of importance-sampled taps (docs/peers_separable.md).
     Burley = 6,
 };
-/// "lambert", "curvature", "tm", "tm-false-color", "filament", "separable", "burley".
-std::string_view shading_mode_name(ShadingMode mode);
-/// The inverse of shading_mode_name; throws jade::Error listing the names.
-ShadingMode parse_shading_mode(std::string_view name);
 
 /// Host-side tone mapping of render()'s result (never applied by record()).
 enum class ToneMap : uint32_t {
@@ -67,8 +62,6 @@ enum class ToneMap : uint32_t {
     Reinhard = 1,    ///< x / (1 + x) per channel
     AcesFitted = 2,  ///< Narkowicz's fit of the ACES filmic curve, clamped to [0, 1]
 };
-/// "none", "reinhard", "aces"; throws jade::Error listing the names.
-ToneMap parse_tone_map(std::string_view name);
 
 /// An RGBA float image, rows top to bottom, 4 floats per pixel.
 struct RenderedImage {
@@ -116,28 +109,13 @@ struct RenderSettings {
     uint32_t burley_samples = 40;
 };
 
-/// Where the Tm mode reads a back light's path inside the object (Transmission: the medium along
-/// the light's line, from its depth tile; docs/shading.md "Transmission"). Per vertex saves four
-/// gathers per fragment and transmitting light; on a coarse mesh it loses the edges of what the
-/// body shadows from the light within a triangle.
-enum class LightPathSampling : uint32_t {
-    Auto = 0,         ///< PerVertex where the mesh's median edge spans ≤ 8 texels of the tile, else PerFragment
-    PerVertex = 1,    ///< in the vertex shader, interpolated
-    PerFragment = 2,  ///< per fragment, bilinear between the four nearest texels
-};
-/// "auto", "vertex", "fragment".
-std::string_view light_path_sampling_name(LightPathSampling sampling);
-/// The inverse of light_path_sampling_name; throws jade::Error listing the names.
-LightPathSampling parse_light_path_sampling(std::string_view name);
-
 namespace dev {
-struct RendererStudy;  // jade/dev/renderer.hpp: LUT sizes and evaluation paths, for studies
+struct RendererStudy;  // jade/dev/renderer.hpp: LUT sizes, evaluation paths and light path sampling, for studies
 struct RendererAccess;
 }  // namespace dev
 
 /// Fixed at Renderer construction.
 struct RendererOptions {
-    LightPathSampling light_path = LightPathSampling::Auto;  ///< Renderer::light_path() says what Auto chose
     /// Mean curvature smoothing: iterations of 1-ring averaging after the cotangent Laplacian.
     uint32_t curvature_smoothing = 2;
     /// Transmission and shadows: texels of one light's depth tile (how far light travels inside
@@ -206,7 +184,7 @@ public:
                   std::span<const glm::vec3> normal_spread_per_render_vertex = {});
     /// A deforming mesh, kept on the GPU: records a compute pass that copies new positions,
     /// normals and t_m - tightly packed float3 per bake vertex of the mesh given to set_mesh,
-    /// in storage buffers such as MeshDeformer::positions_buffer()/normals_buffer() and
+    /// in storage buffers such as MeshDeformer::buffers().positions/normals and
     /// DynamicBake::buffers().tm - into the renderer's vertex buffer. t_m is clamped to
     /// [0, 3e38] (NaN to 0). What set_mesh computed on the host stays: the curvature, the bounds
     /// that fit the near/far planes, the false-colour range. Synchronisation, in `cmd`: a barrier
@@ -255,10 +233,6 @@ public:
     /// when the GPU has finished the work submitted to that queue before them, never waiting.
     void record(VkCommandBuffer cmd, const RenderTarget& target, const Camera& camera, std::span<const Light> lights,
                 const RenderSettings& settings);
-
-    /// Where RendererOptions::light_path resolved to for the current mesh (never Auto; PerFragment
-    /// before set_mesh).
-    LightPathSampling light_path() const;
 
 private:
     friend struct dev::RendererAccess;  // the introspection of jade/dev/renderer.hpp

@@ -13,8 +13,9 @@
 // Objects are in world space, in mesh units (a glTF scene: metres).
 //
 // All of this header is in the core library jade::jade. Reading a scene file is jade::io's
-// (load_scene, jade/io.hpp), and so is the on-disk bake cache (cached_bakes, jade/cache.hpp). Threading and lifetime as jade::Renderer: one thread, destroy
-// before the Context. Errors: jade::Error naming the object and what is wrong.
+// (load_scene, jade/io.hpp). Where static bakes come from is the caller's (StaticBakeSource; the
+// CLI's on-disk cache is jade/dev/cache.hpp). Threading and lifetime as jade::Renderer: one
+// thread, destroy before the Context. Errors: jade::Error naming the object and what is wrong.
 #pragma once
 
 #include <jade/bake.hpp>
@@ -43,7 +44,7 @@ namespace jade {
 /// order, at rotation · p + translation (rotation orthogonal, proper), with the same material.
 /// A static bake is invariant under such a motion but for the scattering normal, which turns
 /// with it, so the copy takes the earlier object's prepared mesh, moved, and its bake instead of
-/// baking its own (PassKind::SharedBake).
+/// baking its own (the plan's shared bake).
 struct InstanceOf {
     uint32_t object = 0;          ///< index of the earlier object in Scene::objects
     glm::mat3 rotation{1.0f};     ///< that object's world directions to this one's
@@ -58,7 +59,6 @@ struct SceneObject {
     /// Set by load_scene for the second and later instances of a glTF primitive whose nodes move
     /// it rigidly (no scale) and keep its material; clear it to bake each instance on its own.
     std::optional<InstanceOf> instance_of;
-    bool deforming() const { return deformer.has_value(); }
 };
 
 struct Scene {
@@ -66,69 +66,26 @@ struct Scene {
     std::vector<SceneObject> objects;
 };
 
-/// What a pass does.
-enum class PassKind : uint32_t {
-    CacheRead = 0,    ///< static t_m read from the bake cache: no GPU work
-    StaticBake = 1,   ///< AO + t_m once, before the first frame (Baker::bake); buffers freed after
-    Deform = 2,       ///< per frame: MeshDeformer (positions, normals, areas on the GPU)
-    DynamicBake = 3,  ///< per frame: DynamicBake (refit of both trees, AO, t_m)
-    Draw = 4,         ///< per frame: Renderer (the object's shader variant)
-    SharedBake =
-        5,  ///< once: an earlier instance's static bake, its scattering normals turned (SceneObject::instance_of)
-};
-/// "cache read", "static bake", "deform", "dynamic bake", "draw", "shared bake".
-std::string_view pass_kind_name(PassKind kind);
+namespace dev {
+struct ScenePlanDetails;  // jade/dev/scene.hpp: per object, its passes, shader variant and buffers
+struct SceneRendererAccess;
+}  // namespace dev
 
-/// One GPU buffer a pass allocates; `bytes` is an estimate (see plan_scene).
-struct BufferEstimate {
-    std::string name;
-    uint64_t bytes = 0;
-    bool image = false;  ///< an image (the LUTs), not a buffer
-};
-
-struct PassPlan {
-    PassKind kind = PassKind::Draw;
-    bool per_frame = false;  ///< runs every frame (else once, in SceneRenderer's constructor)
-    bool resident = false;   ///< its buffers stay allocated while the SceneRenderer lives
-    std::vector<BufferEstimate> buffers;
-    uint64_t bytes() const;         ///< Σ buffers and images
-    uint64_t buffer_bytes() const;  ///< Σ buffers only (comparable with the device buffer bytes the Context allocated)
-};
-
-/// The variant of shaders/mesh.frag an object is drawn with (its specialisation constants).
-struct ShaderVariant {
-    ShadingMode mode = ShadingMode::Tm;
-    uint32_t channels = 3;  ///< LUT fetches per light: 1 grey, 3 RGB (Lambert: 3, unused)
-};
-
-struct ObjectPlan {
-    std::string name;
-    size_t bake_vertices = 0, triangles = 0;  ///< after prepare_mesh
-    bool opaque = false, deforming = false;
-    uint32_t channels = 3;  ///< t_m channels baked: 1 grey, 3 RGB, 0 opaque
-    ShaderVariant variant;
-    uint64_t bake_key = 0;  ///< static translucent objects: the cache key (jade/cache.hpp)
-    bool cached = false;    ///< the bake source already holds this bake (CacheRead)
-    std::vector<PassPlan> passes;
-    uint64_t resident_bytes() const;   ///< buffers held while drawing
-    uint64_t transient_bytes() const;  ///< peak of the once-only passes, freed before drawing
-    bool runs(PassKind kind) const;
-};
-
+/// What plan_scene found: the GPU memory the scene will take (estimates, see plan_scene) and
+/// the plan in words.
 struct ScenePlan {
-    std::vector<ObjectPlan> objects;
-    /// Held once for all objects while drawing: the translucency LUT (every Renderer of the
-    /// scene shares it, jade/render.hpp).
-    std::vector<BufferEstimate> shared;
-    uint64_t shared_buffer_bytes() const;  ///< `shared` without the images
+    /// Held while drawing: every object's buffers and the translucency LUT that every Renderer of
+    /// the scene shares (jade/render.hpp).
     uint64_t resident_bytes() const;
     /// The largest once-only pass: static bakes run one after the other, each freed at once.
     uint64_t transient_peak_bytes() const;
-    /// Human-readable, as `jade plan` prints it.
+    /// Human-readable, as `jade plan` prints it: per object its passes and their buffers.
     std::string describe() const;
+    /// Set by plan_scene; read by the tools and tests only (jade/dev/scene.hpp).
+    std::shared_ptr<const dev::ScenePlanDetails> details;
 };
 
-/// Where a static bake came from (StaticBakeSource::bake, jade::io's bake_with_cache).
+/// Where a static bake came from (StaticBakeSource::bake).
 enum class BakeSource {
     Opaque,  ///< the material is opaque: nothing baked, `result` empty (Lambert needs no t_m)
     Cache,   ///< read from a cache: no GPU work, no bake pipelines or buffers
@@ -141,11 +98,11 @@ struct CachedBake {
     std::string note;  ///< why the cache was not used ("missing", "checksum mismatch", ...)
 };
 
-/// Where static bakes come from. Default (empty functions): never cached, baked each time.
-/// jade::io's cached_bakes(cache) (jade/cache.hpp) reads and fills a BakeCache.
+/// Where static bakes come from: a host's own store of bakes, or the default (empty functions):
+/// never cached, baked each time.
 struct StaticBakeSource {
     struct Lookup {
-        uint64_t key = 0;    ///< bake_key() of the bake
+        uint64_t key = 0;    ///< the store's key of the bake (0: none), for describe()
         bool holds = false;  ///< a valid entry is already there
     };
     /// Whether a bake of (mesh, material, settings) is already available (plan only).
@@ -153,10 +110,6 @@ struct StaticBakeSource {
     /// Produces it: from the cache, or bakes (and stores).
     std::function<CachedBake(Context&, const PreparedMesh&, const Material&, const BakeSettings&)> bake;
 };
-
-/// Every static translucent object drawn with t_m = 0, nothing baked or read: the same draws
-/// as a baked scene (benchmarks compare against it; t_m = 0 shades exactly as Lambert).
-StaticBakeSource never_baked();
 
 struct SceneSettings {
     BakeSettings bake = BakeSettings::preset(Quality::Default);
@@ -172,14 +125,6 @@ struct SceneSettings {
 /// Throws jade::Error naming the object for an empty or invalid mesh, or a Curvature mode.
 ScenePlan plan_scene(const Scene& scene, const SceneSettings& settings, const StaticBakeSource& source = {});
 
-/// What ran, for --verbose and tests.
-struct PassRecord {
-    std::string object;
-    PassKind kind;
-    double wall_ms = 0;
-    std::string note;  ///< e.g. the cache's reason for a miss
-};
-
 /// Runs a plan: the once-only passes in the constructor, the per-frame passes and the draws in
 /// render(). Keeps, per object, only a Renderer (mesh vertices with t_m, LUT) and, when the
 /// object deforms, its MeshDeformer and DynamicBake. The Baker of static bakes is made for the
@@ -191,12 +136,6 @@ public:
     ~SceneRenderer();
 
     const ScenePlan& plan() const;
-    /// Every pass run so far, in order (once-only passes first).
-    const std::vector<PassRecord>& passes_run() const;
-    /// The t_m each object is drawn with (per bake vertex; empty for opaque objects). For a
-    /// deforming object, the last frame's, read back from the GPU by this call (frames never
-    /// read it back themselves).
-    const std::vector<glm::vec3>& tm(size_t object) const;
 
     /// Runs the per-frame passes at time `t` (seconds), then draws every object into one image
     /// (one depth buffer; objects after the first are drawn over the others). `settings.mode`
@@ -208,6 +147,7 @@ public:
     glm::vec3 bbox_max() const;
 
 private:
+    friend struct dev::SceneRendererAccess;  // what ran and the t_m drawn (jade/dev/scene.hpp)
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

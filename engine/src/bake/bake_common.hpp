@@ -14,6 +14,7 @@
 #include "gpu/texel_view.hpp"
 #include "gpu/timer.hpp"
 
+#include <jade/dev/material.hpp>
 #include <jade/bake.hpp>
 #include <jade/dev/bake.hpp>
 #include <jade/dev/clock.hpp>
@@ -78,7 +79,7 @@ inline TmVariant tm_variant(const Material& m)
 {
     const ProfileKind k = m.profile[0].kind;
     const bool same = m.profile[1].kind == k && m.profile[2].kind == k;
-    return {m.grey() ? 1u : 0u, same ? uint32_t(k) : uint32_t(JADE_PROFILE_MIXED)};
+    return {dev::is_grey(m) ? 1u : 0u, same ? uint32_t(k) : uint32_t(JADE_PROFILE_MIXED)};
 }
 
 inline void validate_ao_settings(const AoSettings& s)

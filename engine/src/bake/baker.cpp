@@ -18,6 +18,8 @@
 // drivers reset a GPU that runs one dispatch for seconds.
 #include "bake/baker_impl.hpp"
 
+#include <jade/dev/names.hpp>
+
 namespace jade {
 
 const dev::BakeStudy& dev::study_of(const BakeSettings& settings)
@@ -48,7 +50,7 @@ BakeSettings BakeSettings::preset(Quality q)
     return s;
 }
 
-const char* quality_name(Quality quality)
+const char* dev::quality_name(Quality quality)
 {
     switch (quality) {
     case Quality::Draft: return "draft";
@@ -58,14 +60,14 @@ const char* quality_name(Quality quality)
     return "default";
 }
 
-Quality parse_quality(std::string_view name)
+Quality dev::parse_quality(std::string_view name)
 {
     for (Quality q : {Quality::Draft, Quality::Default, Quality::High})
-        if (name == quality_name(q)) return q;
+        if (name == dev::quality_name(q)) return q;
     throw Error("unknown quality '" + std::string(name) + "' (draft, default or high)");
 }
 
-const char* tm_method_name(TmMethod method)
+const char* dev::tm_method_name(TmMethod method)
 {
     switch (method) {
     case TmMethod::Exact: return "exact";
@@ -76,10 +78,10 @@ const char* tm_method_name(TmMethod method)
     return "auto";
 }
 
-TmMethod parse_tm_method(std::string_view name)
+TmMethod dev::parse_tm_method(std::string_view name)
 {
     for (TmMethod m : {TmMethod::Auto, TmMethod::Exact, TmMethod::Clustered, TmMethod::Grid})
-        if (name == tm_method_name(m)) return m;
+        if (name == dev::tm_method_name(m)) return m;
     throw Error("unknown t_m method '" + std::string(name) + "' (auto, exact, clustered or grid)");
 }
 
@@ -97,48 +99,6 @@ void Baker::Impl::read_tm_result(BakeResult& r, const MeshBake& m, const gpu::Gp
 
 Baker::Baker(Context& context) : impl_(std::make_unique<Impl>(gpu_of(context))) {}
 Baker::~Baker() = default;
-
-std::vector<float> Baker::bake_ao(const PreparedMesh& mesh, const AoSettings& settings, BakeTimings* timings)
-{
-    validate_ao_settings(settings);
-    auto t0 = Clock::now();
-    Impl::MeshBake m;
-    impl_->upload_mesh(m, mesh);
-    impl_->ao.prepare(m.ao_pass, m, mesh);
-    double setup = ms_since(t0);
-    gpu::GpuTimer timer(impl_->ctx);
-    impl_->ctx.submit_and_wait([&](VkCommandBuffer cmd) {
-        timer.begin(cmd);
-        impl_->ao.record(cmd, m.ao_pass, m, settings);
-        timer.mark(cmd, "ao");
-    });
-    auto ao = m.ao.read<float>(mesh.vertex_count());
-    if (timings) finish_timings(*timings, timer, setup, t0);
-    return ao;
-}
-
-BakeResult Baker::bake_tm(const PreparedMesh& mesh, std::span<const float> ao, const Material& material,
-                          const BakeSettings& settings)
-{
-    if (ao.size() != mesh.vertex_count())
-        throw Error("bake_tm: " + std::to_string(ao.size()) + " AO values for " + std::to_string(mesh.vertex_count()) +
-                    " vertices");
-    auto t0 = Clock::now();
-    Impl::MeshBake m;
-    impl_->upload_mesh(m, mesh);
-    m.ao = gpu::Buffer::from(impl_->ctx, ao, kStorageUsage, "ao (given)");
-    impl_->prepare_tm(m, mesh, material, settings, kStaticNearMargin);
-    double setup = ms_since(t0);
-    gpu::GpuTimer timer(impl_->ctx);
-    impl_->ctx.submit_and_wait([&](VkCommandBuffer cmd) {
-        timer.begin(cmd);
-        impl_->record_tm(cmd, m, settings, &timer);
-    });
-    BakeResult r;
-    r.ao.assign(ao.begin(), ao.end());
-    Impl::read_tm_result(r, m, timer, setup, t0);
-    return r;
-}
 
 BakeResult Baker::bake(const PreparedMesh& mesh, const Material& material, const BakeSettings& requested)
 {
@@ -168,6 +128,57 @@ BakeResult Baker::bake(const PreparedMesh& mesh, const Material& material, const
     r.ao = m.ao.read<float>(mesh.vertex_count());
     if (settings.thickness.enabled()) r.thickness = m.thickness.result.read<float>(mesh.vertex_count());
     Impl::read_tm_result(r, m, timer, setup, t0);
+    return r;
+}
+
+// The partial bakes of jade/dev/bake.hpp.
+struct dev::BakerAccess {
+    using Impl = Baker::Impl;
+    static Impl& impl(Baker& baker) { return *baker.impl_; }
+};
+
+std::vector<float> dev::bake_ao(Baker& baker, const PreparedMesh& mesh, const AoSettings& settings,
+                                BakeTimings* timings)
+{
+    BakerAccess::Impl& impl = BakerAccess::impl(baker);
+    validate_ao_settings(settings);
+    auto t0 = Clock::now();
+    BakerAccess::Impl::MeshBake m;
+    impl.upload_mesh(m, mesh);
+    impl.ao.prepare(m.ao_pass, m, mesh);
+    double setup = ms_since(t0);
+    gpu::GpuTimer timer(impl.ctx);
+    impl.ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+        timer.begin(cmd);
+        impl.ao.record(cmd, m.ao_pass, m, settings);
+        timer.mark(cmd, "ao");
+    });
+    auto ao = m.ao.read<float>(mesh.vertex_count());
+    if (timings) finish_timings(*timings, timer, setup, t0);
+    return ao;
+}
+
+BakeResult dev::bake_tm(Baker& baker, const PreparedMesh& mesh, std::span<const float> ao, const Material& material,
+                        const BakeSettings& settings)
+{
+    BakerAccess::Impl& impl = BakerAccess::impl(baker);
+    if (ao.size() != mesh.vertex_count())
+        throw Error("bake_tm: " + std::to_string(ao.size()) + " AO values for " + std::to_string(mesh.vertex_count()) +
+                    " vertices");
+    auto t0 = Clock::now();
+    BakerAccess::Impl::MeshBake m;
+    impl.upload_mesh(m, mesh);
+    m.ao = gpu::Buffer::from(impl.ctx, ao, kStorageUsage, "ao (given)");
+    impl.prepare_tm(m, mesh, material, settings, kStaticNearMargin);
+    double setup = ms_since(t0);
+    gpu::GpuTimer timer(impl.ctx);
+    impl.ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+        timer.begin(cmd);
+        impl.record_tm(cmd, m, settings, &timer);
+    });
+    BakeResult r;
+    r.ao.assign(ao.begin(), ao.end());
+    BakerAccess::Impl::read_tm_result(r, m, timer, setup, t0);
     return r;
 }
 

@@ -36,8 +36,8 @@ uint64_t bytes(double b) { return std::max<uint64_t>(gpu::kMinBufferBytes, uint6
 
 }  // namespace
 
-std::vector<BufferEstimate> estimate_buffers(const PreparedMesh& mesh, const Material& material, const BakeSettings& s,
-                                             bool dynamic, bool thickness)
+std::vector<dev::BufferEstimate> estimate_buffers(const PreparedMesh& mesh, const Material& material,
+                                                  const BakeSettings& s, bool dynamic, bool thickness)
 {
     const double n = double(mesh.vertex_count()), tris = double(mesh.triangle_count());
     const double vec3 = sizeof(glm::vec3), word = sizeof(uint32_t);
@@ -50,7 +50,7 @@ std::vector<BufferEstimate> estimate_buffers(const PreparedMesh& mesh, const Mat
     const bool exact = far.method == TmMethod::Exact;
     const GridPlan* grid = far.method == TmMethod::Grid ? &*far.grid : nullptr;
     if (grid) near_entries = double(grid->near_entries(mesh.vertex_count(), margin));
-    std::vector<BufferEstimate> b = {
+    std::vector<dev::BufferEstimate> b = {
         {"positions", bytes(vec3 * n)},
         {"normals", bytes(vec3 * n)},
         {"areas", bytes(sizeof(float) * n)},

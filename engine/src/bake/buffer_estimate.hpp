@@ -3,7 +3,7 @@
 #pragma once
 
 #include <jade/bake.hpp>
-#include <jade/scene.hpp>
+#include <jade/dev/scene.hpp>  // BufferEstimate
 
 #include <vector>
 
@@ -15,7 +15,7 @@ namespace jade::bake {
 /// with `thickness` (a material with a transmission term) and settings.thickness enabled. What
 /// depends on the geometry (tree sizes, near-list lengths) is estimated: buffer_estimate.cpp
 /// says how.
-std::vector<BufferEstimate> estimate_buffers(const PreparedMesh& mesh, const Material& material,
-                                             const BakeSettings& settings, bool dynamic, bool thickness);
+std::vector<dev::BufferEstimate> estimate_buffers(const PreparedMesh& mesh, const Material& material,
+                                                  const BakeSettings& settings, bool dynamic, bool thickness);
 
 }  // namespace jade::bake

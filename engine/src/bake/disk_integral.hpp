@@ -5,6 +5,7 @@
 // Units: r, ρ, t in mesh units; R(t) in 1/units²; radial_density in 1/units; D unitless.
 #pragma once
 
+#include <jade/dev/material.hpp>
 #include <jade/material.hpp>
 
 #include "bake_interface.h"  // JADE_DISK_CAP, shared with tm_near.comp
@@ -36,7 +37,7 @@ inline constexpr double kGaussLegendre8W[4] = {0.3626837833783619829651504, 0.31
 /// absorbs the square-root endpoint behaviour of α, and 8 Gauss–Legendre nodes in φ.
 inline double disk_integral(const ChannelProfile& p, double r, double rho)
 {
-    if (r <= 1e-12 * rho) return p.cdf(rho);  // x at the centre (error O((r/ρ)²))
+    if (r <= 1e-12 * rho) return dev::profile_cdf(p, rho);  // x at the centre (error O((r/ρ)²))
     const double lo = std::abs(r - rho), hi = r + rho;
     const double c = 0.5 * (lo + hi), h = 0.5 * (hi - lo);
     const double half_pi = 0.5 * std::numbers::pi;
@@ -52,7 +53,7 @@ inline double disk_integral(const ChannelProfile& p, double r, double rho)
         // 2t·R(t)·α = radial_density(t)·α/π
         sum += w * half_pi * radial_density(p, t) * (alpha / std::numbers::pi) * h * std::sin(phi);
     }
-    return p.cdf(std::max(rho - r, 0.0)) + sum;
+    return dev::profile_cdf(p, std::max(rho - r, 0.0)) + sum;
 }
 
 /// The vertex-disk rule's neighbour term for a vertex j of area A_j (ρ_j = √(A_j/π)) at
@@ -80,9 +81,9 @@ inline double vertex_disk_term(const ChannelProfile& p, double r, double area)
         const double capped = std::min(rho, kDiskCap * r);
         const double rest = area - std::numbers::pi * capped * capped;
         return (capped > 0.0 ? disk_integral(p, r, capped) : 0.0) +
-               (rest > 0.0 ? rest * p.R(rest_distance(r, rho, capped)) : 0.0);
+               (rest > 0.0 ? rest * dev::profile_value(p, rest_distance(r, rho, capped)) : 0.0);
     }
-    return area * p.R(r);
+    return area * dev::profile_value(p, r);
 }
 
 template <class F>

@@ -3,6 +3,8 @@
 
 #include "bake/bake_common.hpp"
 
+#include <jade/dev/material.hpp>
+
 namespace jade::bake {
 
 Bvh build_point_tree(const PreparedMesh& mesh) { return build_bvh(mesh.positions, mesh.positions, kPointLeafSize); }
@@ -15,8 +17,8 @@ FarField choose_far_field(const PreparedMesh& mesh, const Material& material, co
     if (uses_exact_tm(s.method, n)) return f;
     f.method = TmMethod::Clustered;
     if (s.method != TmMethod::Grid && s.method != TmMethod::Auto) return f;
-    f.grid = plan_grid(mesh, material, material.grey() ? 1 : 3, s.tm_grid_resolution, near_margin > kStaticNearMargin,
-                       near_margin);
+    f.grid = plan_grid(mesh, material, dev::is_grey(material) ? 1 : 3, s.tm_grid_resolution,
+                       near_margin > kStaticNearMargin, near_margin);
     f.near_entries = f.grid->feasible ? sample_near_entries(mesh, point_tree, near_margin, float(f.grid->r_cut)) : 0;
     f.long_lists = f.near_entries * 4 > kGridMaxNearBytes;
     if (s.method == TmMethod::Grid) {

@@ -1,6 +1,7 @@
 // bake/gpu_profile.hpp - ChannelProfile in the layout of `Profile` in shaders/include/profile_interface.h.
 #pragma once
 
+#include <jade/dev/material.hpp>
 #include <jade/error.hpp>
 #include <jade/material.hpp>
 
@@ -23,7 +24,7 @@ static_assert(JADE_PROFILE_MAX_GAUSSIANS == ChannelProfile::kMaxGaussians);
 /// bisection in float64: the clustered pass then tests distances instead of evaluating R.
 inline float faint_radius(const ChannelProfile& p, double total_weight, double threshold, double scale)
 {
-    auto faint = [&](double r) { return p.R(r) * total_weight <= threshold; };
+    auto faint = [&](double r) { return dev::profile_value(p, r) * total_weight <= threshold; };
     double lo = 1e-12 * scale, hi = 1e12 * scale;
     if (faint(lo)) return 0.0f;
     if (!faint(hi)) return 3.0e38f;

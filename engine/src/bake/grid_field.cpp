@@ -2,6 +2,7 @@
 
 #include "bake/near_field.hpp"
 
+#include <jade/dev/material.hpp>
 #include <jade/error.hpp>
 
 #include <glm/common.hpp>
@@ -126,7 +127,8 @@ SmoothFit fit_smooth_part(const Material& material, int channels, double r_cut, 
     const double ratio = std::pow(2.0, 1.0 / double(per_octave));  // between consecutive Gaussians
     SmoothFit fit;
     double extent = 0;  // beyond it the profiles hold less than kNegligibleTail
-    for (int c = 0; c < channels; ++c) extent = std::max(extent, material.profile[c].radius_for_tail(kNegligibleTail));
+    for (int c = 0; c < channels; ++c)
+        extent = std::max(extent, dev::radius_for_tail(material.profile[c], kNegligibleTail));
     const double top = std::min(r_max, extent);
     if (!(top > r_cut)) return fit;  // every source that matters is within r_cut: S = 0
     std::vector<double> sigmas;
@@ -140,7 +142,8 @@ SmoothFit fit_smooth_part(const Material& material, int channels, double r_cut, 
     std::vector<glm::dvec3> weights(cols, glm::dvec3(0));
     for (int c = 0; c < channels; ++c) {
         std::vector<double> b(rows);
-        for (size_t i = 0; i < rows; ++i) b[i] = material.profile[c].R(radii[i]) * 2 * kPi * radii[i] * radii[i];
+        for (size_t i = 0; i < rows; ++i)
+            b[i] = dev::profile_value(material.profile[c], radii[i]) * 2 * kPi * radii[i] * radii[i];
         std::vector<double> a = nnls(A, b, rows, cols);
         for (size_t g = 0; g < cols; ++g) weights[g][c] = a[g];
     }
@@ -158,7 +161,7 @@ SmoothFit fit_smooth_part(const Material& material, int channels, double r_cut, 
         double sum = 0, prev = 0;
         for (size_t i = 0; i < rows; ++i) {
             const double r = radii[i];
-            const double e = std::abs(material.profile[pc].R(r) - fit.S(c, r)) * 2 * kPi * r * r;
+            const double e = std::abs(dev::profile_value(material.profile[pc], r) - fit.S(c, r)) * 2 * kPi * r * r;
             if (i > 0) sum += 0.5 * (e + prev) * std::log(radii[i] / radii[i - 1]);
             prev = e;
         }
@@ -331,7 +334,8 @@ GridPlan plan_grid(const PreparedMesh& mesh, const Material& material, int chann
         const double r = plan.table_range * k / (kGridTableSize - 1);
         glm::dvec3 S(plan.fit.S(0, r), plan.fit.S(1, r), plan.fit.S(2, r)), Rr;
         for (int c = 0; c < 3; ++c)
-            Rr[c] = material.profile[channels == 1 ? 0 : c].R(std::max(r, 1e-300 * plan.table_range)) * r;
+            Rr[c] =
+                dev::profile_value(material.profile[channels == 1 ? 0 : c], std::max(r, 1e-300 * plan.table_range)) * r;
         plan.table[k] = glm::vec3(S);
         plan.table[kGridTableSize + k] = glm::vec3(Rr - S * r);  // (R − S)·r: finite at 0
     }

@@ -1,6 +1,8 @@
 // bake/medium.cpp - materials from a physical medium (Material::from_medium): the diffuse albedo
 // behind a dielectric boundary, the Burley profile, strength and the transmission term.
-// Formulas and sources are in jade/material.hpp; the fitted constants in docs/fidelity.md.
+// Formulas and sources are in jade/material.hpp and jade/dev/material.hpp; the fitted constants in
+// docs/fidelity.md.
+#include <jade/dev/material.hpp>
 #include <jade/error.hpp>
 #include <jade/material.hpp>
 
@@ -51,7 +53,7 @@ Medium Medium::scaled(double factor) const
     return m;
 }
 
-double diffuse_reflectance(double reduced_albedo, double eta)
+double dev::diffuse_reflectance(double reduced_albedo, double eta)
 {
     if (!(reduced_albedo >= 0.0 && reduced_albedo <= 1.0))
         throw Error("diffuse_reflectance: reduced albedo = " + fmt(reduced_albedo) + " must be in [0, 1]");
@@ -61,7 +63,7 @@ double diffuse_reflectance(double reduced_albedo, double eta)
     return std::clamp(0.5 * reduced_albedo * (1.0 + std::exp(-4.0 / 3.0 * a * root)) * std::exp(-root), 0.0, 1.0);
 }
 
-double slab_diffusion_transmittance(double t, double sigma_tr, double source_depth, double extrapolation)
+double dev::slab_diffusion_transmittance(double t, double sigma_tr, double source_depth, double extrapolation)
 {
     if (!(source_depth > 0.0) || !(t < INFINITY)) return 0.0;
     t = std::max(t, 0.0);
@@ -77,8 +79,8 @@ double slab_diffusion_transmittance(double t, double sigma_tr, double source_dep
     return std::isnan(r) ? 0.0 : std::min(1.0, r);
 }
 
-Medium medium_from_appearance(glm::dvec3 albedo, glm::dvec3 mean_free_path, double ior, double roughness,
-                              const MediumFit& fit)
+Medium dev::medium_from_appearance(glm::dvec3 albedo, glm::dvec3 mean_free_path, double ior, double roughness,
+                                   const MediumFit& fit)
 {
     check_eta("medium_from_appearance", ior);
     Medium m;
@@ -103,7 +105,17 @@ Medium medium_from_appearance(glm::dvec3 albedo, glm::dvec3 mean_free_path, doub
     return m;
 }
 
-Material Material::from_medium(const Medium& medium, const MediumFit& fit, std::string name)
+Medium medium_from_appearance(glm::dvec3 albedo, glm::dvec3 mean_free_path, double ior, double roughness)
+{
+    return dev::medium_from_appearance(albedo, mean_free_path, ior, roughness, dev::MediumFit{});
+}
+
+Material Material::from_medium(const Medium& medium, std::string name)
+{
+    return dev::from_medium(medium, dev::MediumFit{}, std::move(name));
+}
+
+Material dev::from_medium(const Medium& medium, const MediumFit& fit, std::string name)
 {
     const std::string where = "material '" + name + "' from a medium";
     auto check_rgb = [&](const char* field, const glm::dvec3& v) {

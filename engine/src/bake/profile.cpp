@@ -5,6 +5,7 @@
 // the tail 1 − cdf is evaluated directly (never as 1 − cdf) where it matters.
 #include "disk_integral.hpp"
 
+#include <jade/dev/material.hpp>
 #include <jade/error.hpp>
 #include <jade/material.hpp>
 
@@ -169,61 +170,64 @@ ChannelProfile ChannelProfile::gaussians(std::span<const double> weights, std::s
     return p;
 }
 
-double ChannelProfile::R(double r) const
+double dev::profile_value(const ChannelProfile& p, double r)
 {
     check_radius("R", r);
     if (std::isinf(r)) return 0.0;
-    switch (kind) {
+    switch (p.kind) {
     case ProfileKind::Burley:  // (e^{−r/d} + e^{−r/3d}) / (8π d r); +inf at r = 0
-        return (std::exp(-r / d) + std::exp(-r / (3.0 * d))) / (8.0 * kPi * d * r);
+        return (std::exp(-r / p.d) + std::exp(-r / (3.0 * p.d))) / (8.0 * kPi * p.d * r);
     case ProfileKind::Dipole:
-        return (pole_R(sigma_tr, z_r, z_r, r) + pole_R(sigma_tr, z_v, z_r, r)) / (2.0 * kPi * dipole_norm(*this));
+        return (pole_R(p.sigma_tr, p.z_r, p.z_r, r) + pole_R(p.sigma_tr, p.z_v, p.z_r, r)) /
+               (2.0 * kPi * dipole_norm(p));
     case ProfileKind::Gaussians: {
         double v = 0.0;
-        for (uint32_t k = 0; k < gaussian_count; ++k)
-            if (weight[k] > 0.0) v += weight[k] / (2.0 * kPi * variance[k]) * std::exp(-r * r / (2.0 * variance[k]));
+        for (uint32_t k = 0; k < p.gaussian_count; ++k)
+            if (p.weight[k] > 0.0)
+                v += p.weight[k] / (2.0 * kPi * p.variance[k]) * std::exp(-r * r / (2.0 * p.variance[k]));
         return v;
     }
     }
     return 0.0;
 }
 
-double ChannelProfile::cdf(double r) const
+double dev::profile_cdf(const ChannelProfile& p, double r)
 {
     check_radius("cdf", r);
     if (std::isinf(r)) return 1.0;
-    switch (kind) {
+    switch (p.kind) {
     case ProfileKind::Burley: {  // 1 − ¼e^{−x} − ¾e^{−x/3}, x = r/d
-        const double x = r / d;
+        const double x = r / p.d;
         return -0.25 * std::expm1(-x) - 0.75 * std::expm1(-x / 3.0);
     }
     case ProfileKind::Dipole: {
-        const double v = (pole_cdf(sigma_tr, z_r, r) + std::exp(-sigma_tr * (z_v - z_r)) * pole_cdf(sigma_tr, z_v, r)) /
-                         dipole_norm(*this);
+        const double v = (pole_cdf(p.sigma_tr, p.z_r, r) +
+                          std::exp(-p.sigma_tr * (p.z_v - p.z_r)) * pole_cdf(p.sigma_tr, p.z_v, r)) /
+                         dipole_norm(p);
         return std::min(v, 1.0);
     }
     case ProfileKind::Gaussians: {
         double c = 0.0;
-        for (uint32_t k = 0; k < gaussian_count; ++k)
-            if (weight[k] > 0.0) c -= weight[k] * std::expm1(-r * r / (2.0 * variance[k]));
+        for (uint32_t k = 0; k < p.gaussian_count; ++k)
+            if (p.weight[k] > 0.0) c -= p.weight[k] * std::expm1(-r * r / (2.0 * p.variance[k]));
         return std::min(c, 1.0);
     }
     }
     return 0.0;
 }
 
-double ChannelProfile::radius_for_tail(double t) const
+double dev::radius_for_tail(const ChannelProfile& p, double t)
 {
     if (!(t > 0.0)) throw Error("ChannelProfile::radius_for_tail: tail = " + fmt(t) + " must be > 0");
     if (t >= 1.0) return 0.0;
-    double lo = 0.0, hi = length_scale(*this);
-    while (tail(*this, hi) > t) {  // tail → 0 monotonically (at least like 1/r), so this ends
+    double lo = 0.0, hi = length_scale(p);
+    while (tail(p, hi) > t) {  // tail → 0 monotonically (at least like 1/r), so this ends
         lo = hi;
         hi *= 2.0;
     }
     for (int i = 0; i < 200 && hi - lo > 1e-15 * hi; ++i) {
         const double mid = 0.5 * (lo + hi);
-        (tail(*this, mid) > t ? lo : hi) = mid;
+        (tail(p, mid) > t ? lo : hi) = mid;
     }
     return hi;
 }
@@ -249,7 +253,7 @@ double bake::radial_density(const ChannelProfile& p, double t)
         return (std::exp(-x) + std::exp(-x / 3.0)) / (4.0 * p.d);
     }
     case ProfileKind::Dipole:
-    case ProfileKind::Gaussians: return 2.0 * kPi * t * p.R(t);
+    case ProfileKind::Gaussians: return 2.0 * kPi * t * dev::profile_value(p, t);
     }
     return 0.0;
 }
@@ -344,7 +348,7 @@ Material material_preset(std::string_view name, double mm_per_unit)
         Medium medium;
         for (int c = 0; c < 3; ++c) medium.sigma_s[c] = e.sigma_s[c], medium.sigma_a[c] = e.sigma_a[c];
         medium.g = e.g, medium.ior = e.ior, medium.roughness = e.roughness;
-        return Material::from_medium(medium.scaled(mm_per_unit), {}, std::string(name));  // mm^-1 × mm/unit
+        return Material::from_medium(medium.scaled(mm_per_unit), std::string(name));  // mm^-1 × mm/unit
     }
     for (const auto& e : kJensen) {
         if (name != e.name) continue;
@@ -353,7 +357,7 @@ Material material_preset(std::string_view name, double mm_per_unit)
         Medium medium;
         for (int c = 0; c < 3; ++c) medium.sigma_s[c] = e.sigma_s_prime[c], medium.sigma_a[c] = e.sigma_a[c];
         medium.ior = kJensenEta, medium.roughness = 0.25;
-        m = Material::from_medium(medium.scaled(mm_per_unit), {}, std::string(name));
+        m = Material::from_medium(medium.scaled(mm_per_unit), std::string(name));
         for (int c = 0; c < 3; ++c)
             m.profile[c] =
                 ChannelProfile::dipole(e.sigma_s_prime[c] * mm_per_unit, e.sigma_a[c] * mm_per_unit, kJensenEta);

@@ -8,6 +8,7 @@
 #include "disk_integral.hpp"
 #include "rays.hpp"
 
+#include <jade/dev/material.hpp>
 #include <jade/bake.hpp>
 #include <jade/error.hpp>
 #include <jade/dev/reference.hpp>
@@ -306,7 +307,7 @@ ReferenceSums reference_sums(const PreparedMesh& mesh, std::span<const float> ao
         weight[j] = 1.0 - double(ao[j]);
         if (weight[j] > 0.0 && mesh.areas[j] > 0.0f) sources.push_back(uint32_t(j));
     }
-    const int channels = material.grey() ? 1 : 3;
+    const int channels = dev::is_grey(material) ? 1 : 3;
     const auto& profile = material.profile;
 
     ReferenceSums out{list, std::vector<glm::dvec3>(list.size()), std::vector<std::array<glm::dvec3, 3>>(list.size())};
@@ -316,7 +317,7 @@ ReferenceSums reference_sums(const PreparedMesh& mesh, std::span<const float> ao
         const double rho_i = std::sqrt(double(mesh.areas[i]) / std::numbers::pi);
         std::array<glm::dvec3, 3> normal{};
         for (int c = 0; c < channels; ++c) {
-            sum[c] = weight[i] * profile[c].cdf(rho_i);  // self disk
+            sum[c] = weight[i] * dev::profile_cdf(profile[c], rho_i);  // self disk
             normal[c] = sum[c] * glm::dvec3(mesh.normals[i]);
         }
         for (const uint32_t j : sources) {

@@ -1,5 +1,7 @@
 // deform/animation.cpp - glTF animation sampling and skinning matrices, on the CPU (a few
 // nodes per frame); the per-vertex work is shaders/deform_skin.comp.
+#include "deform/animation.hpp"
+
 #include <jade/deform.hpp>
 #include <jade/error.hpp>
 
@@ -40,9 +42,11 @@ void slerp(const float* q0, const float* q1, double s, float* out)
 
 }  // namespace
 
-std::vector<float> AnimationChannel::sample(double t) const
+std::vector<float> deform::sample(const AnimationChannel& channel, double t)
 {
-    const size_t w = width, keys = times.size();
+    const std::vector<float>&times = channel.times, &values = channel.values;
+    const Interpolation interpolation = channel.interpolation;
+    const size_t w = channel.width, keys = times.size();
     std::vector<float> out(w, 0.0f);
     if (keys == 0) return out;
     const bool cubic = interpolation == Interpolation::CubicSpline;
@@ -52,7 +56,7 @@ std::vector<float> AnimationChannel::sample(double t) const
     if (t >= times.back()) return std::vector<float>(value(keys - 1), value(keys - 1) + w);
     const size_t k = size_t(std::upper_bound(times.begin(), times.end(), float(t)) - times.begin()) - 1;
     const double t0 = times[k], dt = double(times[k + 1]) - t0, s = (t - t0) / dt;
-    const bool rotation = path == AnimationPath::Rotation;
+    const bool rotation = channel.path == AnimationPath::Rotation;
     switch (interpolation) {
     case Interpolation::Step: return std::vector<float>(value(k), value(k) + w);
     case Interpolation::Linear:
@@ -90,12 +94,12 @@ double Animation::duration() const
     return d;
 }
 
-glm::mat4 AnimatedNode::local() const
+glm::mat4 deform::local_transform(const AnimatedNode& node)
 {
-    if (has_matrix) return matrix;
-    glm::mat4 m = glm::mat4_cast(rotation);
-    m[0] *= scale.x, m[1] *= scale.y, m[2] *= scale.z;
-    m[3] = glm::vec4(translation, 1.0f);
+    if (node.has_matrix) return node.matrix;
+    glm::mat4 m = glm::mat4_cast(node.rotation);
+    m[0] *= node.scale.x, m[1] *= node.scale.y, m[2] *= node.scale.z;
+    m[3] = glm::vec4(node.translation, 1.0f);
     return m;
 }
 
@@ -107,7 +111,7 @@ Pose evaluate_pose(const AnimatedMesh& mesh, size_t animation, double t)
     if (animation < mesh.animations.size()) {
         for (const auto& ch : mesh.animations[animation].channels) {
             if (ch.node < 0 || size_t(ch.node) >= nodes.size()) continue;  // checked by the loader
-            const auto v = ch.sample(t);
+            const auto v = deform::sample(ch, t);
             auto& n = nodes[size_t(ch.node)];
             switch (ch.path) {
             case AnimationPath::Translation: n.translation = glm::vec3(v[0], v[1], v[2]); break;
@@ -131,7 +135,8 @@ Pose evaluate_pose(const AnimatedMesh& mesh, size_t animation, double t)
         for (int a = int(n); a >= 0 && !done[size_t(a)]; a = nodes[size_t(a)].parent) chain.push_back(size_t(a));
         for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
             const int p = nodes[*it].parent;
-            world[*it] = p >= 0 ? world[size_t(p)] * nodes[*it].local() : nodes[*it].local();
+            world[*it] =
+                p >= 0 ? world[size_t(p)] * deform::local_transform(nodes[*it]) : deform::local_transform(nodes[*it]);
             done[*it] = true;
         }
     }

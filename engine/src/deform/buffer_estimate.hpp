@@ -2,7 +2,7 @@
 // plan_scene, jade/scene.hpp). Private to the engine.
 #pragma once
 
-#include <jade/scene.hpp>
+#include <jade/dev/scene.hpp>  // BufferEstimate
 
 #include <cstddef>
 #include <vector>
@@ -11,6 +11,6 @@ namespace jade::deform {
 
 /// The device buffers of a MeshDeformer of a mesh of `vertices` bake vertices and `triangles`
 /// triangles (without a skin: set_skin adds its own), named as it names them. Exact.
-std::vector<BufferEstimate> estimate_buffers(size_t vertices, size_t triangles);
+std::vector<dev::BufferEstimate> estimate_buffers(size_t vertices, size_t triangles);
 
 }  // namespace jade::deform

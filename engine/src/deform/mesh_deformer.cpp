@@ -3,6 +3,7 @@
 #include <jade/dev/clock.hpp>
 #include <jade/context.hpp>
 #include <jade/deform.hpp>
+#include <jade/dev/deform.hpp>
 #include <jade/error.hpp>
 
 #include "deform/buffer_estimate.hpp"
@@ -53,7 +54,7 @@ constexpr VkDeviceSize kTriangleBytes = sizeof(glm::vec4);
 }  // namespace
 
 // The buffers of MeshDeformer::Impl's constructor below, in its order.
-std::vector<BufferEstimate> deform::estimate_buffers(size_t n, size_t tris)
+std::vector<dev::BufferEstimate> deform::estimate_buffers(size_t n, size_t tris)
 {
     auto bytes = [](size_t b) { return std::max<uint64_t>(gpu::kMinBufferBytes, b); };
     const size_t vec3 = sizeof(glm::vec3), word = sizeof(uint32_t);
@@ -152,7 +153,7 @@ struct MeshDeformer::Impl {
 
     std::function<void(VkCommandBuffer)> procedural_pass(const ProceduralDeformer& d, double t)
     {
-        d.validate();
+        dev::validate_deformer(d);
         if (!std::isfinite(t)) throw Error("deform: time is not finite");
         const double s = std::sin(kTwoPi * t / d.period);
         ProceduralPush push{n, uint32_t(d.kind), d.axis, 0.0f, d.origin, 0.0f, 0.0f};
@@ -253,10 +254,10 @@ DeformedVertices MeshDeformer::read() const
     return out;
 }
 
-VkBuffer MeshDeformer::positions_buffer() const { return impl_->positions.handle(); }
-VkBuffer MeshDeformer::normals_buffer() const { return impl_->normals.handle(); }
-VkBuffer MeshDeformer::areas_buffer() const { return impl_->areas.handle(); }
-size_t MeshDeformer::vertex_count() const { return impl_->n; }
+MeshDeformer::Buffers MeshDeformer::buffers() const
+{
+    return {impl_->positions.handle(), impl_->normals.handle(), impl_->areas.handle(), impl_->n};
+}
 
 PreparedMesh deformed_mesh(const PreparedMesh& rest, DeformedVertices deformed)
 {

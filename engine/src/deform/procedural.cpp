@@ -1,6 +1,8 @@
 // deform/procedural.cpp - the procedural deformers' parameters (their per-vertex work is
 // shaders/deform_procedural.comp, driven by deform/mesh_deformer.cpp).
 #include <jade/deform.hpp>
+#include <jade/dev/deform.hpp>
+#include <jade/dev/names.hpp>
 #include <jade/error.hpp>
 
 #include <cmath>
@@ -12,9 +14,9 @@ namespace {
 constexpr std::string_view kNames[] = {"bend", "twist", "squash", "wave"};
 }
 
-std::string_view deformer_name(DeformerKind kind) { return kNames[uint32_t(kind) % 4]; }
+std::string_view dev::deformer_name(DeformerKind kind) { return kNames[uint32_t(kind) % 4]; }
 
-DeformerKind parse_deformer(std::string_view name)
+DeformerKind dev::parse_deformer(std::string_view name)
 {
     for (uint32_t k = 0; k < 4; ++k)
         if (name == kNames[k]) return DeformerKind(k);
@@ -41,23 +43,25 @@ ProceduralDeformer ProceduralDeformer::fit(DeformerKind kind, const PreparedMesh
     return d;
 }
 
-void ProceduralDeformer::validate() const
+void dev::validate_deformer(const ProceduralDeformer& d)
 {
-    auto bad = [&](const std::string& what) { throw Error(std::string(deformer_name(kind)) + " deformer: " + what); };
-    if (uint32_t(kind) > 3) bad("unknown kind " + std::to_string(uint32_t(kind)));
-    if (axis > 2) bad("axis " + std::to_string(axis) + " is not 0 (x), 1 (y) or 2 (z)");
+    auto bad = [&](const std::string& what) {
+        throw Error(std::string(dev::deformer_name(d.kind)) + " deformer: " + what);
+    };
+    if (uint32_t(d.kind) > 3) bad("unknown kind " + std::to_string(uint32_t(d.kind)));
+    if (d.axis > 2) bad("axis " + std::to_string(d.axis) + " is not 0 (x), 1 (y) or 2 (z)");
     for (int c = 0; c < 3; ++c)
-        if (!std::isfinite(origin[c])) bad("origin is not finite");
-    if (!(length > 0.0f) || !std::isfinite(length))
-        bad("length " + std::to_string(length) + " must be positive and finite");
-    if (!std::isfinite(amplitude)) bad("amplitude is not finite");
-    if (kind == DeformerKind::Squash && !(std::abs(amplitude) < 1.0f))
-        bad("squash amplitude " + std::to_string(amplitude) +
+        if (!std::isfinite(d.origin[c])) bad("origin is not finite");
+    if (!(d.length > 0.0f) || !std::isfinite(d.length))
+        bad("length " + std::to_string(d.length) + " must be positive and finite");
+    if (!std::isfinite(d.amplitude)) bad("amplitude is not finite");
+    if (d.kind == DeformerKind::Squash && !(std::abs(d.amplitude) < 1.0f))
+        bad("squash amplitude " + std::to_string(d.amplitude) +
             " must be in (-1, 1) (the stretch factor 1 ± amplitude stays positive)");
-    if (!(wavelength > 0.0f) || !std::isfinite(wavelength))
-        bad("wavelength " + std::to_string(wavelength) + " must be positive and finite");
-    if (!(period > 0.0f) || !std::isfinite(period))
-        bad("period " + std::to_string(period) + " must be positive and finite");
+    if (!(d.wavelength > 0.0f) || !std::isfinite(d.wavelength))
+        bad("wavelength " + std::to_string(d.wavelength) + " must be positive and finite");
+    if (!(d.period > 0.0f) || !std::isfinite(d.period))
+        bad("period " + std::to_string(d.period) + " must be positive and finite");
 }
 
 }  // namespace jade

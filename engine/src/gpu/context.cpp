@@ -467,7 +467,7 @@ std::vector<std::string> Context::list_devices()
 
 namespace jade {
 
-std::string DeviceInfo::api_version_string() const
+std::string dev::DeviceInfo::api_version_string() const
 {
     return std::to_string(VK_API_VERSION_MAJOR(api_version)) + "." + std::to_string(VK_API_VERSION_MINOR(api_version)) +
            "." + std::to_string(VK_API_VERSION_PATCH(api_version));
@@ -475,9 +475,6 @@ std::string DeviceInfo::api_version_string() const
 
 Context::Context(const ContextOptions& options) : gpu_(std::make_unique<gpu::Context>(options)) {}
 Context::~Context() = default;
-const DeviceInfo& Context::device_info() const { return gpu_->info(); }
-uint64_t Context::validation_messages() const { return gpu_->validation_messages(); }
-std::vector<std::string> Context::list_devices() { return gpu::Context::list_devices(); }
 Context::Context(const AdoptedVulkan& host, const ContextOptions& options)
     : gpu_(std::make_unique<gpu::Context>(host, options))
 {
@@ -487,6 +484,12 @@ ObjectCounts dev::created_objects(const Context& context)
 {
     return gpu_of(const_cast<Context&>(context)).created_objects();
 }
+const dev::DeviceInfo& dev::device_info(const Context& context) { return gpu_of(const_cast<Context&>(context)).info(); }
+uint64_t dev::validation_messages(const Context& context)
+{
+    return gpu_of(const_cast<Context&>(context)).validation_messages();
+}
+std::vector<std::string> dev::list_devices() { return gpu::Context::list_devices(); }
 gpu::Context& gpu_of(Context& context) { return *context.gpu_; }
 
 }  // namespace jade

@@ -5,7 +5,7 @@
 #include "gpu/vk.hpp"
 
 #include <jade/context.hpp>
-#include <jade/dev/context.hpp>  // ObjectCounts
+#include <jade/dev/context.hpp>  // ObjectCounts, DeviceInfo
 
 #include <atomic>
 #include <functional>
@@ -32,7 +32,7 @@ public:
     const VkPhysicalDeviceMemoryProperties& memory_properties() const { return memory_; }
     /// maxMemoryAllocationSize (Vulkan 1.1): the largest single allocation.
     VkDeviceSize max_memory_allocation_size() const { return max_memory_allocation_size_; }
-    const DeviceInfo& info() const { return info_; }
+    const dev::DeviceInfo& info() const { return info_; }
     uint64_t validation_messages() const { return validation_messages_.load(); }
     bool adopted() const { return adopted_; }
 
@@ -107,7 +107,7 @@ private:
     uint32_t queue_family_ = 0;
     VkDevice device_ = VK_NULL_HANDLE;
     VkQueue queue_ = VK_NULL_HANDLE;
-    DeviceInfo info_;
+    dev::DeviceInfo info_;
     PFN_vkSetDebugUtilsObjectNameEXT set_object_name_ = nullptr;
     // Owned objects last: destroyed first, before the device (see ~Context).
     OwnedCommandPool command_pool_;

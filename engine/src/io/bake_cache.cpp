@@ -1,8 +1,9 @@
-// io/bake_cache.cpp - the on-disk bake cache of jade/cache.hpp.
-#include <jade/cache.hpp>
+// io/bake_cache.cpp - the on-disk bake cache of jade/dev/cache.hpp.
 #include <jade/context.hpp>
 #include <jade/dev/bake.hpp>
+#include <jade/dev/cache.hpp>
 #include <jade/error.hpp>
+#include <jade/dev/io.hpp>
 #include <jade/io.hpp>
 
 #include <cmath>
@@ -12,7 +13,7 @@
 #include <system_error>
 #include <vector>
 
-namespace jade {
+namespace jade::dev {
 namespace {
 
 constexpr char kMagic[8] = {'J', 'A', 'D', 'E', 'B', 'A', 'K', 'E'};
@@ -237,4 +238,4 @@ CachedBake bake_with_cache(Context& context, const BakeCache& cache, const Prepa
     return out;
 }
 
-}  // namespace jade
+}  // namespace jade::dev

@@ -1,6 +1,7 @@
 // io/common.cpp - helpers shared by the readers and writers; see common.hpp.
 #include "io/common.hpp"
 
+#include <jade/dev/io.hpp>
 #include <jade/io.hpp>
 
 #include <glm/geometric.hpp>
@@ -255,7 +256,7 @@ std::string lower_extension(const std::filesystem::path& path)
 
 namespace jade {
 
-void write_file_atomically(const std::filesystem::path& path, std::string_view bytes)
+void dev::write_file_atomically(const std::filesystem::path& path, std::string_view bytes)
 {
     const auto name = io::display_name(path);
     io::write_atomically(path, [&](const std::filesystem::path& tmp, int fd) {
@@ -269,7 +270,7 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view b
     });
 }
 
-void check_writable(const std::filesystem::path& path)
+void dev::check_writable(const std::filesystem::path& path)
 {
     const auto [tmp, fd] = io::create_temporary_beside(path);
     ::close(fd);

@@ -5,6 +5,8 @@
 // for it, so a corrupt or hostile header fails fast instead of allocating gigabytes.
 #pragma once
 
+#include "mesh/validate.hpp"
+
 #include <jade/error.hpp>
 #include <jade/mesh.hpp>
 

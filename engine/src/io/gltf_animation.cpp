@@ -8,6 +8,7 @@
 #include <jade/deform.hpp>
 #include <jade/io.hpp>
 
+#include "deform/animation.hpp"
 #include "io/common.hpp"
 #include "io/gltf_accessors.hpp"
 #include "io/gltf_model.hpp"
@@ -76,7 +77,7 @@ AnimatedNode read_node(const std::string& name, const tinygltf::Node& node, int 
         n.rotation = glm::normalize(n.rotation);
     }
     if (!s.empty()) n.scale = glm::vec3(float(s[0]), float(s[1]), float(s[2]));
-    const glm::mat4 m = n.local();
+    const glm::mat4 m = deform::local_transform(n);
     for (int c = 0; c < 4; ++c)
         for (int k = 0; k < 4; ++k)
             if (!std::isfinite(m[c][k])) fail(name, subject + "transform is not finite");

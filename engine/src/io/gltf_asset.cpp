@@ -1,5 +1,6 @@
 // io/gltf_asset.cpp - GltfAsset::load: a glTF file read whole, and what to bake of it (the
 // instance rule of jade/io.hpp). The writer is io/gltf_asset_save.cpp.
+#include <jade/dev/io.hpp>
 #include <jade/io.hpp>
 
 #include "io/common.hpp"
@@ -211,14 +212,19 @@ GltfAsset::GltfAsset(GltfAsset&&) noexcept = default;
 GltfAsset& GltfAsset::operator=(GltfAsset&&) noexcept = default;
 GltfAsset::~GltfAsset() = default;
 
-const std::string& GltfAsset::name() const { return impl_->name; }
 const std::vector<GltfAsset::BakeTarget>& GltfAsset::targets() const { return impl_->targets; }
-const std::vector<std::filesystem::path>& GltfAsset::files() const { return impl_->files; }
 
-std::string GltfAsset::asset_extras_json() const
+const std::string& dev::asset_name(const GltfAsset& asset) { return GltfAssetAccess::impl(asset).name; }
+const std::vector<std::filesystem::path>& dev::asset_files(const GltfAsset& asset)
 {
-    const auto& asset = impl_->doc.find("asset");
-    if (asset == impl_->doc.end() || !asset->is_object() || !asset->contains("extras")) return {};
+    return GltfAssetAccess::impl(asset).files;
+}
+
+std::string dev::asset_extras_json(const GltfAsset& a)
+{
+    const nlohmann::ordered_json& doc = GltfAssetAccess::impl(a).doc;
+    const auto& asset = doc.find("asset");
+    if (asset == doc.end() || !asset->is_object() || !asset->contains("extras")) return {};
     return (*asset)["extras"].dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
 }
 

@@ -22,6 +22,7 @@ namespace jade {
 // What jade_io's sources call the private GltfAsset::Impl.
 struct GltfAssetAccess {
     using Impl = GltfAsset::Impl;
+    static const Impl& impl(const GltfAsset& asset) { return *asset.impl_; }
 };
 using GltfAssetImpl = GltfAssetAccess::Impl;
 

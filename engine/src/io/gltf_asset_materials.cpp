@@ -10,6 +10,7 @@
 #include <cmath>
 #include <map>
 #include <utility>
+#include <jade/dev/material.hpp>
 
 namespace jade::io {
 
@@ -105,8 +106,9 @@ void mark_translucent(const MaterialEdits& e)
         const Material& jade = *a.translucent[m];
         glm::dvec3 mfp;
         for (int c = 0; c < 3; ++c)
-            mfp[c] = jade.transmission.sigma_t[c] > 0.0f ? 1.0 / double(jade.transmission.sigma_t[c])
-                                                         : jade.profile[size_t(c)].radius_for_tail(std::exp(-1.0));
+            mfp[c] = jade.transmission.sigma_t[c] > 0.0f
+                         ? 1.0 / double(jade.transmission.sigma_t[c])
+                         : dev::radius_for_tail(jade.profile[size_t(c)], std::exp(-1.0));
         const double distance = std::max({mfp.x, mfp.y, mfp.z});
         double sum = 0.0;
         size_t n = 0;

@@ -11,6 +11,7 @@
 //   that baking a baked file again does not grow it;
 // - required bounds the input lacks, the materials' extensions (io/gltf_asset_materials.hpp), and
 //   the caller's keys in asset.extras.
+#include <jade/dev/io.hpp>
 #include <jade/io.hpp>
 
 #include "io/common.hpp"
@@ -448,7 +449,7 @@ void save_baked_asset(const std::filesystem::path& path, const GltfAsset& asset,
         check_baked(a, name, baked);
         return Writer(a, name, ext == ".glb").write(baked, asset_extras_json);
     });
-    write_file_atomically(path, bytes);
+    dev::write_file_atomically(path, bytes);
 }
 
 }  // namespace jade

@@ -156,9 +156,8 @@ Material MaterialMapper::map(int index)
         glm::dvec3 mfp;
         for (int c = 0; c < 3; ++c) mfp[c] = distance * transmission_color[c] / (1.0 - std::log(attenuation[c]));
         const double roughness = clamped("roughnessFactor", g.pbrMetallicRoughness.roughnessFactor, 0.0, 1.0, 1.0);
-        const MediumFit fit;
         try {
-            m = Material::from_medium(medium_from_appearance(albedo, mfp, ior, roughness, fit), fit);
+            m = Material::from_medium(medium_from_appearance(albedo, mfp, ior, roughness));
         } catch (const Error& e) {
             throw Error(file_ + ": " + where_ + ": " + e.what());
         }

@@ -6,6 +6,7 @@
 // _SCATTERING_NORMAL, _NORMAL_SPREAD (all float, so every view stays 4-byte aligned) and uint32
 // indices. .glb puts it in the BIN chunk, .gltf in a base64 data URI. The one material carries
 // the bake's Jade material (JADE_materials_translucency, io/gltf_translucency.hpp).
+#include <jade/dev/io.hpp>
 #include <jade/io.hpp>
 
 #include "io/common.hpp"
@@ -201,7 +202,7 @@ void save_baked_gltf(const std::filesystem::path& path, const TriangleMesh& mesh
     Document doc;
     const json document = build_json(name, mesh, baked, parse_extras(name, baked.extras_json), doc);
     const std::string bytes = ext == ".glb" ? to_glb(name, document, doc.buffer()) : to_gltf(document, doc.buffer());
-    write_file_atomically(path, bytes);
+    dev::write_file_atomically(path, bytes);
 }
 
 }  // namespace jade

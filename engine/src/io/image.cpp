@@ -1,4 +1,5 @@
 // io/image.cpp - jade::save_image through OpenImageIO: 8-bit sRGB PNG or half-float linear EXR.
+#include <jade/dev/io.hpp>
 #include <jade/io.hpp>
 
 #include "io/common.hpp"
@@ -177,7 +178,7 @@ void save_image(const std::filesystem::path& path, int width, int height, const 
     });
 }
 
-LoadedImage load_image(const std::filesystem::path& path)
+dev::LoadedImage dev::load_image(const std::filesystem::path& path)
 {
     const std::string name = path.string();
     auto in = OIIO::ImageInput::open(name);

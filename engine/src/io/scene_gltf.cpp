@@ -1,10 +1,11 @@
-// io/scene_gltf.cpp - jade::load_scene: a glTF file as a Jade scene, and cached_bakes().
+// io/scene_gltf.cpp - jade::load_scene: a glTF file as a Jade scene, and dev::cached_bakes().
 //
 // Objects: one per triangle primitive of each mesh instance (io/gltf.cpp read_gltf_primitives),
 // in world space, with the material as io/gltf_materials.cpp maps it (docs/scene.md has the
 // table). Node extras {"jade": {"deform": "bend"}} (or twist, squash, wave; optional "axis"
 // 0..2) make the node's objects deforming, with ProceduralDeformer::fit.
-#include <jade/cache.hpp>
+#include <jade/dev/cache.hpp>
+#include <jade/dev/names.hpp>
 #include <jade/io.hpp>
 #include <jade/scene.hpp>
 
@@ -43,7 +44,7 @@ std::optional<ProceduralDeformer> node_deformer(const std::string& file, const t
     }
     DeformerKind kind;
     try {
-        kind = parse_deformer(d.Get<std::string>());
+        kind = dev::parse_deformer(d.Get<std::string>());
     } catch (const Error& e) {
         warn(std::string("extras.jade.deform: ") + e.what() + "; the node is static");
         return std::nullopt;
@@ -124,7 +125,7 @@ Scene load_scene(const std::filesystem::path& path, std::vector<std::string>* wa
             const auto key = std::make_tuple(p.mesh_index, p.primitive, p.material);
             if (auto it = first_instance.find(key); it != first_instance.end()) {
                 const SceneObject& first = scene.objects[it->second];
-                if (!o.deforming() && !first.deforming())
+                if (!o.deformer && !first.deformer)
                     if (auto r = rigid_rotation(first.mesh.positions, o.mesh.positions))
                         o.instance_of = {it->second, *r, o.mesh.positions[0] - *r * first.mesh.positions[0]};
             } else {
@@ -137,7 +138,7 @@ Scene load_scene(const std::filesystem::path& path, std::vector<std::string>* wa
     });
 }
 
-StaticBakeSource cached_bakes(const BakeCache& cache)
+StaticBakeSource dev::cached_bakes(const BakeCache& cache)
 {
     StaticBakeSource s;
     s.lookup = [&cache](const PreparedMesh& mesh, const Material& material, const BakeSettings& settings) {

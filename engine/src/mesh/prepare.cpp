@@ -8,6 +8,9 @@
 //   4. number the bake vertices that kept triangles use, in render-vertex order;
 //   5. area-weighted normals, vertex areas (a third of each adjacent triangle) and bounds.
 // Sums are accumulated in double: a vertex area or normal gathers many small terms.
+#include "mesh/validate.hpp"
+
+#include <jade/dev/mesh.hpp>
 #include <jade/error.hpp>
 #include <jade/mesh.hpp>
 
@@ -182,11 +185,12 @@ PreparedMesh prepare_mesh(const TriangleMesh& mesh)
     return out;
 }
 
-float PreparedMesh::total_area() const
+float dev::total_area(const PreparedMesh& mesh)
 {
     double total = 0.0;
-    for (size_t t = 0; t + 2 < indices.size(); t += 3)
-        total += 0.5 * glm::length(cross_product(positions, indices[t], indices[t + 1], indices[t + 2]));
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
+        total +=
+            0.5 * glm::length(cross_product(mesh.positions, mesh.indices[t], mesh.indices[t + 1], mesh.indices[t + 2]));
     return float(total);
 }
 

@@ -1,9 +1,11 @@
-// mesh/procedural.cpp - jade::procedural: meshes that need no file (tests, demos, calibration).
+// mesh/procedural.cpp - jade::procedural::sphere and jade::dev::procedural: meshes that need no
+// file (tests, demos, calibration).
 //
 // All triangles are counter-clockwise seen from outside (the box, the sphere) or from +z (the
 // grid). The sphere shares its seam and pole vertices, so it is closed as generated; the box
 // has separate vertices per face (flat render normals, like a glTF cube) whose positions come
 // from one table per axis, so shared edges are bit-identical and prepare_mesh welds them.
+#include <jade/dev/mesh.hpp>
 #include <jade/error.hpp>
 #include <jade/mesh.hpp>
 
@@ -12,8 +14,7 @@
 #include <numbers>
 #include <string>
 
-namespace jade::procedural {
-
+namespace jade {
 namespace {
 
 [[noreturn]] void bad_parameter(const char* generator, const std::string& what)
@@ -45,7 +46,7 @@ void add_lattice_triangles(std::vector<uint32_t>& indices, uint32_t base, uint32
 
 }  // namespace
 
-TriangleMesh sphere(float radius, uint32_t rings, uint32_t segments)
+TriangleMesh procedural::sphere(float radius, uint32_t rings, uint32_t segments)
 {
     if (!(radius > 0.0f) || !std::isfinite(radius)) bad_parameter("sphere", "radius must be positive and finite");
     if (rings < 2) bad_parameter("sphere", "rings must be at least 2 (got " + std::to_string(rings) + ")");
@@ -81,7 +82,7 @@ TriangleMesh sphere(float radius, uint32_t rings, uint32_t segments)
     return mesh;
 }
 
-TriangleMesh box(glm::vec3 lo, glm::vec3 hi, uint32_t n)
+TriangleMesh dev::procedural::box(glm::vec3 lo, glm::vec3 hi, uint32_t n)
 {
     for (int a = 0; a < 3; ++a)
         if (!std::isfinite(lo[a]) || !std::isfinite(hi[a]) || !(hi[a] > lo[a]))
@@ -120,7 +121,7 @@ TriangleMesh box(glm::vec3 lo, glm::vec3 hi, uint32_t n)
     return mesh;
 }
 
-TriangleMesh grid(uint32_t n, float spacing)
+TriangleMesh dev::procedural::grid(uint32_t n, float spacing)
 {
     if (!(spacing > 0.0f) || !std::isfinite(spacing)) bad_parameter("grid", "spacing must be positive and finite");
     if (n < 1) bad_parameter("grid", "n must be at least 1");
@@ -138,7 +139,7 @@ TriangleMesh grid(uint32_t n, float spacing)
     return mesh;
 }
 
-TriangleMesh subdivide(const TriangleMesh& mesh, uint32_t levels)
+TriangleMesh dev::procedural::subdivide(const TriangleMesh& mesh, uint32_t levels)
 {
     TriangleMesh out = mesh;
     out.normals.clear();
@@ -168,4 +169,4 @@ TriangleMesh subdivide(const TriangleMesh& mesh, uint32_t levels)
     return out;
 }
 
-}  // namespace jade::procedural
+}  // namespace jade

@@ -5,7 +5,10 @@
 // rather than known; deform/buffer_estimate.hpp; shading/buffer_estimate.hpp). The plan only
 // puts them together. Images (the LUTs) are listed but are not buffers; host-visible staging
 // is not counted.
+#include <jade/dev/material.hpp>
+#include <jade/dev/names.hpp>
 #include <jade/dev/renderer.hpp>  // dev::study_of: the LUT size
+#include <jade/dev/scene.hpp>
 #include <jade/scene.hpp>
 
 #include "bake/buffer_estimate.hpp"
@@ -19,6 +22,13 @@
 #include <sstream>
 
 namespace jade {
+
+using dev::BufferEstimate;
+using dev::ObjectPlan;
+using dev::PassKind;
+using dev::PassPlan;
+using dev::ScenePlanDetails;
+
 namespace {
 
 std::string bytes_text(uint64_t b)
@@ -44,7 +54,7 @@ uint64_t buffer_bytes_of(const std::vector<BufferEstimate>& estimates)
 // Whether object k takes an earlier instance's static bake (SceneObject::instance_of): both
 // static and translucent, the same render vertex count. An instance_of that names no earlier
 // object is an error; one whose source cannot lend a bake (deforming, opaque) bakes on its own.
-bool shares_bake(const Scene& scene, size_t k, const ScenePlan& plan)
+bool shares_bake(const Scene& scene, size_t k, const ScenePlanDetails& plan)
 {
     const SceneObject& obj = scene.objects[k];
     if (!obj.instance_of) return false;
@@ -54,12 +64,12 @@ bool shares_bake(const Scene& scene, size_t k, const ScenePlan& plan)
                     std::to_string(j) + ", not an earlier one");
     const ObjectPlan& source = plan.objects[j];
     return !source.opaque && !source.deforming && scene.objects[j].mesh.positions.size() == obj.mesh.positions.size() &&
-           source.channels == (obj.material.grey() ? 1u : 3u);
+           source.channels == (dev::is_grey(obj.material) ? 1u : 3u);
 }
 
 }  // namespace
 
-std::string_view pass_kind_name(PassKind kind)
+std::string_view dev::pass_kind_name(PassKind kind)
 {
     switch (kind) {
     case PassKind::CacheRead: return "cache read";
@@ -72,53 +82,61 @@ std::string_view pass_kind_name(PassKind kind)
     return "unknown";
 }
 
-uint64_t PassPlan::bytes() const
+uint64_t dev::PassPlan::bytes() const
 {
     uint64_t sum = 0;
     for (const auto& b : buffers) sum += b.bytes;
     return sum;
 }
 
-uint64_t PassPlan::buffer_bytes() const { return buffer_bytes_of(buffers); }
+uint64_t dev::PassPlan::buffer_bytes() const { return buffer_bytes_of(buffers); }
 
-uint64_t ObjectPlan::resident_bytes() const
+uint64_t dev::ObjectPlan::resident_bytes() const
 {
     uint64_t sum = 0;
     for (const auto& p : passes) sum += p.resident ? p.bytes() : 0;
     return sum;
 }
 
-uint64_t ObjectPlan::transient_bytes() const
+uint64_t dev::ObjectPlan::transient_bytes() const
 {
     uint64_t peak = 0;
     for (const auto& p : passes) peak = std::max(peak, p.resident ? 0 : p.bytes());
     return peak;
 }
 
-bool ObjectPlan::runs(PassKind kind) const
+bool dev::ObjectPlan::runs(PassKind kind) const
 {
     return std::any_of(passes.begin(), passes.end(), [&](const PassPlan& p) { return p.kind == kind; });
 }
 
-uint64_t ScenePlan::shared_buffer_bytes() const { return buffer_bytes_of(shared); }
+uint64_t dev::ScenePlanDetails::shared_buffer_bytes() const { return buffer_bytes_of(shared); }
+
+const ScenePlanDetails& dev::plan_details(const ScenePlan& plan)
+{
+    static const ScenePlanDetails none;
+    return plan.details ? *plan.details : none;
+}
 
 uint64_t ScenePlan::resident_bytes() const
 {
+    const ScenePlanDetails& d = dev::plan_details(*this);
     uint64_t sum = 0;
-    for (const auto& o : objects) sum += o.resident_bytes();
-    for (const auto& b : shared) sum += b.bytes;
+    for (const auto& o : d.objects) sum += o.resident_bytes();
+    for (const auto& b : d.shared) sum += b.bytes;
     return sum;
 }
 
 uint64_t ScenePlan::transient_peak_bytes() const
 {
     uint64_t peak = 0;
-    for (const auto& o : objects) peak = std::max(peak, o.transient_bytes());
+    for (const auto& o : dev::plan_details(*this).objects) peak = std::max(peak, o.transient_bytes());
     return peak;
 }
 
 std::string ScenePlan::describe() const
 {
+    const auto& [objects, shared] = dev::plan_details(*this);
     std::ostringstream out;
     for (size_t k = 0; k < objects.size(); ++k) {
         const ObjectPlan& o = objects[k];
@@ -130,7 +148,8 @@ std::string ScenePlan::describe() const
             << ", "
             << (o.opaque ? std::string("no t_m")
                          : std::to_string(o.channels) + (o.channels == 1 ? " channel (grey)" : " channels"))
-            << "\n  shader variant: mode " << shading_mode_name(o.variant.mode) << ", CHANNELS=" << o.variant.channels;
+            << "\n  shader variant: mode " << dev::shading_mode_name(o.variant.mode)
+            << ", CHANNELS=" << o.variant.channels;
         if (o.runs(PassKind::SharedBake)) {
             out << "\n  static bake: shared with an earlier instance (no bake will run)";
         } else if (!o.opaque && !o.deforming) {
@@ -141,7 +160,7 @@ std::string ScenePlan::describe() const
         }
         out << "\n";
         for (const PassPlan& p : o.passes) {
-            out << "  pass " << pass_kind_name(p.kind) << (p.per_frame ? " (every frame)" : " (once)")
+            out << "  pass " << dev::pass_kind_name(p.kind) << (p.per_frame ? " (every frame)" : " (once)")
                 << (p.resident          ? ", kept"
                     : p.buffers.empty() ? ""
                                         : ", freed after")
@@ -164,7 +183,7 @@ std::string ScenePlan::describe() const
     return out.str();
 }
 
-StaticBakeSource never_baked()
+StaticBakeSource dev::never_baked()
 {
     StaticBakeSource s;
     s.lookup = [](const PreparedMesh&, const Material&, const BakeSettings&) {
@@ -183,10 +202,10 @@ StaticBakeSource never_baked()
 ScenePlan plan_scene(const Scene& scene, const SceneSettings& settings, const StaticBakeSource& source)
 {
     if (settings.mode != ShadingMode::Tm && settings.mode != ShadingMode::TmFalseColor)
-        throw Error("scene settings: mode " + std::string(shading_mode_name(settings.mode)) +
+        throw Error("scene settings: mode " + std::string(dev::shading_mode_name(settings.mode)) +
                     " is not a scene mode (tm or tm-false-color; opaque objects use lambert)");
     if (scene.objects.empty()) throw Error(scene.name + ": the scene has no objects");
-    ScenePlan plan;
+    auto plan = std::make_shared<ScenePlanDetails>();
     for (size_t k = 0; k < scene.objects.size(); ++k) {
         const SceneObject& obj = scene.objects[k];
         PreparedMesh prepared;
@@ -200,7 +219,7 @@ ScenePlan plan_scene(const Scene& scene, const SceneSettings& settings, const St
         o.bake_vertices = prepared.vertex_count();
         o.triangles = prepared.triangle_count();
         o.opaque = obj.material.opaque;
-        o.deforming = obj.deforming() && !o.opaque;
+        o.deforming = obj.deformer.has_value() && !o.opaque;
         const size_t n = o.bake_vertices, tris = o.triangles;
         if (o.opaque) {
             // Lambert needs neither AO nor t_m: no bake, and a deformer would move an
@@ -208,16 +227,16 @@ ScenePlan plan_scene(const Scene& scene, const SceneSettings& settings, const St
             o.channels = 0;
             o.variant = {ShadingMode::Lambert, 3};
         } else {
-            o.channels = obj.material.grey() ? 1 : 3;
+            o.channels = dev::is_grey(obj.material) ? 1 : 3;
             o.variant = {settings.mode, settings.mode == ShadingMode::Tm ? o.channels : 3};
             if (o.deforming) {
                 o.passes.push_back({PassKind::Deform, true, true, deform::estimate_buffers(n, tris)});
                 o.passes.push_back({PassKind::DynamicBake, true, true,
                                     bake::estimate_buffers(prepared, obj.material, settings.bake, true,
                                                            obj.material.transmission.enabled())});
-            } else if (shares_bake(scene, k, plan)) {
+            } else if (shares_bake(scene, k, *plan)) {
                 // The earlier object's prepared mesh, moved (its welding, not this copy's own).
-                const ObjectPlan& from = plan.objects[obj.instance_of->object];
+                const ObjectPlan& from = plan->objects[obj.instance_of->object];
                 o.bake_vertices = from.bake_vertices, o.triangles = from.triangles;
                 o.passes.push_back({PassKind::SharedBake, false, false, {}});
             } else {
@@ -234,13 +253,15 @@ ScenePlan plan_scene(const Scene& scene, const SceneSettings& settings, const St
             }
         }
         o.passes.push_back({PassKind::Draw, true, true, shading::estimate_draw_buffers(n, tris, obj.material)});
-        plan.objects.push_back(std::move(o));
+        plan->objects.push_back(std::move(o));
     }
-    if (!plan.objects.empty()) {
+    if (!plan->objects.empty()) {
         const dev::RendererStudy& study = dev::study_of(settings.renderer);
-        plan.shared = shading::estimate_lut_buffers(study.lut, study.tm_evaluation);
+        plan->shared = shading::estimate_lut_buffers(study.lut, study.tm_evaluation);
     }
-    return plan;
+    ScenePlan result;
+    result.details = std::move(plan);
+    return result;
 }
 
 }  // namespace jade

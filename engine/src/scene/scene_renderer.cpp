@@ -6,8 +6,10 @@
 // Deforming objects also keep a MeshDeformer and a DynamicBake. render() runs the per-frame
 // passes, then records every object's draw into one set of targets (the first clears them,
 // the others load them) and reads the image back.
-#include <jade/dev/overlay.hpp>
 #include <jade/dev/clock.hpp>
+#include <jade/dev/names.hpp>
+#include <jade/dev/overlay.hpp>
+#include <jade/dev/scene.hpp>
 #include <jade/scene.hpp>
 
 #include "gpu/buffer.hpp"
@@ -25,6 +27,12 @@
 #include <optional>
 
 namespace jade {
+
+using dev::ObjectPlan;
+using dev::PassKind;
+using dev::PassPlan;
+using dev::PassRecord;
+
 namespace {
 
 // An earlier instance's prepared mesh at this instance's place: its bake vertices, welding and
@@ -45,6 +53,7 @@ struct SceneRenderer::Impl {
     Context& context;
     SceneSettings settings;
     ScenePlan plan;
+    const std::vector<ObjectPlan>& planned;  // the plan's objects (plan.details)
     std::vector<PassRecord> passes;
     // The DynamicBakes use its pipelines: kept, and declared before the objects so that it
     // outlives them.
@@ -68,13 +77,13 @@ struct SceneRenderer::Impl {
     std::optional<gpu::GpuTimer> timer;
 
     Impl(Context& c, const Scene& scene, const SceneSettings& s, const StaticBakeSource& source)
-        : context(c), settings(s), plan(plan_scene(scene, s, source))
+        : context(c), settings(s), plan(plan_scene(scene, s, source)), planned(dev::plan_details(plan).objects)
     {
         std::unique_ptr<Baker> static_baker;  // made for the first static bake, gone after the constructor
         bool first = true;
         for (size_t k = 0; k < scene.objects.size(); ++k) {
             const SceneObject& so = scene.objects[k];
-            const ObjectPlan& op = plan.objects[k];
+            const ObjectPlan& op = planned[k];
             Object o;
             o.rest = op.runs(PassKind::SharedBake) ? moved(objects[so.instance_of->object].rest, *so.instance_of)
                                                    : prepare_mesh(so.mesh);
@@ -107,7 +116,7 @@ struct SceneRenderer::Impl {
                     o.tm = from.tm, o.thickness = from.thickness, o.normal_spread = from.normal_spread;
                     o.scattering_normal.reserve(from.scattering_normal.size());
                     for (const glm::vec3& n : from.scattering_normal) o.scattering_normal.push_back(of.rotation * n);
-                    r.note = "from " + plan.objects[of.object].name;
+                    r.note = "from " + planned[of.object].name;
                 } else if (p.kind == PassKind::Deform) {
                     o.deformer = *so.deformer;
                     o.mesh_deformer = std::make_unique<MeshDeformer>(context, o.rest);
@@ -137,16 +146,14 @@ struct SceneRenderer::Impl {
             const auto t0 = Clock::now();
             gpu_of(context).submit_and_wait([&](VkCommandBuffer cmd) {
                 o.mesh_deformer->record(cmd, *o.deformer, t);
-                o.dynamic_bake->record(cmd, o.mesh_deformer->positions_buffer(), o.mesh_deformer->normals_buffer(),
-                                       o.mesh_deformer->areas_buffer());
-                o.renderer->record_vertex_update(cmd, o.mesh_deformer->positions_buffer(),
-                                                 o.mesh_deformer->normals_buffer(), o.dynamic_bake->buffers().tm,
-                                                 o.dynamic_bake->buffers().thickness,
-                                                 o.dynamic_bake->buffers().scattering_normal);
+                const MeshDeformer::Buffers d = o.mesh_deformer->buffers();
+                const DynamicBake::Buffers b = o.dynamic_bake->buffers();
+                o.dynamic_bake->record(cmd, d.positions, d.normals, d.areas);
+                o.renderer->record_vertex_update(cmd, d.positions, d.normals, b.tm, b.thickness, b.scattering_normal);
             });
             const double deform_and_bake_ms = ms_since(t0);
-            passes.push_back({plan.objects[k].name, PassKind::Deform, 0, "t = " + std::to_string(t) + " s"});
-            passes.push_back({plan.objects[k].name, PassKind::DynamicBake, deform_and_bake_ms,
+            passes.push_back({planned[k].name, PassKind::Deform, 0, "t = " + std::to_string(t) + " s"});
+            passes.push_back({planned[k].name, PassKind::DynamicBake, deform_and_bake_ms,
                               "deform + re-bake + vertex update in one submission, on the GPU"});
         }
     }
@@ -168,7 +175,7 @@ struct SceneRenderer::Impl {
             targets.begin(cmd);
             for (size_t k = 0; k < objects.size(); ++k) {
                 RenderSettings os = s;
-                os.mode = plan.objects[k].variant.mode;
+                os.mode = planned[k].variant.mode;
                 const RenderTarget target = targets.target(k > 0, k + 1 < objects.size());
                 if (k > 0) {
                     // The previous draw's attachment writes before this draw loads them.
@@ -187,10 +194,10 @@ struct SceneRenderer::Impl {
             timer->mark(cmd, "draw");
             targets.copy_out(cmd);
         });
-        for (const ObjectPlan& o : plan.objects)
-            passes.push_back(
-                {o.name, PassKind::Draw, 0,
-                 std::string(shading_mode_name(o.variant.mode)) + ", CHANNELS=" + std::to_string(o.variant.channels)});
+        for (const ObjectPlan& o : planned)
+            passes.push_back({o.name, PassKind::Draw, 0,
+                              std::string(dev::shading_mode_name(o.variant.mode)) +
+                                  ", CHANNELS=" + std::to_string(o.variant.channels)});
         RenderedImage img;
         img.width = s.width, img.height = s.height;
         img.rgba = targets.read_rgba();
@@ -209,15 +216,34 @@ SceneRenderer::SceneRenderer(Context& context, const Scene& scene, const SceneSe
 SceneRenderer::~SceneRenderer() = default;
 
 const ScenePlan& SceneRenderer::plan() const { return impl_->plan; }
-const std::vector<PassRecord>& SceneRenderer::passes_run() const { return impl_->passes; }
-const std::vector<glm::vec3>& SceneRenderer::tm(size_t object) const
+glm::vec3 SceneRenderer::bbox_min() const { return impl_->lo; }
+glm::vec3 SceneRenderer::bbox_max() const { return impl_->hi; }
+
+RenderedImage SceneRenderer::render(double t, const Camera& camera, std::span<const Light> lights,
+                                    const RenderSettings& settings)
 {
-    const auto& o = impl_->objects.at(object);
+    return impl_->render(t, camera, lights, settings);
+}
+
+// What ran and the t_m drawn, for jade/dev/scene.hpp.
+struct dev::SceneRendererAccess {
+    static const SceneRenderer::Impl& impl(const SceneRenderer& renderer) { return *renderer.impl_; }
+};
+
+const std::vector<PassRecord>& dev::passes_run(const SceneRenderer& renderer)
+{
+    return SceneRendererAccess::impl(renderer).passes;
+}
+
+const std::vector<glm::vec3>& dev::object_tm(const SceneRenderer& renderer, size_t object)
+{
+    const auto& m = SceneRendererAccess::impl(renderer);
+    const auto& o = m.objects.at(object);
     if (o.dynamic_bake) {  // the last frame's t_m lives on the GPU: read it back on request only
         const DynamicBake::Buffers b = o.dynamic_bake->buffers();
-        gpu::Buffer staging(gpu_of(impl_->context), VkDeviceSize(b.vertex_count) * 12, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+        gpu::Buffer staging(gpu_of(m.context), VkDeviceSize(b.vertex_count) * 12, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                             "scene: t_m read-back", true);
-        gpu_of(impl_->context).submit_and_wait([&](VkCommandBuffer cmd) {
+        gpu_of(m.context).submit_and_wait([&](VkCommandBuffer cmd) {
             gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                                 VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
             const VkBufferCopy region{0, 0, VkDeviceSize(b.vertex_count) * 12};
@@ -228,14 +254,6 @@ const std::vector<glm::vec3>& SceneRenderer::tm(size_t object) const
         o.tm = staging.read<glm::vec3>(b.vertex_count);
     }
     return o.tm;
-}
-glm::vec3 SceneRenderer::bbox_min() const { return impl_->lo; }
-glm::vec3 SceneRenderer::bbox_max() const { return impl_->hi; }
-
-RenderedImage SceneRenderer::render(double t, const Camera& camera, std::span<const Light> lights,
-                                    const RenderSettings& settings)
-{
-    return impl_->render(t, camera, lights, settings);
 }
 
 }  // namespace jade

@@ -17,7 +17,7 @@ uint64_t bytes(uint64_t b) { return std::max<uint64_t>(gpu::kMinBufferBytes, b);
 
 }  // namespace
 
-std::vector<BufferEstimate> estimate_draw_buffers(size_t n, size_t tris, const Material& material)
+std::vector<dev::BufferEstimate> estimate_draw_buffers(size_t n, size_t tris, const Material& material)
 {
     return {{"mesh vertices", bytes(kRendererVertexBytes * n)},
             {"mesh indices", bytes(3 * sizeof(uint32_t) * tris)},
@@ -27,7 +27,7 @@ std::vector<BufferEstimate> estimate_draw_buffers(size_t n, size_t tris, const M
             {"curvature LUT placeholder (image)", sizeof(glm::vec4), true}};
 }
 
-std::vector<BufferEstimate> estimate_lut_buffers(const LutLayout& l, TmEvaluation evaluation)
+std::vector<dev::BufferEstimate> estimate_lut_buffers(const LutLayout& l, TmEvaluation evaluation)
 {
     // One RGBA32F quad per cell of the R32F image (TranslucencyLut::build_quads), or the one
     // texel bound in their place.

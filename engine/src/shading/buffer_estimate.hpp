@@ -5,7 +5,7 @@
 #include <jade/dev/lut.hpp>
 #include <jade/dev/renderer.hpp>  // TmEvaluation
 #include <jade/render.hpp>
-#include <jade/scene.hpp>
+#include <jade/dev/scene.hpp>  // BufferEstimate
 
 #include <cstddef>
 #include <cstdint>
@@ -23,11 +23,11 @@ inline constexpr uint64_t kRendererFrameDataBytes = 3392;
 /// `triangles` triangles (shading/renderer.cpp: its Vertex and FrameData, whose sizes it
 /// asserts against kRendererVertexBytes and kRendererFrameDataBytes). Exact.
 /// `material`'s transmission sets the size of its attenuation table (shading/transmission_table.hpp).
-std::vector<BufferEstimate> estimate_draw_buffers(size_t vertices, size_t triangles, const Material& material);
+std::vector<dev::BufferEstimate> estimate_draw_buffers(size_t vertices, size_t triangles, const Material& material);
 
 /// The translucency LUT of `layout` (shading/lut.cpp, TranslucencyLut), which every Renderer of
 /// a device shares: its image, the image's 16-bit copy and its quads buffer, which holds the
 /// quads only for TmEvaluation::Lut (Auto never resolves to it), else one texel. Exact.
-std::vector<BufferEstimate> estimate_lut_buffers(const LutLayout& layout, TmEvaluation evaluation);
+std::vector<dev::BufferEstimate> estimate_lut_buffers(const LutLayout& layout, TmEvaluation evaluation);
 
 }  // namespace jade::shading

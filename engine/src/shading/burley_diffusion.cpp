@@ -1,4 +1,5 @@
 // shading/burley_diffusion.cpp - jade/dev/burley_diffusion.hpp.
+#include <jade/dev/material.hpp>
 #include <jade/dev/burley_diffusion.hpp>
 #include <jade/error.hpp>
 
@@ -30,7 +31,7 @@ glm::dvec3 burley_shapes(const Material& material)
     glm::dvec3 d(0.0);
     for (int c = 0; c < 3; ++c) {
         const ChannelProfile& p = material.profile[size_t(c)];
-        d[c] = p.kind == ProfileKind::Burley ? p.d : p.radius_for_tail(0.5) / k;
+        d[c] = p.kind == ProfileKind::Burley ? p.d : dev::radius_for_tail(p, 0.5) / k;
     }
     return d;
 }

@@ -4,6 +4,7 @@
 #include "gpu/context.hpp"
 #include "gpu/kernel.hpp"
 
+#include <jade/dev/material.hpp>
 #include <jade/dev/lut.hpp>
 
 #include "jade_shaders.hpp"
@@ -178,7 +179,7 @@ std::vector<float> TranslucencyLut::read(gpu::Context& ctx)
 double CurvatureLut::length_scale(const Material& material)
 {
     double sum = 0;
-    for (const auto& p : material.profile) sum += p.radius_for_tail(0.5);
+    for (const auto& p : material.profile) sum += dev::radius_for_tail(p, 0.5);
     return sum / 3.0;
 }
 
@@ -186,7 +187,7 @@ std::vector<glm::vec4> CurvatureLut::evaluate(const Material& material, uint32_t
 {
     check_size(width, height, "curvature LUT");
     const double scale = length_scale(material);
-    const bool grey = material.grey();
+    const bool grey = dev::is_grey(material);
     std::vector<glm::vec4> texels(size_t(width) * height);
     auto row = [&](uint32_t j) {
         const double v = double(j) / double(height - 1);

@@ -2,6 +2,7 @@
 // (definitions and parameterisations in jade/dev/lut.hpp).
 #include "bake/disk_integral.hpp"
 
+#include <jade/dev/material.hpp>
 #include <jade/error.hpp>
 #include <jade/dev/lut.hpp>
 
@@ -96,10 +97,10 @@ double curvature_lut_reference(double cos_theta, double curvature_radius, const 
     // Weight 2πsR(s) on [0, 2r], cut where the profile's tail is below 1e-16. Panels shrink
     // geometrically towards s = 0 so that no scale of a multi-lobe profile escapes the nodes.
     auto integrand = [&](double s) { return bake::radial_density(profile, s) * irradiance(s); };
-    double hi = std::min(2.0 * r, profile.radius_for_tail(1e-16)), num = 0.0;
+    double hi = std::min(2.0 * r, dev::radius_for_tail(profile, 1e-16)), num = 0.0;
     for (int k = 0; k < 48; ++k, hi *= 0.5) num += bake::integrate(integrand, 0.5 * hi, hi, 1e-12, 1e-300);
     num += bake::integrate(integrand, 0.0, hi, 1e-12, 1e-300);
-    return num / profile.cdf(2.0 * r);
+    return num / dev::profile_cdf(profile, 2.0 * r);
 }
 
 }  // namespace jade

@@ -5,6 +5,7 @@
 #include "gpu/context.hpp"
 #include "shading/separable.hpp"
 
+#include <jade/dev/names.hpp>
 #include <jade/dev/renderer.hpp>
 #include <jade/error.hpp>
 
@@ -37,20 +38,21 @@ TmEvaluation parse_tm_evaluation(std::string_view name)
     throw Error("unknown t_m evaluation '" + std::string(name) + "' (known: auto, lut, lut16, alu)");
 }
 
-std::string_view light_path_sampling_name(LightPathSampling sampling)
+std::string_view dev::light_path_sampling_name(LightPathSampling sampling)
 {
     switch (sampling) {
-    case LightPathSampling::Auto: return "auto";
-    case LightPathSampling::PerVertex: return "vertex";
-    case LightPathSampling::PerFragment: return "fragment";
+    case dev::LightPathSampling::Auto: return "auto";
+    case dev::LightPathSampling::PerVertex: return "vertex";
+    case dev::LightPathSampling::PerFragment: return "fragment";
     }
     return "unknown";
 }
 
-LightPathSampling parse_light_path_sampling(std::string_view name)
+dev::LightPathSampling dev::parse_light_path_sampling(std::string_view name)
 {
-    for (LightPathSampling s : {LightPathSampling::Auto, LightPathSampling::PerVertex, LightPathSampling::PerFragment})
-        if (name == light_path_sampling_name(s)) return s;
+    for (LightPathSampling s :
+         {dev::LightPathSampling::Auto, dev::LightPathSampling::PerVertex, dev::LightPathSampling::PerFragment})
+        if (name == dev::light_path_sampling_name(s)) return s;
     throw Error("unknown light path sampling '" + std::string(name) + "' (known: auto, vertex, fragment)");
 }
 
@@ -96,12 +98,13 @@ TmEvaluation resolve_evaluation(TmEvaluation requested, const gpu::Context& ctx)
     return resolve_evaluation(requested, p.deviceType);
 }
 
-LightPathSampling resolve_light_path(LightPathSampling requested, double median_edge, double radius, uint32_t tile_size)
+dev::LightPathSampling resolve_light_path(dev::LightPathSampling requested, double median_edge, double radius,
+                                          uint32_t tile_size)
 {
-    if (requested != LightPathSampling::Auto) return requested;
+    if (requested != dev::LightPathSampling::Auto) return requested;
     const double texel = 2.0 * double(LightDepth::kMargin) * radius / double(std::max(tile_size, 1u));
-    return median_edge <= kLightPathVertexTexels * texel ? LightPathSampling::PerVertex
-                                                         : LightPathSampling::PerFragment;
+    return median_edge <= kLightPathVertexTexels * texel ? dev::LightPathSampling::PerVertex
+                                                         : dev::LightPathSampling::PerFragment;
 }
 
 const gpu::GraphicsPipeline& MeshPipelines::get(const MeshVariant& v, VkFormat format, uint32_t samples)

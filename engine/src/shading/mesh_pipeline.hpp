@@ -74,8 +74,8 @@ TmEvaluation resolve_evaluation(TmEvaluation requested, const gpu::Context& ctx)
 inline constexpr double kLightPathVertexTexels = 8.0;
 /// What `requested` means for a mesh with this median edge length and bounding radius (mesh
 /// units) and depth tiles of `tile_size` texels (2·LightDepth::kMargin radii across).
-LightPathSampling resolve_light_path(LightPathSampling requested, double median_edge, double radius,
-                                     uint32_t tile_size);
+dev::LightPathSampling resolve_light_path(dev::LightPathSampling requested, double median_edge, double radius,
+                                          uint32_t tile_size);
 
 /// A light as the shaders read it; w of the colour as given (the transmitters' depth tile).
 inline GpuLight gpu_light(const Light& l, float w)

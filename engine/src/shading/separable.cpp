@@ -4,6 +4,7 @@
 #include "gpu/context.hpp"
 #include "shading/frame.hpp"
 
+#include <jade/dev/material.hpp>
 #include <jade/dev/burley_diffusion.hpp>
 #include <jade/error.hpp>
 #include <jade/dev/separable.hpp>
@@ -25,7 +26,7 @@ SeparableData separable_data(const Material& material, uint32_t taps, uint32_t b
     // The taps of a shorter kernel first; the shader reads TAPS of them.
     for (uint32_t i = 0; i < taps; ++i) d.taps[i] = glm::vec4(glm::vec3(k.weight[i]), float(k.offset[i]));
     double reach = 0.0;
-    for (const ChannelProfile& p : material.profile) reach = std::max(reach, p.radius_for_tail(1e-4));
+    for (const ChannelProfile& p : material.profile) reach = std::max(reach, dev::radius_for_tail(p, 1e-4));
     reach = std::max(reach, 1e-30);
     for (uint32_t i = 0; i < JADE_SEPARABLE_TRANSMITTANCE_STEPS; ++i) {
         const double u = double(i) / double(JADE_SEPARABLE_TRANSMITTANCE_STEPS - 1);

@@ -1,5 +1,6 @@
 // shading/separable_kernel.cpp - jade/dev/separable.hpp: the separable kernel and the transmittance
 // profile fitted to a material's profiles, in float64.
+#include <jade/dev/material.hpp>
 #include <jade/error.hpp>
 #include <jade/dev/separable.hpp>
 
@@ -22,7 +23,7 @@ double half_plane_beyond(const ChannelProfile& p, double x)
     const double h = 0.5 * std::numbers::pi / kIntervals;
     auto f = [&](int k) {
         const double c = std::cos(h * k);
-        return c <= 0.0 ? 0.0 : 1.0 - p.cdf(x / c);  // φ = π/2: the line's far end, nothing beyond
+        return c <= 0.0 ? 0.0 : 1.0 - dev::profile_cdf(p, x / c);  // φ = π/2: the line's far end, nothing beyond
     };
     double sum = f(0) + f(kIntervals);
     for (int k = 1; k < kIntervals; ++k) sum += (k % 2 ? 4.0 : 2.0) * f(k);
@@ -38,7 +39,7 @@ double profile_edge_response(const ChannelProfile& profile, double x)
 
 double separable_transmittance(const ChannelProfile& profile, double d)
 {
-    return std::clamp(1.0 - profile.cdf(std::max(d, 0.0)), 0.0, 1.0);
+    return std::clamp(1.0 - dev::profile_cdf(profile, std::max(d, 0.0)), 0.0, 1.0);
 }
 
 SeparableKernel separable_kernel(const Material& material, uint32_t taps)
@@ -49,7 +50,7 @@ SeparableKernel separable_kernel(const Material& material, uint32_t taps)
     // (bisection; H decreases with x). Start from the profile's own scale.
     double range = 0.0;
     for (const ChannelProfile& p : material.profile) {
-        double lo = 0.0, hi = std::max(p.radius_for_tail(1e-3), 1e-30);
+        double lo = 0.0, hi = std::max(dev::radius_for_tail(p, 1e-3), 1e-30);
         while (half_plane_beyond(p, hi) > kSeparableKernelTail) lo = hi, hi *= 2.0;
         for (int k = 0; k < 60; ++k) {
             const double mid = 0.5 * (lo + hi);

@@ -1,4 +1,5 @@
 // shading/view.cpp - cameras, light presets and the names of modes and tone maps.
+#include <jade/dev/names.hpp>
 #include <jade/dev/renderer.hpp>
 #include <jade/error.hpp>
 #include <jade/render.hpp>
@@ -32,12 +33,12 @@ Frame camera_frame(const Camera& c)
 }
 }  // namespace
 
-std::string_view shading_mode_name(ShadingMode mode)
+std::string_view dev::shading_mode_name(ShadingMode mode)
 {
     return uint32_t(mode) < std::size(kModeNames) ? kModeNames[uint32_t(mode)] : "unknown";
 }
 
-ShadingMode parse_shading_mode(std::string_view name)
+ShadingMode dev::parse_shading_mode(std::string_view name)
 {
     std::string known;
     for (uint32_t i = 0; i < std::size(kModeNames); ++i) {
@@ -47,7 +48,7 @@ ShadingMode parse_shading_mode(std::string_view name)
     throw Error("shading mode '" + std::string(name) + "' is not one of " + known);
 }
 
-ToneMap parse_tone_map(std::string_view name)
+ToneMap dev::parse_tone_map(std::string_view name)
 {
     for (uint32_t i = 0; i < 3; ++i)
         if (name == kToneMapNames[i]) return ToneMap(i);

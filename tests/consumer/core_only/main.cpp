@@ -17,10 +17,13 @@ int main()
     const std::vector<jade::Light> lights = jade::default_lights(camera);
     const jade::ScenePlan plan =
         jade::plan_scene({"core", {{"sphere", mesh, material, std::nullopt}}}, jade::SceneSettings{});
-    std::printf("core_consumer: %zu vertices, albedo %g, %zu lights, plan of %zu objects, %s\n", sphere.vertex_count(),
-                double(from_medium.albedo.r), lights.size(), plan.objects.size(),
-                jade::quality_name(jade::parse_quality("draft")));
+    const jade::BakeSettings draft = jade::BakeSettings::preset(jade::Quality::Draft);
+    std::printf(
+        "core_consumer: %zu vertices, albedo %g, %zu lights, plan of %llu bytes while drawing, draft bake of %u "
+        "AO rays\n",
+        sphere.vertex_count(), double(from_medium.albedo.r), lights.size(), (unsigned long long)plan.resident_bytes(),
+        draft.ao.rays);
     const bool ok = sphere.vertex_count() > 0 && from_medium.albedo.r > 0.0f && lights.size() == 2 &&
-                    plan.objects.size() == 1 && plan.resident_bytes() > 0;
+                    plan.resident_bytes() > 0 && plan.describe().find("object 0 'sphere'") == 0;
     return ok ? 0 : 1;
 }

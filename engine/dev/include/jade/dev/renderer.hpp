@@ -1,6 +1,6 @@
 // jade/dev/renderer.hpp - the renderer's study knobs and introspection, for the CLI, tools and
-// tests (an embedder needs none of it): the LUT sizes and Tm evaluation paths a Renderer is built
-// with (RendererStudy), what its shading reads per pixel, its LUT and curvature as built, the
+// tests (an embedder needs none of it): the LUT sizes, Tm evaluation paths and light path
+// sampling a Renderer is built with (RendererStudy), what its shading reads per pixel, its LUT and curvature as built, the
 // mean curvature, the Filament peer's parameters and the back-light preset of `jade bench`.
 // Declared for jade::dev, defined in jade::jade.
 #pragma once
@@ -79,10 +79,25 @@ std::vector<Light> back_lights(const Camera& camera);
 
 namespace dev {
 
+/// Where the Tm mode reads a back light's path inside the object (Transmission: the medium along
+/// the light's line, from its depth tile; docs/shading.md "Transmission"). Per vertex saves four
+/// gathers per fragment and transmitting light; on a coarse mesh it loses the edges of what the
+/// body shadows from the light within a triangle.
+enum class LightPathSampling : uint32_t {
+    Auto = 0,         ///< PerVertex where the mesh's median edge spans ≤ 8 texels of the tile, else PerFragment
+    PerVertex = 1,    ///< in the vertex shader, interpolated
+    PerFragment = 2,  ///< per fragment, bilinear between the four nearest texels
+};
+/// "auto", "vertex", "fragment".
+std::string_view light_path_sampling_name(LightPathSampling sampling);
+/// The inverse of light_path_sampling_name; throws jade::Error listing the names.
+LightPathSampling parse_light_path_sampling(std::string_view name);
+
 /// What RendererOptions::study holds: settings for measuring the renderer's alternatives.
 struct RendererStudy {
-    LutLayout lut;                                    ///< translucency LUT size (odd width, ≥ 3 × 2)
-    TmEvaluation tm_evaluation = TmEvaluation::Auto;  ///< dev::tm_evaluation(renderer) says what Auto chose
+    LutLayout lut;                                           ///< translucency LUT size (odd width, ≥ 3 × 2)
+    TmEvaluation tm_evaluation = TmEvaluation::Auto;         ///< dev::tm_evaluation(renderer) says what Auto chose
+    LightPathSampling light_path = LightPathSampling::Auto;  ///< dev::light_path(renderer) says what Auto chose
     uint32_t curvature_lut_width = 129, curvature_lut_height = 64;
 };
 /// options.study, or the defaults when it is null.
@@ -96,6 +111,9 @@ ShadingInputs shading_inputs(Renderer& renderer, const Camera& camera, std::span
                              const RenderSettings& settings);
 /// The path RendererStudy::tm_evaluation resolved to on this device (never Auto).
 TmEvaluation tm_evaluation(const Renderer& renderer);
+/// Where RendererStudy::light_path resolved to for the current mesh (never Auto; PerFragment
+/// before set_mesh).
+LightPathSampling light_path(const Renderer& renderer);
 const LutLayout& lut_layout(const Renderer& renderer);  ///< as given in RendererStudy
 /// The translucency LUT as the GPU built it, width × height floats, row j = variance(j).
 /// Reads back from the GPU (submits and waits).

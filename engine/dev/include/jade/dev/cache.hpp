@@ -1,6 +1,9 @@
-// jade/cache.hpp - an on-disk cache of bakes, keyed by the content of what the bake depends on.
-// Part of jade::io (it reads and writes files). A static scene is baked once: later runs read
-// the cached AO and t_m and create no bake pipelines or buffers (counted by jade/dev/context.hpp).
+// jade/dev/cache.hpp - an on-disk cache of bakes, keyed by the content of what the bake depends
+// on: what `jade scene --cache`, `jade bench` and the tests bake a static scene once with (later
+// runs read the cached AO and t_m and create no bake pipelines or buffers, counted by
+// jade/dev/context.hpp). A host keeps its bakes in its assets (`jade bake`, jade/io.hpp) or plugs
+// its own storage into a scene (StaticBakeSource, jade/scene.hpp). Declared for jade::dev,
+// defined in jade::io (it reads and writes files): link both.
 //
 // Key: a 64-bit FNV-1a hash of the prepared mesh (positions, normals, areas, indices), the
 // material's three scattering profiles (albedo, strength and the specular parameters only
@@ -27,9 +30,7 @@
 #include <optional>
 #include <string>
 
-namespace jade {
-
-class Context;
+namespace jade::dev {
 
 /// Bump when the bake's results change for the same inputs (shaders, discretisation): old
 /// entries then no longer match any key and are re-baked.
@@ -69,4 +70,4 @@ CachedBake bake_with_cache(Context& context, const BakeCache& cache, const Prepa
 /// entry), for plan_scene and SceneRenderer (jade/scene.hpp).
 StaticBakeSource cached_bakes(const BakeCache& cache);
 
-}  // namespace jade
+}  // namespace jade::dev
