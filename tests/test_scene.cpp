@@ -2,6 +2,7 @@
 // numbers of docs/scene.md, warnings and errors for bad values, the plan of a mixed scene, and
 // proof that skipped work is skipped (counted with Context::created_objects()).
 #include "gpu_fixture.hpp"
+#include "scene_gltf.hpp"
 #include "test_support.hpp"
 
 #include <jade/dev/material.hpp>
@@ -21,75 +22,10 @@
 #include <sstream>
 
 using namespace jade;
+using jade::test::TestObject;
+using jade::test::write_gltf;
 
 namespace {
-
-std::string base64(const std::string& bytes)
-{
-    static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    size_t i = 0;
-    for (; i + 2 < bytes.size(); i += 3) {
-        const uint32_t v =
-            uint32_t(uint8_t(bytes[i])) << 16 | uint32_t(uint8_t(bytes[i + 1])) << 8 | uint8_t(bytes[i + 2]);
-        for (int s = 18; s >= 0; s -= 6) out += k[(v >> s) & 63];
-    }
-    if (i < bytes.size()) {
-        uint32_t v =
-            uint32_t(uint8_t(bytes[i])) << 16 | (i + 1 < bytes.size() ? uint32_t(uint8_t(bytes[i + 1])) << 8 : 0u);
-        out += k[(v >> 18) & 63];
-        out += k[(v >> 12) & 63];
-        out += i + 1 < bytes.size() ? k[(v >> 6) & 63] : '=';
-        out += '=';
-    }
-    return out;
-}
-
-struct TestObject {
-    TriangleMesh mesh;
-    int material = -1;
-    std::string node_extras;  // JSON, or empty
-};
-
-/// A .gltf with one node per object and the given "materials" array (JSON text).
-std::filesystem::path write_gltf(const std::string& name, const std::vector<TestObject>& objects,
-                                 const std::string& materials)
-{
-    std::string buffer;
-    std::ostringstream views, accessors, meshes, nodes, roots;
-    for (size_t k = 0; k < objects.size(); ++k) {
-        const TriangleMesh& m = objects[k].mesh;
-        const std::string sep = k ? "," : "";
-        const size_t pos_offset = buffer.size();
-        buffer.append(reinterpret_cast<const char*>(m.positions.data()), m.positions.size() * 12);
-        const size_t idx_offset = buffer.size();
-        buffer.append(reinterpret_cast<const char*>(m.indices.data()), m.indices.size() * 4);
-        glm::vec3 lo(1e30f), hi(-1e30f);
-        for (auto p : m.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
-        views << sep << R"({"buffer":0,"byteOffset":)" << pos_offset << R"(,"byteLength":)" << m.positions.size() * 12
-              << "},"
-              << R"({"buffer":0,"byteOffset":)" << idx_offset << R"(,"byteLength":)" << m.indices.size() * 4 << "}";
-        accessors << sep << R"({"bufferView":)" << 2 * k << R"(,"componentType":5126,"count":)" << m.positions.size()
-                  << R"(,"type":"VEC3","min":[)" << lo.x << "," << lo.y << "," << lo.z << "],\"max\":[" << hi.x << ","
-                  << hi.y << "," << hi.z << "]},"
-                  << R"({"bufferView":)" << 2 * k + 1 << R"(,"componentType":5125,"count":)" << m.indices.size()
-                  << R"(,"type":"SCALAR"})";
-        meshes << sep << R"({"primitives":[{"attributes":{"POSITION":)" << 2 * k << R"(},"indices":)" << 2 * k + 1
-               << (objects[k].material >= 0 ? ",\"material\":" + std::to_string(objects[k].material) : "") << "}]}";
-        nodes << sep << R"({"name":"object)" << k << R"(","mesh":)" << k
-              << (objects[k].node_extras.empty() ? "" : ",\"extras\":" + objects[k].node_extras) << "}";
-        roots << sep << k;
-    }
-    std::ostringstream doc;
-    doc << R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[)" << roots.str() << "]}],\"nodes\":["
-        << nodes.str() << "],\"meshes\":[" << meshes.str() << "],\"accessors\":[" << accessors.str()
-        << "],\"bufferViews\":[" << views.str() << "],\"buffers\":[{\"byteLength\":" << buffer.size()
-        << ",\"uri\":\"data:application/octet-stream;base64," << base64(buffer) << "\"}],\"materials\":" << materials
-        << "}";
-    const auto path = test::out("scene/" + name + ".gltf");
-    std::ofstream(path) << doc.str();
-    return path;
-}
 
 /// One sphere with one material (JSON object).
 Scene one_material(const std::string& name, const std::string& material, std::vector<std::string>* warnings)
@@ -558,103 +494,6 @@ TEST_F(SceneGpuTest, LaterObjectsAreDepthTestedAgainstEarlierOnesWithMsaa)
     EXPECT_GT(centre[0], 10.0f * centre[2]) << "the back object was drawn over the front one";
     const float* edge = img.pixel(32, 14);  // outside the front box (rows 20-44), inside the back one (11-53)
     EXPECT_GT(edge[2], 10.0f * edge[0]);
-}
-
-// ------------------------------------------------------------------------------------ CLI --
-
-TEST(SceneCli, PlanPrintsPassesVariantsMemoryAndCacheState)
-{
-    const auto cache = test::out("scene_cli/cache/x").parent_path();
-    std::filesystem::remove_all(cache);
-    const std::string scene = test::data("scene_mixed.gltf").string();
-    auto r = test::run_cli({"plan", scene, "--cache", cache.string(), "--quality", "draft"});
-    ASSERT_EQ(r.exit_code, 0) << r.output;
-    for (const char* line :
-         {"object 0 'floor/0': 98 vertices, 192 triangles, opaque, no t_m", "shader variant: mode lambert",
-          "shader variant: mode tm, CHANNELS=1", "not cached (bakes once)", "pass static bake (once), freed after",
-          "pass deform (every frame), kept", "pass dynamic bake (every frame), kept", "kept while drawing"})
-        EXPECT_NE(r.output.find(line), std::string::npos) << line << "\n" << r.output;
-
-    // A render fills the cache (--verbose lists the passes); the next plan sees it, the next
-    // render reads it.
-    const std::string png = test::out("scene_cli/scene.png").string();
-    r = test::run_cli(
-        {"scene", scene, "--cache", cache.string(), "--quality", "draft", "--size", "48", "--out", png, "--verbose"});
-    ASSERT_EQ(r.exit_code, 0) << r.output;
-    EXPECT_NE(r.output.find("grey_sphere/0            static bake"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("bending_bar/0            dynamic bake"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("tm, CHANNELS=1"), std::string::npos) << r.output;
-    EXPECT_TRUE(std::filesystem::exists(png));
-    r = test::run_cli({"plan", scene, "--cache", cache.string(), "--quality", "draft"});
-    EXPECT_NE(r.output.find("in the cache (no bake will run)"), std::string::npos) << r.output;
-    EXPECT_EQ(r.output.find("not cached"), std::string::npos) << r.output;
-    r = test::run_cli(
-        {"scene", scene, "--cache", cache.string(), "--quality", "draft", "--size", "48", "--out", png, "--verbose"});
-    EXPECT_NE(r.output.find("grey_sphere/0            cache read"), std::string::npos) << r.output;
-    EXPECT_EQ(r.output.find("static bake"), std::string::npos) << r.output;
-
-    // An entry damaged on disk is baked again and said so, without --verbose.
-    for (const auto& entry : std::filesystem::directory_iterator(cache)) {
-        std::fstream f(entry.path(), std::ios::in | std::ios::out | std::ios::binary);
-        f.seekp(-1, std::ios::end);
-        f.put('\x7f');
-    }
-    r = test::run_cli({"scene", scene, "--cache", cache.string(), "--quality", "draft", "--size", "48", "--out", png});
-    ASSERT_EQ(r.exit_code, 0) << r.output;
-    EXPECT_NE(r.output.find("grey_sphere/0: cache entry not used (checksum mismatch); baked again and stored"),
-              std::string::npos)
-        << r.output;
-}
-
-TEST(SceneCli, BadScenesFailWithTheFileNamed)
-{
-    const auto bad = test::out("scene_cli/bad.gltf");
-    std::ofstream(bad) << "{\"asset\":";
-    auto r = test::run_cli({"plan", bad.string()});
-    EXPECT_EQ(r.exit_code, 1);
-    EXPECT_NE(r.output.find("bad.gltf"), std::string::npos) << r.output;
-    r = test::run_cli({"plan"});
-    EXPECT_EQ(r.exit_code, 2) << r.output;
-    r = test::run_cli({"plan", test::data("scene_mixed.gltf").string(), "--mode", "lambert"});
-    EXPECT_EQ(r.exit_code, 2) << r.output;
-}
-
-TEST(SceneCli, AScenePastTheMemoryBudgetIsRefusedBeforeAnythingIsAllocated)
-{
-    // The mixed scene's plan needs about 6.5 MiB (jade plan); a budget of 1 MiB refuses it with
-    // the plan's figure, writes nothing and creates no GPU object of the scene.
-    const auto png = test::out("scene_cli/over_budget.png");
-    std::filesystem::remove(png);
-    const auto r = test::run_cli(
-        {"scene", test::data("scene_mixed.gltf").string(), "--max-memory", "1", "--out", png.string(), "--verbose"});
-    EXPECT_EQ(r.exit_code, 1) << r.output;
-    EXPECT_NE(r.output.find("scene_mixed.gltf: the scene's plan needs"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("over --max-memory 1.0 MiB"), std::string::npos) << r.output;
-    EXPECT_EQ(r.output.find("passes run"), std::string::npos) << r.output;
-    EXPECT_FALSE(std::filesystem::exists(png));
-}
-
-TEST(SceneCli, BenchRenderSceneComparesCachedWithNeverBaked)
-{
-    const auto cache = test::out("scene_cli/bench_cache/x").parent_path();
-    auto r = test::run_cli(
-        {"bench", "render", "--scene", test::data("scene_mixed.gltf").string(), "--cache", cache.string()});
-    EXPECT_EQ(r.exit_code, 2) << r.output;  // the mixed scene deforms: not a static benchmark
-    EXPECT_NE(r.output.find("bending_bar/0' deforms"), std::string::npos) << r.output;
-
-    const auto scene =
-        write_gltf("bench_static",
-                   {{procedural::sphere(0.05f, 8, 12), 0, {}},
-                    {dev::procedural::box({-0.1f, -0.06f, -0.1f}, {0.1f, -0.05f, 0.1f}, 1), 1, {}}},
-                   R"([{"extensions":{"KHR_materials_diffuse_transmission":{"diffuseTransmissionFactor":1}}},{}])");
-    std::filesystem::remove_all(cache);
-    r = test::run_cli({"bench", "render", "--scene", scene.string(), "--cache", cache.string(), "--repeat", "2",
-                       "--size", "32", "--quality", "draft"});
-    ASSERT_EQ(r.exit_code, 0) << r.output;
-    EXPECT_NE(r.output.find("1 static bakes were missing and ran now"), std::string::npos) << r.output;
-    // The shared LUT's builder and the one transmitting object's attenuation table.
-    EXPECT_NE(r.output.find("created 2 compute pipelines (2 objects"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("cached / never baked: GPU"), std::string::npos) << r.output;
 }
 
 TEST(SceneMaterials, EveryMalformedGltfOfTheLoaderTestsIsAnErrorNamingTheFile)
