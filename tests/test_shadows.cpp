@@ -164,6 +164,35 @@ TEST_F(RenderShadows, ABoxShadowsThePlaneUnderADirectionalLight)
     }
 }
 
+TEST_F(RenderShadows, AMaterialWithoutAProfileGetsLambertsShadowInTheTmMode)
+{
+    // Its soft-shadow kernel has no radius of its own and is widened to a texel of the tile: the
+    // same shadow as Lambert's filter, to within a pixel (a texel of the tile is 0.45 px). A
+    // kernel left at a mesh unit would miss the box altogether.
+    Renderer r(context());
+    r.set_mesh(plane_and_box());
+    Material m = material_preset("opaque", 100.0);
+    m.specular = 0.0f;
+    r.set_material(m);
+    const Light light = Light::directional({0.0f, 0.0f, 1.0f}, glm::vec3(1.0f));
+    RenderSettings tm = lambert(true);
+    tm.mode = ShadingMode::Tm;
+    const RenderedImage flat = r.render(camera(), {&light, 1}, lambert(true));
+    const RenderedImage soft = r.render(camera(), {&light, 1}, tm);
+    const glm::vec2 centre = project({0.0f, 0.0f, 0.0f});
+    const double lit = red_at(soft, project({2.0f, -2.0f, 0.0f}));
+    ASSERT_GT(lit, 0.0);
+    EXPECT_LT(red_at(soft, centre), 1e-4 * lit);
+    const Measured a = measure(flat, centre, red_at(flat, project({2.0f, -2.0f, 0.0f}))),
+                   b = measure(soft, centre, lit);
+    EXPECT_NEAR(b.centre.x, a.centre.x, 1.0);
+    EXPECT_NEAR(b.centre.y, a.centre.y, 1.0);
+    EXPECT_NEAR(b.size.x, a.size.x, 1.0);
+    EXPECT_NEAR(b.size.y, a.size.y, 1.0);
+    std::printf("no profile: tm shadow %.2f x %.2f px at (%.2f, %.2f), lambert %.2f x %.2f at (%.2f, %.2f)\n", b.size.x,
+                b.size.y, b.centre.x, b.centre.y, a.size.x, a.size.y, a.centre.x, a.centre.y);
+}
+
 TEST_F(RenderShadows, APointLightsShadowGrowsByThePerspectiveRatio)
 {
     // A point light on the axis at height H: the box's top corners (z = 3, half-width 0.5) cast the

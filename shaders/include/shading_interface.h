@@ -124,9 +124,10 @@ struct FrameData {
         transmission_table_map;  // 1 / step of the attenuation table (mesh units), last texel, last interval, texels a part
     GpuLight transmitters[JADE_MAX_TRANSMITTERS];  // the lights drawn with transmission (transmission.glsl)
     // The t_m mode's shadow filter (shadow.glsl, shading::soft_shadow_kernel): x the kernel's
-    // median radius (mesh units; 0: the plain filter), yzw unused; per tap, its offset on the
-    // golden-angle disk (xy = r (cos, sin) of i times the golden angle, z = r, mesh units) and its
-    // weight per channel (rgb, R_c(r)/pdf(r), each channel summing to 1).
+    // median radius (mesh units; 0 for a material without a profile: a texel), yzw unused; per
+    // tap, its offset on the golden-angle disk (xy = r (cos, sin) of i times the golden angle,
+    // z = r, in median radii) and its weight per channel (rgb, R_c(r)/pdf(r), each channel
+    // summing to 1).
     vec4 soft_shadow;
     vec4 soft_shadow_taps[JADE_SOFT_SHADOW_TAPS];
     vec4 soft_shadow_weights[JADE_SOFT_SHADOW_TAPS];

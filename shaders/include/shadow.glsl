@@ -79,8 +79,9 @@ float shadow_visibility(uint tile, vec3 position, vec3 n, vec3 l)
 const float kSoftShadowTolerance = 2.0;
 
 // Whether the light reaches tap (xy: its offset on the disk before the pixel's turn, z: its
-// radius, mesh units) of the kernel centred at q0 of tile t, whose tangent axes map to q1 and q2
-// per mesh unit; front: the point faces the light (layer 0), else layer 1. Outside the tile, lit.
+// radius, in median radii of the kernel) of the kernel centred at q0 of tile t, whose tangent
+// axes map to q1 and q2 per median radius; `tolerance`: the occluder's, per median radius of the
+// tap's radius; front: the point faces the light (layer 0), else layer 1. Outside the tile, lit.
 bool soft_shadow_tap_visible(vec4 tap, vec3 q0, vec3 q1, vec3 q2, vec2 turn, float tolerance, uint t, bool front)
 {
     vec3 q = q0 + (turn.x * tap.x - turn.y * tap.y) * q1 + (turn.y * tap.x + turn.x * tap.y) * q2;
@@ -100,18 +101,18 @@ vec3 soft_shadow_visibility(uint tile, vec3 position, vec3 n, vec3 l)
     float sin_theta = sqrt(max(1.0 - c * c, 0.0));
     vec3 towards = c >= 0.0 ? n : -n;
     vec3 lifted = position + towards * (texel * (kShadowOffset + kShadowSlope * sin_theta));
-    // An orthonormal basis of the tangent plane (Duff et al. 2017), and its image in the tile,
-    // per mesh unit of the kernel widened to a median radius of a texel where it is narrower.
+    // An orthonormal basis of the tangent plane (Duff et al. 2017), and its image in the tile per
+    // median radius of the kernel, widened to a texel where it is narrower.
     float sign_z = n.z >= 0.0 ? 1.0 : -1.0;
     float a = -1.0 / (sign_z + n.z), b = n.x * n.y * a;
     vec3 t1 = vec3(1.0 + sign_z * n.x * n.x * a, sign_z * b, -sign_z * n.x), t2 = vec3(b, sign_z + n.y * n.y * a, -n.y);
-    float median = data.soft_shadow.x, widen = max(texel / median, 1.0), reach = median * widen;
+    float reach = max(data.soft_shadow.x, texel);
     vec3 q0 = light_tile_coords(t, lifted);
-    vec3 q1 = (light_tile_coords(t, lifted + reach * t1) - q0) / median;
-    vec3 q2 = (light_tile_coords(t, lifted + reach * t2) - q0) / median;
+    vec3 q1 = light_tile_coords(t, lifted + reach * t1) - q0;
+    vec3 q2 = light_tile_coords(t, lifted + reach * t2) - q0;
     float rotation = 2.0 * JADE_PI * fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
     vec2 turn = vec2(cos(rotation), sin(rotation));
-    float tolerance = kSoftShadowTolerance * widen / depth.y;
+    float tolerance = kSoftShadowTolerance * reach / depth.y;
     bool front = c >= 0.0;
     // Most points lie far from any shadow's edge: where the centre and the four outermost taps
     // (the largest radii, spread round the disk by the golden angle) agree, so does the kernel.

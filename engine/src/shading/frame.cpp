@@ -116,7 +116,7 @@ namespace {
 
 const double kGoldenAngle = std::numbers::pi * (3.0 - std::sqrt(5.0));
 
-/// Equal weights on a golden-angle disk of uniform density, median radius 1: the kernel of a
+/// Equal weights on a golden-angle disk of uniform density, median radius 0: the kernel of a
 /// material without a profile, which the shader widens to a texel (a plain filter of the tile).
 SoftShadowKernel uniform_disk_kernel()
 {
@@ -127,7 +127,7 @@ SoftShadowKernel uniform_disk_kernel()
             glm::vec4(float(r * std::cos(i * kGoldenAngle)), float(r * std::sin(i * kGoldenAngle)), float(r), 0.0f);
         k.weights[i] = glm::vec4(glm::vec3(1.0f / JADE_SOFT_SHADOW_TAPS), 0.0f);
     }
-    k.median = 1.0f;
+    k.median = 0.0f;
     return k;
 }
 
@@ -156,8 +156,12 @@ SoftShadowKernel soft_shadow_kernel(const Material& m)
     // its nearest tap alone, about a hard shadow.
     for (int c = 0; c < 3; ++c)
         if (!(sum[c] > 0.0)) w[0][c] = sum[c] = 1.0;
-    for (uint32_t i = 0; i < JADE_SOFT_SHADOW_TAPS; ++i) k.weights[i] = glm::vec4(glm::vec3(w[i] / sum), 0.0f);
-    k.median = float(burley_sample_radius(0.5, sampled));
+    const double median = burley_sample_radius(0.5, sampled);
+    for (uint32_t i = 0; i < JADE_SOFT_SHADOW_TAPS; ++i) {
+        k.taps[i] = glm::vec4(glm::dvec3(k.taps[i]) / median, 0.0f);  // in median radii
+        k.weights[i] = glm::vec4(glm::vec3(w[i] / sum), 0.0f);
+    }
+    k.median = float(median);
     return k;
 }
 

@@ -30,10 +30,11 @@ FramePush frame_push(const Camera& cam, glm::vec3 bbox_min, glm::vec3 bbox_max, 
 /// soft_shadow_taps and soft_shadow_weights: the material's Burley shape per channel
 /// (burley_shapes: its d, or the Burley d of the same median radius); the widest of them sampled
 /// at the radii of its exact inverse CDF at (i + ½)/JADE_SOFT_SHADOW_TAPS, tap i at i times the
-/// golden angle; each tap weighing R_c(r)/pdf(r) per channel (the Burley profile of the channel's
-/// shape over the sampled one's), normalised per channel. An opaque material, or one without a
-/// profile, gets equal weights on a uniform disk of median radius 1. The shader widens any kernel
-/// whose median radius is under a texel of the light's tile to a texel.
+/// golden angle, its offset and radius in median radii; each tap weighing R_c(r)/pdf(r) per
+/// channel (the Burley profile of the channel's shape over the sampled one's), normalised per
+/// channel. An opaque material, or one without a profile, gets equal weights on a uniform disk
+/// and median 0. The shader widens any kernel whose median radius is under a texel of the light's
+/// tile to a texel.
 struct SoftShadowKernel {
     float median = 0.0f;
     glm::vec4 taps[JADE_SOFT_SHADOW_TAPS]{};
