@@ -27,6 +27,7 @@ layout(location = 9) in vec3 in_scattering_normal;
 layout(location = 10) in vec3 in_normal_spread;
 layout(location = 11) in vec3 in_variance;
 layout(location = 12) in float in_path[kMaxTransmitters];
+layout(location = 16) in vec3 in_diffused;  // the transmitting lights' diffused exitance (mesh.vert)
 
 layout(location = 0) out vec4 out_color;
 // kSeparable, kBurley (shading/separable.hpp): the diffuse light, blurred after this pass, in a
@@ -84,6 +85,7 @@ vec4 shading_input(uint k)
     if (k == 2u) return vec4(in_tm, in_curvature);
     if (k == 4u) return vec4(in_scattering_normal, 0.0);
     if (k == 5u) return vec4(in_normal_spread, 0.0);
+    if (k == 6u) return vec4(in_diffused, 0.0);
     vec4 path = vec4(0.0);
     for (uint j = 0; j < kMaxTransmitters; ++j)
         if (j < TRANSMISSION) path[j] = path_at(j);
@@ -182,9 +184,12 @@ void main()
     }
     // Only the lights that may shine through the object towards the eye, each in its own
     // unrolled step (constant indices: a loop over a list would cost more than the term).
-    if (MODE == kTm)
+    if (MODE == kTm) {
         for (uint k = 0; k < TRANSMISSION; ++k)
-            color += exit_transmittance * transmitted_light(k, in_position, n, in_lobe[k], path_at(k), in_thickness);
+            color += exit_transmittance * transmitted_light(k, in_position, n, in_lobe[k], path_at(k));
+        // Diffused light leaves as a Lambertian emitter: its exitance / π.
+        if (TRANSMISSION > 0u) color += exit_transmittance * (1.0 / JADE_PI) * in_diffused;
+    }
     out_color = vec4(color, 1.0);
     // Linear depth: clip w is the distance along the view axis (perspective), 1 / gl_FragCoord.w.
     if (MODE == kSeparable || MODE == kBurley) out_irradiance = vec4(irradiance, 1.0 / gl_FragCoord.w);

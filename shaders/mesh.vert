@@ -30,6 +30,8 @@ layout(location = 10) out vec3 out_normal_spread;
 layout(location = 11) out vec3 out_variance;  // the tm mode's t per channel (variance)
 // Per transmitting light: its path t (transmitter_path) where PATH_PER_VERTEX.
 layout(location = 12) out float out_path[kMaxTransmitters];
+// The transmitting lights' diffused light (diffused_light), summed: smooth over the diffusion length.
+layout(location = 16) out vec3 out_diffused;
 
 void main()
 {
@@ -46,5 +48,8 @@ void main()
     for (uint k = 0; k < kMaxTransmitters; ++k) out_lobe[k] = k < TRANSMISSION ? transmitter_lobe(k, in_position, v) : 0.0;
     for (uint k = 0; k < kMaxTransmitters; ++k)
         out_path[k] = PATH_PER_VERTEX == 1u && k < TRANSMISSION ? transmitter_path(k, in_position, in_thickness) : 0.0;
+    out_diffused = vec3(0.0);
+    if ((MODE == kTm || MODE == kInputs + 6u) && data.dipole_albedo.w > 0.0)
+        for (uint k = 0; k < TRANSMISSION; ++k) out_diffused += diffused_light(k, in_position, in_normal);
     gl_Position = frame.view_proj * vec4(in_position, 1.0);
 }

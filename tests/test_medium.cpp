@@ -113,55 +113,6 @@ TEST(Medium, TransmissionLobeIsNormalisedOverTheHemisphere)
     }
 }
 
-// The flux through the far side of a slab [0, t] from a unit planar source at depth z0, for
-// φ'' − σ²φ = −δ(z − z0) with φ = 0 on the extrapolated boundaries −z_b and t + z_b: a float64
-// finite-difference solution (the Thomas algorithm), independent of the closed form.
-double slab_flux_numerical(double t, double sigma, double z0, double zb)
-{
-    const int n = 40000;
-    const double a = -zb, b = t + zb, h = (b - a) / n;
-    std::vector<double> diag(n - 1, -2.0 - sigma * sigma * h * h), rhs(n - 1, 0.0);
-    // The source on the two nodes around z0 (linear split), −1/h per unit of δ.
-    const double x = (z0 - a) / h - 1.0;
-    const int k = int(std::floor(x));
-    const double f = x - k;
-    rhs[k] -= (1.0 - f) * h, rhs[k + 1] -= f * h;
-    for (int i = 1; i < n - 1; ++i) {  // forward sweep, off-diagonals 1
-        const double w = 1.0 / diag[i - 1];
-        diag[i] -= w, rhs[i] -= w * rhs[i - 1];
-    }
-    std::vector<double> phi(n + 1, 0.0);
-    for (int i = n - 2; i >= 0; --i) phi[i + 1] = (rhs[i] - (i + 1 < n - 1 ? phi[i + 2] : 0.0)) / diag[i];
-    // −φ'(t) by a second-order one-sided difference at the node nearest to t.
-    const int j = int(std::lround((t - a) / h));
-    return -(phi[j + 1] - phi[j - 1]) / (2.0 * h);
-}
-
-TEST(Medium, SlabDiffusionTransmittanceSolvesTheDiffusionEquation)
-{
-    for (double sigma : {0.0, 0.3, 2.0, 8.0})
-        for (double t : {0.5, 1.0, 3.0}) {
-            const double z0 = 0.1, zb = 0.2;
-            const double expected = slab_flux_numerical(t, sigma, z0, zb);
-            EXPECT_NEAR(dev::slab_diffusion_transmittance(t, sigma, z0 + zb, zb), expected, 2e-3 * expected + 1e-9)
-                << "σ_tr " << sigma << ", t " << t;
-        }
-    // No absorption: T = z_s/(t + 2z_b) and the reflected rest R = (t + z_b − z0)/(t + 2z_b) sum to 1.
-    EXPECT_NEAR(dev::slab_diffusion_transmittance(2.0, 0.0, 0.3, 0.2), 0.3 / 2.4, 1e-15);
-    // Thick: ∝ e^{−σ_tr t}.
-    const double r =
-        dev::slab_diffusion_transmittance(11.0, 2.0, 0.3, 0.2) / dev::slab_diffusion_transmittance(10.0, 2.0, 0.3, 0.2);
-    EXPECT_NEAR(r, std::exp(-2.0), 1e-9);
-    // Extremes: finite and in [0, 1]; t = ∞ and z_s = 0 give 0.
-    for (double s : {0.0, 1e-6, 1e-3, 1.0, 1e3, 1e6, 3e38, double(INFINITY)})
-        for (double t : {0.0, 1e-6, 0.1, 1.0, 1e6, double(INFINITY)}) {
-            const double v = dev::slab_diffusion_transmittance(t, s, 0.3, 0.2);
-            EXPECT_TRUE(std::isfinite(v) && v >= 0.0 && v <= 1.0) << "σ_tr " << s << ", t " << t << ": " << v;
-        }
-    EXPECT_EQ(dev::slab_diffusion_transmittance(INFINITY, 1.0, 0.3, 0.2), 0.0);
-    EXPECT_EQ(dev::slab_diffusion_transmittance(1.0, 1.0, 0.0, 0.0), 0.0);
-}
-
 TEST(Medium, ExtremeMediaGiveFiniteDocumentedResults)
 {
     auto finite = [](const Material& mat) {

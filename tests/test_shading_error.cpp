@@ -63,19 +63,11 @@ double specular(glm::dvec3 n, glm::dvec3 v, glm::dvec3 l, double n_dot_l, double
     return d * vis * (f0 + (1.0 - f0) * std::pow(1.0 - v_dot_h, 5.0)) * n_dot_l;
 }
 
-// The ballistic part along the path t, in the lobe with its share `follow`; the diffused part
-// across the slab h = min(t, max(t̄/ln 4, t·(−N·L))) with the far side's irradiance −N·L.
-glm::dvec3 attenuation(const Transmission& tr, double t, double lobe, double follow, double thickness, double behind)
+// The forward part along the path t, in the lobe with its share `follow`.
+glm::dvec3 attenuation(const Transmission& tr, double t, double lobe, double follow)
 {
-    const double h = std::min(t, std::max(thickness / std::log(4.0), t * behind));
     glm::dvec3 out;
-    for (int c = 0; c < 3; ++c) {
-        const double ballistic = std::exp(-double(tr.sigma_t[c]) * t);
-        const double diffused =
-            -std::expm1(-double(tr.sigma_s_reduced[c]) * h) *
-            dev::slab_diffusion_transmittance(h, tr.sigma_tr[c], tr.source_depth[c], tr.extrapolation[c]);
-        out[c] = double(tr.weight) * ballistic * lobe * follow + double(tr.diffusion_weight) * diffused * behind / kPi;
-    }
+    for (int c = 0; c < 3; ++c) out[c] = double(tr.weight) * std::exp(-double(tr.sigma_t[c]) * t) * lobe * follow;
     return out;
 }
 
@@ -120,12 +112,12 @@ glm::dvec3 reference_pixel(const ShadingInputs& in, size_t p, const Material& m,
             const double lobe = mu > 0.0 ? (double(tr.lobe) + 1.0) / (2.0 * kPi) * std::pow(mu, double(tr.lobe)) : 0.0;
             const double follow = (1.0 - double(tr.normal_mix)) + double(tr.normal_mix) * std::max(-c, 0.0);
             const double crossings = m.boundary_transmittance ? boundary(std::max(-c, 0.0), f0, alpha) * exit : 1.0;
-            color += crossings *
-                     attenuation(tr, double(in.path[k * pixels + p]), lobe, follow, double(in.normal[p].w),
-                                 std::max(-c, 0.0)) *
-                     e;
+            color += crossings * attenuation(tr, double(in.path[k * pixels + p]), lobe, follow) * e;
         }
     }
+    // The diffused light, gathered per vertex (its own test: tests/test_thickness.cpp), leaves as
+    // a Lambertian emitter.
+    color += exit / kPi * glm::dvec3(in.diffused[p]);
     return color;
 }
 

@@ -175,8 +175,10 @@ TEST_F(Thickness, BackLitSlabShowsTheBallisticTransmittance)
     const RenderedImage bare = renderer.render(cam, lights, rs);
     EXPECT_NEAR(bare.pixel(16, 16)[1] / centre[1], 1.0 / crossings, 0.002) << "without boundary_transmittance";
     m.boundary_transmittance = true;
-    // The diffused part alone: (1 − e^{−σ_s' t}) T_d(t), T_d the slab's diffusion transmittance,
-    // leaving the far side as a Lambertian emitter (1/π), whatever the lobe.
+    // The diffused part alone: the dipole gather over the light's entry layer (transmission.glsl,
+    // diffused_light) against a float64 quadrature of the same integral over the slab's far side,
+    // leaving as a Lambertian emitter (1/π) whatever the lobe. The slab is 10 units wide, the
+    // gather's disk h + 3/min σ_tr = 3.1 in radius, all of it slab: W = 6.2 for the buckling.
     m.transmission.weight = 0.0f, m.transmission.diffusion_weight = 0.5f;
     m.transmission.sigma_s_reduced = {10.0f, 5.0f, 2.0f};
     m.transmission.sigma_tr = {1.0f, 3.0f, 9.0f};
@@ -184,12 +186,34 @@ TEST_F(Thickness, BackLitSlabShowsTheBallisticTransmittance)
     m.transmission.extrapolation = {0.01f, 0.03f, 0.06f};
     renderer.set_material(m);
     const RenderedImage diffused = renderer.render(cam, lights, rs);
+    const double alpha = std::max(double(m.roughness) * double(m.roughness), 1e-3);
+    const double mean_entry = 1.0 - f0 - (std::max(1.0 - alpha, f0) - f0) / 21.0;
     for (int c = 0; c < 3; ++c) {
-        const double s = m.transmission.sigma_s_reduced[c], tr = m.transmission.sigma_tr[c];
-        const double slab =
-            dev::slab_diffusion_transmittance(t, tr, m.transmission.source_depth[c], m.transmission.extrapolation[c]);
-        const double expected = 0.5 / std::numbers::pi * (1.0 - std::exp(-s * t)) * slab * 2.0 * crossings;
-        EXPECT_NEAR(diffused.pixel(16, 16)[c], expected, 0.01 * expected) << "diffused, channel " << c;
+        const double zb = m.transmission.extrapolation[c], zr = m.transmission.source_depth[c] - zb;
+        const double albedo = double(m.transmission.sigma_s_reduced[c]) * zr, reach = double(h) + 3.0;
+        const double buckling = std::numbers::pi / (2.0 * reach + 2.0 * zb);
+        const double sigma = std::sqrt(std::pow(double(m.transmission.sigma_tr[c]), 2) + 2.0 * buckling * buckling);
+        // A source at depth a below the far side (its image a + 2z_b beyond), at ρ across.
+        auto flux = [&](double a, double rho) {
+            a = std::max(a, 0.0);
+            double out = 0.0;
+            for (double depth : {a, a + 2.0 * zb}) {
+                const double r = std::sqrt(rho * rho + depth * depth);
+                out += depth * (1.0 + sigma * r) * std::exp(-sigma * r) / (r * r * r);
+            }
+            return out;
+        };
+        double exitance = 0.0;
+        const int steps = 200000;
+        for (int i = 0; i < steps; ++i) {
+            const double rho = (i + 0.5) * reach / steps;
+            const double share = double(h) / std::sqrt(rho * rho + double(h) * double(h));
+            const double profile =
+                albedo / (4.0 * std::numbers::pi) * std::max(flux(h - zr, rho) - flux(h + zr + 2.0 * zb, rho), 0.0);
+            exitance += 2.0 * std::numbers::pi * rho * (reach / steps) * share * profile;
+        }
+        const double expected = 0.5 * exitance * mean_entry * 2.0 * (1.0 - f0) / std::numbers::pi;
+        EXPECT_NEAR(diffused.pixel(16, 16)[c], expected, 0.03 * expected) << "diffused, channel " << c;
     }
     // Off with RenderSettings::transmission = false; and a light in front gives no forward lobe
     // (the eye is inside the slab's bounding sphere, so the term is drawn: the diffused part,

@@ -13,6 +13,7 @@
 
 #include "fidelity_modes.hpp"
 #include "flip.hpp"
+#include "render_setup.hpp"
 #include "report.hpp"
 
 #include <nlohmann/json.hpp>
@@ -169,6 +170,8 @@ int cmd_fidelity(int argc, char** argv)
                      "comma-separated modes to score (default all: lambert, curvature, tm, default, "
                      "filament, filament-flat, separable, burley)"});
         o.push_back({"fit", "FILE", "JSON of MediumFit values instead of the built-in defaults"});
+        o.push_back(eval_option());
+        o.push_back(light_path_option());
         o.push_back({"json", "FILE", "write every number as JSON"});
         o.push_back({"markdown", "FILE", "write the tables as Markdown (docs/fidelity.md's)"});
         o.push_back({"images", "DIR", "also save each scene's image per mode as SCENE__MODE.png"});
@@ -222,7 +225,7 @@ int cmd_fidelity(int argc, char** argv)
 
     auto ctx = make_context(args);
     Baker baker(*ctx);
-    Renderer renderer(*ctx);
+    Renderer renderer(*ctx, renderer_options(args));
     std::map<std::string, BakedMesh> baked;  // key: mesh + medium
     json out = json::array();
     std::printf("%-26s", "scene (LDR FLIP, masked)");
@@ -354,19 +357,22 @@ int cmd_fidelity(int argc, char** argv)
                     write(m, true, term);
                 }
         // What the shading reads per pixel, for fitting other transmission models offline: the
-        // position (w: coverage) and the normal with the first light's path t (w; 0 without).
+        // position (w: coverage), the normal with the first light's path t (w; 0 without) and the
+        // baked thickness t̄.
         renderer.set_material(material);
         rs.transmission = true;
         const ShadingInputs in = dev::shading_inputs(renderer, camera, lights, rs);
-        std::vector<float> position, normal_path;
+        std::vector<float> position, normal_path, thickness;
         for (size_t p = 0; p < in.position.size(); ++p) {
             const glm::vec4 x = in.position[p], n = in.normal[p];
             position.insert(position.end(), {x.x, x.y, x.z, x.w});
             normal_path.insert(normal_path.end(), {n.x, n.y, n.z, in.path.empty() ? 0.0f : in.path[p]});
+            thickness.insert(thickness.end(), {n.w, n.w, n.w, x.w});
         }
         const auto folder = std::filesystem::path(*components);
         save_image(folder / (ref.name + "__inputs_position.exr"), int(in.width), int(in.height), position);
         save_image(folder / (ref.name + "__inputs_normal_path.exr"), int(in.width), int(in.height), normal_path);
+        save_image(folder / (ref.name + "__inputs_thickness.exr"), int(in.width), int(in.height), thickness);
     }
     if (out.empty()) throw Error("--references " + dir.string() + ": no reference scene matched");
     if (auto path = args.get("markdown"))

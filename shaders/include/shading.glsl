@@ -53,6 +53,14 @@ float boundary_transmittance(float cos_theta)
     return 1.0 - (f0 + (grazing - f0) * (m2 * m2 * m));
 }
 
+// boundary_transmittance averaged over the light's projected area, ∫ T(μ) 2μ dμ (∫ 2μ(1 − μ)⁵ dμ =
+// 1/21): the share that enters where the light falls on a surface of every orientation alike.
+float mean_boundary_transmittance()
+{
+    float f0 = data.specular.x, grazing = max(1.0 - data.specular.y, f0);
+    return 1.0 - f0 - (grazing - f0) * (1.0 / 21.0);
+}
+
 // Whether the t_m mode's light pays the boundary's crossings (Material::boundary_transmittance).
 bool boundary_crossed() { return data.transmission_shape.w > 0.0; }
 

@@ -32,7 +32,7 @@
 #define JADE_MODE_SEPARABLE 5
 #define JADE_MODE_BURLEY 6
 #define JADE_MODE_INPUTS 8
-#define JADE_INPUTS_SLOTS 6
+#define JADE_INPUTS_SLOTS 7
 
 // How the Tm mode evaluates F(cos θ, t), the specialisation constant EVAL (translucency.glsl):
 // jade::TmEvaluation's values (asserted in shading/mesh_pipeline.hpp).
@@ -70,10 +70,10 @@ struct Vertex {
 };
 
 // transmission_table.comp's push constants (shading/transmission_table.cpp): the medium's
-// coefficients as transmission_attenuation() takes them, and the table's length.
+// coefficients as forward_attenuation() takes them, and the table's spacing and length.
 struct TablePush {
-    vec4 extinction, diffusion, scatter;  // scatter.w: step (mesh units)
-    vec4 source, boundary;                // z_s, z_b (xyz) of transmission_attenuation()
+    vec4 extinction;  // σ_t (1/mesh unit), w_b
+    float step;       // mesh units between texels
     uint count;
 };
 
@@ -120,8 +120,13 @@ struct FrameData {
         subsurface_thickness;  // Filament mode: thickness = min(t̄ · x, 1) (x in 1/mesh unit), or y when y ≥ 0; zw unused
     LightTile light_tiles[JADE_MAX_LIGHT_DEPTH_TILES];  // per tile of the atlas (GpuLight::color.w − 1)
     vec4 color_map[JADE_COLOR_MAP_STOPS];               // false-colour stops, linear RGB
-    vec4
-        transmission_table_map;  // 1 / step of the attenuation table (mesh units), last texel, last interval, texels a part
+    vec4 transmission_table_map;  // 1 / step of the attenuation table (mesh units), last texel, last interval, unused
+    // The diffused part of the transmission (transmission.glsl, diffused_light): the diffusion
+    // dipole of Jensen et al. 2001 per channel, from Transmission (shading/frame.cpp).
+    vec4 dipole_albedo;    // rgb: α'/(4π); w: Transmission::diffusion_weight (0: no gather)
+    vec4 dipole_sigma;     // rgb: σ_tr (1/mesh unit); w: the gather's reach past the light's path, 3/min σ_tr
+    vec4 dipole_real;      // rgb: z_r = 1/σ_t', the source's depth (mesh units); w: unused
+    vec4 dipole_boundary;  // rgb: z_b = 2AD, the extrapolated boundary's distance (mesh units); w: unused
     GpuLight transmitters[JADE_MAX_TRANSMITTERS];  // the lights drawn with transmission (transmission.glsl)
     // The t_m mode's shadow filter (shadow.glsl, shading::soft_shadow_kernel): x the kernel's
     // median radius (mesh units; 0 for a material without a profile: a texel), yzw unused; per
@@ -159,9 +164,9 @@ struct SeparablePush {
 #ifdef __cplusplus
 static_assert(sizeof(SeparableData) ==
               (JADE_SEPARABLE_MAX_TAPS + JADE_SEPARABLE_TRANSMITTANCE_STEPS + 2 + JADE_BURLEY_MAX_SAMPLES / 4) * 16);
-static_assert(sizeof(Vertex) == 68 && sizeof(TablePush) == 84 && sizeof(PackPush) == 12 && sizeof(FramePush) == 80 &&
+static_assert(sizeof(Vertex) == 68 && sizeof(TablePush) == 24 && sizeof(PackPush) == 12 && sizeof(FramePush) == 80 &&
               sizeof(GpuLight) == 32 && sizeof(LightTile) == 96);
-static_assert(sizeof(FrameData) == 9 * 16 + JADE_MAX_LIGHT_DEPTH_TILES * 96 + JADE_COLOR_MAP_STOPS * 16 + 16 +
+static_assert(sizeof(FrameData) == 9 * 16 + JADE_MAX_LIGHT_DEPTH_TILES * 96 + JADE_COLOR_MAP_STOPS * 16 + 16 + 4 * 16 +
                                        (JADE_MAX_TRANSMITTERS + JADE_MAX_LIGHTS) * 32 +
                                        (1 + 2 * JADE_SOFT_SHADOW_TAPS) * 16,
               "FrameData must have no padding: scalar layout packs it so");

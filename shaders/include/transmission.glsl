@@ -1,13 +1,15 @@
-// transmission.glsl - light from behind through the object (jade/material.hpp Transmission):
-//   [A_b(t) · (n+1)/(2π) max(V·(−L), 0)^n · ((1 − m) + m max(−N·L, 0)) + A_d(h) · max(−N·L, 0)/π] · E
-// with A_b the ballistic attenuation along the path t inside the object and A_d the diffused
-// attenuation across the slab h (attenuation.glsl; h in transmitted_light). The lobe is smooth
-// over the surface and per vertex (mesh.vert). The path t (the longer of the local thickness and
-// the path inside the medium from where the light enters, from the light's depth layers) is per
-// vertex on a fine mesh and per fragment on a coarse one (PATH_PER_VERTEX): it is not smooth where
-// the body shadows a part from the light, and per vertex it lost a fifth of a thumb tip's glow on
-// the coarse hand of tests/test_fidelity.cpp; A_b(t) and A_d(t) are read from the table
-// of transmission_table.comp (a fetch each, not nine exponentials).
+// transmission.glsl - light from behind through the object (jade/material.hpp Transmission), in
+// two parts:
+//   forward: A_b(t) · (n+1)/(2π) max(V·(−L), 0)^n · ((1 − m) + m max(−N·L, 0)) · E, with A_b the
+//     forward attenuation along the path t inside the object (attenuation.glsl), per fragment;
+//   diffused: the light that entered where the light meets the object and diffused to here, a
+//     gather of the dipole over the light's depth tile (diffused_light), per vertex (mesh.vert).
+// The lobe is smooth over the surface and per vertex. The path t (the longer of the local thickness
+// and the path inside the medium from where the light enters, from the light's depth layers) is
+// per vertex on a fine mesh and per fragment on a coarse one (PATH_PER_VERTEX): it is not smooth
+// where the body shadows a part from the light, and per vertex it lost a fifth of a thumb tip's
+// glow on the coarse hand of tests/test_fidelity.cpp; A_b(t) is read from the table of
+// transmission_table.comp (a fetch, not three exponentials).
 #ifndef JADE_TRANSMISSION_GLSL
 #define JADE_TRANSMISSION_GLSL
 
@@ -21,7 +23,7 @@ layout(constant_id = 2) const uint TRANSMISSION = 0;
 layout(constant_id = 7) const uint PATH_PER_VERTEX = 0;
 const uint kMaxTransmitters = JADE_MAX_TRANSMITTERS;  // shading_interface.h
 
-layout(binding = 5) uniform usamplerBuffer transmission_table;  // per part (ballistic, then diffused): A(t_i), A(t_{i+1}) as halves
+layout(binding = 5) uniform usamplerBuffer transmission_table;  // A_b(t_i), A_b(t_{i+1}) as halves
 
 // The path inside the medium up to depth z along the light, from the depths of the first four
 // surfaces at one texel (1 where there is none): [layer 0, layer 1] and [layer 2, layer 3] are
@@ -94,43 +96,124 @@ float transmitter_follow(float n_dot_l)
     return (1.0 - data.transmission_shape.z) + data.transmission_shape.z * max(-n_dot_l, 0.0);
 }
 
-// A part of the attenuation at t (0: ballistic, 1: diffused; attenuation.glsl), interpolated
-// from the table (the last entry, ~0, beyond it; a NaN t reads an end).
-vec3 attenuation_at(uint part, float t)
+// The forward attenuation at t, interpolated from the table (the last entry, ~0, beyond it; a NaN t
+// reads an end).
+vec3 attenuation_at(float t)
 {
     float x = clamp(t * data.transmission_table_map.x, 0.0, data.transmission_table_map.y);
     float i = min(floor(x), data.transmission_table_map.z);
-    uvec4 q = texelFetch(transmission_table, int(i) + int(part) * int(data.transmission_table_map.w));
+    uvec4 q = texelFetch(transmission_table, int(i));
     vec2 rg = unpackHalf2x16(q.x), ba = unpackHalf2x16(q.y), gb = unpackHalf2x16(q.z);
     return mix(vec3(rg, ba.x), vec3(ba.y, gb), x - i);
 }
 
-// The mean inward-cone thickness t̄ (ThicknessSettings: rays in the 60° cone about −n) of a flat
-// slab of thickness h is h · ln 4: ∫ h/cos θ dΩ over the cone / its solid angle.
-const float kSlabPerConeThickness = 0.72134752;  // 1 / ln 4
-
-// Transmitter k's light at `position` with normal n (unit), forward lobe `lobe`, path t along
-// the light and local thickness t̄, short of the crossing out to the eye (the same for every
-// light): in through the far side (this normal standing in for the entry's), then the two parts.
-// The ballistic light travels the line, e^{−σ_t t}, and leaves in the forward lobe, the share at
-// this normal transmitter_follow's. The diffused light enters the slab's far side with the
-// irradiance E·max(−N·L, 0) (none on a surface that faces the light: that light is the diffuse
-// term's), and has forgotten its direction: it crosses the slab between where
-// it entered and here, whose thickness is the path's depth along the normal, t·(−N·L) (exact for
-// a flat slab lit at any angle), and never less than the slab that the local thickness stands
-// for, t̄/ln 4; it leaves as a Lambertian emitter, 1/π of its flux per steradian (the exit flux
-// of the diffusion approximation's slab, T_d). A back-facing surface of a thick body gets ~0.
-vec3 transmitted_light(uint k, vec3 position, vec3 n, float lobe, float t, float thickness)
+// Transmitter k's forward light at `position` with normal n (unit), forward lobe `lobe` and path t
+// along the light, short of the crossing out to the eye (the same for every light): in through
+// the far side (this normal standing in for the entry's), then along the line, e^{−σ_t t}, out in
+// the forward lobe, the share at this normal transmitter_follow's.
+vec3 transmitted_light(uint k, vec3 position, vec3 n, float lobe, float t)
 {
     vec3 l, e;
     transmitter_at(k, position, l, e);
     float n_dot_l = dot(n, l);
     float entry = boundary_crossed() ? boundary_transmittance(-n_dot_l) : 1.0;
-    float behind = max(-n_dot_l, 0.0);
-    float slab = min(max(kSlabPerConeThickness * thickness, t * behind), t);
-    vec3 a = transmitter_follow(n_dot_l) * lobe * attenuation_at(0u, t) +
-             (behind / JADE_PI) * attenuation_at(1u, slab);
-    return entry * a * e;
+    return entry * transmitter_follow(n_dot_l) * lobe * attenuation_at(t) * e;
+}
+
+// The flux through the surface at x (normal n) of a point source q = base + along · depth (per
+// channel), per unit power, with x's tangent plane as an extrapolated boundary (q's image 2 z_b
+// beyond it), in a medium of extinction σ: a (1 + σr)e^{−σr}/r³ for q at distance a inside the
+// plane and r from x, plus the image's (Jensen et al. 2001's dipole, x's plane for the surface).
+vec3 plane_flux(vec3 x, vec3 n, vec3 base, vec3 along, vec3 depth, vec3 zb, vec3 sigma)
+{
+    vec3 d0 = x - base;
+    float nd = dot(n, d0), na = dot(n, along), da = dot(d0, along), dd = dot(d0, d0);
+    vec3 r2 = max(vec3(dd) - 2.0 * depth * da + depth * depth, vec3(1e-30));
+    vec3 a = max(vec3(nd) - depth * na, vec3(0.0));
+    vec3 av = a + 2.0 * zb;
+    vec3 v2 = r2 - a * a + av * av;
+    vec3 r = sqrt(r2), v = sqrt(v2);
+    return a * (1.0 + sigma * r) * exp(-sigma * r) / (r2 * r) + av * (1.0 + sigma * v) * exp(-sigma * v) / (v2 * v);
+}
+
+// What enters at s (the light travelling along `along`, unit) and leaves through the surface at
+// x, per unit flux, 1/mesh unit²: the diffusion dipole with both boundaries, the entry's and x's
+// (Donner & Jensen 2005's multipole cut to its first pairs): the source z_r inside along the light
+// and its negative image z_r + 2z_b outside the entry, each with its image beyond x's plane. On the
+// far side of a slab of thickness h it is the slab's transmission profile.
+vec3 dipole_exit(vec3 x, vec3 n, vec3 s, vec3 along, vec3 sigma)
+{
+    vec3 zr = data.dipole_real.rgb, zb = data.dipole_boundary.rgb;
+    vec3 f = plane_flux(x, n, s, along, zr, zb, sigma) - plane_flux(x, n, s, along, -(zr + 2.0 * zb), zb, sigma);
+    return data.dipole_albedo.rgb * max(f, vec3(0.0));
+}
+
+const uint kDiffusionTaps = 24;  // taps of the diffused light's gather (diffused_light)
+
+// Where the light of tile t that passes `tap` (a point in the plane through x across the light)
+// first meets the object: that layer's depth (1 where the line meets nothing) and the point.
+float light_entry(uint t, vec3 tap, vec3 l, out vec3 entry)
+{
+    float size = data.light_depth_map.x;
+    vec3 p = light_tile_coords(t, tap);
+    ivec2 texel = ivec2(int(t) * int(size), 0) + clamp(ivec2(p.xy * size), ivec2(0), ivec2(int(size) - 1));
+    bool inside = all(greaterThanEqual(p.xy, vec2(0.0))) && all(lessThan(p.xy, vec2(1.0)));
+    float first = inside ? texelFetch(light_depth_atlas, texel, 0).x : 1.0;
+    entry = tap + l * ((p.z - first) * data.light_tiles[t].depth.y);
+    return first;
+}
+
+// The light of transmitter k that entered the object where the light first meets it and diffused
+// to `position` (normal n, unit): its exitance there (the radiance is it / π times the crossing
+// out). A translucent shadow map (Dachsbacher & Stamminger 2003): the first layer of the light's
+// depth tile is where light enters, each texel taking the light's irradiance over its projected
+// area whatever the surface's slope (with the crossing in averaged over the slopes,
+// mean_boundary_transmittance); what enters at s reaches x through dipole_exit, of which the
+// share leaving here is max(n·(x − s), 0)/|x − s|: 1 through a thin part, ~0 from this surface's
+// own neighbourhood (that light is the diffuse term's). Taps on a golden-angle spiral in the plane
+// through x across the light, at radii spaced evenly in ln r from a twentieth of the light's path
+// to x (the kernel is as wide as the part is deep; inside, ρ·T(ρ) → 0) out to that path plus three
+// diffusion lengths (1/σ_tr of the channel reaching furthest): tap i stands for 2π r² Δ(ln r).
+// A part is not an endless slab: light that diffuses sideways leaves through its sides. The
+// diffusion equation's transverse buckling B² = 2(π/(W + 2z_b))² adds to σ_tr², W the part's
+// width across the light, the disk whose area is the share of the gather's disk that the light
+// meets (a first pass over the same taps).
+vec3 diffused_light(uint k, vec3 position, vec3 n)
+{
+    uint tile = uint(data.transmitters[k].color.w);
+    if (tile == 0u) return vec3(0.0);
+    uint t = tile - 1u;
+    vec3 l, e, s;
+    transmitter_at(k, position, l, e);
+    vec3 side = normalize(abs(l.y) < 0.9 ? cross(l, vec3(0.0, 1.0, 0.0)) : cross(l, vec3(1.0, 0.0, 0.0)));
+    vec3 up = cross(l, side);
+    // The tile's width at this point (mesh units): the gather stays inside it.
+    LightTile tl = data.light_tiles[t];
+    float width = tl.depth.z * data.light_depth_map.x * (tl.origin.w > 0.5 ? length(position - tl.origin.xyz) : 1.0);
+    float path = light_path(tile, position);
+    float reach = max(min(path + data.dipole_sigma.w, 0.5 * width), 1e-30);
+    float inner = max(0.05 * path, 1e-3 * reach), span = log(reach / inner);
+    float covered = 0.0, total = 0.0;
+    for (uint i = 0; i < kDiffusionTaps; ++i) {
+        float r = inner * exp(span * (float(i) + 0.5) / float(kDiffusionTaps)), angle = float(i) * 2.39996323;
+        float first = light_entry(t, position + r * (cos(angle) * side + sin(angle) * up), l, s);
+        covered += first < 1.0 ? r * r : 0.0;
+        total += r * r;
+    }
+    vec3 zb = data.dipole_boundary.rgb;
+    vec3 buckling = min(JADE_PI / max(vec3(2.0 * reach * sqrt(covered / total)) + 2.0 * zb, vec3(1e-30)), vec3(1e18));
+    vec3 sigma_tr = min(data.dipole_sigma.rgb, vec3(1e18));
+    vec3 sigma = sqrt(sigma_tr * sigma_tr + 2.0 * buckling * buckling);
+    vec3 sum = vec3(0.0);
+    for (uint i = 0; i < kDiffusionTaps; ++i) {
+        float r = inner * exp(span * (float(i) + 0.5) / float(kDiffusionTaps)), angle = float(i) * 2.39996323;
+        float first = light_entry(t, position + r * (cos(angle) * side + sin(angle) * up), l, s);
+        vec3 d = position - s;
+        float out_share = max(dot(n, d), 0.0) * inversesqrt(max(dot(d, d), 1e-30));
+        sum += (first < 1.0 ? out_share * r * r : 0.0) * dipole_exit(position, n, s, -l, sigma);
+    }
+    float entry = boundary_crossed() ? mean_boundary_transmittance() : 1.0;
+    return (2.0 * JADE_PI * span / float(kDiffusionTaps) * entry * data.dipole_albedo.w) * sum * e;
 }
 
 #endif

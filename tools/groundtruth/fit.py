@@ -79,9 +79,10 @@ def in_band(ratio):
     return bool(np.all(np.abs(ratio - 1) <= 0.25))
 
 
-def stage2_weights(parts, wb_grid=np.linspace(0.0, 8.0, 161)):
+def stage2_weights(parts, wb_grid=np.linspace(0.0, 8.0, 161), fixed_wd=None):
     """Weights (w_b, w_d ≥ 0) of base + w_b·tb + w_d·td by least squares on the thin-region and object
-    means, each channel relative to the reference; parts: (scene, base, tb, td) images."""
+    means, each channel relative to the reference; parts: (scene, base, tb, td) images. With fixed_wd,
+    w_d is that (the derived 1) and only w_b is fitted."""
     rows, rhs = [], []
     for s, base, tb, td in parts:
         for region, weight in ((s["thin"], 1.0), (s["mask"], 0.5)):
@@ -95,7 +96,7 @@ def stage2_weights(parts, wb_grid=np.linspace(0.0, 8.0, 161)):
     best = None
     for wb in wb_grid:  # tiny NNLS: scan w_b, solve w_d ≥ 0 in closed form
         r = y - A[:, 0] * wb
-        wd = max(0.0, float(A[:, 1] @ r / max(A[:, 1] @ A[:, 1], 1e-30)))
+        wd = fixed_wd if fixed_wd is not None else max(0.0, float(A[:, 1] @ r / max(A[:, 1] @ A[:, 1], 1e-30)))
         e = float(np.sum((r - A[:, 1] * wd) ** 2))
         if best is None or e < best[0]:
             best = (e, float(wb), wd)
@@ -111,6 +112,9 @@ def main():
     ap.add_argument("--stage1", help="ALBEDO_SCALE,STRENGTH: skip stage 1 with these values")
     ap.add_argument("--criterion", choices=("least-squares", "thin-band"), default="least-squares",
                     help="stage 2's weights: most thin regions within 25 %% (then FLIP), or least squares of the means")
+    ap.add_argument("--diffusion-weight", type=float, default=None,
+                    help="keep w_d at this value (the derived 1: the dipole's own flux) and fit w_b alone; "
+                         "without it both are fitted")
     ap.add_argument("--spread-strength", type=float, default=0.0,
                     help="the spread_strength the components were written with (jade fidelity --fit), recorded in the result")
     a = ap.parse_args()
@@ -153,7 +157,7 @@ def main():
         return (1 - m) * t("b", 0) + m * t("b", 1), (1 - m) * t("d", 0) + m * t("d", 1)
 
     def weights(n, m):
-        return stage2_weights([(s, base[s["name"]]) + terms(s, n, m) for s in back])
+        return stage2_weights([(s, base[s["name"]]) + terms(s, n, m) for s in back], fixed_wd=a.diffusion_weight)
 
     def image(s, n, m, wb, wd):
         tb, td = terms(s, n, m)

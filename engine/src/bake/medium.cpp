@@ -63,22 +63,6 @@ double dev::diffuse_reflectance(double reduced_albedo, double eta)
     return std::clamp(0.5 * reduced_albedo * (1.0 + std::exp(-4.0 / 3.0 * a * root)) * std::exp(-root), 0.0, 1.0);
 }
 
-double dev::slab_diffusion_transmittance(double t, double sigma_tr, double source_depth, double extrapolation)
-{
-    if (!(source_depth > 0.0) || !(t < INFINITY)) return 0.0;
-    t = std::max(t, 0.0);
-    const double s = sigma_tr, width = t + 2.0 * extrapolation;
-    // sinh(s z_s) cosh(s z_b) / sinh(s W) = e^{s(z_0 − t)} · (1 − e^{−2s z_s})(1 + e^{−2s z_b}) /
-    // (2(1 − e^{−2s W})): no exponential overflows; its s → 0 limit is z_s / W.
-    const double ratio = 2.0 * s * width < 1e-12 ? source_depth / width
-                                                 : -std::expm1(-2.0 * s * source_depth) / -std::expm1(-2.0 * s * width);
-    const double exponent = s * (source_depth - extrapolation - t);  // NaN only for s = ∞ at t = z_0
-    const double decay = std::isnan(exponent) ? 0.0 : std::exp(std::min(exponent, 700.0));
-    const double edge = extrapolation > 0.0 ? 0.5 * (1.0 + std::exp(-2.0 * s * extrapolation)) : 1.0;
-    const double r = ratio * decay * edge;
-    return std::isnan(r) ? 0.0 : std::min(1.0, r);
-}
-
 Medium dev::medium_from_appearance(glm::dvec3 albedo, glm::dvec3 mean_free_path, double ior, double roughness,
                                    const MediumFit& fit)
 {
@@ -158,8 +142,8 @@ Material dev::from_medium(const Medium& medium, const MediumFit& fit, std::strin
             float(std::min(fit.forward_extinction * (medium.sigma_s[c] + medium.sigma_a[c]), 3.0e38));
         m.transmission.sigma_s_reduced[c] = float(std::min(s_reduced, 3.0e38));
         m.transmission.sigma_tr[c] = float(std::min(std::sqrt(3.0 * medium.sigma_a[c] * t_reduced), 3.0e38));
-        // The slab's diffusion source and extrapolated boundary (slab_diffusion_transmittance);
-        // 0 where nothing scatters (the diffused part is 0 there anyway).
+        // The diffusion dipole's source depth and extrapolated boundary (the diffused part of the
+        // transmission, transmission.glsl); 0 where nothing scatters (that part is 0 there anyway).
         if (s_reduced > 0.0) {
             const double z0 = 1.0 / t_reduced, zb = 2.0 * boundary_a / (3.0 * t_reduced);
             m.transmission.source_depth[c] = float(std::min(z0 + zb, 3.0e38));

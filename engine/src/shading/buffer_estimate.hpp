@@ -17,7 +17,7 @@ namespace jade::shading {
 /// normal, normal spread: floats) and its per-draw constants with 64 lights, in bytes: for
 /// memory plans (jade/scene.hpp).
 inline constexpr uint64_t kRendererVertexBytes = 68;
-inline constexpr uint64_t kRendererFrameDataBytes = 3392;
+inline constexpr uint64_t kRendererFrameDataBytes = 3456;
 
 /// What one Renderer holds of its own while it draws a mesh of `vertices` bake vertices and
 /// `triangles` triangles (shading/renderer.cpp: its Vertex and FrameData, whose sizes it

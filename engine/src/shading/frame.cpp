@@ -85,6 +85,20 @@ FrameData material_constants(const Material& m)
     const Transmission& tr = m.transmission;
     d.transmission_shape = glm::vec4(tr.lobe, (tr.lobe + 1.0f) / (2.0f * float(std::numbers::pi)), tr.normal_mix,
                                      m.boundary_transmittance ? 1.0f : 0.0f);
+    // The dipole of the diffused transmission from the medium's depths: z_r = 1/σ_t' = z_s − z_b,
+    // α' = σ_s' z_r, z_b = 2AD (D = 1/(3σ_t')).
+    float smallest = 0.0f;
+    for (int c = 0; c < 3; ++c) {
+        const float z0 = std::max(tr.source_depth[c] - tr.extrapolation[c], 0.0f);
+        const float albedo = z0 > 0.0f ? std::clamp(tr.sigma_s_reduced[c] * z0, 0.0f, 1.0f) : 0.0f;
+        d.dipole_albedo[c] = albedo / (4.0f * float(std::numbers::pi));
+        d.dipole_sigma[c] = tr.sigma_tr[c];
+        d.dipole_real[c] = z0;
+        d.dipole_boundary[c] = tr.extrapolation[c];
+        if (albedo > 0.0f && (smallest == 0.0f || tr.sigma_tr[c] < smallest)) smallest = tr.sigma_tr[c];
+    }
+    d.dipole_albedo.w = tr.diffusion_weight;
+    d.dipole_sigma.w = smallest > 0.0f ? 3.0f / smallest : 3.0e38f;
     return d;
 }
 

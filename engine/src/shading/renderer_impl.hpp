@@ -346,8 +346,8 @@ struct Renderer::Impl {
         ShadingInputs in;
         in.width = s.width, in.height = s.height;
         std::vector<glm::vec4> paths;  // of the transmitting lights, in their order
-        std::vector<glm::vec4>* planes[] = {&in.position,          &in.normal,       &in.tm, &paths,
-                                            &in.scattering_normal, &in.normal_spread};
+        std::vector<glm::vec4>* planes[] = {&in.position,          &in.normal,        &in.tm,      &paths,
+                                            &in.scattering_normal, &in.normal_spread, &in.diffused};
         for (uint32_t k = 0; k < shading::kInputsSlots; ++k) {
             const RenderedImage img = render(cam, lights, s, shading::kInputsMode + k);
             planes[k]->resize(pixels);

@@ -35,11 +35,10 @@ TransmissionTable::Layout TransmissionTable::table_layout(const Transmission& tr
     // spacing: a step of 0.03 / (fastest rate), so that linear interpolation errs by at most
     // 0.03²/8 ≈ 1e-4 of the weights (docs/shading.md). Rates are capped as the shader caps them.
     double slowest = INFINITY, fastest = 0.0;
-    for (const glm::vec3& r : {tr.sigma_t, tr.sigma_tr, tr.sigma_s_reduced})
-        for (int c = 0; c < 3; ++c)
-            if (r[c] > 0.0f)
-                slowest = std::min(slowest, double(std::min(r[c], 3e38f))),
-                fastest = std::max(fastest, double(std::min(r[c], 3e38f)));
+    for (int c = 0; c < 3; ++c)
+        if (tr.sigma_t[c] > 0.0f)
+            slowest = std::min(slowest, double(std::min(tr.sigma_t[c], 3e38f))),
+            fastest = std::max(fastest, double(std::min(tr.sigma_t[c], 3e38f)));
     if (!std::isfinite(slowest)) slowest = fastest = 1.0;  // no decay at all: A is constant
     const double range = 14.0 / slowest;
     const uint32_t count = uint32_t(std::clamp(std::ceil(range * fastest / 0.03) + 1.0, 2.0, double(kMaxTexels)));
@@ -48,24 +47,18 @@ TransmissionTable::Layout TransmissionTable::table_layout(const Transmission& tr
 
 uint64_t TransmissionTable::bytes(const Transmission& tr)
 {
-    return tr.enabled() ? uint64_t(table_layout(tr).count) * 2 * 16 : 64;
+    return tr.enabled() ? uint64_t(table_layout(tr).count) * 16 : 64;
 }
 
 void TransmissionTable::update(const Transmission& tr)
 {
-    if (held_ && held_->sigma_t == tr.sigma_t && held_->sigma_tr == tr.sigma_tr &&
-        held_->sigma_s_reduced == tr.sigma_s_reduced && held_->weight == tr.weight &&
-        held_->diffusion_weight == tr.diffusion_weight && held_->source_depth == tr.source_depth &&
-        held_->extrapolation == tr.extrapolation)
-        return;
+    if (held_ && held_->sigma_t == tr.sigma_t && held_->weight == tr.weight) return;
     const Layout layout = table_layout(tr);
     const uint32_t count = layout.count;
     const double step = layout.step;
-    const glm::vec3 rates[] = {glm::min(tr.sigma_t, glm::vec3(3e38f)), glm::min(tr.sigma_tr, glm::vec3(3e38f)),
-                               glm::min(tr.sigma_s_reduced, glm::vec3(3e38f))};
-    if (buffer_.size() < VkDeviceSize(count) * 2 * 16) {
+    if (buffer_.size() < VkDeviceSize(count) * 16) {
         if (buffer_) ctx_.release_after_gpu(std::move(view_), std::move(buffer_));  // recorded draws may read it
-        buffer_ = gpu::Buffer(ctx_, VkDeviceSize(count) * 2 * 16,
+        buffer_ = gpu::Buffer(ctx_, VkDeviceSize(count) * 16,
                               VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                               "transmission table");
         view_ = gpu::TexelView(ctx_, buffer_, VK_FORMAT_R32G32B32A32_UINT, 16, "transmission table");
@@ -77,22 +70,17 @@ void TransmissionTable::update(const Transmission& tr)
                                               sizeof(TablePush),
                                               64,
                                               {}});
-    const TablePush push{glm::vec4(rates[0], tr.weight),
-                         glm::vec4(rates[1], tr.diffusion_weight),
-                         glm::vec4(rates[2], float(step)),
-                         glm::vec4(glm::min(tr.source_depth, glm::vec3(3e38f)), 0.0f),
-                         glm::vec4(glm::min(tr.extrapolation, glm::vec3(3e38f)), 0.0f),
-                         count};
+    const TablePush push{glm::vec4(glm::min(tr.sigma_t, glm::vec3(3e38f)), tr.weight), float(step), count};
     ctx_.submit_and_wait([&](VkCommandBuffer cmd) {
         // After the reads of draws submitted earlier (the table is rewritten in place).
         gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_NONE,
                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_NONE);
-        kernel_->dispatch(cmd, 2 * count, push, {buffer_});  // both parts
+        kernel_->dispatch(cmd, count, push, {buffer_});
         // For every later draw on the queue.
         gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_WRITE_BIT,
                             VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_READ_BIT);
     });
-    map_ = glm::vec4(float(1.0 / step), float(count - 1), float(count - 2), float(count));
+    map_ = glm::vec4(float(1.0 / step), float(count - 1), float(count - 2), 0.0f);
     held_ = tr;
 }
 

@@ -1,6 +1,6 @@
-// shading/transmission_table.hpp - the transmission's attenuation A(t) of one material, tabulated
-// on the GPU by shaders/transmission_table.comp from the formula in attenuation.glsl, for mesh.frag
-// to interpolate at each fragment's path t (one texel fetch instead of nine exponentials).
+// shading/transmission_table.hpp - the transmission's forward attenuation A_b(t) of one material,
+// tabulated on the GPU by shaders/transmission_table.comp from the formula in attenuation.glsl, for
+// mesh.frag to interpolate at each fragment's path t (one texel fetch instead of three exponentials).
 #pragma once
 
 #include "gpu/buffer.hpp"
@@ -17,7 +17,7 @@ namespace jade::shading {
 
 class TransmissionTable {
 public:
-    /// A table of two texels a part (A = 0) until the first update().
+    /// A table of four texels (A = 0) until the first update().
     explicit TransmissionTable(gpu::Context& ctx);
 
     /// Tabulates `tr` unless it is the one held: one submission, waited for. The caller makes
@@ -28,7 +28,7 @@ public:
     static uint64_t bytes(const Transmission& tr);
 
     /// What attenuation_at() indexes with: x = 1/step (per mesh unit), y = last texel, z = last
-    /// interval, w = texels a part (the diffused part's first texel).
+    /// interval, w unused.
     glm::vec4 shader_map() const { return map_; }
     const gpu::TexelView& texels() const { return view_; }
 
@@ -43,7 +43,7 @@ private:
     std::optional<gpu::Kernel> kernel_;
     gpu::Buffer buffer_;
     gpu::TexelView view_;  // destroyed before buffer_
-    glm::vec4 map_{0.0f, 1.0f, 0.0f, 2.0f};
+    glm::vec4 map_{0.0f, 1.0f, 0.0f, 0.0f};
     std::optional<Transmission> held_;
 };
 

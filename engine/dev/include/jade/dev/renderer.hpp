@@ -42,6 +42,8 @@ struct ShadingInputs {
     std::vector<glm::vec4> tm;                 ///< rgb: interpolated t_m; w: curvature
     std::vector<glm::vec4> scattering_normal;  ///< xyz: interpolated scattering normal (not unit); w: 0
     std::vector<glm::vec4> normal_spread;      ///< rgb: interpolated normal spread; w: 0
+    std::vector<glm::vec4> diffused;           ///< rgb: the transmitting lights' diffused exitance, summed (its
+                                               ///< radiance is it / π times the crossing out); w: 0
     std::vector<float> path;                   ///< the path t (mesh units) of each transmitting light's attenuation
     std::vector<uint8_t> transmits;            ///< per light: 1 when the draw adds its transmission
 };
