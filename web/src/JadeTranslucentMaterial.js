@@ -37,10 +37,10 @@ export class JadeTranslucentMaterial extends ShaderMaterial {
         jadeAlbedoStrength: { value: new Vector4() },
         jadeSpecular: { value: new Vector4() },
         jadeExtinction: { value: new Vector4() },
-        jadeDiffusion: { value: new Vector4() },
-        jadeScatter: { value: new Vector3() },
-        jadeSource: { value: new Vector3() },
-        jadeExtrapolation: { value: new Vector3() },
+        jadeDipoleAlbedo: { value: new Vector4() },
+        jadeDipoleSigma: { value: new Vector4() },
+        jadeDipoleReal: { value: new Vector3() },
+        jadeDipoleBoundary: { value: new Vector3() },
         jadeShape: { value: new Vector4() },
         jadeBounds: { value: new Vector4() },
         jadeTransmission: { value: 0 },
@@ -154,11 +154,23 @@ export class JadeTranslucentMaterial extends ShaderMaterial {
     const t = x.transmission;
     if (typeof t !== 'object' || t === null) throw new Error('JADE_materials_translucency: no transmission object');
     u.jadeExtinction.value.set(...triple(t.sigmaT, 'transmission.sigmaT'), finite(t.weight, 'transmission.weight'));
-    u.jadeDiffusion.value.set(...triple(t.sigmaTr, 'transmission.sigmaTr'),
-                              finite(t.diffusionWeight, 'transmission.diffusionWeight'));
-    u.jadeScatter.value.set(...triple(t.sigmaSReduced, 'transmission.sigmaSReduced'));
-    u.jadeSource.value.set(...triple(t.sourceDepth, 'transmission.sourceDepth'));
-    u.jadeExtrapolation.value.set(...triple(t.extrapolation, 'transmission.extrapolation'));
+    // The dipole of the diffused transmission from the medium's depths, per channel: z_r = z_s − z_b
+    // (= 1/σ_t'), α' = σ_s' z_r clamped to [0, 1] (0 where z_r = 0), z_b; the gather's reach past
+    // the light's path 3/σ_tr of the channel reaching furthest among those with α' > 0.
+    const sigmaTr = triple(t.sigmaTr, 'transmission.sigmaTr');
+    const sigmaS = triple(t.sigmaSReduced, 'transmission.sigmaSReduced');
+    const source = triple(t.sourceDepth, 'transmission.sourceDepth');
+    const boundary = triple(t.extrapolation, 'transmission.extrapolation');
+    const real = source.map((z, c) => Math.max(z - boundary[c], 0));
+    const reducedAlbedo = real.map((z, c) => (z > 0 ? Math.min(Math.max(sigmaS[c] * z, 0), 1) : 0));
+    let smallest = 0;
+    for (let c = 0; c < 3; ++c)
+      if (reducedAlbedo[c] > 0 && (smallest === 0 || sigmaTr[c] < smallest)) smallest = sigmaTr[c];
+    u.jadeDipoleAlbedo.value.set(...reducedAlbedo.map((a) => a / (4 * Math.PI)),
+                                 finite(t.diffusionWeight, 'transmission.diffusionWeight'));
+    u.jadeDipoleSigma.value.set(...sigmaTr, smallest > 0 ? 3 / smallest : 3e38);
+    u.jadeDipoleReal.value.set(...real);
+    u.jadeDipoleBoundary.value.set(...boundary);
     const lobe = finite(t.lobe, 'transmission.lobe');
     u.jadeShape.value.set(lobe, (lobe + 1) / (2 * Math.PI), finite(t.normalMix, 'transmission.normalMix'),
                           x.boundaryTransmittance ? 1 : 0);

@@ -13,10 +13,11 @@ export const commonChunk = /* glsl */ `
 uniform vec4 jadeAlbedoStrength;      // k_d (linear RGB), strength
 uniform vec4 jadeSpecular;            // F0, alpha = roughness^2, weight, spreadStrength
 uniform vec4 jadeExtinction;          // sigma_t, w_b
-uniform vec4 jadeDiffusion;           // sigma_tr, w_d
-uniform vec3 jadeScatter;             // sigma_s'
-uniform vec3 jadeSource;              // z_s
-uniform vec3 jadeExtrapolation;       // z_b
+// The diffused transmission's dipole (FrameData dipole_*, shading/frame.cpp material_constants):
+uniform vec4 jadeDipoleAlbedo;        // alpha'/(4 pi), w: diffusion weight (0: no gather)
+uniform vec4 jadeDipoleSigma;         // sigma_tr, w: the gather's reach past the light's path, 3/min sigma_tr
+uniform vec3 jadeDipoleReal;          // z_r = 1/sigma_t', the source's depth
+uniform vec3 jadeDipoleBoundary;      // z_b = 2AD, the extrapolated boundary's distance
 uniform vec4 jadeShape;               // lobe n, (n + 1)/(2 pi), normalMix, boundary transmittance (1/0)
 uniform vec4 jadeBounds;              // bounding sphere of the mesh (object space): centre, radius
 uniform float jadeTransmission;       // 1: the transmission term is drawn (the file has _THICKNESS)
@@ -182,6 +183,7 @@ varying vec3 vJadeScatteringNormal;
 varying vec3 vJadeVariance;
 varying float vJadeThickness;
 varying vec3 vJadeCentre;  // the bounding sphere's centre, view space (the same at every vertex)
+varying vec3 vJadeDiffused;  // mesh.vert's out_diffused: the transmitting lights' diffused exitance, summed
 #if NUM_DIR_LIGHTS > 0
 varying float vJadeLobeDir[NUM_DIR_LIGHTS];
 varying float vJadePathDir[NUM_DIR_LIGHTS];  // JADE_PATH_PER_VERTEX: transmitter_path per vertex
@@ -216,6 +218,106 @@ float jadeLobe(vec3 l, vec3 v)
     return mu > 0.0 ? jadeShape.y * pow(mu, jadeShape.x) : 0.0;
 }
 
+// mean_boundary_transmittance (shading.glsl): jadeBoundaryTransmittance averaged over the light's
+// projected area, 1 - F0 - (grazing - F0)/21.
+float jadeMeanBoundaryTransmittance()
+{
+    float f0 = jadeSpecular.x, grazing = max(1.0 - jadeSpecular.y, f0);
+    return 1.0 - f0 - (grazing - f0) * (1.0 / 21.0);
+}
+
+// plane_flux (transmission.glsl): the flux through the surface at x (normal n) of a point source
+// q = base + along * depth (per channel), per unit power, x's tangent plane an extrapolated
+// boundary (q's image 2 z_b beyond it), in a medium of extinction sigma.
+vec3 jadePlaneFlux(vec3 x, vec3 n, vec3 base, vec3 along, vec3 depth, vec3 zb, vec3 sigma)
+{
+    vec3 d0 = x - base;
+    float nd = dot(n, d0), na = dot(n, along), da = dot(d0, along), dd = dot(d0, d0);
+    vec3 r2 = max(vec3(dd) - 2.0 * depth * da + depth * depth, vec3(1e-30));
+    vec3 a = max(vec3(nd) - depth * na, vec3(0.0));
+    vec3 av = a + 2.0 * zb;
+    vec3 v2 = r2 - a * a + av * av;
+    vec3 r = sqrt(r2), v = sqrt(v2);
+    return a * (1.0 + sigma * r) * exp(-sigma * r) / (r2 * r) + av * (1.0 + sigma * v) * exp(-sigma * v) / (v2 * v);
+}
+
+// dipole_exit (transmission.glsl): what enters at s (the light travelling along \`along\`, unit)
+// and leaves through the surface at x, per unit flux: the dipole with both boundaries (the
+// source z_r inside and its negative image z_r + 2 z_b outside the entry, each with its image
+// beyond x's plane).
+vec3 jadeDipoleExit(vec3 x, vec3 n, vec3 s, vec3 along, vec3 sigma)
+{
+    vec3 zr = jadeDipoleReal, zb = jadeDipoleBoundary;
+    vec3 f = jadePlaneFlux(x, n, s, along, zr, zb, sigma) - jadePlaneFlux(x, n, s, along, -(zr + 2.0 * zb), zb, sigma);
+    return jadeDipoleAlbedo.rgb * max(f, vec3(0.0));
+}
+
+// light_entry (transmission.glsl): where the light of tile t that passes \`tap\` (a point in the
+// plane through x across the light; l towards the light, unit) first meets the object: layer 0's
+// depth (1 where the line meets nothing) and the point.
+float jadeLightEntry(sampler2D layers, JadeTile t, vec3 tap, vec3 l, out vec3 entry)
+{
+    float size = t.info.x;
+    vec3 p = jadeTileCoords(t, tap);
+    ivec2 texel = clamp(ivec2(p.xy * size), ivec2(0), ivec2(int(size) - 1));
+    bool inside = all(greaterThanEqual(p.xy, vec2(0.0))) && all(lessThan(p.xy, vec2(1.0)));
+    float first = inside ? texelFetch(layers, texel, 0).x : 1.0;
+    entry = tap + l * ((p.z - first) * t.depth.y);
+    return first;
+}
+
+// diffused_light (transmission.glsl): the light of one transmitter (towards it l, unit; its
+// irradiance e at \`position\`) that entered the object where the light first meets it (layer 0
+// of its tile) and diffused to \`position\` (normal n, unit): its exitance there. 24 taps on a
+// golden-angle spiral in the plane through the point across the light, at radii spaced evenly in
+// ln r from a twentieth of the light's path out to that path plus three diffusion lengths (within
+// half the tile's width); a first pass over the same taps finds the share of the disk the light
+// meets, the part's width W in the transverse buckling B^2 = 2(pi/(W + 2 z_b))^2 added to
+// sigma_tr^2. The spiral starts from the world's axes as Jade's (world space there, view space
+// here: world_x, world_y are the world's x and y in view space), so that the taps are Jade's.
+const int kJadeDiffusionTaps = 24;  // kDiffusionTaps
+
+// Tap i of diffused_light's two passes (the coverage, the gather) and its radius r: on the
+// golden-angle spiral across the light, radii evenly spaced in ln r from inner (span = ln(reach/inner)).
+vec3 jadeDiffusionTap(int i, vec3 position, float inner, float span, vec3 side, vec3 up, out float r)
+{
+    r = inner * exp(span * (float(i) + 0.5) / float(kJadeDiffusionTaps));
+    float angle = float(i) * 2.39996323;
+    return position + r * (cos(angle) * side + sin(angle) * up);
+}
+
+vec3 jadeDiffusedLight(sampler2D layers, JadeTile t, vec3 l, vec3 e, vec3 position, vec3 n)
+{
+    vec3 world_y = mat3(viewMatrix)[1], world_x = mat3(viewMatrix)[0];
+    vec3 side = normalize(abs(dot(l, world_y)) < 0.9 ? cross(l, world_y) : cross(l, world_x));
+    vec3 up = cross(l, side), s;
+    // The tile's width at this point: the gather stays inside it.
+    float width = t.depth.z * t.info.x * (t.info.z > 1.5 ? length(position - t.origin) : 1.0);
+    float path = jadeLightPath(layers, t, position);
+    float reach = max(min(path + jadeDipoleSigma.w, 0.5 * width), 1e-30);
+    float inner = max(0.05 * path, 1e-3 * reach), span = log(reach / inner);
+    float covered = 0.0, total = 0.0;
+    float r;
+    for (int i = 0; i < kJadeDiffusionTaps; ++i) {
+        float first = jadeLightEntry(layers, t, jadeDiffusionTap(i, position, inner, span, side, up, r), l, s);
+        covered += first < 1.0 ? r * r : 0.0;
+        total += r * r;
+    }
+    vec3 zb = jadeDipoleBoundary;
+    vec3 buckling = min(JADE_PI / max(vec3(2.0 * reach * sqrt(covered / total)) + 2.0 * zb, vec3(1e-30)), vec3(1e18));
+    vec3 sigma_tr = min(jadeDipoleSigma.rgb, vec3(1e18));
+    vec3 sigma = sqrt(sigma_tr * sigma_tr + 2.0 * buckling * buckling);
+    vec3 sum = vec3(0.0);
+    for (int i = 0; i < kJadeDiffusionTaps; ++i) {
+        float first = jadeLightEntry(layers, t, jadeDiffusionTap(i, position, inner, span, side, up, r), l, s);
+        vec3 d = position - s;
+        float out_share = max(dot(n, d), 0.0) * inversesqrt(max(dot(d, d), 1e-30));
+        sum += (first < 1.0 ? out_share * r * r : 0.0) * jadeDipoleExit(position, n, s, -l, sigma);
+    }
+    float entry = jadeShape.w > 0.0 ? jadeMeanBoundaryTransmittance() : 1.0;
+    return (2.0 * JADE_PI * span / float(kJadeDiffusionTaps) * entry * jadeDipoleAlbedo.w) * sum * e;
+}
+
 void main()
 {
     vec4 p = modelViewMatrix * vec4(position, 1.0);
@@ -226,20 +328,26 @@ void main()
     vJadeThickness = jadeThickness;
     vJadeCentre = (modelViewMatrix * vec4(jadeBounds.xyz, 1.0)).xyz;
     vec3 v = normalize(-p.xyz), l, e;
+    // mesh.vert's out_diffused: diffused_light summed over the transmitting lights with a tile.
+    vJadeDiffused = vec3(0.0);
+    bool diffused = jadeTransmission > 0.5 && jadeDipoleAlbedo.w > 0.0;
+    vec3 n = normalize(vJadeNormal);
+    JadeTile tile;
 #if NUM_DIR_LIGHTS > 0
 #pragma unroll_loop_start
     for (int i = 0; i < NUM_DIR_LIGHTS; i++) {
         jadeDirectional(directionalLights[i].direction, directionalLights[i].color, l, e);
         vJadeLobeDir[i] = jadeLobe(l, v);
+        tile = JadeTile(jadeTileMatrix[i], jadeTileInfo[i], jadeTileDepth[i], jadeTileOrigin[i]);
         // mesh.vert's out_path (PATH_PER_VERTEX): transmitter_path per vertex, interpolated.
 #if JADE_PATH_PER_VERTEX == 1
-        vJadePathDir[i] = jadeTileInfo[i].z > 0.5
-            ? max(jadeThickness, jadeLightPath(jadeTileLayers[i],
-                                               JadeTile(jadeTileMatrix[i], jadeTileInfo[i], jadeTileDepth[i], jadeTileOrigin[i]), p.xyz))
-            : jadeThickness;
+        vJadePathDir[i] = tile.info.z > 0.5 ? max(jadeThickness, jadeLightPath(jadeTileLayers[i], tile, p.xyz))
+                                            : jadeThickness;
 #else
         vJadePathDir[i] = 0.0;
 #endif
+        if (diffused && tile.info.z > 0.5 && jadeMayTransmit(directionalLights[i].direction, false, vJadeCentre))
+            vJadeDiffused += jadeDiffusedLight(jadeTileLayers[i], tile, l, e, p.xyz, n);
     }
 #pragma unroll_loop_end
 #endif
@@ -248,17 +356,17 @@ void main()
     for (int i = 0; i < NUM_POINT_LIGHTS; i++) {
         jadePoint(pointLights[i].position, pointLights[i].color, p.xyz, l, e);
         vJadeLobePoint[i] = jadeLobe(l, v);
+        tile = JadeTile(jadeTileMatrix[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX], jadeTileInfo[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX],
+                        jadeTileDepth[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX], jadeTileOrigin[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX]);
 #if JADE_PATH_PER_VERTEX == 1
-        vJadePathPoint[i] = jadeTileInfo[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX].z > 0.5
-            ? max(jadeThickness, jadeLightPath(jadeTileLayers[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX],
-                                               JadeTile(jadeTileMatrix[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX],
-                                                        jadeTileInfo[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX],
-                                                        jadeTileDepth[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX],
-                                                        jadeTileOrigin[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX]), p.xyz))
+        vJadePathPoint[i] = tile.info.z > 0.5
+            ? max(jadeThickness, jadeLightPath(jadeTileLayers[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX], tile, p.xyz))
             : jadeThickness;
 #else
         vJadePathPoint[i] = 0.0;
 #endif
+        if (diffused && tile.info.z > 0.5)
+            vJadeDiffused += jadeDiffusedLight(jadeTileLayers[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX], tile, l, e, p.xyz, n);
     }
 #pragma unroll_loop_end
 #endif
@@ -356,43 +464,20 @@ float jadeSpecularLobe(vec3 n, vec3 v, vec3 l, float n_dot_l)
     return d * vis * f * n_dot_l;
 }
 
-// one_minus_exp, slab_diffusion, transmission_attenuation (attenuation.glsl): the two parts of
-// the transmittance along a path t, computed here rather than read from Jade's table of them
-// (transmission_table.comp tabulates the same formula).
-vec3 jadeOneMinusExp(vec3 x) { return mix(1.0 - exp(-x), x * (1.0 - x * (0.5 - x / 6.0)), lessThan(x, vec3(1e-3))); }
+// forward_attenuation (attenuation.glsl): the forward part's attenuation along a path t,
+// computed here rather than read from Jade's table of it (transmission_table.comp tabulates the
+// same formula).
+vec3 jadeForwardAttenuation(float t) { return jadeExtinction.w * (t > 0.0 ? exp(-jadeExtinction.rgb * t) : vec3(1.0)); }
 
-vec3 jadeSlabDiffusion(float t, vec3 sigma_tr, vec3 source, vec3 boundary)
-{
-    vec3 width = vec3(t) + 2.0 * boundary;
-    vec3 w = 2.0 * sigma_tr * width;
-    vec3 ratio = mix(jadeOneMinusExp(2.0 * sigma_tr * source) / max(jadeOneMinusExp(w), vec3(1e-30)),
-                     source / max(width, vec3(1e-30)) * (1.0 - sigma_tr * (source - width)), lessThan(w, vec3(1e-6)));
-    vec3 decay = exp(min(sigma_tr * (source - boundary - vec3(t)), vec3(20.0)));
-    vec3 edge = 0.5 * (1.0 + exp(-2.0 * sigma_tr * boundary));
-    return min(ratio * decay * edge, vec3(1.0));
-}
-
-vec3 jadeBallistic(float t) { return jadeExtinction.w * (t > 0.0 ? exp(-jadeExtinction.rgb * t) : vec3(1.0)); }
-
-vec3 jadeDiffused(float t)
-{
-    return jadeDiffusion.w * (t > 0.0 ? jadeOneMinusExp(jadeScatter * t) *
-                                            jadeSlabDiffusion(t, jadeDiffusion.rgb, jadeSource, jadeExtrapolation)
-                                      : vec3(0.0));
-}
-
-// transmitted_light (transmission.glsl): t is the path along the light (transmitter_path: the
-// longer of the thickness and jadeLightPath for the light with layers, else the thickness).
-const float kSlabPerConeThickness = 0.72134752;  // 1 / ln 4
-vec3 jadeTransmittedLight(vec3 l, vec3 e, vec3 n, float lobe, float t, float thickness)
+// transmitted_light (transmission.glsl): the forward part; t is the path along the light
+// (transmitter_path: the longer of the thickness and jadeLightPath for the light with layers,
+// else the thickness). The diffused part is per vertex (jadeDiffusedLight, vJadeDiffused).
+vec3 jadeTransmittedLight(vec3 l, vec3 e, vec3 n, float lobe, float t)
 {
     float n_dot_l = dot(n, l);
     float entry = jadeShape.w > 0.0 ? jadeBoundaryTransmittance(-n_dot_l) : 1.0;
-    float behind = max(-n_dot_l, 0.0);
-    float slab = min(max(kSlabPerConeThickness * thickness, t * behind), t);
-    float follow = (1.0 - jadeShape.z) + jadeShape.z * behind;  // transmitter_follow
-    vec3 a = follow * lobe * jadeBallistic(t) + (behind / JADE_PI) * jadeDiffused(slab);
-    return entry * a * e;
+    float follow = (1.0 - jadeShape.z) + jadeShape.z * max(-n_dot_l, 0.0);  // transmitter_follow
+    return entry * follow * lobe * jadeForwardAttenuation(t) * e;
 }
 
 // main (mesh.frag), MODE = kTm: one light's diffuse and specular light, and its transmission.
@@ -408,7 +493,7 @@ void jadeAddLight(vec3 l, vec3 e, bool transmits, vec3 visibility, float path, f
     color += diffuse;
     if (c > 0.0 && jadeSpecular.z > 0.0) color += jadeSpecular.z * jadeSpecularLobe(n, v, l, c) * e;
     if (transmits && jadeTransmission > 0.5)
-        color += exit_transmittance * jadeTransmittedLight(l, unshadowed, n, lobe, path, vJadeThickness);
+        color += exit_transmittance * jadeTransmittedLight(l, unshadowed, n, lobe, path);
 }
 
 void main()
@@ -465,6 +550,8 @@ void main()
     }
 #pragma unroll_loop_end
 #endif
+    // The diffused light leaves as a Lambertian emitter: its exitance / pi (mesh.frag).
+    if (jadeTransmission > 0.5) color += exit_transmittance * (1.0 / JADE_PI) * vJadeDiffused;
     gl_FragColor = vec4(color, 1.0);
 #include <tonemapping_fragment>
 #include <colorspace_fragment>
