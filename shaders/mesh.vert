@@ -48,8 +48,13 @@ void main()
     for (uint k = 0; k < kMaxTransmitters; ++k) out_lobe[k] = k < TRANSMISSION ? transmitter_lobe(k, in_position, v) : 0.0;
     for (uint k = 0; k < kMaxTransmitters; ++k)
         out_path[k] = PATH_PER_VERTEX == 1u && k < TRANSMISSION ? transmitter_path(k, in_position, in_thickness) : 0.0;
+    // The gather's spiral turned per vertex (the golden-ratio sequence of its index: stable while
+    // the mesh deforms), so that where a tap crosses an edge of the light's view it does so at a
+    // different place for each vertex: fine grain, smoothed by the interpolation, instead of
+    // patches where every vertex's tap crosses the same edge together.
+    float turn = 6.28318531 * fract(float(gl_VertexIndex) * 0.61803399);
     out_diffused = vec3(0.0);
     if ((MODE == kTm || MODE == kInputs + 6u) && data.dipole_albedo.w > 0.0)
-        for (uint k = 0; k < TRANSMISSION; ++k) out_diffused += diffused_light(k, in_position, in_normal);
+        for (uint k = 0; k < TRANSMISSION; ++k) out_diffused += diffused_light(k, in_position, in_normal, turn);
     gl_Position = frame.view_proj * vec4(in_position, 1.0);
 }

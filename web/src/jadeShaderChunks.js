@@ -271,23 +271,26 @@ float jadeLightEntry(sampler2D layers, JadeTile t, vec3 tap, vec3 l, out vec3 en
 // of its tile) and diffused to \`position\` (normal n, unit): its exitance there. 24 taps on a
 // golden-angle spiral in the plane through the point across the light, at radii spaced evenly in
 // ln r from a twentieth of the light's path out to that path plus three diffusion lengths (within
-// half the tile's width); a first pass over the same taps finds the share of the disk the light
-// meets, the part's width W in the transverse buckling B^2 = 2(pi/(W + 2 z_b))^2 added to
+// half the tile's width), faded out from n.l = 0 to kFacingCut; a first pass over the same taps finds the
+// share of the disk the light meets, the part's width W in the transverse buckling B^2 = 2(pi/(W + 2 z_b))^2 added to
 // sigma_tr^2. The spiral starts from the world's axes as Jade's (world space there, view space
 // here: world_x, world_y are the world's x and y in view space), so that the taps are Jade's.
 const int kJadeDiffusionTaps = 24;  // kDiffusionTaps
+const float kJadeFacingCut = 0.2;   // kFacingCut
 
-// Tap i of diffused_light's two passes (the coverage, the gather) and its radius r: on the
-// golden-angle spiral across the light, radii evenly spaced in ln r from inner (span = ln(reach/inner)).
-vec3 jadeDiffusionTap(int i, vec3 position, float inner, float span, vec3 side, vec3 up, out float r)
+// gather_tap (transmission.glsl): tap i of \`count\` and its radius r, on the golden-angle spiral
+// across the light, radii evenly spaced in ln r from inner (span = ln(reach/inner)).
+vec3 jadeDiffusionTap(int i, int count, vec3 position, float inner, float span, vec3 side, vec3 up, float turn, out float r)
 {
-    r = inner * exp(span * (float(i) + 0.5) / float(kJadeDiffusionTaps));
-    float angle = float(i) * 2.39996323;
+    r = inner * exp(span * (float(i) + 0.5) / float(count));
+    float angle = float(i) * 2.39996323 + turn;
     return position + r * (cos(angle) * side + sin(angle) * up);
 }
 
-vec3 jadeDiffusedLight(sampler2D layers, JadeTile t, vec3 l, vec3 e, vec3 position, vec3 n)
+vec3 jadeDiffusedLight(sampler2D layers, JadeTile t, vec3 l, vec3 e, vec3 position, vec3 n, float turn)
 {
+    float facing = clamp(1.0 - dot(n, l) / kJadeFacingCut, 0.0, 1.0);
+    if (facing == 0.0) return vec3(0.0);
     vec3 world_y = mat3(viewMatrix)[1], world_x = mat3(viewMatrix)[0];
     vec3 side = normalize(abs(dot(l, world_y)) < 0.9 ? cross(l, world_y) : cross(l, world_x));
     vec3 up = cross(l, side), s;
@@ -299,7 +302,7 @@ vec3 jadeDiffusedLight(sampler2D layers, JadeTile t, vec3 l, vec3 e, vec3 positi
     float covered = 0.0, total = 0.0;
     float r;
     for (int i = 0; i < kJadeDiffusionTaps; ++i) {
-        float first = jadeLightEntry(layers, t, jadeDiffusionTap(i, position, inner, span, side, up, r), l, s);
+        float first = jadeLightEntry(layers, t, jadeDiffusionTap(i, kJadeDiffusionTaps, position, inner, span, side, up, turn, r), l, s);
         covered += first < 1.0 ? r * r : 0.0;
         total += r * r;
     }
@@ -309,13 +312,13 @@ vec3 jadeDiffusedLight(sampler2D layers, JadeTile t, vec3 l, vec3 e, vec3 positi
     vec3 sigma = sqrt(sigma_tr * sigma_tr + 2.0 * buckling * buckling);
     vec3 sum = vec3(0.0);
     for (int i = 0; i < kJadeDiffusionTaps; ++i) {
-        float first = jadeLightEntry(layers, t, jadeDiffusionTap(i, position, inner, span, side, up, r), l, s);
+        float first = jadeLightEntry(layers, t, jadeDiffusionTap(i, kJadeDiffusionTaps, position, inner, span, side, up, turn, r), l, s);
         vec3 d = position - s;
         float out_share = max(dot(n, d), 0.0) * inversesqrt(max(dot(d, d), 1e-30));
         sum += (first < 1.0 ? out_share * r * r : 0.0) * jadeDipoleExit(position, n, s, -l, sigma);
     }
     float entry = jadeShape.w > 0.0 ? jadeMeanBoundaryTransmittance() : 1.0;
-    return (2.0 * JADE_PI * span / float(kJadeDiffusionTaps) * entry * jadeDipoleAlbedo.w) * sum * e;
+    return (2.0 * JADE_PI * span / float(kJadeDiffusionTaps) * entry * jadeDipoleAlbedo.w * facing) * sum * e;
 }
 
 void main()
@@ -330,6 +333,8 @@ void main()
     vec3 v = normalize(-p.xyz), l, e;
     // mesh.vert's out_diffused: diffused_light summed over the transmitting lights with a tile.
     vJadeDiffused = vec3(0.0);
+    // mesh.vert's turn of the gather's spiral: the golden-ratio sequence of the vertex's index.
+    float turn = 6.28318531 * fract(float(gl_VertexID) * 0.61803399);
     bool diffused = jadeTransmission > 0.5 && jadeDipoleAlbedo.w > 0.0;
     vec3 n = normalize(vJadeNormal);
     JadeTile tile;
@@ -347,7 +352,7 @@ void main()
         vJadePathDir[i] = 0.0;
 #endif
         if (diffused && tile.info.z > 0.5 && jadeMayTransmit(directionalLights[i].direction, false, vJadeCentre))
-            vJadeDiffused += jadeDiffusedLight(jadeTileLayers[i], tile, l, e, p.xyz, n);
+            vJadeDiffused += jadeDiffusedLight(jadeTileLayers[i], tile, l, e, p.xyz, n, turn);
     }
 #pragma unroll_loop_end
 #endif
@@ -366,7 +371,7 @@ void main()
         vJadePathPoint[i] = 0.0;
 #endif
         if (diffused && tile.info.z > 0.5)
-            vJadeDiffused += jadeDiffusedLight(jadeTileLayers[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX], tile, l, e, p.xyz, n);
+            vJadeDiffused += jadeDiffusedLight(jadeTileLayers[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX], tile, l, e, p.xyz, n, turn);
     }
 #pragma unroll_loop_end
 #endif

@@ -82,40 +82,37 @@ struct Medium {
 /// MediumFit::albedo_scale) and R_d are jade/dev/material.hpp's.
 Medium medium_from_appearance(glm::dvec3 albedo, glm::dvec3 mean_free_path, double ior, double roughness);
 
-/// Light that crosses the object from a light behind it (thin parts glowing), evaluated per
-/// fragment from the path length t inside the object (mesh units): the longer of the per-vertex
-/// thickness t̄ (jade/bake.hpp ThicknessSettings) and the light's path inside the medium from
-/// where it enters the object (the first four surfaces along each directional light behind the
-/// object, so parts the body shadows stay dark and the air between two parts does not count):
-///   L_t = [weight · e^{−σ_t·t} · lobe(μ) · ((1 − normal_mix) + normal_mix·max(−N·L, 0))
-///          + diffusion_weight · (1 − e^{−σ_s'·h}) · T_d(h) · max(−N·L, 0) / π] · E
-///   lobe(μ) = (n + 1)/(2π) · max(μ, 0)^n,  μ = V·(−L),  n = `lobe`
-///   h = min(t, max(t̄/ln 4, t·max(−N·L, 0)))
-/// The first part is the forward (low-order) transmittance of σ_t = k·(σ_s + σ_a), k =
-/// MediumFit::forward_extinction (jade/dev/material.hpp): grey when σ_s + σ_a is grey, as measured, so thin parts of a
-/// grey-σ_t medium glow white-grey whatever its colour; it leaves in a forward lobe (the rough
-/// boundary and forward scattering spread it), normalised over the hemisphere about −L. The
-/// second is light that scattered and then diffused through the part: T_d is the diffusion
-/// approximation's transmittance of a slab (slab_diffusion_transmittance, jade/dev/material.hpp), falling as 1/h in a
-/// medium without absorption and as e^{−σ_tr·h} in a thick absorbing one, σ_tr =
-/// √(3σ_a(σ_a + σ_s')); it is coloured (red crosses skin furthest). Diffused light has forgotten
-/// its direction, so it leaves as a Lambertian emitter (1/π); it entered the far side with the
-/// irradiance E·max(−N·L, 0) (a surface facing the light gets none: that light is the diffuse
-/// term's), and what it crosses is the slab between where it entered and here: h, the path's
-/// depth along the normal (exact for a flat slab lit at any angle, t̄/ln 4 being the slab that
-/// the cone's mean thickness stands for).
-/// weight = diffusion_weight = 0 turns the term off. Material::from_medium fills every field:
-/// sigma_tr, source_depth and extrapolation are outputs derived from the medium (set them
-/// only together, as from_medium does); weight, diffusion_weight, lobe and normal_mix are the
-/// look's knobs.
+/// Light that crosses the object from a light behind it (thin parts glowing, a flank lighting the
+/// face beside it), in two parts (shaders/include/transmission.glsl; docs/fidelity.md):
+/// - forward, per fragment, from the path length t inside the object (mesh units): the longer of
+///   the per-vertex thickness t̄ (jade/bake.hpp ThicknessSettings) and the light's path inside the
+///   medium from where it enters (the first four surfaces along each light behind the object, so
+///   parts the body shadows stay dark and the air between two parts does not count):
+///     L_f = weight · e^{−σ_t·t} · lobe(μ) · ((1 − normal_mix) + normal_mix·max(−N·L, 0)) · E
+///     lobe(μ) = (n + 1)/(2π) · max(μ, 0)^n,  μ = V·(−L),  n = `lobe`
+///   the low-order light of σ_t = k·(σ_s + σ_a), k = MediumFit::forward_extinction: grey when
+///   σ_s + σ_a is grey, so thin parts of a grey-σ_t medium glow white-grey whatever its colour;
+/// - diffused, per vertex: the light that entered wherever the light first meets the object (its
+///   depth tile's first layer) and diffused to this point, a gather of the diffusion dipole of
+///   Jensen et al. 2001 with both boundaries (the entry's and this surface's), the part's width
+///   across the light in a transverse buckling, of which the share max(n·(x − s), 0)/|x − s|
+///   leaves here; it leaves as a Lambertian emitter (1/π), coloured (red crosses skin furthest):
+///     L_d = diffusion_weight · Σ_taps [share · dipole(x, s)] · T̄_in · E / π
+///   Its inputs are σ_s' (sigma_s_reduced), σ_tr, z_r = source_depth − extrapolation = 1/σ_t'
+///   and z_b = extrapolation.
+/// Both cross the boundary (Material::boundary_transmittance). weight = diffusion_weight = 0 turns
+/// the term off. Material::from_medium fills every field: sigma_tr, source_depth and
+/// extrapolation are outputs derived from the medium (set them only together, as from_medium
+/// does); weight, lobe and normal_mix are fitted knobs, diffusion_weight is 1 (derived: the
+/// dipole's own flux).
 struct Transmission {
     glm::vec3 sigma_t{0.0f};          ///< extinction σ_s + σ_a, 1/mesh unit
     glm::vec3 sigma_s_reduced{0.0f};  ///< σ_s' = σ_s(1 − g), 1/mesh unit
     glm::vec3 sigma_tr{0.0f};         ///< output: √(3σ_a(σ_a + σ_s')), 1/mesh unit
-    glm::vec3 source_depth{0.0f};     ///< output: z_s = z_0 + z_b of slab_diffusion_transmittance, mesh units
-    glm::vec3 extrapolation{0.0f};    ///< output: z_b of slab_diffusion_transmittance, mesh units
+    glm::vec3 source_depth{0.0f};     ///< output: z_s = z_r + z_b, z_r = 1/σ_t' the dipole's source depth, mesh units
+    glm::vec3 extrapolation{0.0f};    ///< output: z_b = 2A/(3σ_t'), the extrapolated boundary's distance, mesh units
     float weight = 0.0f;              ///< forward part (the boundary's crossings: Material::boundary_transmittance)
-    float diffusion_weight = 0.0f;    ///< diffused part (the same)
+    float diffusion_weight = 0.0f;    ///< diffused part (the same; from_medium: 1)
     float lobe = 2.0f;                ///< exponent n of the forward lobe, ≥ 0
     float normal_mix = 0.3f;          ///< how much the term follows max(−N·L, 0), [0, 1]
     bool enabled() const { return weight > 0.0f || diffusion_weight > 0.0f; }
@@ -155,10 +152,11 @@ struct Material {
     ///   A = diffuse_reflectance(α', η), s(A) = 1.85 − A + 7|A − 0.8|³ (Christensen & Burley
     ///   2015, searchlight configuration; ℓ is clamped to [1e-12, 1e12] mesh units);
     /// - strength = fit.strength, spread_strength = fit.spread_strength;
-    /// - transmission: σ_t = σ_s + σ_a, σ_s', σ_tr; the slab's z_0 = 1/σ_t' and z_b = 2A/(3σ_t')
-    ///   (A as in diffuse_reflectance; both 0 where σ_s' = 0); weight = fit.transmission_weight,
-    ///   diffusion_weight = fit.diffusion_weight, lobe and normal_mix from the fit (the boundary's
-    ///   two crossings are boundary_transmittance's);
+    /// - transmission: σ_t = fit.forward_extinction · (σ_s + σ_a) (fitted), σ_s', σ_tr (derived);
+    ///   the dipole's z_r = 1/σ_t' and z_b = 2A/(3σ_t') (derived; A as in diffuse_reflectance;
+    ///   both 0 where σ_s' = 0); weight = fit.transmission_weight, lobe and normal_mix (fitted on
+    ///   the training scenes' back light), diffusion_weight = fit.diffusion_weight (derived: 1);
+    ///   the boundary's two crossings are boundary_transmittance's;
     /// - ior and roughness of the specular lobe from the boundary, and boundary_transmittance on.
     /// Limits (all finite): σ_s = 0 gives k_d = 0 and only transmission; σ_a = 0 gives R_d = 1;
     /// σ_s = σ_a = 0 is a clear medium (k_d = 0, transmittance 1). Throws jade::Error naming the

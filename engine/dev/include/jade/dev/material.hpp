@@ -46,7 +46,7 @@ struct MediumFit {
     /// Material::spread_strength, rad² per unit t_m · normal spread: fitted (front and side light,
     /// 4.5 against 3, 6 and 12); the spread ≈ ⟨θ²⟩/2 of the normals within the profile's reach.
     double spread_strength = 4.5;
-    double transmission_weight = 0.4;  ///< Transmission::weight: fitted (stage 2, back light)
+    double transmission_weight = 0.35;  ///< Transmission::weight: fitted (stage 2, back light, w_d = 1)
     /// Transmission::diffusion_weight: derived, 1: the diffused part is the diffusion dipole's own
     /// flux, with the part's sides in its transverse buckling (transmission.glsl). A free weight
     /// fitted on the training scenes' back light would be 1.34; the held-out scenes prefer 1
