@@ -69,9 +69,9 @@ std::pair<uint32_t, std::string> fetches(ShadingMode mode, const LightLoad& l, b
         if (per_light) plus(std::to_string(per_light) + "/light");
         const uint32_t per_transmitter = path == dev::LightPathSampling::PerVertex ? 2 : 6;
         n += per_transmitter * l.transmitting;
-        // The diffused light's gather is per vertex (8 + 24 tile fetches and one more for its
-        // path), not in the per-pixel count.
-        if (l.transmitting) plus(std::to_string(per_transmitter) + "/transmitting light, 33/vertex");
+        // The diffused light's gather is per vertex (24 tile fetches and 4 for its path), not in the
+        // per-pixel count.
+        if (l.transmitting) plus(std::to_string(per_transmitter) + "/transmitting light, 28/vertex");
     }
     if (mode == ShadingMode::Separable || mode == ShadingMode::Burley) {
         n += l.shadowed;

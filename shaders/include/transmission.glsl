@@ -188,8 +188,8 @@ float light_entry(uint t, vec3 tap, vec3 l, out vec3 entry)
 // A part is not an endless slab: light that diffuses sideways leaves through its sides. The
 // diffusion equation's transverse buckling B² = 2(π/(W + 2z_b))² adds to σ_tr², W the part's
 // width across the light, the disk whose area is the share of the gather's disk that the light
-// meets (a first pass over the same taps; 8 of them put the ear's red at 0.72 of the path
-// tracer's instead of 0.84).
+// meets (found in the pass that reads the taps; 8 taps for it put the ear's red at 0.72 of the
+// path tracer's instead of 0.84).
 vec3 diffused_light(uint k, vec3 position, vec3 n, float turn)
 {
     uint tile = uint(data.transmitters[k].color.w);
@@ -210,10 +210,14 @@ vec3 diffused_light(uint k, vec3 position, vec3 n, float turn)
     float path = light_path(tile, position);
     float reach = max(min(path + data.dipole_sigma.w, 0.5 * width), 1e-30);
     float inner = max(0.05 * path, 1e-3 * reach), span = log(reach / inner);
+    // One pass over the taps: where each enters (xyz) and its ring's weight r² (w; 0 where the
+    // light meets nothing), kept for the gather once the width is known.
+    vec4 entries[kDiffusionTaps];
     float covered = 0.0, total = 0.0, r;
     for (uint i = 0; i < kDiffusionTaps; ++i) {
         float first = light_entry(t, gather_tap(i, kDiffusionTaps, position, inner, span, side, up, turn, r), l, s);
-        covered += first < 1.0 ? r * r : 0.0;
+        entries[i] = vec4(s, first < 1.0 ? r * r : 0.0);
+        covered += entries[i].w;
         total += r * r;
     }
     vec3 zb = data.dipole_boundary.rgb;
@@ -222,10 +226,9 @@ vec3 diffused_light(uint k, vec3 position, vec3 n, float turn)
     vec3 sigma = sqrt(sigma_tr * sigma_tr + 2.0 * buckling * buckling);
     vec3 sum = vec3(0.0);
     for (uint i = 0; i < kDiffusionTaps; ++i) {
-        float first = light_entry(t, gather_tap(i, kDiffusionTaps, position, inner, span, side, up, turn, r), l, s);
-        vec3 d = position - s;
+        vec3 d = position - entries[i].xyz;
         float out_share = max(dot(n, d), 0.0) * inversesqrt(max(dot(d, d), 1e-30));
-        sum += (first < 1.0 ? out_share * r * r : 0.0) * dipole_exit(position, n, s, -l, sigma);
+        sum += (out_share * entries[i].w) * dipole_exit(position, n, entries[i].xyz, -l, sigma);
     }
     float entry = boundary_crossed() ? mean_boundary_transmittance() : 1.0;
     return (2.0 * JADE_PI * span / float(kDiffusionTaps) * entry * data.dipole_albedo.w * facing) * sum * e;

@@ -49,8 +49,8 @@ struct MediumFit {
     double transmission_weight = 0.35;  ///< Transmission::weight: fitted (stage 2, back light, w_d = 1)
     /// Transmission::diffusion_weight: derived, 1: the diffused part is the diffusion dipole's own
     /// flux, with the part's sides in its transverse buckling (transmission.glsl). A free weight
-    /// fitted on the training scenes' back light would be 1.34; the held-out scenes prefer 1
-    /// (tools/groundtruth/STUDIES.md, "The diffused light as a gather").
+    /// fitted on the training scenes' back light would be 0.78 (tools/groundtruth/STUDIES.md,
+    /// "The diffused light as a gather").
     double diffusion_weight = 1.0;
     double lobe = 16.0;        ///< Transmission::lobe: fitted (stage 2)
     double normal_mix = 0.25;  ///< Transmission::normal_mix: fitted (stage 2)
