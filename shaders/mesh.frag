@@ -74,7 +74,7 @@ vec3 false_color(float x)
 // Transmitter k's path t at this fragment: interpolated from the vertices, or its own.
 float path_at(uint k)
 {
-    return PATH_PER_VERTEX == 1u ? in_path[k] : transmitter_path(k, in_position, in_thickness);
+    return PATH_PER_VERTEX == 1u ? in_path[k] : transmitter_path(in_thickness, transmitter_light_path(k, in_position));
 }
 
 // The inputs pass: what the shading of this fragment reads, as rasterised.

@@ -46,15 +46,18 @@ void main()
     out_variance = MODE == kTm ? variance(in_tm, in_normal_spread) : vec3(0.0);
     vec3 v = normalize(frame.eye - in_position);
     for (uint k = 0; k < kMaxTransmitters; ++k) out_lobe[k] = k < TRANSMISSION ? transmitter_lobe(k, in_position, v) : 0.0;
-    for (uint k = 0; k < kMaxTransmitters; ++k)
-        out_path[k] = PATH_PER_VERTEX == 1u && k < TRANSMISSION ? transmitter_path(k, in_position, in_thickness) : 0.0;
     // The gather's spiral turned per vertex (the golden-ratio sequence of its index: stable while
     // the mesh deforms), so that where a tap crosses an edge of the light's view it does so at a
     // different place for each vertex: fine grain, smoothed by the interpolation, instead of
     // patches where every vertex's tap crosses the same edge together.
     float turn = 6.28318531 * fract(float(gl_VertexIndex) * 0.61803399);
+    bool gather = (MODE == kTm || MODE == kInputs + 6u) && data.dipole_albedo.w > 0.0;
     out_diffused = vec3(0.0);
-    if ((MODE == kTm || MODE == kInputs + 6u) && data.dipole_albedo.w > 0.0)
-        for (uint k = 0; k < TRANSMISSION; ++k) out_diffused += diffused_light(k, in_position, in_normal, turn);
+    // Each transmitting light's path to this vertex, read once for its path t and its gather.
+    for (uint k = 0; k < kMaxTransmitters; ++k) {
+        float along = k < TRANSMISSION && (PATH_PER_VERTEX == 1u || gather) ? transmitter_light_path(k, in_position) : 0.0;
+        out_path[k] = PATH_PER_VERTEX == 1u && k < TRANSMISSION ? transmitter_path(in_thickness, along) : 0.0;
+        if (gather && k < TRANSMISSION) out_diffused += diffused_light(k, in_position, in_normal, turn, along);
+    }
     gl_Position = frame.view_proj * vec4(in_position, 1.0);
 }

@@ -57,13 +57,16 @@ float light_path(uint tile, vec3 position)
     return mix(mix(t00, t10, f.x), mix(t01, t11, f.x), f.y) * data.light_tiles[t].depth.y;
 }
 
-// Transmitter k's path t at `position`: the longer of the local thickness and the path from
-// where the light enters (a thin part that the body shadows from the light is dark).
-float transmitter_path(uint k, vec3 position, float thickness)
+// Transmitter k's light path to `position` (light_path), 0 for a light without a depth tile.
+float transmitter_light_path(uint k, vec3 position)
 {
     uint tile = uint(data.transmitters[k].color.w);
-    return tile != 0u ? max(thickness, light_path(tile, position)) : thickness;
+    return tile != 0u ? light_path(tile, position) : 0.0;
 }
+
+// Transmitter k's path t: the longer of the local thickness and `along`, the path from where the
+// light enters (transmitter_light_path; a thin part that the body shadows from the light is dark).
+float transmitter_path(float thickness, float along) { return max(thickness, along); }
 
 // Towards transmitter k from `position`, unit, and its irradiance there (e: the colour, times
 // the inverse-square falloff of a point light).
@@ -190,7 +193,8 @@ float light_entry(uint t, vec3 tap, vec3 l, out vec3 entry)
 // width across the light, the disk whose area is the share of the gather's disk that the light
 // meets (found in the pass that reads the taps; 8 taps for it put the ear's red at 0.72 of the
 // path tracer's instead of 0.84).
-vec3 diffused_light(uint k, vec3 position, vec3 n, float turn)
+// turn: the spiral's turn for this vertex; path: the light's path to it (transmitter_light_path).
+vec3 diffused_light(uint k, vec3 position, vec3 n, float turn, float path)
 {
     uint tile = uint(data.transmitters[k].color.w);
     if (tile == 0u) return vec3(0.0);
@@ -207,7 +211,6 @@ vec3 diffused_light(uint k, vec3 position, vec3 n, float turn)
     // The tile's width at this point (mesh units): the gather stays inside it.
     LightTile tl = data.light_tiles[t];
     float width = tl.depth.z * data.light_depth_map.x * (tl.origin.w > 0.5 ? length(position - tl.origin.xyz) : 1.0);
-    float path = light_path(tile, position);
     float reach = max(min(path + data.dipole_sigma.w, 0.5 * width), 1e-30);
     float inner = max(0.05 * path, 1e-3 * reach), span = log(reach / inner);
     // One pass over the taps: where each enters (xyz) and its ring's weight r² (w; 0 where the

@@ -73,7 +73,7 @@ vec3 jadeDiffusionTap(int i, int count, vec3 position, float inner, float span, 
     return position + r * (cos(angle) * side + sin(angle) * up);
 }
 
-vec3 jadeDiffusedLight(sampler2D layers, JadeTile t, vec3 l, vec3 e, vec3 position, vec3 n, float turn)
+vec3 jadeDiffusedLight(sampler2D layers, JadeTile t, vec3 l, vec3 e, vec3 position, vec3 n, float turn, float path)
 {
     float facing = clamp(1.0 - dot(n, l) / kJadeFacingCut, 0.0, 1.0);
     if (facing == 0.0) return vec3(0.0);
@@ -82,7 +82,6 @@ vec3 jadeDiffusedLight(sampler2D layers, JadeTile t, vec3 l, vec3 e, vec3 positi
     vec3 up = cross(l, side), s;
     // The tile's width at this point: the gather stays inside it.
     float width = t.depth.z * t.info.x * (t.info.z > 1.5 ? length(position - t.origin) : 1.0);
-    float path = jadeLightPath(layers, t, position);
     float reach = max(min(path + jadeDipoleSigma.w, 0.5 * width), 1e-30);
     float inner = max(0.05 * path, 1e-3 * reach), span = log(reach / inner);
     float covered = 0.0, total = 0.0;

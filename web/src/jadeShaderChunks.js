@@ -237,6 +237,7 @@ void main()
     bool diffused = jadeTransmission > 0.5 && jadeDipoleAlbedo.w > 0.0;
     vec3 n = normalize(vJadeNormal);
     JadeTile tile;
+    float along;
 #if NUM_DIR_LIGHTS > 0
 #pragma unroll_loop_start
     for (int i = 0; i < NUM_DIR_LIGHTS; i++) {
@@ -244,14 +245,15 @@ void main()
         vJadeLobeDir[i] = jadeLobe(l, v);
         tile = JadeTile(jadeTileMatrix[i], jadeTileInfo[i], jadeTileDepth[i], jadeTileOrigin[i]);
         // mesh.vert's out_path (PATH_PER_VERTEX): transmitter_path per vertex, interpolated.
+        // The light's path to this vertex, read once for its path t and its gather.
+        along = tile.info.z > 0.5 ? jadeLightPath(jadeTileLayers[i], tile, p.xyz) : 0.0;
 #if JADE_PATH_PER_VERTEX == 1
-        vJadePathDir[i] = tile.info.z > 0.5 ? max(jadeThickness, jadeLightPath(jadeTileLayers[i], tile, p.xyz))
-                                            : jadeThickness;
+        vJadePathDir[i] = max(jadeThickness, along);
 #else
         vJadePathDir[i] = 0.0;
 #endif
         if (diffused && tile.info.z > 0.5 && jadeMayTransmit(directionalLights[i].direction, false, vJadeCentre))
-            vJadeDiffused += jadeDiffusedLight(jadeTileLayers[i], tile, l, e, p.xyz, n, turn);
+            vJadeDiffused += jadeDiffusedLight(jadeTileLayers[i], tile, l, e, p.xyz, n, turn, along);
     }
 #pragma unroll_loop_end
 #endif
@@ -262,15 +264,14 @@ void main()
         vJadeLobePoint[i] = jadeLobe(l, v);
         tile = JadeTile(jadeTileMatrix[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX], jadeTileInfo[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX],
                         jadeTileDepth[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX], jadeTileOrigin[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX]);
+        along = tile.info.z > 0.5 ? jadeLightPath(jadeTileLayers[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX], tile, p.xyz) : 0.0;
 #if JADE_PATH_PER_VERTEX == 1
-        vJadePathPoint[i] = tile.info.z > 0.5
-            ? max(jadeThickness, jadeLightPath(jadeTileLayers[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX], tile, p.xyz))
-            : jadeThickness;
+        vJadePathPoint[i] = max(jadeThickness, along);
 #else
         vJadePathPoint[i] = 0.0;
 #endif
         if (diffused && tile.info.z > 0.5)
-            vJadeDiffused += jadeDiffusedLight(jadeTileLayers[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX], tile, l, e, p.xyz, n, turn);
+            vJadeDiffused += jadeDiffusedLight(jadeTileLayers[NUM_DIR_LIGHTS + UNROLLED_LOOP_INDEX], tile, l, e, p.xyz, n, turn, along);
     }
 #pragma unroll_loop_end
 #endif
