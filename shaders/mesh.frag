@@ -44,7 +44,11 @@ vec3 diffuse_response(float c, Translucency tr, float kappa_scaled)
         return textureLod(curvature_lut, vec2(c * m.x + m.y, v * m.z + m.w), 0.0).rgb;
     }
     if (MODE == kTm) {
-        vec3 f = translucency(c, tr);
+        // With the spread model the blur stops at the terminator and the light falls off past it
+        // over the profile's own angle (terminator_falloff); the poster's model blurs all round.
+        bool falloff = c < 0.0 && data.specular.w > 0.0;
+        vec3 f = translucency(falloff ? 0.0 : c, tr);
+        if (falloff) f *= terminator_falloff(c, CHANNELS == 1 ? in_normal_spread.rrr : in_normal_spread);
         return CHANNELS == 1 ? f.rrr : f;
     }
     return vec3(max(c, 0.0));

@@ -71,6 +71,18 @@ glm::dvec3 attenuation(const Transmission& tr, double t, double lobe, double fol
     return out;
 }
 
+// F(cos θ, t) of the t_m mode (docs/shading.md): past the terminator, with the spread model, F at
+// the terminator times the clamped cosine's tail under a Gaussian of variance `spread`,
+// √(2π)·[φ(z) − z·Φ(−z)] with Φ from std::erfc (the shader approximates it).
+double diffuse_response(double c, double t, double spread, const Material& m)
+{
+    c = std::clamp(c, -1.0, 1.0);
+    if (c >= 0.0 || m.spread_strength <= 0.0f) return lut_reference(c, t);
+    const double z = std::min(std::asin(-c) / std::sqrt(std::max(spread, 1e-8)), 12.0);
+    const double tail = 0.5 * std::erfc(z / std::sqrt(2.0));
+    return lut_reference(0.0, t) * std::max(std::exp(-0.5 * z * z) - std::sqrt(2.0 * kPi) * z * tail, 0.0);
+}
+
 // The expected linear radiance of pixel p, float64.
 glm::dvec3 reference_pixel(const ShadingInputs& in, size_t p, const Material& m, const Camera& cam,
                            std::span<const Light> lights)
@@ -100,8 +112,8 @@ glm::dvec3 reference_pixel(const ShadingInputs& in, size_t p, const Material& m,
         l = glm::normalize(l);
         const double c = glm::dot(n, l), c_diffuse = glm::dot(n_diffuse, l);
         for (int ch = 0; ch < 3; ++ch) {
-            double diffuse =
-                double(m.albedo[ch]) / kPi * lut_reference(std::clamp(c_diffuse, -1.0, 1.0), t[ch]) * e[ch];
+            const double spread = std::clamp(double(in.normal_spread[p][dev::is_grey(m) ? 0 : ch]), 0.0, 1.0);
+            double diffuse = double(m.albedo[ch]) / kPi * diffuse_response(c_diffuse, t[ch], spread, m) * e[ch];
             if (m.boundary_transmittance) diffuse *= boundary(c_diffuse, f0, alpha) * exit;
             color[ch] += diffuse;
         }

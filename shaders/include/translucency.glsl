@@ -74,23 +74,45 @@ float quad_read(float first_of_row, float column, float column_weight, float row
     return mix(mix(q.x, q.y, column_weight), mix(q.z, q.w, column_weight), row_weight);
 }
 
+// Φ(−|z|) = ½·erfc(|z|/√2) from Abramowitz–Stegun 7.1.26 (1.5e-7) in z/√2 (p = 0.3275911/√2),
+// given e = e^{−z²/2}, which the callers need for φ too.
+vec3 normal_tail(vec3 z, vec3 e)
+{
+    vec3 s = 1.0 / (1.0 + 0.2316419 * abs(z));
+    vec3 poly = s * (0.254829592 + s * (-0.284496736 + s * (1.421413741 + s * (-1.453152027 + s * 1.061405429))));
+    return 0.5 * poly * e;
+}
+
 // Small t: Φ and φ of z = asin(c)/σ, to second order in σ (the O(σ²) terms of the expansion of
 // the exact e^{−t/2} Re{e^{iθ}[1 − Φ(z' + iσ)]} about the window edge); within 4e-5 of the
-// float64 reference for σ ≤ 0.3, 5e-6 for σ ≤ 0.2. Φ from Abramowitz–Stegun 7.1.26 (1.5e-7),
-// which shares its exponential with φ.
+// float64 reference for σ ≤ 0.3, 5e-6 for σ ≤ 0.2.
 vec3 translucency_small_t(float c, Translucency r)
 {
     float a = c * (1.0 + c * c * (1.0 / 6.0 + c * c * (3.0 / 40.0)));  // asin(c) where it matters
     vec3 z = clamp(a * r.inv_sigma, -8.0, 8.0);
     vec3 e = exp(-0.5 * z * z);
-    vec3 s = 1.0 / (1.0 + 0.2316419 * abs(z));  // 7.1.26 in z/√2: p = 0.3275911/√2
-    vec3 poly = s * (0.254829592 + s * (-0.284496736 + s * (1.421413741 + s * (-1.453152027 + s * 1.061405429))));
-    vec3 tail = 0.5 * poly * e;  // Φ(−|z|)
+    vec3 tail = normal_tail(z, e);  // Φ(−|z|)
     vec3 cdf = mix(tail, 1.0 - tail, step(0.0, z));
     vec3 pdf = 0.3989422804 * e;
     float sine = sqrt(max(1.0 - c * c, 0.0));
     return 2.0 * r.half_decay *
            (c * (cdf + 0.5 * r.t * z * pdf) + sine * r.sigma * pdf * (1.0 - r.t * (1.0 / 6.0) * (z * z - 1.0)));
+}
+
+// How the diffuse light falls off past the terminator, relative to its value there, when the
+// blur follows the surface (Material::spread_strength > 0). The fitted blur sets how much light
+// reaches the terminator (F(0, t)); how far it goes past it is the light's own reach against
+// the curvature: an angle whose variance is the normal spread (≈ ⟨θ²⟩/2, the variance of the
+// angle along one axis between the normals within the profile's reach), derived, not fitted.
+// The clamped cosine blurred by that narrow Gaussian, normalised to 1 at the terminator:
+// g(z) = √(2π)·[φ(z) − z·Φ(−z)], z = (θ − π/2)/σ, σ² = spread. A skin head (spread ~1e-3)
+// goes dark within a few degrees, as in the path tracer; a jewel bunny (spread ~0.5) keeps a
+// wide wrap. c = cos θ < 0; spread per channel in [0, 1].
+vec3 terminator_falloff(float c, vec3 spread)
+{
+    vec3 z = min(asin(min(-c, 1.0)) * inversesqrt(max(spread, vec3(1e-8))), vec3(12.0));
+    vec3 e = exp(-0.5 * z * z);
+    return max(e - 2.5066283 * z * normal_tail(z, e), vec3(0.0));
 }
 
 // F(c, t) per channel. c = cos θ, any value (clamped).

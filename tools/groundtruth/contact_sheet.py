@@ -17,7 +17,7 @@ import gt_io  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SCENES = ["bunny_jewel_front", "bunny_jewel_back", "camel_wax_back", "elephant_jade_back", "dragon_jewel_back",
-          "head_skin1_back"]
+          "head_skin1_back", "hand_skin1_back"]
 COLUMNS = ["reference", "lambert", "tm", "default"]
 
 

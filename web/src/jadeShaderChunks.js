@@ -182,6 +182,7 @@ varying vec3 vJadePosition;
 varying vec3 vJadeNormal;
 varying vec3 vJadeScatteringNormal;
 varying vec3 vJadeVariance;
+varying vec3 vJadeNormalSpread;
 varying float vJadeThickness;
 varying vec3 vJadeCentre;  // the bounding sphere's centre, view space (the same at every vertex)
 varying vec3 vJadeDiffused;  // mesh.vert's out_diffused: the transmitting lights' diffused exitance, summed
@@ -227,6 +228,7 @@ void main()
     vJadeNormal = normalMatrix * normal;
     vJadeScatteringNormal = normalMatrix * jadeScatteringNormal;
     vJadeVariance = jadeVariance(jadeTm, jadeNormalSpread);
+    vJadeNormalSpread = jadeNormalSpread;
     vJadeThickness = jadeThickness;
     vJadeCentre = (modelViewMatrix * vec4(jadeBounds.xyz, 1.0)).xyz;
     vec3 v = normalize(-p.xyz), l, e;
@@ -310,20 +312,35 @@ JadeTranslucency jadeTranslucencySetup(vec3 t)
     return r;
 }
 
+// normal_tail (translucency.glsl): Phi(-|z|) from Abramowitz-Stegun 7.1.26, given e = e^{-z^2/2}.
+vec3 jadeNormalTail(vec3 z, vec3 e)
+{
+    vec3 s = 1.0 / (1.0 + 0.2316419 * abs(z));
+    vec3 poly = s * (0.254829592 + s * (-0.284496736 + s * (1.421413741 + s * (-1.453152027 + s * 1.061405429))));
+    return 0.5 * poly * e;
+}
+
 // translucency_small_t (translucency.glsl): the closed form of {max(cos, 0) * G_t} for small t.
 vec3 jadeTranslucencySmallT(float c, JadeTranslucency r)
 {
     float a = c * (1.0 + c * c * (1.0 / 6.0 + c * c * (3.0 / 40.0)));
     vec3 z = clamp(a * r.inv_sigma, -8.0, 8.0);
     vec3 e = exp(-0.5 * z * z);
-    vec3 s = 1.0 / (1.0 + 0.2316419 * abs(z));
-    vec3 poly = s * (0.254829592 + s * (-0.284496736 + s * (1.421413741 + s * (-1.453152027 + s * 1.061405429))));
-    vec3 tail = 0.5 * poly * e;
+    vec3 tail = jadeNormalTail(z, e);
     vec3 cdf = mix(tail, 1.0 - tail, step(0.0, z));
     vec3 pdf = 0.3989422804 * e;
     float sine = sqrt(max(1.0 - c * c, 0.0));
     return 2.0 * r.half_decay *
            (c * (cdf + 0.5 * r.t * z * pdf) + sine * r.sigma * pdf * (1.0 - r.t * (1.0 / 6.0) * (z * z - 1.0)));
+}
+
+// terminator_falloff (translucency.glsl): past the terminator (c < 0) the diffuse light, relative
+// to its value there, falls off as the clamped cosine under a Gaussian of variance spread.
+vec3 jadeTerminatorFalloff(float c, vec3 spread)
+{
+    vec3 z = min(asin(min(-c, 1.0)) * inversesqrt(max(spread, vec3(1e-8))), vec3(12.0));
+    vec3 e = exp(-0.5 * z * z);
+    return max(e - 2.5066283 * z * jadeNormalTail(z, e), vec3(0.0));
 }
 
 // translucency (translucency.glsl), the ALU path: F(cos, t) = {max(cos, 0) * G_t}(theta) per
@@ -393,7 +410,11 @@ void jadeAddLight(vec3 l, vec3 e, bool transmits, vec3 visibility, float path, f
     float c = dot(n, l), c_diffuse = dot(n_diffuse, l);
     vec3 unshadowed = e;  // the transmitted light crossed the occluder: not shadowed
     e *= visibility;
-    vec3 diffuse = jadeAlbedoStrength.rgb * (1.0 / JADE_PI) * jadeTranslucency(c_diffuse, tr) * e;
+    // diffuse_response (mesh.frag): with the spread model the blur stops at the terminator.
+    bool falloff = c_diffuse < 0.0 && jadeSpecular.w > 0.0;
+    vec3 f = jadeTranslucency(falloff ? 0.0 : c_diffuse, tr);
+    if (falloff) f *= jadeTerminatorFalloff(c_diffuse, vJadeNormalSpread);
+    vec3 diffuse = jadeAlbedoStrength.rgb * (1.0 / JADE_PI) * f * e;
     if (jadeShape.w > 0.0) diffuse *= jadeBoundaryTransmittance(c_diffuse) * exit_transmittance;
     color += diffuse;
     if (c > 0.0 && jadeSpecular.z > 0.0) color += jadeSpecular.z * jadeSpecularLobe(n, v, l, c) * e;

@@ -126,8 +126,10 @@ struct Material {
     float strength = 1.0f;  ///< Gaussian variance (rad²) = t_m · (strength + spread_strength · spread)
     /// Blur that follows the surface's shape within the profile's reach: rad² per unit of t_m ·
     /// BakeResult::normal_spread (≈ ⟨θ²⟩/2 of the normals there, per channel): a medium whose
-    /// light travels far against the surface's curvature blurs more. 0 is the poster's model;
-    /// from_medium sets it from the fit.
+    /// light travels far against the surface's curvature blurs more. Above 0 the blur also stops
+    /// at the terminator, past which the light falls off over an angle of variance spread (its
+    /// own reach, not the fitted blur's: docs/shading.md). 0 is the poster's model, blurred all
+    /// the way round; from_medium sets it from the fit.
     float spread_strength = 0.0f;
     float ior = 1.5f;           ///< for the specular Fresnel term
     float roughness = 0.25f;    ///< GGX roughness (perceptual, squared in the shader)
@@ -151,7 +153,10 @@ struct Material {
     /// - profile: Burley per channel with d = ℓ/s(A), ℓ = 1/σ_t' the reduced mean free path,
     ///   A = diffuse_reflectance(α', η), s(A) = 1.85 − A + 7|A − 0.8|³ (Christensen & Burley
     ///   2015, searchlight configuration; ℓ is clamped to [1e-12, 1e12] mesh units);
-    /// - strength = fit.strength, spread_strength = fit.spread_strength;
+    /// - strength = fit.strength, spread_strength = fit.spread_strength (fitted on the training
+    ///   scenes' front and side light); with spread_strength > 0 the light past the terminator
+    ///   falls off over an angle of variance BakeResult::normal_spread (derived: the profile's
+    ///   reach against the curvature; docs/shading.md);
     /// - transmission: σ_t = fit.forward_extinction · (σ_s + σ_a) (fitted), σ_s', σ_tr (derived);
     ///   the dipole's z_r = 1/σ_t' and z_b = 2A/(3σ_t') (derived; A as in diffuse_reflectance;
     ///   both 0 where σ_s' = 0); weight = fit.transmission_weight, lobe and normal_mix (fitted on
