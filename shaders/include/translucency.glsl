@@ -105,9 +105,10 @@ vec3 translucency_small_t(float c, Translucency r)
 // the curvature: an angle whose variance is the normal spread (≈ ⟨θ²⟩/2, the variance of the
 // angle along one axis between the normals within the profile's reach), derived, not fitted.
 // The clamped cosine blurred by that narrow Gaussian, normalised to 1 at the terminator:
-// g(z) = √(2π)·[φ(z) − z·Φ(−z)], z = (θ − π/2)/σ, σ² = spread. A skin head (spread ~1e-3)
-// goes dark within a few degrees, as in the path tracer; a jewel bunny (spread ~0.5) keeps a
-// wide wrap. c = cos θ < 0; spread per channel in [0, 1].
+// g(z) = √(2π)·[φ(z) − z·Φ(−z)], z = (θ − π/2)/σ, σ² = spread. A head of skin (spread ~1e-3,
+// σ ≈ 2°) goes dark within a few degrees, as in the path tracer; a jade bunny (~0.05, σ ≈ 13°)
+// keeps a wide wrap, and a thin part, whose normals within reach cancel (up to 1), wider still.
+// c = cos θ < 0; spread per channel in [0, 1].
 vec3 terminator_falloff(float c, vec3 spread)
 {
     vec3 z = min(asin(min(-c, 1.0)) * inversesqrt(max(spread, vec3(1e-8))), vec3(12.0));
